@@ -1,0 +1,152 @@
+// lasercnc — the command line: check or run a G-code program on the
+// simulated machine and print the report.
+//
+// Exit codes: 0 done, 1 bad input (program, config), 2 bad command line,
+// 3 the run finished but failed its own checks (steps, pulses).
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "app/run_job.h"
+#include "gcode/program_reader.h"
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage:\n"
+    "  lasercnc run PROGRAM [--machine FILE] [--vmax V] [--amax A] [--tolerance E]\n"
+    "                       [--trace FILE.csv] [--json] [--[no-]progress] [--no-realtime]\n"
+    "  lasercnc check PROGRAM [--machine FILE]\n"
+    "  lasercnc --help | --version\n"
+    "\n"
+    "  run     plans PROGRAM, runs it on the simulated machine with the real RT thread\n"
+    "          and prints the report (--json: as one JSON object on stdout)\n"
+    "  check   reads the whole program and reports the first error, runs nothing\n"
+    "  --vmax/--amax   max velocity (mm/s) / acceleration (mm/s^2) of every linear axis\n"
+    "  --tolerance     path tolerance (mm)\n"
+    "  --trace         commanded position every RT period as CSV t,x,y,z,a,b,c\n"
+    "  --progress      progress bar on stderr (default: only when stderr is a terminal)\n"
+    "  --no-realtime   do not ask for SCHED_FIFO / mlockall\n";
+
+int usage_error(const std::string& msg) {
+  std::fprintf(stderr, "lasercnc: %s\n%s", msg.c_str(), kUsage);
+  return 2;
+}
+
+std::optional<double> parse_number(std::string_view s) {
+  char* end = nullptr;
+  const std::string str(s);
+  const double v = std::strtod(str.c_str(), &end);
+  if (end == str.c_str() || *end != '\0') return std::nullopt;
+  return v;
+}
+
+void draw_progress(double f) {
+  constexpr int kWidth = 40;
+  const int filled = static_cast<int>(f * kWidth + 0.5);
+  std::string bar(static_cast<std::size_t>(filled), '#');
+  bar.resize(kWidth, '.');
+  std::fprintf(stderr, "\r  [%s] %5.1f %%", bar.c_str(), f * 100.0);
+  if (f >= 1.0) std::fputc('\n', stderr);
+  std::fflush(stderr);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) return usage_error("missing command");
+  const std::string_view cmd = argv[1];
+  if (cmd == "--help" || cmd == "-h" || cmd == "help") {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
+  if (cmd == "--version") {
+    std::puts("lasercnc 0.1.0");
+    return 0;
+  }
+  if (cmd != "run" && cmd != "check") return usage_error("unknown command '" + std::string(cmd) + "'");
+
+  lcnc::app::RunOptions opt;
+  bool json = false;
+  bool show_progress = isatty(STDERR_FILENO) != 0;
+  for (int i = 2; i < argc; ++i) {
+    const std::string_view a = argv[i];
+    auto value = [&]() -> std::optional<std::string_view> {
+      if (i + 1 >= argc) return std::nullopt;
+      return std::string_view(argv[++i]);
+    };
+    auto number = [&](std::optional<double>& out) -> bool {
+      auto v = value();
+      if (!v) return false;
+      out = parse_number(*v);
+      return out.has_value();
+    };
+    if (a == "--machine") {
+      auto v = value();
+      if (!v) return usage_error("--machine needs a file");
+      opt.machine_file = *v;
+    } else if (a == "--trace") {
+      auto v = value();
+      if (!v) return usage_error("--trace needs a file");
+      opt.trace_file = *v;
+    } else if (a == "--vmax") {
+      if (!number(opt.vmax)) return usage_error("--vmax needs a number (mm/s)");
+    } else if (a == "--amax") {
+      if (!number(opt.amax)) return usage_error("--amax needs a number (mm/s^2)");
+    } else if (a == "--tolerance") {
+      if (!number(opt.tolerance_mm)) return usage_error("--tolerance needs a number (mm)");
+    } else if (a == "--json") {
+      json = true;
+    } else if (a == "--no-progress") {
+      show_progress = false;
+    } else if (a == "--progress") {
+      show_progress = true;
+    } else if (a == "--no-realtime") {
+      opt.realtime = false;
+    } else if (!a.empty() && a[0] == '-') {
+      return usage_error("unknown option '" + std::string(a) + "'");
+    } else if (opt.program.empty()) {
+      opt.program = a;
+    } else {
+      return usage_error("more than one program given");
+    }
+  }
+  if (opt.program.empty()) return usage_error("missing PROGRAM");
+
+  if (cmd == "check") {
+    auto machine = lcnc::app::load_machine(opt);
+    if (!machine) {
+      std::fprintf(stderr, "%s\n", machine.error().to_string().c_str());
+      return 1;
+    }
+    auto summary = lcnc::check_program(opt.program, *machine);
+    if (!summary) {
+      std::fprintf(stderr, "%s\n", summary.error().to_string().c_str());
+      return 1;
+    }
+    for (const auto& w : summary->warnings) std::fprintf(stderr, "%s\n", w.to_string().c_str());
+    std::printf("%s: OK, %u lines, %llu segments, path %.3f mm\n", opt.program.c_str(),
+                summary->lines, static_cast<unsigned long long>(summary->segments),
+                summary->path_length_mm);
+    return 0;
+  }
+
+  lcnc::app::ProgressFn progress;
+  if (show_progress) progress = draw_progress;
+  auto report = lcnc::app::run_job(opt, progress);
+  if (!report) {
+    std::fprintf(stderr, "%s\n", report.error().to_string().c_str());
+    return 1;
+  }
+  if (json) {
+    std::printf("%s\n", lcnc::app::report_json(*report).c_str());
+  } else {
+    std::fputs(lcnc::app::format_report(*report).c_str(), stdout);
+  }
+  return (report->steps_match && report->bad_frames == 0) ? 0 : 3;
+}

@@ -1,0 +1,93 @@
+// The run report, as text for people and as one JSON object for programs.
+#include <cstdio>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "app/run_job.h"
+
+namespace lcnc::app {
+namespace {
+
+std::string printf_string(const char* fmt, auto... args) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, fmt, args...);
+  return buf;
+}
+
+}  // namespace
+
+std::string format_report(const RunReport& r) {
+  std::string s;
+  s += "LaserCNC run report (simulated machine)\n";
+  s += printf_string("  program          %s (%u lines, %llu segments)\n", r.program.c_str(), r.lines,
+                     static_cast<unsigned long long>(r.segments));
+  s += printf_string("  machine          %s, RT period %.1f us\n", r.machine.c_str(), r.period_s * 1e6);
+  s += printf_string("  cycle time       %.6f s (%llu periods)\n", r.cycle_time_s,
+                     static_cast<unsigned long long>(r.periods));
+  s += printf_string("  path length      %.3f mm (%.3f mm at feed)\n", r.path_length_mm,
+                     r.feed_length_mm);
+  s += printf_string("  max deviation    %.4f mm (executed vs programmed path)\n",
+                     r.max_deviation_mm);
+  s += printf_string("  laser on         %.4f s\n", r.laser_on_s);
+  s += "  axis  peak velocity     peak acceleration      steps sent   steps commanded\n";
+  for (int i = 0; i < kAxisCount; ++i) {
+    const AxisReport& a = r.axes[i];
+    if (!a.present) continue;
+    const bool rot = is_rotary(static_cast<Axis>(i));
+    s += printf_string("  %c     %10.3f %-6s %12.1f %-7s %12lld %14lld %s\n", kAxisLetters[i],
+                       a.peak_velocity, rot ? "deg/s" : "mm/s", a.peak_acceleration,
+                       rot ? "deg/s2" : "mm/s2", static_cast<long long>(a.steps_sent),
+                       static_cast<long long>(a.steps_commanded),
+                       a.steps_sent == a.steps_commanded ? "=" : "MISMATCH");
+  }
+  s += printf_string("  steps            %s\n", r.steps_match ? "sent = commanded on every axis"
+                                                              : "MISMATCH between sent and commanded");
+  s += printf_string("  underruns        %llu   overruns %llu   trace drops %llu   bad frames %llu\n",
+                     static_cast<unsigned long long>(r.underruns),
+                     static_cast<unsigned long long>(r.overruns),
+                     static_cast<unsigned long long>(r.trace_drops),
+                     static_cast<unsigned long long>(r.bad_frames));
+  s += printf_string("  RT latency       p50 %.0f us, p99 %.0f us, max %.1f us (%s)\n",
+                     r.latency_p50_us, r.latency_p99_us, r.latency_max_us, r.schedule.c_str());
+  if (!r.rt_warning.empty()) s += "  warning          " + r.rt_warning + "\n";
+  return s;
+}
+
+std::string report_json(const RunReport& r) {
+  nlohmann::json j;
+  j["program"] = r.program;
+  j["machine"] = r.machine;
+  j["lines"] = r.lines;
+  j["segments"] = r.segments;
+  j["period_s"] = r.period_s;
+  j["periods"] = r.periods;
+  j["cycle_time_s"] = r.cycle_time_s;
+  j["path_length_mm"] = r.path_length_mm;
+  j["feed_length_mm"] = r.feed_length_mm;
+  j["max_deviation_mm"] = r.max_deviation_mm;
+  j["laser_on_s"] = r.laser_on_s;
+  nlohmann::json axes = nlohmann::json::object();
+  for (int i = 0; i < kAxisCount; ++i) {
+    const AxisReport& a = r.axes[i];
+    if (!a.present) continue;
+    axes[std::string(1, kAxisLetters[i])] = {
+        {"peak_velocity", a.peak_velocity},
+        {"peak_acceleration", a.peak_acceleration},
+        {"steps_sent", a.steps_sent},
+        {"steps_commanded", a.steps_commanded},
+    };
+  }
+  j["axes"] = axes;
+  j["steps_match"] = r.steps_match;
+  j["underruns"] = r.underruns;
+  j["overruns"] = r.overruns;
+  j["trace_drops"] = r.trace_drops;
+  j["bad_frames"] = r.bad_frames;
+  j["latency_us"] = {{"p50", r.latency_p50_us}, {"p99", r.latency_p99_us}, {"max", r.latency_max_us}};
+  j["schedule"] = r.schedule;
+  j["rt_warning"] = r.rt_warning;
+  return j.dump(2);
+}
+
+}  // namespace lcnc::app

@@ -1,0 +1,270 @@
+#include "app/run_job.h"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <thread>
+
+#include "drivers/sim_machine.h"
+#include "gcode/program_reader.h"
+#include "path/deviation_meter.h"
+#include "plan/coarse_interpolator.h"
+#include "plan/exact_stop_planner.h"
+#include "plan/motion_stats.h"
+#include "rt/rt_kernel.h"
+
+namespace lcnc::app {
+namespace {
+
+// Adapts a ProgramReader to the planner's pull interface.
+SegmentSource reader_source(ProgramReader& reader) {
+  return [&reader](Segment& out) {
+    switch (reader.next(out)) {
+      case ProgramReader::Next::Segment: return SourceStatus::Item;
+      case ProgramReader::Next::End: return SourceStatus::End;
+      case ProgramReader::Next::Error: return SourceStatus::Error;
+    }
+    return SourceStatus::Error;
+  };
+}
+
+// What the planner thread hands back when it is done.
+struct PlannerResult {
+  bool failed = false;
+  Diagnostic error;
+  std::array<std::int64_t, kAxisCount> commanded{};
+  std::array<double, kAxisCount> peak_v{};
+  std::array<double, kAxisCount> peak_a{};
+};
+
+class TraceWriter {
+ public:
+  explicit TraceWriter(const std::string& path) {
+    if (path.empty()) return;
+    file_ = std::fopen(path.c_str(), "w");
+    if (file_ != nullptr) {
+      std::setvbuf(file_, nullptr, _IOFBF, 1 << 20);
+      std::fputs("t,x,y,z,a,b,c\n", file_);
+    }
+  }
+  ~TraceWriter() {
+    if (file_ != nullptr) std::fclose(file_);
+  }
+  TraceWriter(const TraceWriter&) = delete;
+  TraceWriter& operator=(const TraceWriter&) = delete;
+  [[nodiscard]] bool failed_to_open(const std::string& path) const {
+    return !path.empty() && file_ == nullptr;
+  }
+  void write(double t, const Pose& p) {
+    if (file_ == nullptr) return;
+    std::fprintf(file_, "%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n", t, p[0], p[1], p[2], p[3], p[4],
+                 p[5]);
+  }
+
+ private:
+  std::FILE* file_ = nullptr;
+};
+
+}  // namespace
+
+std::string default_machine_file() {
+  if (const char* share = std::getenv("LASERCNC_SHARE")) {
+    return std::string(share) + "/machines/default.toml";
+  }
+  return std::string(LCNC_SHARE_DIR) + "/machines/default.toml";
+}
+
+Result<MachineConfig> load_machine(const RunOptions& options) {
+  const std::string file =
+      options.machine_file.empty() ? default_machine_file() : options.machine_file;
+  Result<MachineConfig> loaded = load_machine_config(file);
+  if (!loaded) return loaded;
+  MachineConfig m = std::move(loaded).value();
+  for (Axis a : {Axis::X, Axis::Y, Axis::Z}) {
+    AxisConfig& ax = m.axis(a);
+    if (!ax.present) continue;
+    if (options.vmax) ax.max_velocity = *options.vmax;
+    if (options.amax) ax.max_acceleration = *options.amax;
+  }
+  if (options.tolerance_mm) m.path_tolerance_mm = *options.tolerance_mm;
+  if (options.vmax || options.amax || options.tolerance_mm) {
+    Status s = validate(m, "command line (--vmax/--amax/--tolerance over " + file + ")");
+    if (!s) return s.error();
+  }
+  return m;
+}
+
+Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress) {
+  Result<MachineConfig> loaded = load_machine(options);
+  if (!loaded) return loaded.error();
+  const MachineConfig machine = std::move(loaded).value();
+
+  // The whole program is checked before anything moves.
+  ReaderOptions ropt;
+  Result<ProgramSummary> summary = check_program(options.program, machine, ropt);
+  if (!summary) return summary.error();
+
+  RunReport report;
+  report.program = options.program;
+  report.machine = machine.name;
+  report.lines = summary->lines;
+  report.segments = summary->segments;
+  report.path_length_mm = summary->path_length_mm;
+  report.feed_length_mm = summary->feed_length_mm;
+  report.period_s = machine.period_s();
+
+  TraceWriter trace_out(options.trace_file);
+  if (trace_out.failed_to_open(options.trace_file))
+    return make_error(ErrorCode::FileNotFound,
+                      "cannot write trace file '" + options.trace_file + "'", options.trace_file);
+
+  std::array<double, kAxisCount> spu{};
+  std::array<std::int64_t, kAxisCount> start_steps{};
+  {
+    StepQuantizer q(machine, ropt.start);
+    for (int i = 0; i < kAxisCount; ++i) {
+      spu[i] = machine.axes[i].present ? machine.axes[i].steps_per_unit : 1.0;
+      start_steps[i] = q.commanded(i);
+    }
+  }
+
+  auto buffer = std::make_unique<rt::PositionBuffer>();
+  auto trace = std::make_unique<rt::TraceRing>();
+  drivers::SimMachine sim(start_steps);
+  rt::RtKernel kernel(machine, *buffer, sim, trace.get(), start_steps);
+
+  // Planner thread: plan, coarse-interpolate, quantize, keep the buffer full.
+  std::atomic<bool> planner_done{false};
+  std::atomic<bool> abort{false};
+  PlannerResult planned;
+  std::thread planner([&] {
+    Result<std::unique_ptr<ProgramReader>> reader = ProgramReader::open(options.program, machine, ropt);
+    if (!reader) {
+      planned.failed = true;
+      planned.error = reader.error();
+    }
+    auto push = [&](const PeriodIncrement& inc) {
+      while (!buffer->try_push(inc)) {
+        if (abort.load(std::memory_order_relaxed)) return false;
+        std::this_thread::sleep_for(std::chrono::nanoseconds(machine.period_ns * 16));
+      }
+      return true;
+    };
+    StepQuantizer quant(machine, ropt.start);
+    MotionStats stats(machine.period_s(), ropt.start);
+    if (reader) {
+      ExactStopPlanner plan(machine, reader_source(**reader));
+      CoarseInterpolator interp(machine, [&plan](PlannedSegment& s) { return plan.next(s); });
+      PeriodSample sample;
+      PeriodSample last;
+      SourceStatus st;
+      bool any = false;
+      while ((st = interp.next(sample)) == SourceStatus::Item) {
+        stats.add(sample.pose);
+        last = sample;
+        any = true;
+        if (!push(quant.quantize(sample))) break;
+      }
+      if (st == SourceStatus::Error) {
+        planned.failed = true;
+        planned.error = (*reader)->error();
+      }
+      while (quant.owed() && !abort.load()) {
+        stats.add(last.pose);
+        if (!push(quant.pay_owed(last))) break;
+      }
+      stats.finish();
+      if (!any || planned.failed) {
+        PeriodIncrement end;  // a controlled end: no motion, laser off
+        end.end_of_program = true;
+        push(end);
+      }
+    } else {
+      PeriodIncrement end;
+      end.end_of_program = true;
+      push(end);
+    }
+    for (int i = 0; i < kAxisCount; ++i) planned.commanded[i] = quant.commanded(i);
+    planned.peak_v = stats.peak_velocity();
+    planned.peak_a = stats.peak_acceleration();
+    planner_done.store(true, std::memory_order_release);
+  });
+
+  // Prefill half the buffer (or the whole job) before the RT thread starts.
+  while (!planner_done.load(std::memory_order_acquire) &&
+         buffer->size() < rt::kPositionBufferCapacity / 2) {
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  rt::RtOptions rt_options;
+  rt_options.try_realtime = options.realtime;
+  kernel.start(rt_options);
+
+  // Drain the trace while the job runs: CSV, deviation, progress.
+  Result<std::unique_ptr<ProgramReader>> ref_reader =
+      ProgramReader::open(options.program, machine, ropt);
+  if (!ref_reader) {
+    abort = true;
+    kernel.stop();
+    kernel.join();
+    planner.join();
+    return ref_reader.error();
+  }
+  DeviationMeter deviation(reader_source(**ref_reader));
+  const double total_segments = std::max<double>(1.0, static_cast<double>(summary->segments));
+  auto last_progress = std::chrono::steady_clock::now();
+  rt::TraceRecord rec;
+  for (;;) {
+    bool got = false;
+    while (trace->try_pop(rec)) {
+      got = true;
+      Pose p = Pose::Zero();
+      for (int i = 0; i < kAxisCount; ++i) p[i] = static_cast<double>(rec.pos_steps[i]) / spu[i];
+      trace_out.write(static_cast<double>(rec.period + 1) * machine.period_s(), p);
+      deviation.add(p.head<3>(), rec.segment);
+    }
+    if (progress) {
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last_progress > std::chrono::milliseconds(100)) {
+        last_progress = now;
+        progress(std::min(1.0, kernel.current_segment() / total_segments));
+      }
+    }
+    if (kernel.finished() && trace->empty()) break;
+    if (!got) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  kernel.join();
+  abort = true;
+  planner.join();
+  if (progress) progress(1.0);
+  if (planned.failed) return planned.error;
+
+  report.periods = kernel.periods();
+  report.cycle_time_s = static_cast<double>(report.periods) * machine.period_s();
+  report.max_deviation_mm = deviation.max_mm();
+  report.steps_match = true;
+  for (int i = 0; i < kAxisCount; ++i) {
+    AxisReport& a = report.axes[i];
+    a.present = machine.axes[i].present;
+    a.peak_velocity = planned.peak_v[i];
+    a.peak_acceleration = planned.peak_a[i];
+    a.steps_sent = sim.position_steps(i) - start_steps[i];
+    a.steps_commanded = planned.commanded[i] - start_steps[i];
+    report.steps_match = report.steps_match && a.steps_sent == a.steps_commanded &&
+                         kernel.position_steps(i) == sim.position_steps(i);
+  }
+  report.underruns = kernel.underruns();
+  report.overruns = kernel.overruns();
+  report.trace_drops = kernel.trace_drops();
+  report.bad_frames = sim.bad_frames();
+  report.laser_on_s = static_cast<double>(sim.laser_on_periods()) * machine.period_s();
+  const rt::LatencyHistogram& lat = kernel.latency();
+  report.latency_p50_us = lat.quantile_us(0.50);
+  report.latency_p99_us = lat.quantile_us(0.99);
+  report.latency_max_us = static_cast<double>(lat.max_ns()) / 1000.0;
+  report.schedule = kernel.schedule() == rt::RtSchedule::Fifo ? "SCHED_FIFO" : "normal";
+  report.rt_warning = kernel.warning();
+  return report;
+}
+
+}  // namespace lcnc::app

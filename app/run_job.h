@@ -1,0 +1,73 @@
+// `lasercnc run`: a job end to end on the simulated machine. The program is
+// checked whole first; then a planner thread plans and coarse-interpolates
+// into the lock-free position buffer while the RT thread pops one entry per
+// period and drives the DDA into the simulated machine. The caller's thread
+// drains the RT trace (CSV, contour deviation) and shows progress.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "common/result.h"
+#include "geom/pose.h"
+#include "machine/machine_config.h"
+
+namespace lcnc::app {
+
+struct RunOptions {
+  std::string program;
+  std::string machine_file;             // empty: the default machine
+  std::optional<double> vmax;           // every linear axis, mm/s
+  std::optional<double> amax;           // every linear axis, mm/s²
+  std::optional<double> tolerance_mm;   // path tolerance
+  std::string trace_file;               // CSV t,x,y,z,a,b,c per RT period; empty: none
+  bool realtime = true;                 // try SCHED_FIFO + mlockall
+};
+
+struct AxisReport {
+  bool present = false;
+  double peak_velocity = 0.0;      // commanded, mm/s or deg/s
+  double peak_acceleration = 0.0;  // commanded, mm/s² or deg/s²
+  std::int64_t steps_sent = 0;     // net pulses the machine received
+  std::int64_t steps_commanded = 0;
+};
+
+struct RunReport {
+  std::string program;
+  std::string machine;
+  std::uint32_t lines = 0;
+  std::uint64_t segments = 0;
+  double period_s = 0.0;
+  std::uint64_t periods = 0;
+  double cycle_time_s = 0.0;
+  double path_length_mm = 0.0;
+  double feed_length_mm = 0.0;
+  double max_deviation_mm = 0.0;
+  std::array<AxisReport, kAxisCount> axes{};
+  bool steps_match = false;
+  std::uint64_t underruns = 0;
+  std::uint64_t overruns = 0;
+  std::uint64_t trace_drops = 0;
+  std::uint64_t bad_frames = 0;
+  double laser_on_s = 0.0;
+  double latency_p50_us = 0.0, latency_p99_us = 0.0, latency_max_us = 0.0;
+  std::string schedule;    // "SCHED_FIFO" or "normal"
+  std::string rt_warning;  // why real-time scheduling was not had
+};
+
+// Fraction of the job done (0 … 1), called from the caller's thread.
+using ProgressFn = std::function<void(double fraction)>;
+
+[[nodiscard]] Result<MachineConfig> load_machine(const RunOptions& options);
+[[nodiscard]] Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress = {});
+
+[[nodiscard]] std::string format_report(const RunReport& report);
+[[nodiscard]] std::string report_json(const RunReport& report);
+
+// The default machine config file (share/machines/default.toml).
+[[nodiscard]] std::string default_machine_file();
+
+}  // namespace lcnc::app

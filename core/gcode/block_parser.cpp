@@ -1,0 +1,466 @@
+#include "gcode/block_parser.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <system_error>
+
+#include "gcode/gcode_tolerances.h"
+
+namespace lcnc::gcode {
+namespace {
+
+constexpr const char* kSupportedWords = "G M N X Y Z A B C I J K R F S P Q";
+constexpr const char* kSupportedGCodes =
+    "G0 G1 G2 G3 G4 G17 G18 G19 G20 G21 G54-G59 G61 G61.1 G64 G90 G91 G90.1 G91.1 G93 G94";
+constexpr const char* kSupportedMCodes = "M2 M3 M4 M5 M7 M8 M9 M30";
+
+// Exact powers of ten: a double holds 10^k exactly for k <= 22.
+constexpr double kPow10[] = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                             1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
+// Digits that fit a double exactly (10^15 < 2^53): then mantissa / 10^frac is
+// one correctly rounded division, the same result as strtod.
+constexpr int kFastDigits = 15;
+
+[[nodiscard]] constexpr bool is_digit(char c) noexcept { return c >= '0' && c <= '9'; }
+
+// Axis index of an axis letter, -1 for other letters.
+[[nodiscard]] constexpr int axis_of(char upper) noexcept {
+  switch (upper) {
+    case 'X': return 0;
+    case 'Y': return 1;
+    case 'Z': return 2;
+    case 'A': return 3;
+    case 'B': return 4;
+    case 'C': return 5;
+    default: return -1;
+  }
+}
+
+// Modal group of a G code ×10; -1 when outside the subset.
+[[nodiscard]] constexpr int g_group(int tenths) noexcept {
+  switch (tenths) {
+    case 0: case 10: case 20: case 30: return group_index(GGroup::Motion);
+    case 40: return group_index(GGroup::NonModal);
+    case 170: case 180: case 190: return group_index(GGroup::Plane);
+    case 200: case 210: return group_index(GGroup::Units);
+    case 540: case 550: case 560: case 570: case 580: case 590:
+      return group_index(GGroup::CoordSystem);
+    case 610: case 611: case 640: return group_index(GGroup::PathControl);
+    case 900: case 910: return group_index(GGroup::Distance);
+    case 901: case 911: return group_index(GGroup::ArcDistance);
+    case 930: case 940: return group_index(GGroup::FeedMode);
+    default: return -1;
+  }
+}
+
+}  // namespace
+
+std::string g_code_name(int tenths) {
+  std::string s = "G" + std::to_string(tenths / 10);
+  if (tenths % 10 != 0) s += "." + std::to_string(tenths % 10);
+  return s;
+}
+
+bool BlockParser::fail(ErrorCode code, std::uint32_t byte_pos, std::string message) {
+  fault_.code = code;
+  fault_.byte_pos = byte_pos;
+  fault_.message = std::move(message);
+  return false;
+}
+
+std::string BlockParser::quoted(Span s) const {
+  std::string q = "'";
+  q += text_.text(s);
+  q += '\'';
+  return q;
+}
+
+// Drops comments and blanks, upper-cases letters (LinuxCNC close_and_downcase).
+bool BlockParser::compact(std::string_view line) {
+  text_.original = line;
+  if (text_.compact.size() < line.size()) {
+    text_.compact.resize(line.size());
+    text_.offset.resize(line.size());
+  }
+  char* out = text_.compact.data();
+  std::uint32_t* off = text_.offset.data();
+  std::uint32_t n = 0;
+  bool in_comment = false;
+  std::uint32_t comment_pos = 0;
+  const auto len = static_cast<std::uint32_t>(line.size());
+  for (std::uint32_t i = 0; i < len; ++i) {
+    char c = line[i];
+    if (in_comment) {
+      if (c == ')') {
+        in_comment = false;
+      } else if (c == '(') {
+        text_.size = n;
+        return fail(ErrorCode::GcodeComment, i,
+                    "found '(' inside the comment opened at column " +
+                        std::to_string(comment_pos + 1) +
+                        "; expected ')' first: comments do not nest");
+      }
+      continue;
+    }
+    switch (c) {
+      case '(':
+        in_comment = true;
+        comment_pos = i;
+        continue;
+      case ')':
+        text_.size = n;
+        return fail(ErrorCode::GcodeComment, i,
+                    "found ')' with no comment open; expected '(' before it");
+      case ';':
+        i = len;  // the rest of the line is a comment
+        continue;
+      case ' ':
+      case '\t':
+      case '\r':
+        continue;
+      default:
+        break;
+    }
+    if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');
+    out[n] = c;
+    off[n] = i;
+    ++n;
+  }
+  text_.size = n;
+  if (in_comment) {
+    return fail(ErrorCode::GcodeComment, comment_pos,
+                "found a comment '(' not closed on its line; expected ')' before the end "
+                "of the line");
+  }
+  return true;
+}
+
+// Reads [+-] digits [. digits] at compact index i; i moves past it.
+bool BlockParser::read_number(std::uint32_t& i, std::uint32_t letter_at_pos, double& value) {
+  const char* c = text_.compact.data();
+  const std::uint32_t n = text_.size;
+  const std::uint32_t start = i;
+  const char letter = c[letter_at_pos];
+  std::uint32_t j = i;
+  bool negative = false;
+  if (j < n && (c[j] == '+' || c[j] == '-')) {
+    negative = c[j] == '-';
+    ++j;
+  }
+  const std::uint32_t digits_start = j;
+  std::uint64_t mantissa = 0;
+  int digits = 0;  // significant digits (leading zeros do not count)
+  int frac = 0;    // digits after the point
+  auto take = [&](char d) {
+    if (digits > 0 || d != '0') ++digits;
+    if (digits <= kFastDigits) mantissa = mantissa * 10 + static_cast<unsigned>(d - '0');
+  };
+  while (j < n && is_digit(c[j])) take(c[j++]);
+  bool any_digit = j > digits_start;
+  if (j < n && c[j] == '.') {
+    ++j;
+    while (j < n && is_digit(c[j])) {
+      take(c[j++]);
+      ++frac;
+      any_digit = true;
+    }
+  }
+  const std::uint32_t letter_pos = text_.offset[letter_at_pos];
+  if (!any_digit) {
+    if (start < n && c[start] == '#') {
+      return fail(ErrorCode::GcodeUnsupported, text_.offset[start],
+                  std::string("found '") + letter +
+                      "#': parameters (#) are not supported; expected a plain number after " +
+                      letter);
+    }
+    if (start < n && c[start] == '[') {
+      return fail(ErrorCode::GcodeUnsupported, text_.offset[start],
+                  std::string("found '") + letter +
+                      "[': expressions ([ ]) are not supported; expected a plain number after " +
+                      letter);
+    }
+    std::string found(1, letter);
+    if (start < n) found.append(c + start, std::min<std::uint32_t>(n - start, 8));
+    return fail(ErrorCode::GcodeBadNumber, letter_pos,
+                "found '" + found + "' with no number after " + letter +
+                    "; expected a number such as " + letter + "10, " + letter + "-0.5 or " +
+                    letter + ".5");
+  }
+  if (j < n && c[j] == 'E' && j + 1 < n &&
+      (is_digit(c[j + 1]) || c[j + 1] == '+' || c[j + 1] == '-' || c[j + 1] == '.')) {
+    return fail(ErrorCode::GcodeBadNumber, letter_pos,
+                "found '" + std::string(c + letter_at_pos, j + 2 - letter_at_pos) +
+                    "...': exponents are not allowed in G-code numbers; expected plain digits "
+                    "with an optional decimal point");
+  }
+  if (digits <= kFastDigits && frac <= kFastDigits) {
+    double v = static_cast<double>(mantissa);
+    if (frac > 0) v /= kPow10[frac];
+    value = negative ? -v : v;
+  } else {
+    // Long numbers: std::from_chars rounds correctly (it takes no leading '+').
+    const char* first = c + start + ((c[start] == '+') ? 1 : 0);
+    const auto [end, ec] = std::from_chars(first, c + j, value);
+    if (ec != std::errc() || end != c + j) {
+      const std::uint32_t shown = std::min<std::uint32_t>(j - letter_at_pos, 24);
+      return fail(ErrorCode::GcodeBadNumber, letter_pos,
+                  "found '" + std::string(c + letter_at_pos, shown) +
+                      "...': the number is out of range; expected a number a double can hold");
+    }
+  }
+  i = j;
+  return true;
+}
+
+bool BlockParser::read_g(Span w, double value, Block& out) {
+  const std::uint32_t pos = text_.byte_pos(w);
+  const double scaled = value * 10.0;
+  const bool in_range = value >= 0.0 && value < 10000.0;
+  const int tenths = in_range ? static_cast<int>(std::lround(scaled)) : -1;
+  const bool whole_tenths = in_range && std::fabs(scaled - tenths) <= kCodeTenthsTol;
+  const int grp = whole_tenths ? g_group(tenths) : -1;
+  if (grp < 0) {
+    const std::string name = whole_tenths ? g_code_name(tenths) : std::string(text_.text(w));
+    return fail(ErrorCode::GcodeUnknownCode, pos,
+                name + " is not supported; expected one of " + kSupportedGCodes);
+  }
+  if (out.g[grp] >= 0) {
+    return fail(ErrorCode::GcodeModalConflict, pos,
+                "found " + g_code_name(out.g[grp]) + " and " + g_code_name(tenths) +
+                    " in one block, both of modal group " + std::to_string(kGGroupNumber[grp]) +
+                    " (" + kGGroupName[grp] + "); expected at most one code of each group");
+  }
+  out.g[grp] = static_cast<std::int16_t>(tenths);
+  out.g_word[grp] = w;
+  return true;
+}
+
+bool BlockParser::read_m(Span w, double value, Block& out) {
+  const std::uint32_t pos = text_.byte_pos(w);
+  const double rounded = std::round(value);
+  if (std::fabs(value - rounded) > kIntegerTol || value < 0.0 || value >= 10000.0) {
+    return fail(ErrorCode::GcodeBadNumber, pos,
+                "found " + quoted(w) + "; expected a whole-number M code (" + kSupportedMCodes +
+                    ")");
+  }
+  const int code = static_cast<int>(rounded);
+  const std::string name = "M" + std::to_string(code);
+  auto conflict = [&](int other, int group, const char* group_name) {
+    return fail(ErrorCode::GcodeModalConflict, pos,
+                "found M" + std::to_string(other) + " and " + name +
+                    " in one block, both of M modal group " + std::to_string(group) + " (" +
+                    group_name + "); expected at most one code of each group");
+  };
+  switch (code) {
+    case 2:
+    case 30:
+      if (out.m_stop >= 0) return conflict(out.m_stop, 4, "stopping");
+      out.m_stop = static_cast<std::int16_t>(code);
+      out.m_stop_word = w;
+      return true;
+    case 3:
+    case 4:
+    case 5:
+      if (out.m_laser >= 0) return conflict(out.m_laser, 7, "laser on/off");
+      out.m_laser = static_cast<std::int16_t>(code);
+      out.m_laser_word = w;
+      return true;
+    case 7:
+    case 8:
+    case 9: {
+      // M7 and M8 may be on together (LinuxCNC); M9 excludes both, and no
+      // code may appear twice.
+      const char* group_name = "assist gas: M7 mist, M8 flood, M9 off";
+      if (out.m9) return conflict(9, 8, group_name);
+      if (code == 9 && out.m7) return conflict(7, 8, group_name);
+      if (code == 9 && out.m8) return conflict(8, 8, group_name);
+      if (code == 7 && out.m7) return conflict(7, 8, group_name);
+      if (code == 8 && out.m8) return conflict(8, 8, group_name);
+      if (code == 7) {
+        out.m7 = true;
+        out.m7_word = w;
+      } else if (code == 8) {
+        out.m8 = true;
+        out.m8_word = w;
+      } else {
+        out.m9 = true;
+        out.m9_word = w;
+      }
+      return true;
+    }
+    default:
+      return fail(ErrorCode::GcodeUnknownCode, pos,
+                  name + " is not supported; expected one of " + kSupportedMCodes);
+  }
+}
+
+bool BlockParser::read_word(std::uint32_t& i, Block& out) {
+  const char* c = text_.compact.data();
+  const std::uint32_t n = text_.size;
+  const char ch = c[i];
+  const std::uint32_t pos = text_.offset[i];
+
+  if (ch < 'A' || ch > 'Z') {
+    switch (ch) {
+      case '#':
+        return fail(ErrorCode::GcodeUnsupported, pos,
+                    "found '#': parameters (#1 = ..., #<name>) are not supported; expected "
+                    "words with plain numbers");
+      case '[':
+        return fail(ErrorCode::GcodeUnsupported, pos,
+                    "found '[': expressions are not supported; expected words with plain "
+                    "numbers");
+      case '/':
+        return fail(ErrorCode::GcodeSyntax, pos,
+                    "found '/' inside the block; expected block delete '/' only as the first "
+                    "character of a line");
+      default: {
+        // Quote the whole UTF-8 character when it is one.
+        std::string_view orig = text_.original.substr(pos);
+        std::size_t len = 1;
+        while (len < orig.size() && len < 4 && (static_cast<unsigned char>(orig[len]) & 0xC0) == 0x80) {
+          ++len;
+        }
+        return fail(ErrorCode::GcodeSyntax, pos,
+                    "found '" + std::string(orig.substr(0, len)) +
+                        "'; expected a word: a letter (" + kSupportedWords +
+                        ") followed by a number");
+      }
+    }
+  }
+
+  // The span of an unsupported word, for its message: the letter and what
+  // looks like its number.
+  auto rough_word = [&]() {
+    std::uint32_t j = i + 1;
+    while (j < n && (is_digit(c[j]) || c[j] == '.' || c[j] == '+' || c[j] == '-')) ++j;
+    return quoted(Span{i, j});
+  };
+  switch (ch) {
+    case 'O':
+      return fail(ErrorCode::GcodeUnsupported, pos,
+                  "found " + rough_word() +
+                      ": O-word subroutines and control flow are not supported; expected "
+                      "plain blocks of " + kSupportedWords + " words");
+    case 'N':
+      return fail(ErrorCode::GcodeSyntax, pos,
+                  "found " + rough_word() +
+                      " after other words; expected the line number N first in the block");
+    case 'T':
+      return fail(ErrorCode::GcodeUnsupported, pos,
+                  "found " + rough_word() + ": tool selection (T) is not supported; expected " +
+                      kSupportedWords + " words");
+    case 'H':
+    case 'D':
+      return fail(ErrorCode::GcodeUnsupported, pos,
+                  "found " + rough_word() +
+                      ": tool length and cutter radius offsets (H, D) are not supported; "
+                      "expected " + kSupportedWords + " words");
+    case 'L':
+      return fail(ErrorCode::GcodeUnsupported, pos,
+                  "found " + rough_word() +
+                      ": L words (G10 data, canned-cycle repeats) are not supported; expected " +
+                      kSupportedWords + " words");
+    case 'U':
+    case 'V':
+    case 'W':
+      return fail(ErrorCode::GcodeUnsupported, pos,
+                  "found " + rough_word() +
+                      ": U V W axes are not supported; expected axis words X Y Z A B C");
+    case 'E':
+      return fail(ErrorCode::GcodeUnsupported, pos,
+                  "found " + rough_word() + ": E words are not supported; expected " +
+                      kSupportedWords + " words");
+    default:
+      break;
+  }
+
+  const std::uint32_t letter_at = i;
+  ++i;
+  double value = 0.0;
+  if (!read_number(i, letter_at, value)) return false;
+  const Span w{letter_at, i};
+  if (ch == 'G') return read_g(w, value, out);
+  if (ch == 'M') return read_m(w, value, out);
+
+  const int li = letter_index(ch);
+  if ((out.letters >> li) & 1u) {
+    return fail(ErrorCode::GcodeRepeatedWord, pos,
+                "found a second " + std::string(1, ch) + " word " + quoted(w) +
+                    " (the first is " + quoted(out.word[li]) +
+                    "); expected each word letter at most once per block");
+  }
+  const int axis = axis_of(ch);
+  if (axis >= 0) {
+    if (((present_axes_ >> axis) & 1u) == 0) {
+      std::string axes;
+      for (int a = 0; a < 6; ++a) {
+        if ((present_axes_ >> a) & 1u) {
+          if (!axes.empty()) axes += ' ';
+          axes += "XYZABC"[a];
+        }
+      }
+      return fail(ErrorCode::GcodeNoSuchAxis, pos,
+                  "found " + quoted(w) + " but this machine has no " + std::string(1, ch) +
+                      " axis; expected axis words for its axes: " + axes);
+    }
+    if (out.axis_mask == 0) out.first_axis_word = w;
+    out.axis_mask = static_cast<std::uint8_t>(out.axis_mask | (1u << axis));
+  }
+  out.letters |= 1u << li;
+  out.value[li] = value;
+  out.word[li] = w;
+  return true;
+}
+
+bool BlockParser::parse(std::string_view line, Block& out) {
+  out.empty = true;
+  out.percent = false;
+  out.block_delete = false;
+  out.letters = 0;
+  out.axis_mask = 0;
+  out.g.fill(-1);
+  out.m_stop = -1;
+  out.m_laser = -1;
+  out.m7 = out.m8 = out.m9 = false;
+
+  if (!compact(line)) return false;
+  const char* c = text_.compact.data();
+  const std::uint32_t n = text_.size;
+  if (n == 0) return true;
+
+  if (c[0] == '%') {
+    out.percent = true;
+    if (n > 1) {
+      return fail(ErrorCode::GcodeSyntax, text_.offset[1],
+                  "found '" + std::string(c + 1, n - 1) +
+                      "' after '%'; expected nothing but a comment on a '%' program "
+                      "delimiter line");
+    }
+    return true;
+  }
+
+  std::uint32_t i = 0;
+  if (c[i] == '/') {
+    out.block_delete = true;
+    ++i;
+  }
+  if (i < n && c[i] == 'N') {
+    const std::uint32_t letter_at = i;
+    ++i;
+    const std::uint32_t digits_at = i;
+    while (i < n && (is_digit(c[i]) || c[i] == '.')) ++i;
+    if (i == digits_at) {
+      return fail(ErrorCode::GcodeBadNumber, text_.offset[letter_at],
+                  "found 'N' with no line number; expected N followed by digits, e.g. N10");
+    }
+  }
+  while (i < n) {
+    if (!read_word(i, out)) return false;
+    out.empty = false;
+  }
+  return true;
+}
+
+}  // namespace lcnc::gcode

@@ -1,0 +1,133 @@
+// Step 1 of reading a line: the block parser. Turns one line of RS274NGC text
+// into a Block (its words, its G and M codes sorted by modal group) or a Fault
+// saying what was found, where, and what was expected.
+//
+// As LinuxCNC (rs274ngc read_text/close_and_downcase, read_items), the line is
+// first compacted: comments, spaces and tabs outside comments are dropped and
+// letters upper-cased, so "g 0 1 x 1 0.5" reads as "G01X10.5". Each compacted
+// character remembers its byte offset in the original line, so every fault
+// points at a column of what the user wrote.
+//
+// Syntax: ['/'] ['N' number] { letter number } ; a number is [+-] digits
+// ['.' digits] or [+-] '.' digits (no exponent). Comments are "( ... )" (not
+// nested, closed on the line) and everything after ';'. A '%' line is a
+// program delimiter and may carry only a comment.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "common/error.h"
+
+namespace lcnc::gcode {
+
+// G modal groups of the subset (LinuxCNC numbers in kGGroupNumber).
+enum class GGroup : std::uint8_t {
+  NonModal,     // 0: G4
+  Motion,       // 1: G0 G1 G2 G3
+  Plane,        // 2: G17 G18 G19
+  Distance,     // 3: G90 G91
+  ArcDistance,  // 4: G90.1 G91.1
+  FeedMode,     // 5: G93 G94
+  Units,        // 6: G20 G21
+  CoordSystem,  // 12: G54 .. G59
+  PathControl,  // 13: G61 G61.1 G64
+};
+inline constexpr int kGGroupCount = 9;
+inline constexpr std::array<int, kGGroupCount> kGGroupNumber = {0, 1, 2, 3, 4, 5, 6, 12, 13};
+inline constexpr std::array<const char*, kGGroupCount> kGGroupName = {
+    "non-modal",       "motion",        "plane selection", "distance mode",
+    "arc distance mode", "feed rate mode", "units",        "coordinate system",
+    "path control mode"};
+
+[[nodiscard]] constexpr int group_index(GGroup g) noexcept { return static_cast<int>(g); }
+
+// [begin, end) of a word in LineText::compact.
+struct Span {
+  std::uint32_t begin = 0;
+  std::uint32_t end = 0;
+};
+
+// The line being read: the original text and its compacted form.
+struct LineText {
+  std::string_view original;
+  std::vector<char> compact;           // capacity reused from line to line
+  std::vector<std::uint32_t> offset;   // byte offset in `original` of each compact char
+  std::uint32_t size = 0;              // compact chars in use
+
+  [[nodiscard]] std::string_view text(Span s) const {
+    return {compact.data() + s.begin, s.end - s.begin};
+  }
+  [[nodiscard]] std::uint32_t byte_pos(Span s) const { return offset[s.begin]; }
+};
+
+// What went wrong: code, byte offset in the original line, message.
+struct Fault {
+  ErrorCode code = ErrorCode::Ok;
+  std::uint32_t byte_pos = 0;
+  std::string message;
+};
+
+inline constexpr int kLetterCount = 26;
+[[nodiscard]] constexpr int letter_index(char upper) noexcept { return upper - 'A'; }
+
+// One parsed block. Word values are as written (program units); codes are
+// stored ×10 (G61.1 -> 611), -1 when the group is not in the block.
+struct Block {
+  bool empty = true;          // no words: blank or comment-only line
+  bool percent = false;       // a '%' program delimiter line
+  bool block_delete = false;  // started with '/'
+  std::uint32_t letters = 0;  // bit letter_index(L) for each word other than G, M, N
+  std::uint8_t axis_mask = 0; // bit index(Axis) for each axis word
+  Span first_axis_word{};
+  std::array<double, kLetterCount> value{};
+  std::array<Span, kLetterCount> word{};
+  std::array<std::int16_t, kGGroupCount> g{};
+  std::array<Span, kGGroupCount> g_word{};
+  std::int16_t m_stop = -1;   // 2 or 30
+  std::int16_t m_laser = -1;  // 3, 4 or 5
+  bool m7 = false, m8 = false, m9 = false;
+  Span m_stop_word{}, m_laser_word{}, m7_word{}, m8_word{}, m9_word{};
+
+  [[nodiscard]] bool has(char upper) const noexcept {
+    return ((letters >> letter_index(upper)) & 1u) != 0;
+  }
+  [[nodiscard]] double operator[](char upper) const noexcept { return value[letter_index(upper)]; }
+  [[nodiscard]] Span span(char upper) const noexcept { return word[letter_index(upper)]; }
+  [[nodiscard]] std::int16_t code(GGroup grp) const noexcept { return g[group_index(grp)]; }
+  [[nodiscard]] Span code_word(GGroup grp) const noexcept { return g_word[group_index(grp)]; }
+};
+
+class BlockParser {
+ public:
+  // present_axes: bit index(Axis) set for each axis the machine has.
+  explicit BlockParser(std::uint8_t present_axes) : present_axes_(present_axes) {}
+
+  // Parses `line` (kept by the caller until the next parse) into `out`.
+  // false on error; fault() says what and where.
+  [[nodiscard]] bool parse(std::string_view line, Block& out);
+
+  [[nodiscard]] const LineText& text() const noexcept { return text_; }
+  [[nodiscard]] const Fault& fault() const noexcept { return fault_; }
+
+ private:
+  bool compact(std::string_view line);
+  bool read_number(std::uint32_t& i, std::uint32_t letter_at_pos, double& value);
+  bool read_word(std::uint32_t& i, Block& out);
+  bool read_g(Span w, double value, Block& out);
+  bool read_m(Span w, double value, Block& out);
+  bool fail(ErrorCode code, std::uint32_t byte_pos, std::string message);
+  [[nodiscard]] std::string quoted(Span s) const;
+
+  std::uint8_t present_axes_;
+  LineText text_;
+  Fault fault_;
+};
+
+// "G38.2" from a code stored ×10.
+[[nodiscard]] std::string g_code_name(int tenths);
+
+}  // namespace lcnc::gcode

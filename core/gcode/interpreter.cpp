@@ -1,0 +1,543 @@
+#include "gcode/interpreter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <string>
+
+#include "gcode/arc_geometry.h"
+#include "gcode/gcode_tolerances.h"
+
+namespace lcnc::gcode {
+namespace {
+
+constexpr char kCentreLetter[3] = {'I', 'J', 'K'};  // centre word of X, Y, Z
+constexpr std::size_t kQuoteMaxChars = 60;
+
+// A number for a message: up to 4 decimals, trailing zeros dropped.
+std::string num(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.4f", v);
+  std::string s = buf;
+  while (s.back() == '0') s.pop_back();
+  if (s.back() == '.') s.pop_back();
+  if (s == "-0") s = "0";
+  return s;
+}
+
+const char* plane_name(Plane p) {
+  switch (p) {
+    case Plane::ZX: return "ZX plane (G18)";
+    case Plane::YZ: return "YZ plane (G19)";
+    case Plane::XY:
+    default: return "XY plane (G17)";
+  }
+}
+
+}  // namespace
+
+Interpreter::Interpreter(const MachineConfig& machine, const Pose& start)
+    : machine_(machine), pos_(start) {}
+
+// --- messages -------------------------------------------------------------
+
+bool Interpreter::fail_at(ErrorCode code, std::uint32_t byte_pos, std::string message) {
+  fault_.code = code;
+  fault_.byte_pos = byte_pos;
+  fault_.message = std::move(message);
+  return false;
+}
+
+bool Interpreter::fail(ErrorCode code, Span at, std::string message) {
+  return fail_at(code, t_->byte_pos(at), std::move(message));
+}
+
+std::string Interpreter::quoted(Span s) const { return "'" + std::string(t_->text(s)) + "'"; }
+
+// The line as written, trimmed (and shortened when long).
+std::string Interpreter::quoted_block() const {
+  std::string_view l = t_->original;
+  while (!l.empty() && (l.front() == ' ' || l.front() == '\t')) l.remove_prefix(1);
+  while (!l.empty() && (l.back() == ' ' || l.back() == '\t')) l.remove_suffix(1);
+  std::string q = "'";
+  if (l.size() > kQuoteMaxChars) {
+    q += l.substr(0, kQuoteMaxChars);
+    q += "...";
+  } else {
+    q += l;
+  }
+  q += '\'';
+  return q;
+}
+
+double Interpreter::length_scale() const noexcept { return inch_ ? kMmPerInch : 1.0; }
+const char* Interpreter::feed_unit() const noexcept { return inch_ ? "in/min" : "mm/min"; }
+
+// --- the block ------------------------------------------------------------
+
+bool Interpreter::execute(const Block& block, const LineText& text, std::uint32_t line,
+                          SegmentBuffer& out) {
+  b_ = &block;
+  t_ = &text;
+  line_ = line;
+  if (!resolve_motion()) return false;
+  if (!check_word_use()) return false;
+  if (!set_feed_and_power()) return false;  // G93/G94, F, S, M3-M5, M7-M9
+  if (!dwell(out)) return false;            // G4
+  set_modes();                              // plane, units, coordinate system
+  if (!set_path_control()) return false;    // G61 G61.1 G64
+  if (block_motion_ != MotionMode::None && !move(out)) return false;
+  if (block.m_stop >= 0) ended_ = true;     // M2 M30
+  return true;
+}
+
+// The motion this block runs: its G0..G3, or the modal one when it has axis
+// words only (LinuxCNC enhance_block).
+bool Interpreter::resolve_motion() {
+  const Block& b = *b_;
+  block_motion_ = MotionMode::None;
+  const int g = b.code(GGroup::Motion);
+  if (g >= 0) {
+    motion_word_ = b.code_word(GGroup::Motion);
+    const MotionMode m = g == 0    ? MotionMode::Rapid
+                         : g == 10 ? MotionMode::Linear
+                         : g == 20 ? MotionMode::ArcCw
+                                   : MotionMode::ArcCcw;
+    motion_ = m;
+    if (b.axis_mask == 0) {
+      if (m == MotionMode::ArcCw || m == MotionMode::ArcCcw) {
+        return fail(ErrorCode::GcodeMissingWord, motion_word_,
+                    "found " + quoted_block() + " with " + g_code_name(g) +
+                        " and no axis words; expected the arc's end point (X Y Z words; for a "
+                        "full circle, the start point)");
+      }
+      return true;  // G0 / G1 alone only set the mode
+    }
+    block_motion_ = m;
+    return true;
+  }
+  if (b.axis_mask != 0) {
+    motion_word_ = b.first_axis_word;
+    if (motion_ == MotionMode::None) {
+      return fail(ErrorCode::GcodeNoMotionMode, b.first_axis_word,
+                  "found " + quoted(b.first_axis_word) +
+                      " with no motion mode in effect; expected G0, G1, G2 or G3 on this or "
+                      "an earlier line");
+    }
+    block_motion_ = motion_;
+  }
+  return true;
+}
+
+// Words that only some codes use: refuse them where nothing uses them
+// (LinuxCNC check_other_codes), naming what would.
+bool Interpreter::check_word_use() {
+  const Block& b = *b_;
+  const bool is_arc = block_motion_ == MotionMode::ArcCw || block_motion_ == MotionMode::ArcCcw;
+  const bool has_g4 = b.code(GGroup::NonModal) == 40;
+  const bool has_g64 = b.code(GGroup::PathControl) == 640;
+  if (b.has('P') && !has_g4 && !has_g64 && !is_arc) {
+    return fail(ErrorCode::GcodeUnsupported, b.span('P'),
+                "found " + quoted(b.span('P')) +
+                    " with no G4, G64, G2 or G3 to use it; P is supported only as G4 dwell "
+                    "seconds, G64 blend tolerance and G2/G3 turns");
+  }
+  if (b.has('Q') && !has_g64) {
+    return fail(ErrorCode::GcodeUnsupported, b.span('Q'),
+                "found " + quoted(b.span('Q')) +
+                    " with no G64; Q is supported only as the G64 naive-CAM tolerance "
+                    "(canned cycles are not supported)");
+  }
+  if (!is_arc) {
+    for (char l : {'I', 'J', 'K', 'R'}) {
+      if (b.has(l)) {
+        return fail(ErrorCode::GcodeUnsupported, b.span(l),
+                    "found " + quoted(b.span(l)) +
+                        " with no G2 or G3 arc move in the block; I J K R are supported only "
+                        "on arcs");
+      }
+    }
+  }
+  return true;
+}
+
+bool Interpreter::set_feed_and_power() {
+  const Block& b = *b_;
+  // Feed mode (G93/G94): a change forgets the F in effect.
+  const int fm = b.code(GGroup::FeedMode);
+  if (fm >= 0) {
+    const bool inverse = fm == 930;
+    if (inverse != inverse_time_) {
+      inverse_time_ = inverse;
+      feed_set_ = false;
+      feed_mm_min_ = feed_raw_ = 0.0;
+    }
+  }
+  // F, in the units in effect after this block's G20/G21.
+  block_has_f_ = false;
+  if (b.has('F')) {
+    const double f = b['F'];
+    if (f < 0.0) {
+      return fail(ErrorCode::GcodeBadValue, b.span('F'),
+                  "found " + quoted(b.span('F')) + "; expected a feed rate F >= 0");
+    }
+    const int units = b.code(GGroup::Units);
+    const bool inch = units >= 0 ? units == 200 : inch_;
+    if (inverse_time_) {
+      block_has_f_ = true;
+      block_f_ = f;
+    } else {
+      feed_set_ = true;
+      feed_raw_ = f;
+      feed_mm_min_ = f * (inch ? kMmPerInch : 1.0);
+    }
+  }
+  // S: power as a share of s_max.
+  if (b.has('S')) {
+    const double s = b['S'];
+    const double s_max = machine_.laser.s_max;
+    if (s < 0.0 || s > s_max) {
+      return fail(ErrorCode::GcodeBadValue, b.span('S'),
+                  "found " + quoted(b.span('S')) + "; expected S from 0 to " + num(s_max) +
+                      " (laser.s_max, which means 100 % power)");
+    }
+    power_pct_ = s_max > 0.0 ? 100.0 * s / s_max : 0.0;
+  }
+  switch (b.m_laser) {
+    case 3: laser_ = LaserMode::Constant; break;
+    case 4: laser_ = LaserMode::Dynamic; break;
+    case 5: laser_ = LaserMode::Off; break;
+    default: break;
+  }
+  if (b.m7) mist_ = true;
+  if (b.m8) flood_ = true;
+  if (b.m9) mist_ = flood_ = false;
+  return true;
+}
+
+bool Interpreter::dwell(SegmentBuffer& out) {
+  const Block& b = *b_;
+  if (b.code(GGroup::NonModal) != 40) return true;
+  if (!b.has('P')) {
+    return fail(ErrorCode::GcodeMissingWord, b.code_word(GGroup::NonModal),
+                "found " + quoted_block() +
+                    " with no P word; expected G4 P<seconds>, e.g. G4 P0.5");
+  }
+  const double p = b['P'];
+  if (p < 0.0) {
+    return fail(ErrorCode::GcodeBadValue, b.span('P'),
+                "found " + quoted(b.span('P')) + " on G4; expected a dwell time P >= 0 seconds");
+  }
+  Segment& s = out.push();
+  fill_modal(s);
+  s.kind = MotionKind::Dwell;
+  s.start = pos_;
+  s.end = pos_;
+  s.dwell_s = p;  // the laser keeps its mode: M3 + G4 is percussion drilling
+  return true;
+}
+
+void Interpreter::set_modes() {
+  const Block& b = *b_;
+  switch (b.code(GGroup::Plane)) {
+    case 170: plane_ = Plane::XY; break;
+    case 180: plane_ = Plane::ZX; break;
+    case 190: plane_ = Plane::YZ; break;
+    default: break;
+  }
+  const int units = b.code(GGroup::Units);
+  if (units >= 0) inch_ = units == 200;
+  const int wcs = b.code(GGroup::CoordSystem);
+  if (wcs >= 0) work_offset_ = (wcs - 540) / 10;
+  const int dist = b.code(GGroup::Distance);
+  if (dist >= 0) absolute_ = dist == 900;
+  const int arc_dist = b.code(GGroup::ArcDistance);
+  if (arc_dist >= 0) arc_absolute_ = arc_dist == 901;
+}
+
+bool Interpreter::set_path_control() {
+  const Block& b = *b_;
+  switch (b.code(GGroup::PathControl)) {
+    case 610:
+      path_mode_ = PathMode::ExactPath;
+      blend_tolerance_mm_ = naive_cam_tolerance_mm_ = 0.0;
+      return true;
+    case 611:
+      path_mode_ = PathMode::ExactStop;
+      blend_tolerance_mm_ = naive_cam_tolerance_mm_ = 0.0;
+      return true;
+    case 640:
+      break;
+    default:
+      return true;
+  }
+  // G64 [P blend tolerance] [Q naive-CAM tolerance]: no P -> the machine's
+  // path tolerance; no Q -> the same as P (LinuxCNC).
+  double p_mm = machine_.path_tolerance_mm;
+  if (b.has('P')) {
+    if (b['P'] < 0.0) {
+      return fail(ErrorCode::GcodeBadValue, b.span('P'),
+                  "found " + quoted(b.span('P')) + " on G64; expected a blend tolerance P >= 0");
+    }
+    p_mm = b['P'] * length_scale();
+  }
+  double q_mm = p_mm;
+  if (b.has('Q')) {
+    if (b['Q'] < 0.0) {
+      return fail(ErrorCode::GcodeBadValue, b.span('Q'),
+                  "found " + quoted(b.span('Q')) +
+                      " on G64; expected a naive-CAM tolerance Q >= 0");
+    }
+    q_mm = b['Q'] * length_scale();
+  }
+  path_mode_ = PathMode::Blend;
+  blend_tolerance_mm_ = p_mm;
+  naive_cam_tolerance_mm_ = q_mm;
+  return true;
+}
+
+// --- motion ---------------------------------------------------------------
+
+void Interpreter::fill_modal(Segment& s) const {
+  s = Segment{};
+  s.plane = plane_;
+  s.path_mode = path_mode_;
+  s.blend_tolerance_mm = blend_tolerance_mm_;
+  s.naive_cam_tolerance_mm = naive_cam_tolerance_mm_;
+  s.laser = laser_;
+  s.power_pct = power_pct_;
+  s.mist = mist_;
+  s.flood = flood_;
+  s.line = line_;
+}
+
+bool Interpreter::check_feed() {
+  if (inverse_time_) {
+    if (!block_has_f_) {
+      return fail(ErrorCode::GcodeNoFeed, motion_word_,
+                  "found " + quoted_block() +
+                      " in inverse-time mode (G93) with no F word; expected an F word on "
+                      "every G1/G2/G3 line (F = 1 / minutes the move takes)");
+    }
+    if (block_f_ <= 0.0) {
+      return fail(ErrorCode::GcodeNoFeed, motion_word_,
+                  "found " + quoted_block() +
+                      " in inverse-time mode (G93) with F0; expected a positive F word (F = "
+                      "1 / minutes the move takes)");
+    }
+    return true;
+  }
+  if (!feed_set_) {
+    return fail(ErrorCode::GcodeNoFeed, motion_word_,
+                "found " + quoted_block() +
+                    " with no feed rate in effect; expected an F word (feed in " + feed_unit() +
+                    ") before or on this line");
+  }
+  if (feed_raw_ <= 0.0) {
+    return fail(ErrorCode::GcodeNoFeed, motion_word_,
+                "found " + quoted_block() + " with feed rate F0 in effect; expected a positive F "
+                "word (feed in " + feed_unit() + ") before or on this line");
+  }
+  return true;
+}
+
+void Interpreter::set_segment_feed(Segment& s, double linear_mm, double rotary_deg) const {
+  if (inverse_time_) {
+    s.duration_s = 60.0 / block_f_;
+    s.feed_mm_s = (linear_mm > 0.0 ? linear_mm : rotary_deg) / s.duration_s;
+  } else {
+    s.feed_mm_s = (linear_mm > 0.0 ? feed_mm_min_ : feed_raw_) / 60.0;
+  }
+}
+
+// Every present axis without wrap must stay in [min, max] over [lo, hi].
+bool Interpreter::check_travel(const Pose& lo, const Pose& hi, const Pose& end) {
+  for (int a = 0; a < kAxisCount; ++a) {
+    const AxisConfig& ax = machine_.axes[a];
+    if (!ax.present || ax.wrap) continue;
+    double bad = 0.0;
+    if (lo[a] < ax.min - kTravelTolMm) {
+      bad = lo[a];
+    } else if (hi[a] > ax.max + kTravelTolMm) {
+      bad = hi[a];
+    } else {
+      continue;
+    }
+    const char l = kAxisLetters[a];
+    const char* unit = a < 3 ? "mm" : "deg";
+    const bool at_end = bad == end[a];
+    // Point at the axis word when its end point is the problem, else at the move.
+    const Span at = (at_end && b_->has(l)) ? b_->span(l) : motion_word_;
+    return fail(ErrorCode::GcodeBeyondTravel, at,
+                "found " + quoted_block() + (at_end ? " moving " : " passing ") +
+                    std::string(1, l) + " to " + num(bad) + " " + unit +
+                    (at_end ? "" : " (arc extreme)") + " in machine coordinates, beyond the " +
+                    std::string(1, l) + " travel [" + num(ax.min) + ", " + num(ax.max) + "] " +
+                    unit + "; expected positions within the travel");
+  }
+  return true;
+}
+
+bool Interpreter::move(SegmentBuffer& out) {
+  const Block& b = *b_;
+  const Pose& offset = machine_.work_offsets[work_offset_];
+  Pose end = pos_;
+  for (int a = 0; a < kAxisCount; ++a) {
+    if (((b.axis_mask >> a) & 1u) == 0) continue;
+    const double v = b[kAxisLetters[a]] * (a < 3 ? length_scale() : 1.0);
+    end[a] = absolute_ ? v + offset[a] : pos_[a] + v;
+  }
+  if (block_motion_ == MotionMode::ArcCw || block_motion_ == MotionMode::ArcCcw) {
+    return arc(end, out);
+  }
+  if (block_motion_ == MotionMode::Linear && !check_feed()) return false;
+  if (!check_travel(end, end, end)) return false;
+  if (end == pos_) return true;  // no motion: nothing for the planner
+
+  Segment& s = out.push();
+  fill_modal(s);
+  s.start = pos_;
+  s.end = end;
+  if (block_motion_ == MotionMode::Rapid) {
+    s.kind = MotionKind::Rapid;
+    s.laser = LaserMode::Off;
+  } else {
+    s.kind = MotionKind::Linear;
+    set_segment_feed(s, (end.head<3>() - pos_.head<3>()).norm(),
+                     (end.tail<3>() - pos_.tail<3>()).norm());
+  }
+  pos_ = end;
+  return true;
+}
+
+// G2/G3 in the current plane. Centre from I J K (incremental from the start in
+// G91.1, program coordinates in G90.1) or from R (LinuxCNC arc_data_r: the
+// centre lies off the chord's midpoint by sqrt(R² − (chord/2)²), to the right
+// of the chord for G2 R>0 and G3 R<0, to the left otherwise; R<0 > 180°).
+bool Interpreter::arc(const Pose& end_in, SegmentBuffer& out) {
+  const Block& b = *b_;
+  const bool cw = block_motion_ == MotionMode::ArcCw;
+  const auto [ia, ib, in] = arc_plane_axes(plane_);
+  const char la = kCentreLetter[ia];
+  const char lb = kCentreLetter[ib];
+  const char ln = kCentreLetter[in];
+  if (b.has(ln)) {
+    return fail(ErrorCode::GcodeSyntax, b.span(ln),
+                "found " + quoted(b.span(ln)) + " on an arc in the " + plane_name(plane_) +
+                    "; expected " + std::string(1, la) + " and " + std::string(1, lb) +
+                    " for the centre");
+  }
+  const bool has_r = b.has('R');
+  const bool has_ijk = b.has(la) || b.has(lb);
+  if (has_r && has_ijk) {
+    return fail(ErrorCode::GcodeSyntax, b.span('R'),
+                "found " + quoted(b.span('R')) + " together with " + std::string(1, la) + "/" +
+                    std::string(1, lb) + " words; expected either R or " + std::string(1, la) +
+                    " " + std::string(1, lb) + " for the arc, not both");
+  }
+  if (!has_r && !has_ijk) {
+    return fail(ErrorCode::GcodeArcMissingCenter, motion_word_,
+                "found " + quoted_block() + " with no centre or radius; expected " +
+                    std::string(1, la) + " " + std::string(1, lb) + " (centre, " +
+                    plane_name(plane_) + ") or R (radius)");
+  }
+  if (!check_feed()) return false;
+
+  std::uint32_t extra_turns = 0;
+  if (b.has('P')) {
+    const double p = b['P'];
+    const double turns = std::round(p);
+    if (std::fabs(p - turns) > kIntegerTol || turns < 1.0) {
+      return fail(ErrorCode::GcodeBadValue, b.span('P'),
+                  "found " + quoted(b.span('P')) +
+                      " on an arc; expected P as a whole number of turns >= 1");
+    }
+    extra_turns = static_cast<std::uint32_t>(turns) - 1;
+  }
+
+  Pose end = end_in;
+  const double sa = pos_[ia];
+  const double sb = pos_[ib];
+  const double chord = std::hypot(end[ia] - sa, end[ib] - sb);
+  const bool same_point = chord <= kSamePointMm;
+  Vec3 c = linear_part(pos_);  // the normal component stays the start's
+  if (has_r) {
+    const Span rw = b.span('R');
+    if (same_point) {
+      return fail(ErrorCode::GcodeArcRadius, rw,
+                  "found " + quoted_block() +
+                      " ending where it starts: an R-form arc cannot be a full circle (its "
+                      "centre is undefined); expected I J K centre words for a full circle");
+    }
+    const double r = b['R'] * length_scale();
+    const double abs_r = std::fabs(r);
+    if (2.0 * abs_r < chord - kArcReachRel * std::max(1.0, chord)) {
+      return fail(ErrorCode::GcodeArcRadius, rw,
+                  "found " + quoted(rw) + " but the end point is " + num(chord) +
+                      " mm from the start: radius " + num(abs_r) + " mm reaches at most " +
+                      num(2.0 * abs_r) + " mm; expected |R| >= " + num(chord / 2.0) +
+                      " mm (the radius to the start and to the end)");
+    }
+    const double half = chord / 2.0;
+    const double h = abs_r > half ? std::sqrt(abs_r * abs_r - half * half) : 0.0;
+    const double theta = std::atan2(end[ib] - sb, end[ia] - sa);
+    const double turn = ((cw && r > 0.0) || (!cw && r < 0.0)) ? theta - std::numbers::pi / 2.0
+                                                              : theta + std::numbers::pi / 2.0;
+    c[ia] = (sa + end[ia]) / 2.0 + h * std::cos(turn);
+    c[ib] = (sb + end[ib]) / 2.0 + h * std::sin(turn);
+  } else {
+    const Pose& offset = machine_.work_offsets[work_offset_];
+    const double ci = b.has(la) ? b[la] * length_scale() : 0.0;
+    const double cj = b.has(lb) ? b[lb] * length_scale() : 0.0;
+    c[ia] = arc_absolute_ ? ci + offset[ia] : sa + ci;
+    c[ib] = arc_absolute_ ? cj + offset[ib] : sb + cj;
+    if (same_point) {  // a full circle: make end == start exact for the planner
+      end[ia] = sa;
+      end[ib] = sb;
+    }
+    const Span at = b.has(la) ? b.span(la) : b.span(lb);
+    const double r_start = std::hypot(sa - c[ia], sb - c[ib]);
+    const double r_end = std::hypot(end[ia] - c[ia], end[ib] - c[ib]);
+    if (r_start < kArcMinRadiusMm || r_end < kArcMinRadiusMm) {
+      return fail(ErrorCode::GcodeArcRadius, at,
+                  "found " + quoted_block() + " whose centre is at its " +
+                      (r_start < kArcMinRadiusMm ? "start" : "end") +
+                      " point (radius 0); expected " + std::string(1, la) + " " +
+                      std::string(1, lb) + " placing the centre away from both");
+    }
+    const double diff = std::fabs(r_end - r_start);
+    const double rel = diff / std::max(r_start, r_end);
+    if (diff > kArcRadiusHardAbsMm || (diff > kArcRadiusAbsMm && rel > kArcRadiusRel)) {
+      return fail(ErrorCode::GcodeArcRadius, at,
+                  "found " + quoted_block() + " with radius " + num(r_start) +
+                      " mm to the start and " + num(r_end) + " mm to the end (they differ by " +
+                      num(diff) + " mm); expected equal radii, within " + num(kArcRadiusAbsMm) +
+                      " mm or " + num(kArcRadiusRel * 100.0) + " %");
+    }
+  }
+
+  Segment& s = out.push();
+  fill_modal(s);
+  s.kind = MotionKind::Arc;
+  s.start = pos_;
+  s.end = end;
+  s.center = c;
+  s.clockwise = cw;
+  s.extra_turns = extra_turns;
+
+  Vec3 lo3, hi3;
+  arc_bounds(s, lo3, hi3);
+  Pose lo = end.cwiseMin(pos_);
+  Pose hi = end.cwiseMax(pos_);
+  lo.head<3>() = lo3;
+  hi.head<3>() = hi3;
+  for (int a = 3; a < kAxisCount; ++a) lo[a] = hi[a] = end[a];  // rotary: end points only
+  if (!check_travel(lo, hi, end)) return false;
+
+  set_segment_feed(s, arc_length_mm(s), (end.tail<3>() - pos_.tail<3>()).norm());
+  pos_ = end;
+  return true;
+}
+
+}  // namespace lcnc::gcode

@@ -1,0 +1,77 @@
+// The G-code front end: RS274NGC as LinuxCNC reads it, for the subset of
+// DESIGN / issue "Foundation" (G0 G1 G2 G3 G4 G17-19 G20/21 G90/91 G90.1/91.1
+// G54-59 G61 G61.1 G64 G93 G94, F S, M2 M3 M4 M5 M7 M8 M9 M30, X Y Z A B C,
+// N numbers, comments). Streams: one Segment at a time, so a program of
+// millions of lines runs in bounded memory. check_program() reads a whole
+// program once before motion starts, so an error on line 10,000 never stops a
+// part half-cut.
+#pragma once
+
+#include <cstdint>
+#include <istream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/result.h"
+#include "geom/pose.h"
+#include "machine/machine_config.h"
+#include "path/segment.h"
+
+namespace lcnc {
+
+struct ReaderOptions {
+  Pose start = Pose::Zero();   // machine position when the program starts
+  bool block_delete = false;   // '/' lines skipped when true (LinuxCNC's switch)
+};
+
+class ProgramReader {
+ public:
+  enum class Next : std::uint8_t { Segment, End, Error };
+
+  // Opens a program file. FileNotFound when it cannot be read.
+  [[nodiscard]] static Result<std::unique_ptr<ProgramReader>> open(
+      const std::string& path, const MachineConfig& machine, ReaderOptions options = {});
+  // Reads a program held in memory; `name` stands for the file in diagnostics.
+  [[nodiscard]] static std::unique_ptr<ProgramReader> from_string(
+      std::string text, std::string name, const MachineConfig& machine,
+      ReaderOptions options = {});
+
+  ~ProgramReader();
+  ProgramReader(const ProgramReader&) = delete;
+  ProgramReader& operator=(const ProgramReader&) = delete;
+
+  // The next motion segment (Rapid, Linear, Arc or Dwell). Blocks without
+  // motion (S, M3, F, modal codes, comments) only change state carried by the
+  // following segments: they never produce a segment. After End or Error,
+  // every further call returns the same.
+  [[nodiscard]] Next next(Segment& out);
+
+  [[nodiscard]] const Diagnostic& error() const;            // valid after Next::Error
+  [[nodiscard]] const std::vector<Diagnostic>& warnings() const;  // e.g. lines after M2
+  [[nodiscard]] std::uint32_t lines_read() const;
+
+  struct Impl;
+
+ private:
+  explicit ProgramReader(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+struct ProgramSummary {
+  std::uint64_t segments = 0;
+  std::uint32_t lines = 0;
+  double path_length_mm = 0.0;  // X Y Z path length of all moves (rapids included)
+  double feed_length_mm = 0.0;  // of feed moves (G1 G2 G3) only
+  Pose min = Pose::Zero();      // bounding box of all positions reached
+  Pose max = Pose::Zero();
+  std::vector<Diagnostic> warnings;
+};
+
+// Reads the whole program, checking syntax, modal conflicts, arcs, feeds and
+// travel. The first error is returned; nothing is run.
+[[nodiscard]] Result<ProgramSummary> check_program(const std::string& path,
+                                                   const MachineConfig& machine,
+                                                   ReaderOptions options = {});
+
+}  // namespace lcnc

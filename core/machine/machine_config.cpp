@@ -1,0 +1,280 @@
+// Machine config loading (TOML through toml++) and validation. Every error
+// names the key, the value found and what is allowed, with file:line:col where
+// the TOML source has it. Unknown keys are errors: a misspelt key must never
+// leave a default silently in force.
+#include "machine/machine_config.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string_view>
+
+#include <toml++/toml.h>
+
+namespace lcnc {
+namespace {
+
+struct Loader {
+  std::string file;
+  Diagnostic err;
+  bool failed = false;
+
+  bool fail(ErrorCode code, const toml::source_region& where, std::string msg) {
+    if (!failed) {
+      failed = true;
+      err = make_error(code, std::move(msg), file, where.begin.line, where.begin.column);
+    }
+    return false;
+  }
+
+  // Reject keys of `table` not listed in `allowed`.
+  bool only_keys(const toml::table& table, std::string_view prefix,
+                 std::initializer_list<std::string_view> allowed) {
+    for (const auto& [key, node] : table) {
+      bool known = false;
+      for (auto a : allowed) known = known || key.str() == a;
+      if (!known) {
+        std::string list;
+        for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+        return fail(ErrorCode::ConfigUnknownKey, node.source(),
+                    "unknown key '" + std::string(prefix) + std::string(key.str()) +
+                        "'; expected one of: " + list);
+      }
+    }
+    return true;
+  }
+
+  // Reads a number (integer or float) into `out` when present.
+  bool number(const toml::table& t, std::string_view prefix, std::string_view key,
+              double& out, bool required) {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) {
+      if (!required) return true;
+      return fail(ErrorCode::ConfigMissingKey, t.source(),
+                  "missing key '" + std::string(prefix) + std::string(key) + "'");
+    }
+    if (auto v = n->value<double>(); v && (n->is_floating_point() || n->is_integer())) {
+      out = *v;
+      return true;
+    }
+    return fail(ErrorCode::ConfigBadValue, n->source(),
+                "'" + std::string(prefix) + std::string(key) + "' must be a number");
+  }
+
+  bool boolean(const toml::table& t, std::string_view prefix, std::string_view key, bool& out) {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) return true;
+    if (auto v = n->value<bool>(); v && n->is_boolean()) {
+      out = *v;
+      return true;
+    }
+    return fail(ErrorCode::ConfigBadValue, n->source(),
+                "'" + std::string(prefix) + std::string(key) + "' must be true or false");
+  }
+
+  bool string(const toml::table& t, std::string_view prefix, std::string_view key,
+              std::string& out) {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) return true;
+    if (auto v = n->value<std::string>(); v && n->is_string()) {
+      out = *v;
+      return true;
+    }
+    return fail(ErrorCode::ConfigBadValue, n->source(),
+                "'" + std::string(prefix) + std::string(key) + "' must be a string");
+  }
+
+  const toml::table* subtable(const toml::table& t, std::string_view key) {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) return nullptr;
+    if (!n->is_table()) {
+      fail(ErrorCode::ConfigBadValue, n->source(), "'" + std::string(key) + "' must be a table");
+      return nullptr;
+    }
+    return n->as_table();
+  }
+};
+
+std::string fmt(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+bool load_axis(Loader& L, const toml::table& t, Axis axis, AxisConfig& a) {
+  const std::string p = std::string("axes.") + letter(axis) + ".";
+  if (!L.only_keys(t, p, {"type", "min", "max", "max_velocity", "max_acceleration",
+                          "steps_per_unit", "wrap"}))
+    return false;
+  a.present = true;
+  a.axis = axis;
+  std::string type = is_rotary(axis) ? "rotary" : "linear";
+  const std::string expected_type = type;
+  if (!L.string(t, p, "type", type)) return false;
+  if (type != expected_type) {
+    return L.fail(ErrorCode::ConfigBadValue, t.get("type")->source(),
+                  "'" + p + "type' is \"" + type + "\"; axis " + letter(axis) + " must be \"" +
+                      expected_type + "\"");
+  }
+  return L.number(t, p, "min", a.min, true) && L.number(t, p, "max", a.max, true) &&
+         L.number(t, p, "max_velocity", a.max_velocity, true) &&
+         L.number(t, p, "max_acceleration", a.max_acceleration, true) &&
+         L.number(t, p, "steps_per_unit", a.steps_per_unit, false) &&
+         L.boolean(t, p, "wrap", a.wrap);
+}
+
+}  // namespace
+
+Status validate(const MachineConfig& m, const std::string& file) {
+  auto bad = [&](std::string msg) {
+    return Status(make_error(ErrorCode::ConfigBadValue, std::move(msg), file));
+  };
+  if (m.period_ns < 10'000 || m.period_ns > 10'000'000)
+    return bad("machine.period_us = " + fmt(m.period_ns / 1000.0) + "; allowed 10 … 10000 µs");
+  if (!(m.path_tolerance_mm > 0.0 && m.path_tolerance_mm <= 10.0))
+    return bad("machine.path_tolerance_mm = " + fmt(m.path_tolerance_mm) +
+               "; allowed > 0 … 10 mm");
+  if (m.dda.magnitude_bits < 1 || m.dda.magnitude_bits > 16)
+    return bad("dda.magnitude_bits = " + std::to_string(m.dda.magnitude_bits) +
+               "; allowed 1 … 16");
+  if (m.dda.capacity < m.dda.max_pulses() || m.dda.capacity > 1'000'000)
+    return bad("dda.capacity = " + std::to_string(m.dda.capacity) + "; allowed " +
+               std::to_string(m.dda.max_pulses()) +
+               " (one pulse per tick at the largest magnitude) … 1000000");
+  if (m.dda_clock_hz() > 100e6)
+    return bad("dda clock = capacity / period = " + fmt(m.dda_clock_hz() / 1e6) +
+               " MHz; allowed up to 100 MHz");
+  if (!(m.laser.s_max > 0.0 && m.laser.s_max <= 1e6))
+    return bad("laser.s_max = " + fmt(m.laser.s_max) + "; allowed > 0 … 1000000");
+  bool any = false;
+  for (const AxisConfig& a : m.axes) {
+    if (!a.present) continue;
+    any = true;
+    const std::string p = std::string("axes.") + letter(a.axis) + ".";
+    const char* unit = is_rotary(a.axis) ? "deg" : "mm";
+    if (!(std::isfinite(a.min) && std::isfinite(a.max) && a.min < a.max))
+      return bad(p + "min = " + fmt(a.min) + ", max = " + fmt(a.max) + "; need min < max");
+    if (!(a.steps_per_unit > 0.0 && a.steps_per_unit <= 1e6))
+      return bad(p + "steps_per_unit = " + fmt(a.steps_per_unit) + "; allowed > 0 … 1000000");
+    const double span_steps = std::max(std::abs(a.min), std::abs(a.max)) * a.steps_per_unit;
+    if (span_steps > 2.0e9)
+      return bad(p + "travel of " + fmt(a.max - a.min) + " " + unit + " at " +
+                 fmt(a.steps_per_unit) + " steps/" + unit + " overflows 32-bit step counters");
+    if (!(a.max_velocity > 0.0 && a.max_velocity <= 1e5))
+      return bad(p + "max_velocity = " + fmt(a.max_velocity) + "; allowed > 0 … 100000 " + unit +
+                 "/s");
+    if (!(a.max_acceleration > 0.0 && a.max_acceleration <= 1e7))
+      return bad(p + "max_acceleration = " + fmt(a.max_acceleration) + "; allowed > 0 … 1e7 " +
+                 unit + "/s²");
+    if (a.wrap && !is_rotary(a.axis))
+      return bad(p + "wrap = true; only rotary axes (A B C) can wrap");
+    if (a.wrap && std::abs((a.max - a.min) - 360.0) > 1e-9)
+      return bad(p + "wrap = true needs max − min = 360 deg; found " + fmt(a.max - a.min));
+    const double pulses = a.max_velocity * a.steps_per_unit * m.period_s();
+    if (pulses > m.dda.max_pulses())
+      return bad(p + "max_velocity = " + fmt(a.max_velocity) + " " + unit + "/s needs " +
+                 fmt(pulses) + " pulses per " + fmt(m.period_ns / 1000.0) +
+                 " µs period; the DDA preset gives at most " + std::to_string(m.dda.max_pulses()) +
+                 " (raise dda.magnitude_bits or lower max_velocity)");
+  }
+  if (!any) return bad("no axes configured; expected at least one [axes.X] … [axes.C] table");
+  return {};
+}
+
+Result<MachineConfig> parse_machine_config(std::string_view text, const std::string& name) {
+  Loader L{name, {}, false};
+  toml::table root;
+  try {
+    root = toml::parse(text, std::string_view(name));
+  } catch (const toml::parse_error& e) {
+    return make_error(ErrorCode::ConfigSyntax, std::string(e.description()), name,
+                      e.source().begin.line, e.source().begin.column);
+  }
+  MachineConfig m;
+  m.axes = {};
+  m.work_offsets.fill(Pose::Zero());
+  if (!L.only_keys(root, "", {"machine", "dda", "laser", "axes", "work_offsets"})) return L.err;
+
+  if (const toml::table* t = L.subtable(root, "machine")) {
+    double period_us = m.period_ns / 1000.0;
+    if (!L.only_keys(*t, "machine.", {"name", "period_us", "path_tolerance_mm"}) ||
+        !L.string(*t, "machine.", "name", m.name) ||
+        !L.number(*t, "machine.", "period_us", period_us, false) ||
+        !L.number(*t, "machine.", "path_tolerance_mm", m.path_tolerance_mm, false))
+      return L.err;
+    if (!(period_us >= 10.0 && period_us <= 10000.0))
+      return make_error(ErrorCode::ConfigBadValue,
+                        "machine.period_us = " + fmt(period_us) + "; allowed 10 … 10000 µs", name,
+                        t->get("period_us")->source().begin.line,
+                        t->get("period_us")->source().begin.column);
+    m.period_ns = static_cast<std::uint32_t>(std::llround(period_us * 1000.0));
+  }
+  if (L.failed) return L.err;
+  if (const toml::table* t = L.subtable(root, "dda")) {
+    double bits = m.dda.magnitude_bits, cap = m.dda.capacity;
+    if (!L.only_keys(*t, "dda.", {"magnitude_bits", "capacity"}) ||
+        !L.number(*t, "dda.", "magnitude_bits", bits, false) ||
+        !L.number(*t, "dda.", "capacity", cap, false))
+      return L.err;
+    if (bits != std::floor(bits) || bits < 1 || bits > 16)
+      return make_error(ErrorCode::ConfigBadValue,
+                        "dda.magnitude_bits = " + fmt(bits) + "; allowed integers 1 … 16", name,
+                        t->source().begin.line);
+    if (cap != std::floor(cap) || cap < 1 || cap > 1e6)
+      return make_error(ErrorCode::ConfigBadValue,
+                        "dda.capacity = " + fmt(cap) + "; allowed integers 1 … 1000000", name,
+                        t->source().begin.line);
+    m.dda.magnitude_bits = static_cast<std::uint32_t>(bits);
+    m.dda.capacity = static_cast<std::uint32_t>(cap);
+  }
+  if (L.failed) return L.err;
+  if (const toml::table* t = L.subtable(root, "laser")) {
+    if (!L.only_keys(*t, "laser.", {"s_max"}) || !L.number(*t, "laser.", "s_max", m.laser.s_max, false))
+      return L.err;
+  }
+  if (L.failed) return L.err;
+  if (const toml::table* t = L.subtable(root, "axes")) {
+    if (!L.only_keys(*t, "axes.", {"X", "Y", "Z", "A", "B", "C"})) return L.err;
+    for (Axis a : kAllAxes) {
+      const std::string key(1, letter(a));
+      if (const toml::table* at = L.subtable(*t, key)) {
+        if (!load_axis(L, *at, a, m.axis(a))) return L.err;
+      }
+      if (L.failed) return L.err;
+    }
+  }
+  if (L.failed) return L.err;
+  if (const toml::table* t = L.subtable(root, "work_offsets")) {
+    if (!L.only_keys(*t, "work_offsets.", {"G54", "G55", "G56", "G57", "G58", "G59"})) return L.err;
+    for (int i = 0; i < kWorkOffsetCount; ++i) {
+      const std::string key = "G" + std::to_string(54 + i);
+      const toml::node* n = t->get(key);
+      if (n == nullptr) continue;
+      const toml::array* arr = n->as_array();
+      bool okay = arr != nullptr && arr->size() == kAxisCount;
+      for (int k = 0; okay && k < kAxisCount; ++k) {
+        auto v = arr->get(static_cast<std::size_t>(k))->value<double>();
+        okay = v.has_value();
+        if (okay) m.work_offsets[i][k] = *v;
+      }
+      if (!okay)
+        return make_error(ErrorCode::ConfigBadValue,
+                          "work_offsets." + key + " must be an array of 6 numbers [X, Y, Z, A, B, C]",
+                          name, n->source().begin.line, n->source().begin.column);
+    }
+  }
+  if (L.failed) return L.err;
+  if (Status s = validate(m, name); !s) return s.error();
+  return m;
+}
+
+Result<MachineConfig> load_machine_config(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    return make_error(ErrorCode::FileNotFound, "cannot open machine config '" + path + "'", path);
+  std::ostringstream buf;
+  buf << in.rdbuf();
+  return parse_machine_config(buf.str(), path);
+}
+
+}  // namespace lcnc

@@ -1,0 +1,32 @@
+#include "path/deviation_meter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace lcnc {
+
+double DeviationMeter::add(const Vec3& point, std::uint32_t index) {
+  const std::uint64_t want = static_cast<std::uint64_t>(index) + kWindowAhead + 1;
+  while (!source_done_ && loaded_ < want) {
+    Segment seg;
+    if (source_(seg) != SourceStatus::Item) {
+      source_done_ = true;
+      break;
+    }
+    window_.push_back(Entry{loaded_++, SegmentGeometry(seg)});
+  }
+  const std::uint32_t low = index > kWindowBack ? index - kWindowBack : 0;
+  while (!window_.empty() && window_.front().index < low) window_.pop_front();
+  double best = std::numeric_limits<double>::infinity();
+  for (const Entry& e : window_) {
+    if (e.index > index + kWindowAhead) break;
+    best = std::min(best, e.geo.distance_xyz(point));
+  }
+  if (!std::isfinite(best)) best = 0.0;  // no programmed segment: nothing to compare
+  max_ = std::max(max_, best);
+  ++points_;
+  return best;
+}
+
+}  // namespace lcnc

@@ -1,0 +1,67 @@
+// A motion segment: what the G-code front end hands to the planner. All in
+// machine coordinates (work offsets and units already applied): mm and deg.
+#pragma once
+
+#include <cstdint>
+
+#include "geom/pose.h"
+
+namespace lcnc {
+
+enum class MotionKind : std::uint8_t {
+  Rapid,   // G0: each axis at its max velocity, path still a straight line
+  Linear,  // G1
+  Arc,     // G2/G3 (helix when the normal axis moves)
+  Dwell,   // G4: stand still dwell_s seconds
+};
+
+// Plane of an arc, named by (first, second, normal) axis as RS274NGC does:
+// G17 (X, Y, Z), G18 (Z, X, Y), G19 (Y, Z, X).
+enum class Plane : std::uint8_t { XY, ZX, YZ };
+
+enum class PathMode : std::uint8_t {
+  ExactPath,  // G61: stop exactly at each programmed point
+  ExactStop,  // G61.1
+  Blend,      // G64 [P tol] [Q naive-cam tol]
+};
+
+// The laser is always off on rapids and at the end. On a dwell, M3 fires at
+// constant power (percussion drilling) and M4 gives 0 (speed 0).
+enum class LaserMode : std::uint8_t {
+  Off,       // M5
+  Constant,  // M3: power = S
+  Dynamic,   // M4: power = S · actual speed / programmed speed
+};
+
+struct Segment {
+  MotionKind kind = MotionKind::Linear;
+  Pose start = Pose::Zero();
+  Pose end = Pose::Zero();
+
+  // Arcs only. The arc lies in `plane`; centre is in machine coordinates of
+  // the three linear axes; clockwise as seen looking from the positive end of
+  // the normal axis toward the origin (RS274NGC); extra_turns full turns are
+  // added (G2/G3 P n: extra_turns = n − 1). The normal axis and the rotary
+  // axes move linearly with the arc angle (helix).
+  Plane plane = Plane::XY;
+  Vec3 center = Vec3::Zero();
+  bool clockwise = false;
+  std::uint32_t extra_turns = 0;
+
+  double feed_mm_s = 0.0;     // programmed path speed (mm/s, or deg/s for a pure rotary move); 0 on rapids
+  double duration_s = 0.0;    // G93 inverse-time: the move takes this long; 0 otherwise
+  double dwell_s = 0.0;       // Dwell only
+
+  PathMode path_mode = PathMode::ExactPath;
+  double blend_tolerance_mm = 0.0;  // G64 P (0 = as fast as possible within the machine default)
+  double naive_cam_tolerance_mm = 0.0;  // G64 Q
+
+  LaserMode laser = LaserMode::Off;
+  double power_pct = 0.0;  // programmed laser power, % of rated (from S / s_max)
+  bool mist = false;       // M7 (assist gas, low pressure)
+  bool flood = false;      // M8 (assist gas, high pressure)
+
+  std::uint32_t line = 0;  // source line (1-based)
+};
+
+}  // namespace lcnc

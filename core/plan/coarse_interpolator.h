@@ -1,0 +1,85 @@
+// Coarse interpolation (DESIGN §5.3, seed 001 §3): the planned path sampled
+// once per RT period T on one global time line. Segments shorter than one
+// period's travel are consumed several per period, the time left over from
+// one segment carried into the next — so no segment costs a whole period and
+// no speed is capped by the period (seed 001).
+//
+//   sample k is the commanded pose at t = k·T, k = 1, 2, …; the last sample
+//   is exactly the program's end pose.
+//
+// StepQuantizer turns poses into integer steps per period, carrying the
+// remainder: each period the target is round(pose·steps_per_unit) and the
+// increment is target − steps already emitted (clamped to the DDA's largest
+// magnitude; what is clamped is carried to the next period). So Σ increments
+// equals the commanded position in steps exactly, whatever the program.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "machine/machine_config.h"
+#include "plan/period_increment.h"
+#include "plan/planned_segment.h"
+
+namespace lcnc {
+
+struct PeriodSample {
+  double t_s = 0.0;           // end of the period
+  Pose pose = Pose::Zero();   // commanded pose at t_s (mm, deg)
+  double speed = 0.0;         // path speed at t_s
+  float power_pct = 0.0f;
+  std::uint32_t line = 0;
+  std::uint32_t segment = 0;
+  MotionKind kind = MotionKind::Dwell;
+  bool end_of_program = false;
+};
+
+class CoarseInterpolator {
+ public:
+  CoarseInterpolator(const MachineConfig& machine, PlannedSource source);
+  // The next period's sample; End after the sample with end_of_program.
+  [[nodiscard]] SourceStatus next(PeriodSample& out);
+  [[nodiscard]] std::uint64_t periods() const noexcept { return periods_; }
+  [[nodiscard]] std::uint32_t segments_started() const noexcept { return started_; }
+
+ private:
+  bool pull();  // next non-empty segment into cur_; false at end or error
+  [[nodiscard]] float laser_power(double speed) const;
+
+  double period_s_;
+  PlannedSource source_;
+  PlannedSegment cur_;
+  bool have_cur_ = false;
+  bool done_ = false;
+  bool error_ = false;
+  double tau_ = 0.0;  // time into cur_
+  std::uint64_t periods_ = 0;
+  std::uint32_t started_ = 0;
+};
+
+class StepQuantizer {
+ public:
+  StepQuantizer(const MachineConfig& machine, const Pose& start);
+
+  // Increments for one period's sample (remainders carried).
+  [[nodiscard]] PeriodIncrement quantize(const PeriodSample& sample);
+  // True while clamped steps are still owed after the last sample.
+  [[nodiscard]] bool owed() const noexcept;
+  // One more period paying owed steps (call while owed()).
+  [[nodiscard]] PeriodIncrement pay_owed(const PeriodSample& last);
+
+  // Absolute commanded position in steps (of the last sample) and steps emitted.
+  [[nodiscard]] std::int64_t commanded(int axis) const noexcept { return target_[axis]; }
+  [[nodiscard]] std::int64_t emitted(int axis) const noexcept { return emitted_[axis]; }
+  [[nodiscard]] std::int64_t to_steps(int axis, double pos) const noexcept;
+
+ private:
+  PeriodIncrement emit(const PeriodSample& s);
+
+  std::array<double, kAxisCount> steps_per_unit_{};
+  std::int32_t max_pulses_ = 0;
+  std::array<std::int64_t, kAxisCount> target_{};
+  std::array<std::int64_t, kAxisCount> emitted_{};
+};
+
+}  // namespace lcnc

@@ -1,0 +1,26 @@
+// One entry of the position buffer (DESIGN §5.3): what the RT thread executes
+// in one period. Integer micro-steps per axis (signed: sign = direction),
+// the laser power for the period and where it came from. Trivially copyable,
+// fixed size: it lives in the lock-free ring and, later, in shared memory.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <type_traits>
+
+#include "geom/pose.h"
+#include "path/segment.h"
+
+namespace lcnc {
+
+struct PeriodIncrement {
+  std::array<std::int32_t, kAxisCount> steps{};  // increment this period, per axis
+  float power_pct = 0.0f;                        // laser output for this period
+  std::uint32_t line = 0;                        // source line executing
+  std::uint32_t segment = 0;                     // segment index executing (0-based)
+  MotionKind kind = MotionKind::Dwell;
+  bool end_of_program = false;                   // the last entry of the job
+};
+static_assert(std::is_trivially_copyable_v<PeriodIncrement>);
+
+}  // namespace lcnc

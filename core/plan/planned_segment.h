@@ -1,0 +1,28 @@
+// A segment with its geometry and its speed profile: the planner's output and
+// the coarse interpolator's input.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+
+#include "path/segment.h"
+#include "path/segment_geometry.h"
+#include "plan/trapezoid.h"
+
+namespace lcnc {
+
+struct PlannedSegment {
+  Segment seg;
+  SegmentGeometry geo{Segment{}};
+  Trapezoid profile;
+  double programmed_speed = 0.0;  // F (or L/duration) the segment was asked to run at
+  std::uint32_t index = 0;        // position in the program's segment stream
+};
+
+enum class SourceStatus : std::uint8_t { Item, End, Error };
+
+// Pull-style streams: each stage asks the previous one for its next item.
+using SegmentSource = std::function<SourceStatus(Segment&)>;
+using PlannedSource = std::function<SourceStatus(PlannedSegment&)>;
+
+}  // namespace lcnc

@@ -1,0 +1,49 @@
+// DDA fine interpolation (DESIGN §5.4, seed 001 §3.1), bit-exact with hdl/.
+//
+// Per axis an accumulator of capacity N, preset to N/2 at start and carried
+// across periods. On each of the N clock ticks of a period: acc += n; when
+// acc ≥ N a pulse is emitted on that tick and acc −= N. Since acc stays in
+// [0, N), every period emits exactly n pulses, spread evenly.
+//
+// Closed form used here (O(n) per axis instead of O(N)): the j-th pulse
+// (j = 0 … n−1) falls on the first tick t with acc0 + (t+1)·n ≥ (j+1)·N:
+//   t_j = ceil(((j+1)·N − acc0) / n) − 1,
+// and acc_end = acc0 + N·n − N·n = acc0: a full period leaves the
+// accumulator unchanged; only the tick positions depend on it.
+// reference_period() runs the tick loop itself; tests hold the two equal.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "machine/machine_config.h"
+#include "machine/pulse_sink.h"
+
+namespace lcnc::rt {
+
+class Dda {
+ public:
+  // Allocates the tick storage (max pulses per axis) once, here.
+  explicit Dda(const DdaConfig& config);
+
+  // One period for all axes; fills `frame` (ticks point into this Dda's
+  // storage, valid until the next call). steps[i] must satisfy |steps| ≤ max.
+  void run_period(const std::array<std::int32_t, kAxisCount>& steps, PulseFrame& frame) noexcept;
+
+  [[nodiscard]] std::uint32_t accumulator(int axis) const noexcept { return acc_[axis]; }
+  [[nodiscard]] std::uint32_t capacity() const noexcept { return n_cap_; }
+
+  // The tick-by-tick definition, for tests and for cross-checking hdl/.
+  // Appends the pulse ticks of one period with magnitude n to `ticks`.
+  static void reference_period(std::uint32_t capacity, std::uint32_t& acc, std::uint32_t n,
+                               std::vector<std::uint32_t>& ticks);
+
+ private:
+  std::uint32_t n_cap_;
+  std::uint32_t max_pulses_;
+  std::array<std::uint32_t, kAxisCount> acc_{};
+  std::vector<std::uint32_t> ticks_;  // kAxisCount × max_pulses_, sized in the constructor
+};
+
+}  // namespace lcnc::rt

@@ -1,0 +1,127 @@
+#include "rt/rt_kernel.h"
+
+#include <cerrno>
+#include <cstring>
+#include <ctime>
+
+#include <pthread.h>
+#include <sched.h>
+#include <sys/mman.h>
+#include <sys/prctl.h>
+
+namespace lcnc::rt {
+namespace {
+
+constexpr std::int64_t kNsPerS = 1'000'000'000;
+
+inline std::int64_t to_ns(const timespec& t) noexcept { return t.tv_sec * kNsPerS + t.tv_nsec; }
+inline timespec to_timespec(std::int64_t ns) noexcept {
+  return timespec{static_cast<time_t>(ns / kNsPerS), static_cast<long>(ns % kNsPerS)};
+}
+
+}  // namespace
+
+RtKernel::RtKernel(const MachineConfig& machine, PositionBuffer& buffer, PulseSink& sink,
+                   TraceRing* trace, const std::array<std::int64_t, kAxisCount>& start_steps)
+    : period_ns_(machine.period_ns),
+      buffer_(buffer),
+      sink_(sink),
+      trace_(trace),
+      dda_(machine.dda),
+      pos_steps_(start_steps) {}
+
+RtKernel::~RtKernel() {
+  stop();
+  join();
+}
+
+void RtKernel::start(const RtOptions& options) {
+  warning_.clear();
+  schedule_ = RtSchedule::Normal;
+  if (options.try_realtime) {
+    if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0)
+      warning_ += std::string("mlockall failed (") + std::strerror(errno) +
+                  "): memory may page; ";
+  }
+  thread_ = std::thread([this, options] { run(options); });
+  if (options.try_realtime) {
+    sched_param sp{};
+    sp.sched_priority = options.fifo_priority;
+    const int rc = pthread_setschedparam(thread_.native_handle(), SCHED_FIFO, &sp);
+    if (rc == 0) {
+      schedule_ = RtSchedule::Fifo;
+    } else {
+      warning_ += std::string("SCHED_FIFO not permitted (") + std::strerror(rc) +
+                  "): the RT thread runs with normal scheduling and its latency is not bounded";
+    }
+  } else {
+    warning_ += "real-time scheduling not requested: normal scheduling";
+  }
+}
+
+void RtKernel::join() {
+  if (thread_.joinable()) thread_.join();
+}
+
+void RtKernel::run(const RtOptions& options) noexcept {
+  // Timer slack (50 µs by default for normal threads) would delay every
+  // wake-up; SCHED_FIFO threads have none, the fallback should not either.
+  prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
+  if (options.on_loop_enter) options.on_loop_enter();
+  timespec now{};
+  clock_gettime(CLOCK_MONOTONIC, &now);
+  std::int64_t deadline = to_ns(now) + period_ns_;
+  std::uint64_t period = 0;
+  while (!stop_requested_.load(std::memory_order_relaxed)) {
+    // 1. sleep to the absolute deadline
+    const timespec until = to_timespec(deadline);
+    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &until, nullptr) == EINTR) {
+    }
+    // 2. wake-up latency
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    const std::int64_t late = to_ns(now) - deadline;
+    latency_.add(late);
+    if (late > period_ns_) overruns_.fetch_add(1, std::memory_order_relaxed);
+    // 3–6. the period's work
+    cycle(period++);
+    periods_.store(period, std::memory_order_relaxed);
+    if (end_seen_) break;
+    deadline += period_ns_;
+  }
+  if (options.on_loop_exit) options.on_loop_exit();
+  // release pairs with finished()'s acquire: counters and positions written
+  // above are visible to a thread that sees finished.
+  finished_.store(true, std::memory_order_release);
+}
+
+void RtKernel::cycle(std::uint64_t period) noexcept {
+  PeriodIncrement inc;
+  const bool have = buffer_.try_pop(inc);
+  if (!have) {
+    inc = PeriodIncrement{};  // hold: zero increments, laser off
+    underruns_.fetch_add(1, std::memory_order_relaxed);
+  } else {
+    motion_periods_.fetch_add(1, std::memory_order_relaxed);
+    segment_.store(inc.segment, std::memory_order_relaxed);
+    end_seen_ = inc.end_of_program;
+  }
+  dda_.run_period(inc.steps, frame_);
+  frame_.power_pct = inc.power_pct;
+  sink_.emit(frame_);
+  for (int i = 0; i < kAxisCount; ++i) {
+    const std::int64_t n = frame_.axes[i].count;
+    pos_steps_[i] += frame_.axes[i].negative ? -n : n;
+  }
+  if (trace_ != nullptr) {
+    TraceRecord rec;
+    rec.period = period;
+    rec.pos_steps = pos_steps_;
+    rec.power_pct = inc.power_pct;
+    rec.line = inc.line;
+    rec.segment = inc.segment;
+    rec.underrun = !have;
+    if (!trace_->try_push(rec)) trace_drops_.fetch_add(1, std::memory_order_relaxed);
+  }
+}
+
+}  // namespace lcnc::rt

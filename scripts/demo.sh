@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# Builds lasercnc and runs the sample laser job on the simulated machine,
+# printing its report.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/deps.sh
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+cmake --build build -j2 --target lasercnc
+exec build/app/lasercnc run share/examples/bracket.ngc "$@"

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages LaserCNC builds and tests with, when missing.
+# Needs root (or sudo) only when something is missing.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libeigen3-dev            # geometry (DESIGN §3)
+  libtomlplusplus-dev      # machine config (TOML)
+  libspdlog-dev            # logging outside the RT path
+  nlohmann-json3-dev       # --json report
+  libgtest-dev libgmock-dev
+  libdxflib-dev            # DXF input
+  libmodbus-dev            # peripherals
+  qtbase5-dev libqt5sql5-sqlite  # HMI, process DB
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "deps: installing ${missing[*]}" >&2
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -qq
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi

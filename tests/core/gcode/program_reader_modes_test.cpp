@@ -1,0 +1,258 @@
+// Laser, assist gas, path control, program end, delimiters, block delete,
+// comments and the lexical forms LinuxCNC accepts.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "core/gcode/gcode_test_util.h"
+
+namespace lcnc {
+namespace {
+
+using test::pose;
+using test::run;
+using test::segments;
+using test::start_at;
+
+TEST(ProgramReader, M3IsConstantPowerFromS) {
+  const auto segs = segments("M3 S40\nG1 X20 F600\n");
+  ASSERT_EQ(segs.size(), 1u);
+  EXPECT_EQ(segs[0].laser, LaserMode::Constant);
+  EXPECT_DOUBLE_EQ(segs[0].power_pct, 40.0);
+}
+
+TEST(ProgramReader, M4IsDynamicPowerAndM5IsOff) {
+  const auto segs = segments("M4 S25 G1 X20 F600\nM5 X30\n");
+  ASSERT_EQ(segs.size(), 2u);
+  EXPECT_EQ(segs[0].laser, LaserMode::Dynamic);
+  EXPECT_DOUBLE_EQ(segs[0].power_pct, 25.0);
+  EXPECT_EQ(segs[1].laser, LaserMode::Off);
+  EXPECT_DOUBLE_EQ(segs[1].power_pct, 25.0);  // S stays programmed
+}
+
+TEST(ProgramReader, PowerIsSOverSMax) {
+  MachineConfig m = test::test_machine();
+  m.laser.s_max = 1000.0;
+  const auto segs = segments("M3 S250 G1 X20 F600\nS1000 X30\n", start_at(), m);
+  ASSERT_EQ(segs.size(), 2u);
+  EXPECT_DOUBLE_EQ(segs[0].power_pct, 25.0);
+  EXPECT_DOUBLE_EQ(segs[1].power_pct, 100.0);
+}
+
+TEST(ProgramReader, StateChangesBetweenMovesAddNoSegments) {
+  const auto segs = segments(
+      "G1 X20 F600 M3 S10\n"
+      "S20\n"
+      "(a comment)\n"
+      "; another\n"
+      "\n"
+      "M4\n"
+      "M8\n"
+      "F1200\n"
+      "G1 X30\n");
+  ASSERT_EQ(segs.size(), 2u);  // the motion stream is unbroken
+  EXPECT_EQ(segs[0].start, test::start_at().start);
+  EXPECT_EQ(segs[1].start, segs[0].end);
+  EXPECT_DOUBLE_EQ(segs[0].power_pct, 10.0);
+  EXPECT_EQ(segs[0].laser, LaserMode::Constant);
+  EXPECT_DOUBLE_EQ(segs[1].power_pct, 20.0);  // picks up the new S
+  EXPECT_EQ(segs[1].laser, LaserMode::Dynamic);
+  EXPECT_TRUE(segs[1].flood);
+  EXPECT_DOUBLE_EQ(segs[1].feed_mm_s, 20.0);
+  EXPECT_EQ(segs[1].line, 9u);
+}
+
+TEST(ProgramReader, M7MistM8FloodBothAllowedM9BothOff) {
+  const auto segs = segments("M7 G1 X20 F600\nM8 X30\nM9 X40\nM7 M8 X50\n");
+  ASSERT_EQ(segs.size(), 4u);
+  EXPECT_TRUE(segs[0].mist);
+  EXPECT_FALSE(segs[0].flood);
+  EXPECT_TRUE(segs[1].mist);
+  EXPECT_TRUE(segs[1].flood);
+  EXPECT_FALSE(segs[2].mist);
+  EXPECT_FALSE(segs[2].flood);
+  EXPECT_TRUE(segs[3].mist);
+  EXPECT_TRUE(segs[3].flood);
+}
+
+TEST(ProgramReader, G64WithoutPUsesTheMachinePathTolerance) {
+  const auto segs = segments("G64 G1 X20 F600\n");
+  ASSERT_EQ(segs.size(), 1u);
+  EXPECT_EQ(segs[0].path_mode, PathMode::Blend);
+  EXPECT_DOUBLE_EQ(segs[0].blend_tolerance_mm, 0.01);
+  EXPECT_DOUBLE_EQ(segs[0].naive_cam_tolerance_mm, 0.01);  // Q defaults to P
+}
+
+TEST(ProgramReader, G64PAndQSetTheTolerances) {
+  auto segs = segments("G64 P0.05 Q0.02\nG1 X20 F600\n");
+  ASSERT_EQ(segs.size(), 1u);
+  EXPECT_EQ(segs[0].path_mode, PathMode::Blend);
+  EXPECT_DOUBLE_EQ(segs[0].blend_tolerance_mm, 0.05);
+  EXPECT_DOUBLE_EQ(segs[0].naive_cam_tolerance_mm, 0.02);
+  segs = segments("G20 G64 P0.001 Q0.002\nG1 X1 F10\n");
+  ASSERT_EQ(segs.size(), 1u);
+  EXPECT_DOUBLE_EQ(segs[0].blend_tolerance_mm, 0.0254);
+  EXPECT_DOUBLE_EQ(segs[0].naive_cam_tolerance_mm, 0.0508);
+}
+
+TEST(ProgramReader, G61AndG611AreExactPathAndExactStop) {
+  const auto segs = segments("G64 P0.1 G1 X20 F600\nG61.1 X30\nG61 X40\n");
+  ASSERT_EQ(segs.size(), 3u);
+  EXPECT_EQ(segs[0].path_mode, PathMode::Blend);
+  EXPECT_EQ(segs[1].path_mode, PathMode::ExactStop);
+  EXPECT_EQ(segs[1].blend_tolerance_mm, 0.0);
+  EXPECT_EQ(segs[2].path_mode, PathMode::ExactPath);
+  EXPECT_EQ(segs[2].blend_tolerance_mm, 0.0);
+}
+
+TEST(ProgramReader, M2EndsTheProgramAndWarnsAboutLinesAfterIt) {
+  const auto r = run("G1 X20 F600\nM2\n\n(comment)\nG1 X30\nG1 X40\n");
+  EXPECT_EQ(r.last, ProgramReader::Next::End);
+  ASSERT_EQ(r.segments.size(), 1u);
+  ASSERT_EQ(r.warnings.size(), 1u);
+  const Diagnostic& w = r.warnings[0];
+  EXPECT_EQ(w.code, ErrorCode::GcodeLinesAfterEnd);
+  EXPECT_EQ(w.line, 5u);
+  EXPECT_EQ(w.col, 1u);
+  EXPECT_NE(w.message.find("2 lines"), std::string::npos) << w.message;
+  EXPECT_NE(w.message.find("M2 on line 2"), std::string::npos) << w.message;
+  EXPECT_EQ(r.lines, 6u);
+}
+
+TEST(ProgramReader, M30OnAMotionLineMovesThenEnds) {
+  const auto r = run("G1 X20 F600 M30\n   \n%\n");
+  EXPECT_EQ(r.last, ProgramReader::Next::End);
+  ASSERT_EQ(r.segments.size(), 1u);
+  EXPECT_TRUE(r.warnings.empty());  // blank and '%' lines need no warning
+}
+
+TEST(ProgramReader, PercentDelimitsTheProgram) {
+  const auto r = run("%\nG1 X20 F600\n%\nG1 X30\n");
+  EXPECT_EQ(r.last, ProgramReader::Next::End);
+  ASSERT_EQ(r.segments.size(), 1u);
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_EQ(r.warnings[0].line, 4u);
+  EXPECT_NE(r.warnings[0].message.find("'%'"), std::string::npos);
+}
+
+TEST(ProgramReader, PercentLineMayCarryAComment) {
+  EXPECT_EQ(segments("% (start)\nG0 X20\n").size(), 1u);
+}
+
+TEST(ProgramReader, BlockDeleteSkipsSlashLinesWhenOn) {
+  ReaderOptions on = start_at();
+  on.block_delete = true;
+  auto segs = segments("/G1 X20 F600\nG1 X30 F600\n", on);
+  ASSERT_EQ(segs.size(), 1u);
+  EXPECT_DOUBLE_EQ(segs[0].end[0], 30.0);
+  EXPECT_EQ(segs[0].line, 2u);
+  segs = segments("/G1 X20 F600\nG1 X30 F600\n");
+  ASSERT_EQ(segs.size(), 2u);
+  EXPECT_DOUBLE_EQ(segs[0].end[0], 20.0);
+}
+
+TEST(ProgramReader, CommentsAnywhereAreIgnored) {
+  const auto segs = segments("(header) G1 (move) X20 (to x) F600 ; the rest (is ignored\n");
+  ASSERT_EQ(segs.size(), 1u);
+  EXPECT_DOUBLE_EQ(segs[0].end[0], 20.0);
+}
+
+TEST(ProgramReader, SpacesInsideWordsAreDropped) {
+  const auto segs = segments("G 0 1 X 1 0.5 F 6 0 0\n\tg1\ty\t2 0\n");
+  ASSERT_EQ(segs.size(), 2u);
+  EXPECT_EQ(segs[0].kind, MotionKind::Linear);
+  EXPECT_DOUBLE_EQ(segs[0].end[0], 10.5);
+  EXPECT_DOUBLE_EQ(segs[1].end[1], 20.0);
+}
+
+TEST(ProgramReader, LettersAreCaseInsensitive) {
+  const auto segs = segments("g1 x20 y30 f600 m3 s10\n");
+  ASSERT_EQ(segs.size(), 1u);
+  EXPECT_POSE_NEAR(segs[0].end, pose(20, 30, 10), 1e-12);
+  EXPECT_EQ(segs[0].laser, LaserMode::Constant);
+}
+
+TEST(ProgramReader, NumberForms) {
+  const auto segs =
+      segments("G1 X1. Y.5 Z+1 F600\nG91 X-0.5 Y-.25\nG90 G01 X010\nG0 X11\nG1.0 X12\n");
+  ASSERT_EQ(segs.size(), 5u);
+  EXPECT_POSE_NEAR(segs[0].end, pose(1, 0.5, 1), 1e-15);
+  EXPECT_POSE_NEAR(segs[1].end, pose(0.5, 0.25, 1), 1e-15);
+  EXPECT_DOUBLE_EQ(segs[2].end[0], 10.0);
+  EXPECT_EQ(segs[2].kind, MotionKind::Linear);
+  EXPECT_EQ(segs[3].kind, MotionKind::Rapid);
+  EXPECT_EQ(segs[4].kind, MotionKind::Linear);  // G1.0 is G1
+}
+
+TEST(ProgramReader, DecimalNumbersRoundLikeStrtod) {
+  const auto segs = segments("G0 X0.1 Y123.456789012345678 Z0.30000000000000004\n");
+  ASSERT_EQ(segs.size(), 1u);
+  EXPECT_EQ(segs[0].end[0], 0.1);
+  EXPECT_EQ(segs[0].end[1], 123.456789012345678);
+  EXPECT_EQ(segs[0].end[2], 0.30000000000000004);
+}
+
+TEST(ProgramReader, LineNumbersAreAccepted) {
+  const auto segs = segments("N10 G1 X20 F600\nn20 x30\n/N30 X40\n");
+  ASSERT_EQ(segs.size(), 3u);
+  EXPECT_EQ(segs[1].line, 2u);  // the file line, not the N number
+}
+
+TEST(ProgramReader, CrLfLinesAndByteOrderMark) {
+  const auto segs = segments("\xEF\xBB\xBFG1 X20 F600\r\nX30\r\n");
+  ASSERT_EQ(segs.size(), 2u);
+  EXPECT_DOUBLE_EQ(segs[1].end[0], 30.0);
+}
+
+TEST(ProgramReader, LastLineWithoutNewlineIsRead) {
+  const auto segs = segments("G0 X20\nG0 X30");
+  ASSERT_EQ(segs.size(), 2u);
+}
+
+TEST(ProgramReader, EndAndErrorAreSticky) {
+  auto reader = ProgramReader::from_string("G0 X20\n", "a.ngc", test::test_machine(), start_at());
+  Segment s;
+  EXPECT_EQ(reader->next(s), ProgramReader::Next::Segment);
+  EXPECT_EQ(reader->next(s), ProgramReader::Next::End);
+  EXPECT_EQ(reader->next(s), ProgramReader::Next::End);
+  EXPECT_EQ(reader->lines_read(), 1u);
+
+  reader = ProgramReader::from_string("G0 X20\nT1\nG0 X30\n", "b.ngc", test::test_machine(),
+                                      start_at());
+  EXPECT_EQ(reader->next(s), ProgramReader::Next::Segment);
+  EXPECT_EQ(reader->next(s), ProgramReader::Next::Error);
+  EXPECT_EQ(reader->next(s), ProgramReader::Next::Error);
+  EXPECT_EQ(reader->error().line, 2u);
+  EXPECT_EQ(reader->error().file, "b.ngc");
+}
+
+TEST(ProgramReader, ErrorLineProducesNoSegment) {
+  // The dwell of a block that fails later (travel) is not handed out.
+  const auto r = run("G1 F600\nG4 P1 X2000\n");
+  EXPECT_EQ(r.last, ProgramReader::Next::Error);
+  EXPECT_TRUE(r.segments.empty());
+}
+
+TEST(ProgramReader, ReadsLinesLongerThanAnyBuffer) {
+  std::string prog = "G1 X20 F600 (";
+  prog.append(3u << 20, 'x');  // 3 MiB comment: longer than the file chunk
+  prog += ")\nX30\n";
+  const std::string path = ::testing::TempDir() + "long_line.ngc";
+  {
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    ASSERT_NE(f, nullptr);
+    std::fwrite(prog.data(), 1, prog.size(), f);
+    std::fclose(f);
+  }
+  auto opened = ProgramReader::open(path, test::test_machine(), start_at());
+  ASSERT_TRUE(opened.ok());
+  Segment s;
+  int n = 0;
+  while ((*opened)->next(s) == ProgramReader::Next::Segment) ++n;
+  EXPECT_EQ(n, 2);
+  EXPECT_DOUBLE_EQ(s.end[0], 30.0);
+  std::remove(path.c_str());
+}
+
+}  // namespace
+}  // namespace lcnc

@@ -1,0 +1,35 @@
+// A machine built in code for planner tests (no TOML involved).
+#pragma once
+
+#include "machine/machine_config.h"
+
+namespace lcnc::testing {
+
+inline MachineConfig test_machine(double vmax = 500.0, double amax = 5000.0) {
+  MachineConfig m;
+  m.period_ns = 75'000;
+  m.dda = DdaConfig{8, 300};
+  const double travel[3] = {1000.0, 450.0, 500.0};
+  for (int i = 0; i < 3; ++i) {
+    AxisConfig& a = m.axes[i];
+    a.present = true;
+    a.axis = static_cast<Axis>(i);
+    a.min = 0.0;
+    a.max = travel[i];
+    a.max_velocity = vmax;
+    a.max_acceleration = amax;
+    a.steps_per_unit = 1000.0;
+  }
+  AxisConfig& c = m.axis(Axis::C);
+  c.present = true;
+  c.axis = Axis::C;
+  c.min = 0.0;
+  c.max = 360.0;
+  c.wrap = true;
+  c.max_velocity = 360.0;
+  c.max_acceleration = 3600.0;
+  c.steps_per_unit = 1000.0;
+  return m;
+}
+
+}  // namespace lcnc::testing

@@ -1,0 +1,48 @@
+#include "plan/trapezoid.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace lcnc {
+namespace {
+
+TEST(Trapezoid, ReachesCruiseWhenLongEnough) {
+  const Trapezoid p = Trapezoid::plan(100.0, 1000.0, 0.0, 100.0, 0.0);
+  EXPECT_DOUBLE_EQ(p.vc, 100.0);
+  EXPECT_NEAR(p.t_acc, 0.1, 1e-12);
+  EXPECT_NEAR(p.duration(), 100.0 / 100.0 + 100.0 / 1000.0, 1e-12);
+  EXPECT_NEAR(p.position(p.duration()), 100.0, 1e-12);
+  EXPECT_NEAR(p.position(p.t_acc), 5.0, 1e-12);  // v²/2a
+}
+
+TEST(Trapezoid, TriangleWhenTooShort) {
+  const Trapezoid p = Trapezoid::plan(1.0, 1000.0, 0.0, 100.0, 0.0);
+  EXPECT_NEAR(p.vc, std::sqrt(1000.0), 1e-9);
+  EXPECT_NEAR(p.t_cruise, 0.0, 1e-12);
+  EXPECT_NEAR(p.position(p.duration()), 1.0, 1e-12);
+}
+
+TEST(Trapezoid, NonZeroEndSpeeds) {
+  const Trapezoid p = Trapezoid::plan(10.0, 100.0, 10.0, 50.0, 20.0);
+  EXPECT_NEAR(p.speed(0.0), 10.0, 1e-12);
+  EXPECT_NEAR(p.speed(p.duration()), 20.0, 1e-12);
+  EXPECT_NEAR(p.position(p.duration()), 10.0, 1e-9);
+  // position is monotone and speed never exceeds vc
+  double prev = 0.0;
+  for (int k = 0; k <= 1000; ++k) {
+    const double t = p.duration() * k / 1000.0;
+    EXPECT_GE(p.position(t), prev - 1e-12);
+    EXPECT_LE(p.speed(t), p.vc + 1e-12);
+    prev = p.position(t);
+  }
+}
+
+TEST(Trapezoid, HoldHasDurationAndNoPath) {
+  const Trapezoid p = Trapezoid::hold(0.25);
+  EXPECT_DOUBLE_EQ(p.duration(), 0.25);
+  EXPECT_DOUBLE_EQ(p.position(0.2), 0.0);
+}
+
+}  // namespace
+}  // namespace lcnc

@@ -1,0 +1,209 @@
+// End to end: the lasercnc CLI runs real programs on the simulated machine
+// (real planner and RT threads) and reports honestly.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CmdResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+fs::path temp_dir() {
+  fs::path d = fs::temp_directory_path() /
+               ("lasercnc_e2e_" + std::to_string(::getpid()) + "_" +
+                ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  fs::create_directories(d);
+  return d;
+}
+
+CmdResult lasercnc(const std::string& args) {
+  const fs::path dir = temp_dir();
+  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  const std::string cmd = std::string(LASERCNC_EXE) + " " + args + " >" + out.string() + " 2>" +
+                          err.string() + " </dev/null";
+  const int status = std::system(cmd.c_str());
+  CmdResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+const std::string kShare = std::string(LCNC_SOURCE_DIR) + "/share";
+
+fs::path write_file(const std::string& name, const std::string& text) {
+  const fs::path p = temp_dir() / name;
+  std::ofstream(p) << text;
+  return p;
+}
+
+TEST(LasercncRun, SampleJobRunsWithExactStepsAndAnHonestReport) {
+  const fs::path trace = temp_dir() / "trace.csv";
+  const CmdResult r = lasercnc("run " + kShare + "/examples/bracket.ngc --json --no-progress --trace " +
+                               trace.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["steps_match"].get<bool>());
+  for (const auto& [name, ax] : j["axes"].items()) {
+    EXPECT_EQ(ax["steps_sent"].get<long long>(), ax["steps_commanded"].get<long long>()) << name;
+  }
+  // the program ends at X0 Y0 Z25 (machine: G55 X500 Y0)
+  EXPECT_EQ(j["axes"]["X"]["steps_sent"].get<long long>(), 500000);
+  EXPECT_EQ(j["axes"]["Z"]["steps_sent"].get<long long>(), 25000);
+  EXPECT_EQ(j["underruns"].get<long long>(), 0);
+  EXPECT_EQ(j["bad_frames"].get<long long>(), 0);
+  EXPECT_EQ(j["trace_drops"].get<long long>(), 0);
+  // exact stop: the executed path is the programmed one up to step rounding
+  EXPECT_LE(j["max_deviation_mm"].get<double>(), 0.001);
+  const double period = j["period_s"].get<double>();
+  EXPECT_NEAR(period, 75e-6, 1e-12);
+  EXPECT_NEAR(j["cycle_time_s"].get<double>(), j["periods"].get<double>() * period, 1e-9);
+  // cutting 480+ mm at ≤ 100 mm/s takes longer than 4.8 s
+  EXPECT_GT(j["feed_length_mm"].get<double>(), 480.0);
+  EXPECT_GT(j["cycle_time_s"].get<double>(), j["feed_length_mm"].get<double>() / 100.0);
+  EXPECT_GT(j["laser_on_s"].get<double>(), 4.0);
+  EXPECT_LE(j["axes"]["X"]["peak_velocity"].get<double>(), 500.0 + 1e-6);
+  EXPECT_LE(j["axes"]["X"]["peak_acceleration"].get<double>(), 5000.0 * (1 + 1e-6));
+  EXPECT_GT(j["latency_us"]["max"].get<double>(), 0.0);
+
+  // The trace: one row per RT period, header as documented, and its motion
+  // within the axis limits (velocity over 10-period windows, allowing the
+  // ±1 step quantization at each end).
+  std::ifstream in(trace);
+  std::string line;
+  ASSERT_TRUE(std::getline(in, line));
+  EXPECT_EQ(line, "t,x,y,z,a,b,c");
+  std::vector<std::array<double, 4>> rows;  // t, x, y, z
+  while (std::getline(in, line)) {
+    std::array<double, 4> v{};
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2], &v[3]), 4) << line;
+    rows.push_back(v);
+  }
+  EXPECT_EQ(rows.size(), j["periods"].get<std::size_t>());
+  const double vmax[3] = {500.0, 500.0, 250.0};
+  const int w = 10;
+  for (std::size_t k = w; k < rows.size(); ++k) {
+    for (int a = 0; a < 3; ++a) {
+      const double v = std::abs(rows[k][a + 1] - rows[k - w][a + 1]) / (w * period);
+      ASSERT_LE(v, vmax[a] + 0.002 / (w * period)) << "axis " << a << " row " << k;
+    }
+  }
+  EXPECT_NEAR(rows.back()[1], 500.0, 1e-9);
+  EXPECT_NEAR(rows.back()[3], 25.0, 1e-9);
+}
+
+TEST(LasercncRun, TextReportNamesEveryFigure) {
+  const fs::path prog = write_file("square.ngc", "G21 G90 G61\nG0 X10 Y10 Z5\nG1 X20 F1200\nG1 Y20\nM2\n");
+  const CmdResult r = lasercnc("run " + prog.string() + " --no-progress");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* key : {"cycle time", "path length", "max deviation", "peak velocity",
+                          "steps sent", "underruns", "RT latency", "p50", "p99"})
+    EXPECT_NE(r.out.find(key), std::string::npos) << key << "\n" << r.out;
+  EXPECT_NE(r.out.find("sent = commanded on every axis"), std::string::npos) << r.out;
+}
+
+TEST(LasercncRun, LimitsFromTheCommandLineOverrideTheConfig) {
+  const fs::path prog = write_file("line.ngc", "G0 X100 Y10 Z5\nM2\n");
+  const CmdResult r = lasercnc("run " + prog.string() + " --json --no-progress --vmax 100 --amax 1000");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_LE(j["axes"]["X"]["peak_velocity"].get<double>(), 100.0 + 1e-9);
+  EXPECT_GT(j["axes"]["X"]["peak_velocity"].get<double>(), 99.0);
+  EXPECT_LE(j["axes"]["X"]["peak_acceleration"].get<double>(), 1000.0 * (1 + 1e-6));
+  // 100 mm at 100 mm/s with a = 1000: 1.1 s
+  EXPECT_NEAR(j["cycle_time_s"].get<double>(), 1.1, 0.01);
+}
+
+TEST(LasercncRun, BadProgramIsRejectedBeforeAnythingMoves) {
+  std::string text = "G21 G90\nG0 X10 Y10 Z5\n";
+  for (int i = 0; i < 200; ++i) text += "G1 X" + std::to_string(10 + i % 7) + " F600\n";
+  text += "G1 X20 Y20 Q7\n";  // line 203: a word outside the subset
+  const fs::path prog = write_file("bad.ngc", text);
+  const fs::path trace = temp_dir() / "never.csv";
+  const CmdResult r = lasercnc("run " + prog.string() + " --no-progress --trace " + trace.string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find(prog.string() + ":203:"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty());
+  EXPECT_FALSE(fs::exists(trace));  // nothing ran
+}
+
+TEST(LasercncRun, MoveBeyondTravelAndMissingFeedNameTheirLines) {
+  const fs::path p1 = write_file("travel.ngc", "G0 X10 Y10\nG0 Y500\n");
+  CmdResult r = lasercnc("run " + p1.string() + " --no-progress");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("travel.ngc:2:"), std::string::npos) << r.err;
+  const fs::path p2 = write_file("nofeed.ngc", "G0 X10 Y10\nG1 X20\n");
+  r = lasercnc("run " + p2.string() + " --no-progress");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("nofeed.ngc:2:"), std::string::npos) << r.err;
+}
+
+TEST(LasercncRun, BadMachineConfigIsRejectedWithTheKey) {
+  std::string cfg = slurp(kShare + "/machines/default.toml");
+  cfg.replace(cfg.find("max_velocity = 500.0"), 20, "max_velocity = 5000.0");
+  const fs::path m = write_file("fast.toml", cfg);
+  const fs::path prog = write_file("p.ngc", "G0 X1\n");
+  const CmdResult r = lasercnc("run " + prog.string() + " --machine " + m.string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("axes.X.max_velocity"), std::string::npos) << r.err;
+  // --vmax beyond the DDA preset is refused the same way
+  const CmdResult r2 = lasercnc("run " + prog.string() + " --vmax 4000");
+  EXPECT_EQ(r2.exit_code, 1);
+  EXPECT_NE(r2.err.find("max_velocity"), std::string::npos) << r2.err;
+}
+
+TEST(LasercncCli, UsageErrorsExitWithTwo) {
+  EXPECT_EQ(lasercnc("").exit_code, 2);
+  EXPECT_EQ(lasercnc("fly").exit_code, 2);
+  EXPECT_EQ(lasercnc("run").exit_code, 2);
+  EXPECT_EQ(lasercnc("run x.ngc --vmax fast").exit_code, 2);
+  const CmdResult r = lasercnc("run x.ngc --bogus");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--bogus"), std::string::npos);
+}
+
+TEST(LasercncCli, CheckReadsTheWholeProgram) {
+  const CmdResult r = lasercnc("check " + kShare + "/examples/bracket.ngc");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("OK"), std::string::npos);
+  const CmdResult missing = lasercnc("check /nonexistent.ngc");
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_NE(missing.err.find("/nonexistent.ngc"), std::string::npos);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(LasercncRun, ProgressBarReachesOneHundredPercent) {
+  const fs::path prog = write_file("p.ngc", "G0 X50 Y10 Z5\nG1 X60 F3000\nM2\n");
+  const CmdResult r = lasercnc("run " + prog.string() + " --progress");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("100.0 %"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("[####"), std::string::npos) << r.err;
+}
+
+}  // namespace
