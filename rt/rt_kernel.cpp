@@ -38,12 +38,14 @@ RtKernel::~RtKernel() {
 void RtKernel::start(const RtOptions& options) {
   warning_.clear();
   schedule_ = RtSchedule::Normal;
-  if (options.try_realtime) {
-    if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0)
-      warning_ += std::string("mlockall failed (") + std::strerror(errno) +
-                  "): memory may page; ";
+  if (!options.try_realtime) {
+    warning_ = "real-time scheduling not requested: normal scheduling";
+  } else if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
+    warning_ = std::string("mlockall failed (") + std::strerror(errno) + "): memory may page; ";
   }
   thread_ = std::thread([this, options] { run(options); });
+  // From here the RT thread runs: the warning string may still grow below
+  // (on this thread, before anyone reads it), nothing else is touched.
   if (options.try_realtime) {
     sched_param sp{};
     sp.sched_priority = options.fifo_priority;
@@ -54,8 +56,6 @@ void RtKernel::start(const RtOptions& options) {
       warning_ += std::string("SCHED_FIFO not permitted (") + std::strerror(rc) +
                   "): the RT thread runs with normal scheduling and its latency is not bounded";
     }
-  } else {
-    warning_ += "real-time scheduling not requested: normal scheduling";
   }
 }
 
