@@ -10,7 +10,8 @@
 #include "gcode/program_reader.h"
 #include "path/deviation_meter.h"
 #include "plan/coarse_interpolator.h"
-#include "plan/exact_stop_planner.h"
+#include "plan/lookahead.h"
+#include "plan/path_blender.h"
 #include "plan/motion_stats.h"
 #include "rt/rt_kernel.h"
 
@@ -154,8 +155,10 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
     StepQuantizer quant(machine, ropt.start);
     MotionStats stats(machine.period_s(), ropt.start);
     if (reader) {
-      ExactStopPlanner plan(machine, reader_source(**reader));
-      CoarseInterpolator interp(machine, [&plan](PlannedSegment& s) { return plan.next(s); });
+      PathBlender blender(machine, reader_source(**reader));
+      Lookahead lookahead(machine, [&blender](IndexedSegment& s) { return blender.next(s); });
+      CoarseInterpolator interp(machine,
+                                [&lookahead](PlannedSegment& s) { return lookahead.next(s); });
       PeriodSample sample;
       PeriodSample last;
       SourceStatus st;

@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 namespace lcnc {
 

@@ -16,8 +16,9 @@ enum class MotionKind : std::uint8_t {
 };
 
 // Plane of an arc, named by (first, second, normal) axis as RS274NGC does:
-// G17 (X, Y, Z), G18 (Z, X, Y), G19 (Y, Z, X).
-enum class Plane : std::uint8_t { XY, ZX, YZ };
+// G17 (X, Y, Z), G18 (Z, X, Y), G19 (Y, Z, X). Free: any plane through the
+// centre with unit normal Segment::normal (the planner's corner blends).
+enum class Plane : std::uint8_t { XY, ZX, YZ, Free };
 
 enum class PathMode : std::uint8_t {
   ExactPath,  // G61: stop exactly at each programmed point
@@ -45,6 +46,7 @@ struct Segment {
   // axes move linearly with the arc angle (helix).
   Plane plane = Plane::XY;
   Vec3 center = Vec3::Zero();
+  Vec3 normal = Vec3::UnitZ();  // Plane::Free only: counter-clockwise about it
   bool clockwise = false;
   std::uint32_t extra_turns = 0;
 

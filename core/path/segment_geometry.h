@@ -2,10 +2,13 @@
 //
 // Path length is measured in the linear axes (mm) when X, Y or Z move, else in
 // the rotary axes (deg) — as RS274NGC measures feed. Every axis moves in
-// proportion: a line is p(s) = start + (end − start)·s/L; an arc (helix)
-// turns by angle φ(s) = sweep·s/L about its centre in its plane while the
-// normal axis and the rotary axes move linearly with φ:
-//   L = sqrt((r·sweep)² + h²),  h = normal-axis travel.
+// proportion: a line is p(s) = start + (end − start)·s/L. An arc (helix) of
+// radius r turns by φ(s) = sweep·s/L about its centre c in the plane spanned by
+// the unit vectors u (centre → start) and w = n × u (n the unit normal about
+// which the arc turns counter-clockwise):
+//   xyz(s) = c + r·(cos φ·u + sin φ·w) + (s/L)·h·n̂,   L = sqrt((r·sweep)² + h²)
+// with h the travel along the plane's normal axis n̂ (helix); the rotary axes
+// move linearly with s.
 #pragma once
 
 #include "geom/pose.h"
@@ -13,7 +16,7 @@
 
 namespace lcnc {
 
-// Indices (0..2) of the first, second and normal axis of an arc plane.
+// Indices (0..2) of the first, second and normal axis of a named arc plane.
 struct PlaneAxes {
   int first, second, normal;
 };
@@ -26,23 +29,32 @@ class SegmentGeometry {
   [[nodiscard]] double length() const noexcept { return length_; }
   [[nodiscard]] bool is_arc() const noexcept { return arc_; }
   [[nodiscard]] double radius() const noexcept { return radius_; }
-  // Signed total sweep angle of an arc (rad, CCW positive), incl. extra turns.
+  // Total sweep angle of an arc (rad, > 0, about the turning normal), incl. turns.
   [[nodiscard]] double sweep_rad() const noexcept { return sweep_; }
+  // In-plane unit vectors of an arc (u: centre → start, w: start tangent).
+  [[nodiscard]] const Vec3& u() const noexcept { return u_; }
+  [[nodiscard]] const Vec3& w() const noexcept { return w_; }
   // Position at path length s (clamped to [0, L]).
   [[nodiscard]] Pose at(double s) const;
-  // Per-axis rate of change d(axis)/ds at s (unit tangent in path units).
+  // dp/ds: per-axis rate of change (the unit tangent in path units).
   [[nodiscard]] Pose tangent(double s) const;
-  // Fraction of the path speed seen in the arc plane (r·|sweep| / L); 0 for lines.
+  // d²p/ds²: the curvature vector (zero on lines).
+  [[nodiscard]] Pose curvature(double s) const;
+  // Fraction of the path speed seen in the arc plane (r·sweep / L); 0 for lines.
   [[nodiscard]] double plane_speed_ratio() const noexcept { return plane_ratio_; }
   // Closest distance from a linear-axes point to this segment's XYZ path (mm).
   [[nodiscard]] double distance_xyz(const Vec3& p) const;
 
  private:
+  [[nodiscard]] double angle_at(double s) const noexcept;
+
   Pose start_, end_;
   bool arc_ = false;
-  PlaneAxes pa_{0, 1, 2};
   Vec3 center_ = Vec3::Zero();
-  double radius_ = 0.0, start_angle_ = 0.0, sweep_ = 0.0, length_ = 0.0, plane_ratio_ = 0.0;
+  Vec3 u_ = Vec3::UnitX(), w_ = Vec3::UnitY();
+  Vec3 axis_n_ = Vec3::Zero();  // helix direction (unit) or zero
+  double helix_h_ = 0.0;        // travel along axis_n_
+  double radius_ = 0.0, sweep_ = 0.0, length_ = 0.0, plane_ratio_ = 0.0;
 };
 
 }  // namespace lcnc

@@ -9,36 +9,40 @@
 namespace lcnc {
 
 SegmentLimits segment_limits(const Segment& seg, const SegmentGeometry& geo,
-                             const MachineConfig& machine) {
+                             const MachineConfig& machine, double v_cap) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   SegmentLimits lim{kInf, kInf};
   const double L = geo.length();
   if (L <= plan::kMinSegmentLength) return {0.0, 0.0};
-  const Pose d = seg.end - seg.start;
-  PlaneAxes pa{-1, -1, -1};
-  if (geo.is_arc()) pa = plane_axes(seg.plane);
+  // Linearly moving part of every axis (whole line; helix normal and rotary axes of an arc).
+  Pose lin = (seg.end - seg.start) / L;
+  if (geo.is_arc()) lin.head<3>() = geo.tangent(0.0).head<3>() -
+                                    geo.plane_speed_ratio() * geo.w();
   for (int i = 0; i < kAxisCount; ++i) {
+    const double k = std::abs(lin[i]);
+    if (k <= 1e-15) continue;
     const AxisConfig& ax = machine.axes[i];
-    if (i == pa.first || i == pa.second) continue;
-    const double k = std::abs(d[i]) / L;
-    if (k <= 0.0) continue;
-    if (!ax.present) return {0.0, 0.0};  // cannot happen after the reader's checks
+    if (!ax.present) return {0.0, 0.0};  // the reader rejects such moves first
     lim.v_max = std::min(lim.v_max, ax.max_velocity / k);
     lim.a_max = std::min(lim.a_max, ax.max_acceleration / k);
   }
-  if (geo.is_arc()) {
-    const AxisConfig& a1 = machine.axes[pa.first];
-    const AxisConfig& a2 = machine.axes[pa.second];
+  if (geo.is_arc() && geo.plane_speed_ratio() > 0.0) {
     const double rho = geo.plane_speed_ratio();
-    if (rho > 0.0) {
-      const double v_plane = std::min(a1.max_velocity, a2.max_velocity);
-      const double a_plane = std::min(a1.max_acceleration, a2.max_acceleration);
-      const double a_share = a_plane * plan::kArcAccelShare;
-      lim.v_max = std::min(lim.v_max, v_plane / rho);
-      lim.a_max = std::min(lim.a_max, a_share / rho);
-      // Centripetal limit (DESIGN §5.1): (ρ·v)²/r ≤ a_share.
-      lim.v_max = std::min(lim.v_max, std::sqrt(a_share * geo.radius()) / rho);
+    double a_plane = kInf;
+    for (int i = 0; i < 3; ++i) {
+      const double g = std::hypot(geo.u()[i], geo.w()[i]);
+      if (g <= 1e-15) continue;
+      const AxisConfig& ax = machine.axes[i];
+      lim.v_max = std::min(lim.v_max, ax.max_velocity / (rho * g + std::abs(lin[i])));
+      a_plane = std::min(a_plane, ax.max_acceleration / g);
     }
+    // centripetal limit: (ρ·v)²/r ≤ share·A
+    const double v_curve = std::sqrt(plan::kArcNormalShare * a_plane * geo.radius()) / rho;
+    lim.v_max = std::min(lim.v_max, v_curve);
+    const double v_top = std::min(lim.v_max, v_cap);
+    const double a_n = rho * v_top * rho * v_top / geo.radius();
+    const double a_t = std::sqrt(std::max(0.0, a_plane * a_plane - a_n * a_n)) / rho;
+    lim.a_max = std::min(lim.a_max, a_t);
   }
   if (!std::isfinite(lim.v_max)) lim = {0.0, 0.0};
   return lim;

@@ -4,11 +4,14 @@
 //
 // Line: axis i moves k_i = |Δ_i|/L per unit of path, so
 //   v ≤ min_i vmax_i / k_i,   a ≤ min_i amax_i / k_i.
-// Arc (radius r, plane share ρ = r·|sweep|/L): each plane axis sees at most
-// ρ·v, tangential ρ·a_t and centripetal (ρ·v)²/r. Both accelerations get
-// a_plane/√2 (a_plane = the smaller of the two plane axes' limits), so
-//   ρ·a_t ≤ a_plane/√2   and   (ρ·v)²/r ≤ a_plane/√2   (centripetal limit).
-// Normal and rotary axes move linearly with the path as on a line.
+// Arc of radius r in the plane (u, w), plane share ρ = r·sweep/L: axis i sees
+// the in-plane motion with weight g_i = sqrt(u_i² + w_i²) ≤ 1; its in-plane
+// acceleration is at most g_i·sqrt((ρ·a_t)² + a_n²), a_n = (ρ·v)²/r. With
+// A = min_i amax_i / g_i the centripetal limit (DESIGN §5.1) takes a share of A
+//   (ρ·v)²/r ≤ kArcNormalShare·A
+// and what is left at the segment's top speed is its tangential acceleration
+//   ρ·a_t ≤ sqrt(A² − a_n(v_max)²).
+// Normal (helix) and rotary axes move linearly with the path, as on a line.
 #pragma once
 
 #include "machine/machine_config.h"
@@ -22,8 +25,11 @@ struct SegmentLimits {
   double a_max = 0.0;  // path units/s²: tangential acceleration the axes allow
 };
 
+// Limits of the segment when its speed never exceeds v_cap (the planned
+// speed): a lower cap leaves more of an arc's acceleration for the tangent.
 [[nodiscard]] SegmentLimits segment_limits(const Segment& seg, const SegmentGeometry& geo,
-                                           const MachineConfig& machine);
+                                           const MachineConfig& machine,
+                                           double v_cap = 1e300);
 
 // The speed to plan for: rapid → v_max; feed → min(F, v_max); G93 → L/duration.
 [[nodiscard]] double target_speed(const Segment& seg, const SegmentGeometry& geo,

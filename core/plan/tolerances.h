@@ -5,9 +5,22 @@ namespace lcnc::plan {
 
 // Segments shorter than this (mm or deg) carry no motion of their own.
 inline constexpr double kMinSegmentLength = 1e-9;
-// Share of an arc plane axis's acceleration given to the centripetal and to
-// the tangential component: each gets a_max/√2, so their vector sum ≤ a_max.
-inline constexpr double kArcAccelShare = 0.70710678118654752;
+// Share of an arc's in-plane acceleration budget the centripetal part may
+// take at the arc's top speed; the rest, sqrt(1 − 0.97²) ≈ 24 %, stays for
+// speeding up and slowing down on the arc. Curvature-limited arcs run at
+// sqrt(0.97) ≈ 98.5 % of the speed that would use the whole budget.
+inline constexpr double kArcNormalShare = 0.97;
+// Corners turning less than this (rad) are tangent: no blend needed.
+inline constexpr double kMinBlendAngle = 1e-7;
+// Corners turning more than this (rad) reverse: no blend, the path stops.
+inline constexpr double kMaxBlendAngle = 3.14159265358979323846 - 1e-6;
+// Per-axis jump of the unit tangent (per unit of path) at a join: up to
+// kTangentJump the join is tangent; beyond kMaxJunctionJump it is a corner
+// that the path must stop at; between, the speed is held so that the jump in
+// axis velocity is at most kJunctionJumpShare of one period's acceleration.
+inline constexpr double kTangentJump = 1e-9;
+inline constexpr double kMaxJunctionJump = 1e-3;
+inline constexpr double kJunctionJumpShare = 0.1;
 // Velocities below this (mm/s) count as standing still.
 inline constexpr double kMinVelocity = 1e-9;
 

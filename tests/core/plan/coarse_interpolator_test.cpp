@@ -6,7 +6,8 @@
 #include <random>
 #include <vector>
 
-#include "plan/exact_stop_planner.h"
+#include "plan/lookahead.h"
+#include "plan/path_blender.h"
 #include "plan/motion_stats.h"
 #include "core/plan/test_machine.h"
 
@@ -42,11 +43,12 @@ struct PipelineRun {
 
 PipelineRun run(const MachineConfig& m, const std::vector<Segment>& segs, const Pose& start) {
   std::size_t i = 0;
-  ExactStopPlanner planner(m, [&](Segment& out) {
+  PathBlender blender(m, [&](Segment& out) {
     if (i == segs.size()) return SourceStatus::End;
     out = segs[i++];
     return SourceStatus::Item;
   });
+  Lookahead planner(m, [&](IndexedSegment& s) { return blender.next(s); });
   CoarseInterpolator ci(m, [&](PlannedSegment& p) { return planner.next(p); });
   StepQuantizer q(m, start);
   PipelineRun r;
@@ -97,7 +99,8 @@ TEST(CoarseInterpolator, ShortSegmentsAreConsumedSeveralPerPeriod) {
   double t_sum = 0.0;
   for (int k = 0; k < 200; ++k) {
     segs.push_back(line(xyz(k * 0.001, 0, 0), xyz((k + 1) * 0.001, 0, 0), 100.0, k + 1));
-    t_sum += plan_rest_to_rest(segs.back(), m, 0).profile.duration();
+    // G61 (the segments' default): each runs from rest to rest
+    t_sum += Trapezoid::plan(0.001, m.axes[0].max_acceleration, 0.0, 100.0, 0.0).duration();
   }
   const PipelineRun r = run(m, segs, xyz(0, 0, 0));
   EXPECT_NEAR(r.samples.back().t_s, t_sum, m.period_s());

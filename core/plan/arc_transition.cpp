@@ -1,0 +1,49 @@
+#include "plan/arc_transition.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "plan/tolerances.h"
+
+namespace lcnc {
+
+ArcTransition arc_transition(const Segment& a, const Segment& b, double tolerance_mm,
+                             double max_trim_a, double max_trim_b) {
+  ArcTransition t;
+  const Vec3 p = b.start.head<3>();
+  const Vec3 da = a.end.head<3>() - a.start.head<3>();
+  const Vec3 db = b.end.head<3>() - b.start.head<3>();
+  const double la = da.norm(), lb = db.norm();
+  if (la <= plan::kMinSegmentLength || lb <= plan::kMinSegmentLength || tolerance_mm <= 0.0)
+    return t;
+  const Vec3 d1 = da / la, d2 = db / lb;
+  const Vec3 cross = d1.cross(d2);
+  const double theta = std::atan2(cross.norm(), d1.dot(d2));
+  if (theta < plan::kMinBlendAngle || theta > plan::kMaxBlendAngle) return t;
+  const double half = theta / 2.0;
+  const double l_c = tolerance_mm * std::sin(half) / (1.0 - std::cos(half));
+  const double l = std::min({l_c, max_trim_a, max_trim_b});
+  if (l <= plan::kMinSegmentLength) return t;
+  const double r = l / std::tan(half);
+
+  t.blended = true;
+  t.trim = l;
+  t.q0 = a.start + (a.end - a.start) * ((la - l) / la);
+  t.q2 = b.start + (b.end - b.start) * (l / lb);
+  t.q0.head<3>() = p - l * d1;  // exact on the line, whatever the rounding above
+  t.q2.head<3>() = p + l * d2;
+
+  t.arc = a;
+  t.arc.kind = MotionKind::Arc;
+  t.arc.plane = Plane::Free;
+  t.arc.normal = cross.normalized();
+  t.arc.center = p + (d2 - d1).normalized() * (r / std::cos(half));
+  t.arc.clockwise = false;
+  t.arc.extra_turns = 0;
+  t.arc.start = t.q0;
+  t.arc.end = t.q2;
+  t.arc.line = b.line;
+  return t;
+}
+
+}  // namespace lcnc

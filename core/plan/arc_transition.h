@@ -1,0 +1,33 @@
+// Corner arc transition (DESIGN §5.1, seed 000 §3, seed 001 §3): the corner
+// between two lines P(i−1)→P(i)→P(i+1) is replaced by a tangent arc whose
+// distance from the corner point P(i) is at most the tolerance E.
+//
+//   turning angle θ (between the two directions d1, d2)
+//   tangent length under the tolerance   l_c = E·sin(θ/2) / (1 − cos(θ/2))
+//   length bound                         l ≤ max_trim on each side (≤ half a line)
+//   l = min(l_c, bounds),  radius r = l / tan(θ/2)
+//   tangent points Q0 = P(i) − l·d1,  Q2 = P(i) + l·d2
+//   centre C = P(i) + r/cos(θ/2) · (d2 − d1)/|d2 − d1|
+//   distance from P(i) to the arc = r/cos(θ/2) − r = E when l = l_c (less otherwise)
+// The arc lies in the plane of d1 and d2 (any plane in 3D) and turns about
+// n = d1 × d2. Rotary axes move linearly from their value at Q0 to that at Q2.
+#pragma once
+
+#include "path/segment.h"
+
+namespace lcnc {
+
+struct ArcTransition {
+  bool blended = false;
+  double trim = 0.0;  // l: length cut off the end of the first and the start of the second line
+  Pose q0 = Pose::Zero(), q2 = Pose::Zero();
+  Segment arc;        // Plane::Free arc from q0 to q2
+};
+
+// `a` ends where `b` starts; both are lines with X Y Z motion. The arc takes
+// its feed, laser and modes from `a`. Not blended when the lines are
+// collinear (nothing to blend), reversed, or the tolerance leaves no length.
+[[nodiscard]] ArcTransition arc_transition(const Segment& a, const Segment& b, double tolerance_mm,
+                                           double max_trim_a, double max_trim_b);
+
+}  // namespace lcnc

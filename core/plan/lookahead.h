@@ -1,0 +1,70 @@
+// Look-ahead (DESIGN §5.2, seed 001 §3 "forward–backward"), streaming.
+//
+// Per segment i: length L, top speed Vm (feed, per-axis and centripetal
+// limits: plan/segment_limits.h), tangential acceleration a, and a junction
+// limit Vj(i) on the speed where segment i ends and i+1 starts:
+//   * 0 at program end, at G61/G61.1 blocks, dwells, rapid↔feed changes;
+//   * 0 at a corner: a per-axis jump of the unit tangent over kMaxJunctionJump
+//     (0.06°) — corners in G64 are blended first, so these are the corners
+//     that could not be (arc–line, G61 neighbours, reversals);
+//   * on near-tangent joins (CAM arcs rounded to 4 decimals) the velocity
+//     jump per axis stays within a tenth of one period's acceleration:
+//       Vj ≤ min_i  0.1·amax_i·T / |t_i(b, start) − t_i(a, end)|
+//   * no limit but the segments' own on tangent joins (blends).
+// Backward pass from the window's end, assumed a stop:
+//   Ve(i) = min(Vj(i), Vs(i+1)),   Vs(i) = min(Vm(i), sqrt(Ve(i)² + 2aL))
+// Forward pass from the speed the last released segment ends at:
+//   Ve(i) = min(Ve(i), sqrt(Vs(i)² + 2aL)),   Vs(i+1) = Ve(i)
+// Each segment then runs a trapezoid Vs → Vm → Ve (plan/trapezoid.h).
+//
+// Streaming: the window holds segments until what follows the front is
+// longer than the braking distance from the highest path speed, so a stop
+// assumed at the window's end cannot slow the segments released. Memory is
+// bounded by kMaxWindow segments whatever the program's length; a release is
+// always safe (the assumed stop is conservative), only possibly slower.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+
+#include "machine/machine_config.h"
+#include "plan/path_blender.h"
+#include "plan/planned_segment.h"
+
+namespace lcnc {
+
+class Lookahead {
+ public:
+  static constexpr std::size_t kMaxWindow = 1 << 16;
+
+  Lookahead(const MachineConfig& machine, IndexedSource source);
+  [[nodiscard]] SourceStatus next(PlannedSegment& out);
+
+  [[nodiscard]] std::size_t max_window_seen() const noexcept { return max_window_; }
+
+ private:
+  struct Node {
+    PlannedSegment p;
+    double v_max = 0.0;     // top speed on the segment
+    double accel = 0.0;     // tangential acceleration
+    double v_junction = 0;  // limit where this segment ends and the next starts
+    double v_entry = 0.0, v_exit = 0.0;
+  };
+
+  bool fill();  // pull until the window is deep enough; false when nothing is left
+  void plan_and_release();
+  [[nodiscard]] double junction_limit(const Node& a, const Node& b) const;
+
+  const MachineConfig& machine_;
+  IndexedSource source_;
+  std::deque<Node> window_;
+  std::deque<PlannedSegment> ready_;
+  double tail_length_ = 0.0;  // length of the window behind its front segment
+  double braking_length_ = 0.0;
+  double v_start_ = 0.0;      // speed the last released segment ends at
+  bool source_done_ = false;
+  bool source_error_ = false;
+  std::size_t max_window_ = 0;
+};
+
+}  // namespace lcnc

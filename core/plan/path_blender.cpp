@@ -1,0 +1,80 @@
+#include "plan/path_blender.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "plan/arc_transition.h"
+#include "plan/tolerances.h"
+
+namespace lcnc {
+namespace {
+
+bool blendable_line(const Segment& s) {
+  return s.kind == MotionKind::Linear && s.path_mode == PathMode::Blend &&
+         (s.end.head<3>() - s.start.head<3>()).norm() > plan::kMinSegmentLength;
+}
+
+}  // namespace
+
+PathBlender::PathBlender(const MachineConfig& machine, SegmentSource source)
+    : source_(std::move(source)) {
+  double sum = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const AxisConfig& ax = machine.axes[i];
+    if (ax.present) sum += std::pow(0.5 / ax.steps_per_unit, 2);
+  }
+  margin_mm_ = std::sqrt(sum);
+}
+
+void PathBlender::emit(const IndexedSegment& s) {
+  const Pose d = s.seg.end - s.seg.start;
+  // Lines used up entirely by their two blends carry no motion: drop them.
+  if (s.seg.kind == MotionKind::Linear && d.norm() <= plan::kMinSegmentLength) return;
+  ready_.push_back(s);
+}
+
+SourceStatus PathBlender::next(IndexedSegment& out) {
+  while (ready_.empty()) {
+    if (end_status_ != SourceStatus::Item) return end_status_;
+    IndexedSegment cur;
+    const SourceStatus st = source_(cur.seg);
+    if (st != SourceStatus::Item) {
+      if (have_pending_) emit(pending_);
+      have_pending_ = false;
+      end_status_ = st;
+      continue;
+    }
+    cur.index = count_++;
+    if (have_pending_ && blendable_line(cur.seg)) {
+      const Segment& a = pending_.seg;
+      const double tol =
+          std::min(a.blend_tolerance_mm, cur.seg.blend_tolerance_mm) - margin_mm_;
+      const double len_a = (a.end.head<3>() - a.start.head<3>()).norm();
+      const double len_b = (cur.seg.end.head<3>() - cur.seg.start.head<3>()).norm();
+      const ArcTransition t = arc_transition(a, cur.seg, tol,
+                                             std::min(pending_full_length_ / 2.0, len_a), len_b / 2.0);
+      if (t.blended) {
+        pending_.seg.end = t.q0;
+        emit(pending_);
+        emit(IndexedSegment{t.arc, cur.index});
+        pending_full_length_ = len_b;
+        cur.seg.start = t.q2;
+        pending_ = cur;
+        continue;
+      }
+    }
+    if (have_pending_) emit(pending_);
+    have_pending_ = blendable_line(cur.seg);
+    if (have_pending_) {
+      pending_ = cur;
+      pending_full_length_ = (cur.seg.end.head<3>() - cur.seg.start.head<3>()).norm();
+    } else {
+      emit(cur);
+    }
+  }
+  out = ready_.front();
+  ready_.pop_front();
+  return SourceStatus::Item;
+}
+
+}  // namespace lcnc

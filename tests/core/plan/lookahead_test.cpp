@@ -1,0 +1,190 @@
+#include "plan/lookahead.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "core/plan/test_machine.h"
+#include "path/deviation_meter.h"
+#include "plan/coarse_interpolator.h"
+#include "plan/motion_stats.h"
+#include "plan/path_blender.h"
+
+namespace lcnc {
+namespace {
+
+Segment g1(const Pose& a, const Pose& b, double feed, double tol) {
+  Segment s;
+  s.kind = MotionKind::Linear;
+  s.start = a;
+  s.end = b;
+  s.feed_mm_s = feed;
+  s.path_mode = PathMode::Blend;
+  s.blend_tolerance_mm = tol;
+  return s;
+}
+
+Pose xyz(double x, double y, double z) {
+  Pose p = Pose::Zero();
+  p << x, y, z, 0, 0, 0;
+  return p;
+}
+
+SegmentSource from(const std::vector<Segment>& segs, std::size_t& i) {
+  return [&segs, &i](Segment& out) {
+    if (i == segs.size()) return SourceStatus::End;
+    out = segs[i++];
+    return SourceStatus::Item;
+  };
+}
+
+struct Outcome {
+  double time_s = 0.0;
+  double max_dev = 0.0;
+  std::array<double, kAxisCount> peak_v{}, peak_a{};
+  std::array<std::int64_t, kAxisCount> sum{}, commanded{};
+  std::size_t max_window = 0;
+  double max_entry_exit_gap = 0.0;  // |v_exit(i) − v_entry(i+1)|
+};
+
+// The whole planner pipeline: blender → look-ahead → coarse interpolation →
+// step quantizer; deviation measured on the quantized positions against the
+// program segments.
+Outcome run(const MachineConfig& m, const std::vector<Segment>& segs) {
+  std::size_t i = 0, j = 0;
+  PathBlender blender(m, from(segs, i));
+  Lookahead la(m, [&](IndexedSegment& s) { return blender.next(s); });
+  double prev_exit = 0.0;
+  Outcome o;
+  CoarseInterpolator ci(m, [&](PlannedSegment& p) {
+    const SourceStatus st = la.next(p);
+    if (st == SourceStatus::Item) {
+      o.max_entry_exit_gap = std::max(o.max_entry_exit_gap, std::abs(p.profile.v0 - prev_exit));
+      prev_exit = p.profile.v1;
+    }
+    return st;
+  });
+  DeviationMeter dm(from(segs, j));
+  const Pose start = segs.front().start;
+  StepQuantizer q(m, start);
+  MotionStats st(m.period_s(), start);
+  for (int a = 0; a < kAxisCount; ++a) o.sum[a] = q.commanded(a);
+  PeriodSample s;
+  while (ci.next(s) == SourceStatus::Item) {
+    st.add(s.pose);
+    const PeriodIncrement inc = q.quantize(s);
+    for (int a = 0; a < kAxisCount; ++a) o.sum[a] += inc.steps[a];
+    Vec3 exec;
+    for (int a = 0; a < 3; ++a) exec[a] = static_cast<double>(o.sum[a]) / 1000.0;
+    dm.add(exec, s.segment);
+    o.time_s = s.t_s;
+  }
+  st.finish();
+  EXPECT_FALSE(q.owed());
+  for (int a = 0; a < kAxisCount; ++a) o.commanded[a] = q.commanded(a);
+  o.max_dev = dm.max_mm();
+  o.peak_v = st.peak_velocity();
+  o.peak_a = st.peak_acceleration();
+  o.max_window = la.max_window_seen();
+  return o;
+}
+
+TEST(Lookahead, BlendedSquareIsFasterThanExactStopAndStaysInTolerance) {
+  const auto m = testing::test_machine(100.0, 2000.0);
+  std::vector<Segment> blend, stop;
+  const double c[5][2] = {{10, 10}, {60, 10}, {60, 60}, {10, 60}, {10, 10}};
+  for (int lap = 0; lap < 3; ++lap)
+    for (int k = 0; k < 4; ++k) {
+      blend.push_back(g1(xyz(c[k][0], c[k][1], 5), xyz(c[k + 1][0], c[k + 1][1], 5), 100, 0.01));
+      Segment e = blend.back();
+      e.path_mode = PathMode::ExactPath;
+      stop.push_back(e);
+    }
+  const Outcome b = run(m, blend), e = run(m, stop);
+  EXPECT_LT(b.time_s, e.time_s);  // 90° corners: blends at 6.5 mm/s, little to gain
+  EXPECT_LE(b.max_dev, 0.01);
+  EXPECT_GT(b.max_dev, 0.005);  // the corners really are cut
+  EXPECT_LE(e.max_dev, 0.001);  // exact stop: only step rounding
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_LE(b.peak_v[a], 100.0 * (1 + 1e-9));
+    EXPECT_LE(b.peak_a[a], 2000.0 * (1 + 1e-6)) << a;
+    EXPECT_EQ(b.sum[a], b.commanded[a]);
+  }
+  EXPECT_LE(b.max_entry_exit_gap, 1e-9);
+}
+
+TEST(Lookahead, ShallowCornersAreTakenAtSpeed) {
+  const auto m = testing::test_machine(100.0, 2000.0);
+  std::vector<Segment> blend, stop;
+  for (int k = 0; k < 24; ++k) {  // a 12-gon twice: 30° corners
+    auto pt = [](int j) {
+      const double a = 2 * 3.14159265358979 * j / 12.0;
+      return xyz(100 + 30 * std::cos(a), 100 + 30 * std::sin(a), 5);
+    };
+    blend.push_back(g1(pt(k), pt(k + 1), 100, 0.05));
+    stop.push_back(blend.back());
+    stop.back().path_mode = PathMode::ExactPath;
+  }
+  const Outcome b = run(m, blend), e = run(m, stop);
+  EXPECT_LT(b.time_s, 0.9 * e.time_s);  // corners at ~52 mm/s instead of a stop
+  EXPECT_LE(b.max_dev, 0.05);
+}
+
+// Random polylines (fixed seed; LCNC_FUZZ_SCALE scales the count): never
+// beyond the axis limits, never beyond P, every step delivered, speeds
+// continuous from segment to segment.
+TEST(Lookahead, RandomPolylinesStayWithinLimitsAndTolerance) {
+  const auto m = testing::test_machine(150.0, 3000.0);
+  std::mt19937_64 rng(99);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int programs = 12;
+  if (const char* s = std::getenv("LCNC_FUZZ_SCALE")) programs *= std::atoi(s);
+  for (int p = 0; p < programs; ++p) {
+    std::vector<Segment> segs;
+    Pose at = xyz(100 + 50 * u(rng), 100 + 50 * u(rng), 50);
+    const double tol = 0.002 + 0.05 * u(rng);
+    const double scale = p % 3 == 0 ? 0.05 : (p % 3 == 1 ? 1.0 : 10.0);
+    for (int k = 0; k < 200; ++k) {
+      Pose to = at + xyz(scale * (u(rng) - 0.5), scale * (u(rng) - 0.5), 0.1 * scale * (u(rng) - 0.5));
+      to[5] = at[5] + 2.0 * u(rng);  // C turns along: blending stays on
+      segs.push_back(g1(at, to, 20 + 200 * u(rng), tol));
+      at = to;
+    }
+    const Outcome o = run(m, segs);
+    EXPECT_LE(o.max_dev, tol) << "program " << p;
+    EXPECT_LE(o.max_entry_exit_gap, 1e-9);
+    for (int a = 0; a < kAxisCount; ++a) {
+      EXPECT_EQ(o.sum[a], o.commanded[a]);
+      EXPECT_EQ(o.sum[a], std::llround(at[a] * 1000.0));
+    }
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_LE(o.peak_v[a], 150.0 * (1 + 1e-9)) << "program " << p << " axis " << a;
+      EXPECT_LE(o.peak_a[a], 3000.0 * (1 + 1e-6)) << "program " << p << " axis " << a;
+    }
+    EXPECT_LE(o.peak_v[5], 360.0 * (1 + 1e-9));
+    EXPECT_LE(o.peak_a[5], 3600.0 * (1 + 1e-6));
+  }
+}
+
+TEST(Lookahead, DenseChordCircleRunsAtFeedWithBoundedWindow) {
+  const auto m = testing::test_machine(100.0, 2000.0);
+  std::vector<Segment> segs;
+  const int n = 20000;  // 0.0126 mm chords on a 40 mm radius, 5 laps
+  const double r = 40.0;
+  auto pt = [&](int k) {
+    const double a = 2 * 3.14159265358979 * (k % 4000) / 4000.0;
+    return xyz(200 + r * std::cos(a), 200 + r * std::sin(a), 10);
+  };
+  for (int k = 0; k < n; ++k) segs.push_back(g1(pt(k), pt(k + 1), 100.0, 0.01));
+  const Outcome o = run(m, segs);
+  const double length = n * (pt(0) - pt(1)).norm();
+  // at F6000 = 100 mm/s the path is feed-limited: time ≈ L/v + accel/decel
+  EXPECT_LT(o.time_s, length / 100.0 + 2 * 100.0 / 2000.0 + 0.01);
+  EXPECT_LE(o.max_dev, 0.01);
+  EXPECT_LT(o.max_window, 2000u);  // bounded by the braking distance, not the program
+}
+
+}  // namespace
+}  // namespace lcnc
