@@ -134,6 +134,8 @@ Status validate(const MachineConfig& m, const std::string& file) {
   if (!(m.path_tolerance_mm > 0.0 && m.path_tolerance_mm <= 10.0))
     return bad("machine.path_tolerance_mm = " + fmt(m.path_tolerance_mm) +
                "; allowed > 0 … 10 mm");
+  if (!(m.max_feed_override >= 1.0 && m.max_feed_override <= 2.0))
+    return bad("machine.max_feed_override = " + fmt(m.max_feed_override) + "; allowed 1.0 … 2.0");
   if (m.dda.magnitude_bits < 1 || m.dda.magnitude_bits > 16)
     return bad("dda.magnitude_bits = " + std::to_string(m.dda.magnitude_bits) +
                "; allowed 1 … 16");
@@ -197,7 +199,8 @@ Result<MachineConfig> parse_machine_config(std::string_view text, const std::str
 
   if (const toml::table* t = L.subtable(root, "machine")) {
     double period_us = m.period_ns / 1000.0;
-    if (!L.only_keys(*t, "machine.", {"name", "period_us", "path_tolerance_mm"}) ||
+    if (!L.only_keys(*t, "machine.", {"name", "period_us", "path_tolerance_mm", "max_feed_override"}) ||
+        !L.number(*t, "machine.", "max_feed_override", m.max_feed_override, false) ||
         !L.string(*t, "machine.", "name", m.name) ||
         !L.number(*t, "machine.", "period_us", period_us, false) ||
         !L.number(*t, "machine.", "path_tolerance_mm", m.path_tolerance_mm, false))

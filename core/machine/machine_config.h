@@ -44,6 +44,11 @@ struct MachineConfig {
   std::string name = "default";
   std::uint32_t period_ns = 75'000;
   double path_tolerance_mm = 0.01;  // default G64 P when P is not given
+  // Highest feed override K (DESIGN §5.5). Override scales the RT period to
+  // T/K, so speed scales by K and acceleration by K²: the planner plans for
+  // v ≤ vmax/K_max and a ≤ amax/K_max² so that any K ≤ K_max stays within the
+  // axis limits.
+  double max_feed_override = 1.0;
   DdaConfig dda{};
   LaserConfig laser{};
   std::array<AxisConfig, kAxisCount> axes{};

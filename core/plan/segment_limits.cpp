@@ -39,13 +39,16 @@ SegmentLimits segment_limits(const Segment& seg, const SegmentGeometry& geo,
     // centripetal limit: (ρ·v)²/r ≤ share·A
     const double v_curve = std::sqrt(plan::kArcNormalShare * a_plane * geo.radius()) / rho;
     lim.v_max = std::min(lim.v_max, v_curve);
-    const double v_top = std::min(lim.v_max, v_cap);
+    const double v_top = std::min(lim.v_max, v_cap * machine.max_feed_override);
     const double a_n = rho * v_top * rho * v_top / geo.radius();
     const double a_t = std::sqrt(std::max(0.0, a_plane * a_plane - a_n * a_n)) / rho;
     lim.a_max = std::min(lim.a_max, a_t);
   }
-  if (!std::isfinite(lim.v_max)) lim = {0.0, 0.0};
-  return lim;
+  if (!std::isfinite(lim.v_max)) return {0.0, 0.0};
+  // Planned at the highest feed override (DESIGN §5.5): at K the speed is K·v
+  // and the acceleration K²·a.
+  const double k = machine.max_feed_override;
+  return {lim.v_max / k, lim.a_max / (k * k)};
 }
 
 double target_speed(const Segment& seg, const SegmentGeometry& geo, const SegmentLimits& lim) {

@@ -12,6 +12,9 @@
 // and what is left at the segment's top speed is its tangential acceleration
 //   ρ·a_t ≤ sqrt(A² − a_n(v_max)²).
 // Normal (helix) and rotary axes move linearly with the path, as on a line.
+// All of it is planned at the highest feed override K (DESIGN §5.5): the
+// limits returned are v_max/K and a_max/K², so any override up to K keeps
+// every axis within its limits.
 #pragma once
 
 #include "machine/machine_config.h"

@@ -158,3 +158,20 @@ TEST(MachineConfig, WorkOffsetsNeedSixNumbers) {
 
 }  // namespace
 }  // namespace lcnc
+
+namespace lcnc {
+namespace {
+
+TEST(MachineConfig, MaxFeedOverrideIsReadAndBounded) {
+  auto m = load_machine_config(kShare + "/machines/default.toml");
+  ASSERT_TRUE(m);
+  EXPECT_DOUBLE_EQ(m->max_feed_override, 1.5);
+  std::string text = kMinimal;
+  text.replace(text.find("period_us = 75"), 14, "period_us = 75\nmax_feed_override = 3");
+  auto bad = parse_machine_config(text, "m.toml");
+  ASSERT_FALSE(bad);
+  EXPECT_NE(bad.error().message.find("max_feed_override"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace lcnc
