@@ -4,10 +4,40 @@
 #include <cmath>
 #include <limits>
 
-#include "plan/segment_limits.h"
 #include "plan/tolerances.h"
 
 namespace lcnc {
+namespace {
+
+// Speed reachable from v over length L — speeding up (sign +1, forward pass)
+// or, read backward, the entry speed from which v is reached slowing down
+// (sign −1) — with the acceleration taken at an upper bound of the speeds on
+// the way (it falls as the speed rises, so the result is safe).
+double reach(const SegmentLimits& lim, double sign, double v, double L, double v_max) {
+  const double guess = std::min(v_max, std::sqrt(v * v + 2.0 * lim.tangential(v, sign) * L));
+  return std::min(v_max, std::sqrt(v * v + 2.0 * lim.tangential(guess, sign) * L));
+}
+
+// The trapezoid v0 → vc → v1 with the highest vc ≤ v_max that fits in L at
+// acceleration a(vc) and deceleration d(vc).
+Trapezoid fit_profile(const SegmentLimits& lim, double L, double v0, double v1, double v_max) {
+  auto fits = [&](double vc) {
+    return (vc * vc - v0 * v0) / lim.accel_at(vc) + (vc * vc - v1 * v1) / lim.decel_at(vc) <=
+           2.0 * L;
+  };
+  double lo = std::max(v0, v1), hi = std::max(lo, v_max);
+  if (fits(hi)) {
+    lo = hi;
+  } else {
+    for (int it = 0; it < 40 && hi - lo > 1e-9 * hi; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (fits(mid) ? lo : hi) = mid;
+    }
+  }
+  return Trapezoid::plan(L, lim.accel_at(lo), lim.decel_at(lo), v0, lo, v1);
+}
+
+}  // namespace
 
 Lookahead::Lookahead(const MachineConfig& machine, IndexedSource source)
     : machine_(machine), source_(std::move(source)) {
@@ -61,9 +91,8 @@ bool Lookahead::fill() {
     } else {
       const SegmentLimits first = segment_limits(in.seg, n.p.geo, machine_);
       n.p.programmed_speed = target_speed(in.seg, n.p.geo, first);
-      const SegmentLimits lim = segment_limits(in.seg, n.p.geo, machine_, n.p.programmed_speed);
+      n.lim = segment_limits(in.seg, n.p.geo, machine_, n.p.programmed_speed);
       n.v_max = n.p.programmed_speed;
-      n.accel = lim.a_max;
     }
     if (!window_.empty()) {
       window_.back().v_junction = junction_limit(window_.back(), n);
@@ -84,8 +113,7 @@ void Lookahead::plan_and_release() {
   for (std::size_t k = n; k-- > 0;) {
     Node& s = window_[k];
     s.v_exit = (k + 1 == n) ? 0.0 : std::min(s.v_junction, next_entry);
-    const double L = s.p.geo.length();
-    s.v_entry = std::min(s.v_max, std::sqrt(s.v_exit * s.v_exit + 2.0 * s.accel * L));
+    s.v_entry = reach(s.lim, -1.0, s.v_exit, s.p.geo.length(), s.v_max);
     if (s.p.seg.kind == MotionKind::Dwell) s.v_entry = 0.0;
     next_entry = s.v_entry;
   }
@@ -94,8 +122,7 @@ void Lookahead::plan_and_release() {
   for (std::size_t k = 0; k < n; ++k) {
     Node& s = window_[k];
     s.v_entry = std::min(s.v_entry, entry);
-    const double L = s.p.geo.length();
-    s.v_exit = std::min(s.v_exit, std::sqrt(s.v_entry * s.v_entry + 2.0 * s.accel * L));
+    s.v_exit = std::min(s.v_exit, reach(s.lim, +1.0, s.v_entry, s.p.geo.length(), s.v_max));
     entry = s.v_exit;
   }
   // Release the front while what stays behind it covers the braking length.
@@ -106,7 +133,7 @@ void Lookahead::plan_and_release() {
     if (!(source_done_ || deep || released == 0)) break;
     Node& s = window_.front();
     if (s.p.seg.kind != MotionKind::Dwell) {
-      s.p.profile = Trapezoid::plan(s.p.geo.length(), s.accel, s.v_entry, s.v_max, s.v_exit);
+      s.p.profile = fit_profile(s.lim, s.p.geo.length(), s.v_entry, s.v_exit, s.v_max);
     }
     v_start_ = s.v_exit;
     ready_.push_back(std::move(s.p));

@@ -15,7 +15,10 @@
 //   Ve(i) = min(Vj(i), Vs(i+1)),   Vs(i) = min(Vm(i), sqrt(Ve(i)² + 2aL))
 // Forward pass from the speed the last released segment ends at:
 //   Ve(i) = min(Ve(i), sqrt(Vs(i)² + 2aL)),   Vs(i+1) = Ve(i)
-// Each segment then runs a trapezoid Vs → Vm → Ve (plan/trapezoid.h).
+// On arcs a depends on the speed (less centripetal load when slower): a is
+// taken at an upper bound of the speeds on the segment, so each step is safe.
+// Each segment then runs a trapezoid Vs → Vc → Ve (plan/trapezoid.h) with the
+// highest Vc ≤ Vm whose acceleration a(Vc) still fits the segment.
 //
 // Streaming: the window holds segments until what follows the front is
 // longer than the braking distance from the highest path speed, so a stop
@@ -29,6 +32,7 @@
 
 #include "machine/machine_config.h"
 #include "plan/path_blender.h"
+#include "plan/segment_limits.h"
 #include "plan/planned_segment.h"
 
 namespace lcnc {
@@ -46,7 +50,7 @@ class Lookahead {
   struct Node {
     PlannedSegment p;
     double v_max = 0.0;     // top speed on the segment
-    double accel = 0.0;     // tangential acceleration
+    SegmentLimits lim;      // tangential acceleration as a function of speed
     double v_junction = 0;  // limit where this segment ends and the next starts
     double v_entry = 0.0, v_exit = 0.0;
   };

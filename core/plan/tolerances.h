@@ -9,7 +9,7 @@ inline constexpr double kMinSegmentLength = 1e-9;
 // take at the arc's top speed; the rest, sqrt(1 − 0.97²) ≈ 24 %, stays for
 // speeding up and slowing down on the arc. Curvature-limited arcs run at
 // sqrt(0.97) ≈ 98.5 % of the speed that would use the whole budget.
-inline constexpr double kArcNormalShare = 0.97;
+inline constexpr double kArcNormalShare = 0.995;
 // Corners turning less than this (rad) are tangent: no blend needed.
 inline constexpr double kMinBlendAngle = 1e-7;
 // Corners turning more than this (rad) reverse: no blend, the path stops.

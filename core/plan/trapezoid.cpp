@@ -7,22 +7,26 @@
 
 namespace lcnc {
 
-Trapezoid Trapezoid::plan(double length, double accel, double v0, double v_target, double v1) {
+Trapezoid Trapezoid::plan(double length, double accel, double decel, double v0, double v_target,
+                          double v1) {
   Trapezoid p;
   p.length = length;
   p.accel = accel;
+  p.decel = decel;
   p.v0 = v0;
   p.v1 = v1;
-  if (length <= plan::kMinSegmentLength || accel <= 0.0 || v_target <= plan::kMinVelocity) {
+  if (length <= plan::kMinSegmentLength || accel <= 0.0 || decel <= 0.0 ||
+      v_target <= plan::kMinVelocity) {
     return p;  // nothing to move
   }
-  const double peak_sqr = (2.0 * accel * length + v0 * v0 + v1 * v1) / 2.0;
+  const double peak_sqr =
+      (2.0 * length + v0 * v0 / accel + v1 * v1 / decel) / (1.0 / accel + 1.0 / decel);
   p.vc = std::min(v_target, std::sqrt(peak_sqr));
   p.vc = std::max({p.vc, v0, v1});
   p.t_acc = (p.vc - v0) / accel;
-  p.t_dec = (p.vc - v1) / accel;
+  p.t_dec = (p.vc - v1) / decel;
   p.s_acc = (p.vc * p.vc - v0 * v0) / (2.0 * accel);
-  const double s_dec = (p.vc * p.vc - v1 * v1) / (2.0 * accel);
+  const double s_dec = (p.vc * p.vc - v1 * v1) / (2.0 * decel);
   p.s_cruise = std::max(0.0, length - p.s_acc - s_dec);
   p.t_cruise = p.vc > plan::kMinVelocity ? p.s_cruise / p.vc : 0.0;
   return p;
@@ -40,7 +44,7 @@ double Trapezoid::position(double t) const noexcept {
   t -= t_acc;
   if (t < t_cruise) return s_acc + vc * t;
   t -= t_cruise;
-  if (t < t_dec) return std::min(length, s_acc + s_cruise + vc * t - 0.5 * accel * t * t);
+  if (t < t_dec) return std::min(length, s_acc + s_cruise + vc * t - 0.5 * decel * t * t);
   return length;
 }
 
@@ -50,7 +54,7 @@ double Trapezoid::speed(double t) const noexcept {
   t -= t_acc;
   if (t < t_cruise) return vc;
   t -= t_cruise;
-  if (t < t_dec) return vc - accel * t;
+  if (t < t_dec) return vc - decel * t;
   return v1;
 }
 

@@ -7,10 +7,13 @@
 //      +---|--------|---|--> t
 //        t_acc t_cruise t_dec
 //
-// From v0 accelerate at a to the cruise speed vc, cruise, decelerate at a to
+// From v0 accelerate at a to the cruise speed vc, cruise, decelerate at d to
 // v1, over path length L. When L is too short to reach the target speed the
-// peak is vc² = (2aL + v0² + v1²)/2 (triangle). Requires |v0² − v1²| ≤ 2aL,
-// which the planner's passes guarantee.
+// peak solves (vc² − v0²)/2a + (vc² − v1²)/2d = L (triangle):
+//   vc² = (2L + v0²/a + v1²/d) / (1/a + 1/d).
+// Requires v1² ≤ v0² + 2aL and v0² ≤ v1² + 2dL, which the planner's passes
+// guarantee. (a and d differ on arcs, where the centripetal load helps one
+// and hinders the other.)
 #pragma once
 
 namespace lcnc {
@@ -18,12 +21,17 @@ namespace lcnc {
 struct Trapezoid {
   double length = 0.0;  // L (path units)
   double accel = 0.0;   // a (path units/s²)
+  double decel = 0.0;   // d (path units/s², > 0)
   double v0 = 0.0, vc = 0.0, v1 = 0.0;
   double t_acc = 0.0, t_cruise = 0.0, t_dec = 0.0;
   double s_acc = 0.0, s_cruise = 0.0;  // path length of the first two phases
 
   [[nodiscard]] static Trapezoid plan(double length, double accel, double v0, double v_target,
-                                      double v1);
+                                      double v1) {
+    return plan(length, accel, accel, v0, v_target, v1);
+  }
+  [[nodiscard]] static Trapezoid plan(double length, double accel, double decel, double v0,
+                                      double v_target, double v1);
   // A stand-still of the given duration (dwell): no path, only time.
   [[nodiscard]] static Trapezoid hold(double duration_s);
 

@@ -1,0 +1,317 @@
+// Planner benchmark (issue "Planner"): cycle time against the time-optimal
+// traversal of the same blended path, contour deviation against P, and
+// planner throughput and memory.
+//
+//   build/bench/planner_bench                 # all cases, then throughput
+//   build/bench/planner_bench --throughput-only PROGRAM.ngc
+//
+// The reference is computed here, independently of the planner: the blended
+// path the planner produced is sampled on a fine arc-length grid (ds), and the
+// fastest traversal under the same per-axis limits is found by numerical
+// integration in the phase plane (s, v²) — forward from rest at the largest
+// tangential acceleration a_t with |t_i·a_t + κ_i·v²| ≤ amax_i on every axis i
+// (t = dp/ds, κ = d²p/ds²), backward from rest at the largest deceleration,
+// under the velocity limit curve v ≤ min(F, vmax_i/|t_i|, sqrt(amax_i/|κ_i|)),
+// and the minimum of the two (Bobrow / Shin–McKay).
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "gcode/program_reader.h"
+#include "path/deviation_meter.h"
+#include "plan/coarse_interpolator.h"
+#include "plan/lookahead.h"
+#include "plan/path_blender.h"
+
+using namespace lcnc;
+
+namespace {
+
+constexpr double kVmax = 100.0;     // mm/s per axis
+constexpr double kAmax = 2000.0;    // mm/s² per axis
+constexpr double kTolerance = 0.01; // G64 P, mm
+
+MachineConfig bench_machine() {
+  MachineConfig m;
+  m.name = "bench";
+  m.period_ns = 75'000;
+  m.dda = DdaConfig{8, 300};
+  m.max_feed_override = 1.0;  // the limits are the limits: no override headroom
+  for (int i = 0; i < 3; ++i) {
+    AxisConfig& a = m.axes[i];
+    a.present = true;
+    a.axis = static_cast<Axis>(i);
+    a.min = 0.0;
+    a.max = 1000.0;
+    a.max_velocity = kVmax;
+    a.max_acceleration = kAmax;
+    a.steps_per_unit = 1000.0;
+  }
+  return m;
+}
+
+std::string fmt_xy(double x, double y) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "X%.4f Y%.4f", x, y);
+  return buf;
+}
+
+// --- the four programs -------------------------------------------------------
+std::string square_program() {
+  std::string g = "G21 G90 G64 P0.01\nG1 F6000\n";
+  for (int lap = 0; lap < 3; ++lap)
+    g += "G1 X150 Y100\nG1 X150 Y150\nG1 X100 Y150\nG1 X100 Y100\n";
+  return g + "M2\n";
+}
+
+std::string circle_program() {
+  std::string g = "G21 G90 G64 P0.01\nG1 F6000\n";
+  for (int k = 1; k <= 2000; ++k) {
+    const double a = 2 * std::numbers::pi * k / 2000.0;
+    g += "G1 " + fmt_xy(200 + 40 * std::cos(a), 200 + 40 * std::sin(a)) + "\n";
+  }
+  return g + "M2\n";
+}
+
+std::string zigzag_program() {
+  // 200 strokes of 10 mm, 60° between consecutive strokes
+  std::string g = "G21 G90 G64 P0.01\nG1 F3000\n";
+  double x = 100, y = 100;
+  for (int k = 0; k < 200; ++k) {
+    const double a = (k % 2 == 0 ? 30.0 : -30.0) * std::numbers::pi / 180.0;
+    x += 10 * std::cos(a);
+    y += 10 * std::sin(a);
+    g += "G1 " + fmt_xy(x, y) + "\n";
+  }
+  return g + "M2\n";
+}
+
+// A spur-gear-like outline, 20 teeth, r(φ) = 30 + 2.5·tanh(3 sin 20φ)/tanh 3,
+// as CAM output: chords of 0.05 mm.
+std::string gear_program(std::size_t* segments = nullptr) {
+  auto radius = [](double phi) { return 30.0 + 2.5 * std::tanh(3.0 * std::sin(20.0 * phi)) / std::tanh(3.0); };
+  std::string g = "G21 G90 G64 P0.01\n";
+  double phi = 0.0;
+  const double cx = 200, cy = 200;
+  g += "G1 F6000\n";
+  std::size_t n = 0;
+  while (phi < 2 * std::numbers::pi) {
+    // advance φ so the chord is 0.05 mm
+    double dphi = 0.05 / 32.5;
+    for (int it = 0; it < 20; ++it) {
+      const double x0 = radius(phi) * std::cos(phi), y0 = radius(phi) * std::sin(phi);
+      const double p1 = phi + dphi;
+      const double x1 = radius(p1) * std::cos(p1), y1 = radius(p1) * std::sin(p1);
+      const double len = std::hypot(x1 - x0, y1 - y0);
+      dphi *= 0.05 / len;
+      if (std::abs(len - 0.05) < 1e-6) break;
+    }
+    phi = std::min(phi + dphi, 2 * std::numbers::pi);
+    g += "G1 " + fmt_xy(cx + radius(phi) * std::cos(phi), cy + radius(phi) * std::sin(phi)) + "\n";
+    ++n;
+  }
+  if (segments) *segments = n;
+  return g + "M2\n";
+}
+
+// --- the planner pipeline ----------------------------------------------------
+struct PlannerRun {
+  double cycle_s = 0.0;
+  double max_dev_mm = 0.0;
+  std::vector<PlannedSegment> planned;  // the blended path, for the reference
+  std::uint64_t segments = 0;
+};
+
+SegmentSource reader_source(ProgramReader& r) {
+  return [&r](Segment& s) {
+    const auto n = r.next(s);
+    return n == ProgramReader::Next::Segment ? SourceStatus::Item
+                                             : (n == ProgramReader::Next::End ? SourceStatus::End : SourceStatus::Error);
+  };
+}
+
+PlannerRun run_planner(const std::string& program, const Pose& start, const MachineConfig& m) {
+  PlannerRun out;
+  ReaderOptions opt;
+  opt.start = start;
+  auto reader = ProgramReader::from_string(program, "bench.ngc", m, opt);
+  auto ref = ProgramReader::from_string(program, "bench.ngc", m, opt);
+  PathBlender blender(m, reader_source(*reader));
+  Lookahead la(m, [&](IndexedSegment& s) { return blender.next(s); });
+  CoarseInterpolator ci(m, [&](PlannedSegment& p) {
+    const SourceStatus st = la.next(p);
+    if (st == SourceStatus::Item) out.planned.push_back(p);
+    return st;
+  });
+  DeviationMeter dm(reader_source(*ref));
+  StepQuantizer q(m, opt.start);
+  std::array<std::int64_t, kAxisCount> pos{};
+  for (int i = 0; i < kAxisCount; ++i) pos[i] = q.commanded(i);
+  PeriodSample s;
+  while (ci.next(s) == SourceStatus::Item) {
+    const PeriodIncrement inc = q.quantize(s);
+    for (int i = 0; i < 3; ++i) pos[i] += inc.steps[i];
+    // rapids are not part of the contour
+    if (s.kind != MotionKind::Rapid) {
+      dm.add(Vec3(pos[0] / 1000.0, pos[1] / 1000.0, pos[2] / 1000.0), s.segment);
+    }
+  }
+  out.cycle_s = static_cast<double>(ci.periods()) * m.period_s();
+  out.max_dev_mm = dm.max_mm();
+  return out;
+}
+
+// --- the time-optimal reference ----------------------------------------------
+struct GridPoint {
+  Vec3 t, k;     // dp/ds, d²p/ds²
+  double v_lim;  // velocity limit curve
+  double ds;     // step to the next point
+};
+
+// Largest (sign = +1) or smallest (sign = −1) tangential acceleration allowed
+// at speed² v2 with |t_i·a + κ_i·v2| ≤ amax on every axis.
+double a_bound(const GridPoint& g, double v2, double sign) {
+  double lo = -1e300, hi = 1e300;
+  for (int i = 0; i < 3; ++i) {
+    const double c = g.k[i] * v2;
+    if (std::abs(g.t[i]) < 1e-12) continue;  // axis does not see a_t
+    double a1 = (-kAmax - c) / g.t[i], a2 = (kAmax - c) / g.t[i];
+    if (a1 > a2) std::swap(a1, a2);
+    lo = std::max(lo, a1);
+    hi = std::min(hi, a2);
+  }
+  if (lo > hi) return 0.0;  // above the limit curve: neither speed up nor slow down
+  return sign > 0 ? std::max(0.0, hi) : std::min(0.0, lo);
+}
+
+double optimal_time(const std::vector<PlannedSegment>& path, double ds_target) {
+  std::vector<GridPoint> grid;
+  for (const PlannedSegment& p : path) {
+    if (p.seg.kind == MotionKind::Rapid || p.seg.kind == MotionKind::Dwell) continue;
+    const double L = p.geo.length();
+    if (L <= 0.0) continue;
+    const int n = std::max(1, static_cast<int>(std::ceil(L / ds_target)));
+    const double feed = p.programmed_speed > 0 ? p.seg.feed_mm_s : kVmax;
+    for (int j = 0; j < n; ++j) {
+      const double s = L * (j + 0.5) / n;  // cell midpoints
+      GridPoint g;
+      g.t = p.geo.tangent(s).head<3>();
+      g.k = p.geo.curvature(s).head<3>();
+      g.ds = L / n;
+      double v = feed;
+      for (int i = 0; i < 3; ++i) {
+        if (std::abs(g.t[i]) > 1e-12) v = std::min(v, kVmax / std::abs(g.t[i]));
+        if (std::abs(g.k[i]) > 1e-12) v = std::min(v, std::sqrt(kAmax / std::abs(g.k[i])));
+      }
+      g.v_lim = v;
+      grid.push_back(g);
+    }
+  }
+  const std::size_t n = grid.size();
+  std::vector<double> fwd(n + 1), bwd(n + 1);
+  fwd[0] = 0.0;  // v² at the boundaries of the cells: rest at both ends
+  for (std::size_t k = 0; k < n; ++k) {
+    const double v2 = std::min(fwd[k], grid[k].v_lim * grid[k].v_lim);
+    fwd[k + 1] = std::min(v2 + 2.0 * a_bound(grid[k], v2, +1) * grid[k].ds, grid[k].v_lim * grid[k].v_lim);
+  }
+  bwd[n] = 0.0;
+  for (std::size_t k = n; k-- > 0;) {
+    const double v2 = std::min(bwd[k + 1], grid[k].v_lim * grid[k].v_lim);
+    bwd[k] = std::min(v2 - 2.0 * a_bound(grid[k], v2, -1) * grid[k].ds, grid[k].v_lim * grid[k].v_lim);
+  }
+  double t = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double v0 = std::sqrt(std::max(0.0, std::min(fwd[k], bwd[k])));
+    const double v1 = std::sqrt(std::max(0.0, std::min(fwd[k + 1], bwd[k + 1])));
+    t += 2.0 * grid[k].ds / std::max(v0 + v1, 1e-12);
+  }
+  return t;
+}
+
+long peak_rss_mb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss / 1024;
+}
+
+void throughput(const std::string& file, const MachineConfig& m, int runs) {
+  std::vector<double> rates;
+  for (int r = 0; r < runs; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    auto reader = ProgramReader::open(file, m);
+    if (!reader) {
+      std::fprintf(stderr, "%s\n", reader.error().to_string().c_str());
+      return;
+    }
+    std::uint64_t segs = 0;
+    PathBlender blender(m, [&](Segment& s) {
+      const SourceStatus st = reader_source(**reader)(s);
+      if (st == SourceStatus::Item) ++segs;
+      return st;
+    });
+    Lookahead la(m, [&](IndexedSegment& s) { return blender.next(s); });
+    CoarseInterpolator ci(m, [&](PlannedSegment& p) { return la.next(p); });
+    StepQuantizer q(m, Pose::Zero());
+    PeriodSample s;
+    std::int64_t checksum = 0;
+    while (ci.next(s) == SourceStatus::Item) checksum += q.quantize(s).steps[0];
+    const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    rates.push_back(segs / sec);
+    std::printf("  run %d: %llu segments, %llu periods (%.0f s of motion) in %.3f s = %.0f segments/s "
+                "(window max %zu, checksum %lld)\n",
+                r + 1, static_cast<unsigned long long>(segs),
+                static_cast<unsigned long long>(ci.periods()), ci.periods() * m.period_s(), sec,
+                segs / sec, la.max_window_seen(), static_cast<long long>(checksum));
+  }
+  std::sort(rates.begin(), rates.end());
+  std::printf("  median: %.0f segments/s; peak memory (max RSS) %ld MB\n", rates[rates.size() / 2],
+              peak_rss_mb());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const MachineConfig m = bench_machine();
+  if (argc >= 3 && std::strcmp(argv[1], "--throughput-only") == 0) {
+    throughput(argv[2], m, argc >= 4 ? std::atoi(argv[3]) : 3);
+    return 0;
+  }
+  struct Case {
+    const char* name;
+    std::string program;
+    Pose start;  // the contour starts where the machine stands: no rapid
+  };
+  auto at = [](double x, double y) {
+    Pose p = Pose::Zero();
+    p << x, y, 5, 0, 0, 0;
+    return p;
+  };
+  const Case cases[] = {
+      {"square 50 mm, sharp corners, 3 laps, F6000", square_program(), at(100, 100)},
+      {"circle R40 of 2000 chords, F6000", circle_program(), at(240, 200)},
+      {"zig-zag 60 deg, 200 strokes of 10 mm, F3000", zigzag_program(), at(100, 100)},
+      {"gear outline, 0.05 mm CAM chords, F6000", gear_program(), at(232.5, 200)},
+  };
+  std::printf("vmax %.0f mm/s, amax %.0f mm/s^2 per axis, P %.3f mm, period 75 us\n", kVmax, kAmax,
+              kTolerance);
+  std::printf("%-46s %10s %10s %7s %10s\n", "case", "ours [s]", "optimum", "ratio", "dev [mm]");
+  for (const Case& c : cases) {
+    const PlannerRun r = run_planner(c.program, c.start, m);
+    const double opt = optimal_time(r.planned, 0.0005);
+    std::printf("%-46s %10.4f %10.4f %7.4f %10.5f\n", c.name, r.cycle_s, opt, r.cycle_s / opt,
+                r.max_dev_mm);
+  }
+  if (argc >= 2) {
+    std::printf("throughput on %s\n", argv[1]);
+    throughput(argv[1], m, 3);
+  }
+  return 0;
+}
