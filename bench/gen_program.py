@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Writes a dense CAM-style G-code program for benchmarks.
 
-  bench/gen_program.py OUT.ngc [--lines N] [--seed S]
+  bench/gen_program.py OUT.ngc [--lines N] [--seed S] [--chord MIN MAX]
 
-A spiral of short G1 chords (0.01–1 mm) in the XY plane with a slow Z drift,
+A spiral of short G1 chords (default 0.01–1 mm) in the XY plane with a slow Z drift,
 interleaved, as CAM output is, with S words, comments and arcs. Deterministic
 for a given seed.
 """
@@ -17,6 +17,8 @@ def main() -> None:
     ap.add_argument("out")
     ap.add_argument("--lines", type=int, default=1_000_000)
     ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--chord", type=float, nargs=2, default=(0.01, 1.0), metavar=("MIN", "MAX"),
+                    help="chord length range, mm")
     args = ap.parse_args()
     rng = random.Random(args.seed)
     cx, cy = 500.0, 225.0
@@ -28,7 +30,7 @@ def main() -> None:
         n = 0
         while written < args.lines - 2:
             n += 1
-            step = rng.uniform(0.01, 1.0)
+            step = rng.uniform(*args.chord)
             ang += step / rad
             rad = min(200.0, rad + 0.0002)
             z = 10.0 + 0.5 * math.sin(ang / 50.0)

@@ -18,23 +18,27 @@ double reach(const SegmentLimits& lim, double sign, double v, double L, double v
   return std::min(v_max, std::sqrt(v * v + 2.0 * lim.tangential(guess, sign) * L));
 }
 
-// The trapezoid v0 → vc → v1 with the highest vc ≤ v_max that fits in L at
-// acceleration a(vc) and deceleration d(vc).
+// The trapezoid v0 → vc → v1 with (nearly) the highest vc ≤ v_max that fits
+// in L at acceleration a(vc) and deceleration d(vc). Two fixed-point steps:
+// the peak at the accelerations of max(v0, v1) overshoots (they are the
+// largest); the peak at the accelerations of that overshoot is safe (theirs
+// are no larger than at the final speed) and within a hair of the optimum.
 Trapezoid fit_profile(const SegmentLimits& lim, double L, double v0, double v1, double v_max) {
   auto fits = [&](double vc) {
     return (vc * vc - v0 * v0) / lim.accel_at(vc) + (vc * vc - v1 * v1) / lim.decel_at(vc) <=
-           2.0 * L;
+           2.0 * L * (1.0 + 1e-12);
   };
-  double lo = std::max(v0, v1), hi = std::max(lo, v_max);
-  if (fits(hi)) {
-    lo = hi;
-  } else {
-    for (int it = 0; it < 40 && hi - lo > 1e-9 * hi; ++it) {
-      const double mid = 0.5 * (lo + hi);
-      (fits(mid) ? lo : hi) = mid;
-    }
+  auto peak = [&](double a, double d) {
+    return std::sqrt((2.0 * L + v0 * v0 / a + v1 * v1 / d) / (1.0 / a + 1.0 / d));
+  };
+  const double lo = std::max(v0, v1);
+  double vc = std::max(lo, v_max);
+  if (!fits(vc)) {
+    const double over = std::min(v_max, peak(lim.accel_at(lo), lim.decel_at(lo)));
+    vc = std::max(lo, std::min(v_max, peak(lim.accel_at(over), lim.decel_at(over))));
+    if (!fits(vc)) vc = lo;
   }
-  return Trapezoid::plan(L, lim.accel_at(lo), lim.decel_at(lo), v0, lo, v1);
+  return Trapezoid::plan(L, lim.accel_at(vc), lim.decel_at(vc), v0, vc, v1);
 }
 
 }  // namespace
@@ -74,7 +78,7 @@ double Lookahead::junction_limit(const Node& a, const Node& b) const {
 
 bool Lookahead::fill() {
   while (!source_done_ && window_.size() < kMaxWindow &&
-         (window_.size() < 2 || tail_length_ < 2.0 * braking_length_)) {
+         (window_.size() < 2 || tail_length_ < kRefillDepth * braking_length_)) {
     IndexedSegment in;
     const SourceStatus st = source_(in);
     if (st != SourceStatus::Item) {

@@ -40,6 +40,10 @@ namespace lcnc {
 class Lookahead {
  public:
   static constexpr std::size_t kMaxWindow = 1 << 16;
+  // The window is filled to this many braking lengths and planned; what lies
+  // more than one braking length before its end is released. Each segment is
+  // thus planned about kRefillDepth / (kRefillDepth − 1) times.
+  static constexpr double kRefillDepth = 4.0;
 
   Lookahead(const MachineConfig& machine, IndexedSource source);
   [[nodiscard]] SourceStatus next(PlannedSegment& out);
