@@ -2,8 +2,9 @@
 // traversal of the same blended path, contour deviation against P, and
 // planner throughput and memory.
 //
-//   build/bench/planner_bench                 # all cases, then throughput
-//   build/bench/planner_bench --throughput-only PROGRAM.ngc
+//   build/bench/planner_bench [--csv DIR] [PROGRAM.ngc]   # the four cases (and
+//                                     # their speed profiles as CSV), then throughput
+//   build/bench/planner_bench --throughput-only PROGRAM.ngc [runs]
 //
 // The reference is computed here, independently of the planner: the blended
 // path the planner produced is sampled on a fine arc-length grid (ds), and the
@@ -192,8 +193,19 @@ double a_bound(const GridPoint& g, double v2, double sign) {
   return sign > 0 ? std::max(0.0, hi) : std::min(0.0, lo);
 }
 
-double optimal_time(const std::vector<PlannedSegment>& path, double ds_target) {
+// Our planned speed at path length s into a segment (from its trapezoid).
+double planned_speed(const Trapezoid& p, double s) {
+  if (s < p.s_acc) return std::sqrt(p.v0 * p.v0 + 2.0 * p.accel * s);
+  if (s < p.s_acc + p.s_cruise) return p.vc;
+  return std::sqrt(std::max(0.0, p.vc * p.vc - 2.0 * p.decel * (s - p.s_acc - p.s_cruise)));
+}
+
+// Time-optimal traversal time; with `csv`, also writes s, v_optimal, v_ours
+// every `csv_every` grid cells.
+double optimal_time(const std::vector<PlannedSegment>& path, double ds_target,
+                    std::FILE* csv = nullptr, int csv_every = 20) {
   std::vector<GridPoint> grid;
+  std::vector<double> ours;  // our speed at each cell
   for (const PlannedSegment& p : path) {
     if (p.seg.kind == MotionKind::Rapid || p.seg.kind == MotionKind::Dwell) continue;
     const double L = p.geo.length();
@@ -213,6 +225,7 @@ double optimal_time(const std::vector<PlannedSegment>& path, double ds_target) {
       }
       g.v_lim = v;
       grid.push_back(g);
+      if (csv != nullptr) ours.push_back(planned_speed(p.profile, s));
     }
   }
   const std::size_t n = grid.size();
@@ -227,11 +240,15 @@ double optimal_time(const std::vector<PlannedSegment>& path, double ds_target) {
     const double v2 = std::min(bwd[k + 1], grid[k].v_lim * grid[k].v_lim);
     bwd[k] = std::min(v2 - 2.0 * a_bound(grid[k], v2, -1) * grid[k].ds, grid[k].v_lim * grid[k].v_lim);
   }
-  double t = 0.0;
+  double t = 0.0, s = 0.0;
+  if (csv != nullptr) std::fprintf(csv, "s_mm,v_optimal,v_ours,v_limit\n");
   for (std::size_t k = 0; k < n; ++k) {
     const double v0 = std::sqrt(std::max(0.0, std::min(fwd[k], bwd[k])));
     const double v1 = std::sqrt(std::max(0.0, std::min(fwd[k + 1], bwd[k + 1])));
     t += 2.0 * grid[k].ds / std::max(v0 + v1, 1e-12);
+    s += grid[k].ds;
+    if (csv != nullptr && k % csv_every == 0)
+      std::fprintf(csv, "%.5f,%.4f,%.4f,%.4f\n", s, 0.5 * (v0 + v1), ours[k], grid[k].v_lim);
   }
   return t;
 }
@@ -280,12 +297,19 @@ void throughput(const std::string& file, const MachineConfig& m, int runs) {
 
 int main(int argc, char** argv) {
   const MachineConfig m = bench_machine();
+  const char* csv_dir = nullptr;  // --csv DIR: speed profiles per case
+  if (argc >= 3 && std::strcmp(argv[1], "--csv") == 0) {
+    csv_dir = argv[2];
+    argc -= 2;
+    argv += 2;
+  }
   if (argc >= 3 && std::strcmp(argv[1], "--throughput-only") == 0) {
     throughput(argv[2], m, argc >= 4 ? std::atoi(argv[3]) : 3);
     return 0;
   }
   struct Case {
     const char* name;
+    const char* key;  // file name of its CSV
     std::string program;
     Pose start;  // the contour starts where the machine stands: no rapid
   };
@@ -295,17 +319,20 @@ int main(int argc, char** argv) {
     return p;
   };
   const Case cases[] = {
-      {"square 50 mm, sharp corners, 3 laps, F6000", square_program(), at(100, 100)},
-      {"circle R40 of 2000 chords, F6000", circle_program(), at(240, 200)},
-      {"zig-zag 60 deg, 200 strokes of 10 mm, F3000", zigzag_program(), at(100, 100)},
-      {"gear outline, 0.05 mm CAM chords, F6000", gear_program(), at(232.5, 200)},
+      {"square 50 mm, sharp corners, 3 laps, F6000", "square", square_program(), at(100, 100)},
+      {"circle R40 of 2000 chords, F6000", "circle", circle_program(), at(240, 200)},
+      {"zig-zag 60 deg, 200 strokes of 10 mm, F3000", "zigzag", zigzag_program(), at(100, 100)},
+      {"gear outline, 0.05 mm CAM chords, F6000", "gear", gear_program(), at(230, 200)},
   };
   std::printf("vmax %.0f mm/s, amax %.0f mm/s^2 per axis, P %.3f mm, period 75 us\n", kVmax, kAmax,
               kTolerance);
   std::printf("%-46s %10s %10s %7s %10s\n", "case", "ours [s]", "optimum", "ratio", "dev [mm]");
   for (const Case& c : cases) {
     const PlannerRun r = run_planner(c.program, c.start, m);
-    const double opt = optimal_time(r.planned, 0.0005);
+    std::FILE* csv = nullptr;
+    if (csv_dir != nullptr) csv = std::fopen((std::string(csv_dir) + "/" + c.key + ".csv").c_str(), "w");
+    const double opt = optimal_time(r.planned, 0.0005, csv);
+    if (csv != nullptr) std::fclose(csv);
     std::printf("%-46s %10.4f %10.4f %7.4f %10.5f\n", c.name, r.cycle_s, opt, r.cycle_s / opt,
                 r.max_dev_mm);
   }
