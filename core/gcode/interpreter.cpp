@@ -273,7 +273,10 @@ bool Interpreter::set_path_control() {
       return true;
   }
   // G64 [P blend tolerance] [Q naive-CAM tolerance]: no P -> the machine's
-  // path tolerance; no Q -> the same as P (LinuxCNC).
+  // path tolerance; no Q -> no line merging. (LinuxCNC merges with Q = P by
+  // default; our blends handle dense CAM chords as they are and keep all of P
+  // for the corners, which is faster at the same tolerance — see the planner
+  // benchmark. Merging is there for who asks for it with Q.)
   double p_mm = machine_.path_tolerance_mm;
   if (b.has('P')) {
     if (b['P'] < 0.0) {
@@ -282,7 +285,7 @@ bool Interpreter::set_path_control() {
     }
     p_mm = b['P'] * length_scale();
   }
-  double q_mm = p_mm;
+  double q_mm = 0.0;
   if (b.has('Q')) {
     if (b['Q'] < 0.0) {
       return fail(ErrorCode::GcodeBadValue, b.span('Q'),

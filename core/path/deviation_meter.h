@@ -16,7 +16,10 @@ namespace lcnc {
 class DeviationMeter {
  public:
   // Points are compared with segments index−kWindowBack … index+kWindowAhead.
-  static constexpr std::uint32_t kWindowBack = 2;
+  // The planner merges up to 16 program lines into one (G64 Q) and a blend
+  // arc, indexed by the run after its corner, may reach half-way back into
+  // the run before it: 16 + 16 + 2 covers both.
+  static constexpr std::uint32_t kWindowBack = 34;
   static constexpr std::uint32_t kWindowAhead = 1;
 
   explicit DeviationMeter(SegmentSource source) : source_(std::move(source)) {}

@@ -17,7 +17,7 @@ bool blendable_line(const Segment& s) {
 }  // namespace
 
 PathBlender::PathBlender(const MachineConfig& machine, SegmentSource source)
-    : source_(std::move(source)) {
+    : merger_(std::move(source)) {
   double sum = 0.0;
   for (int i = 0; i < 3; ++i) {
     const AxisConfig& ax = machine.axes[i];
@@ -37,18 +37,17 @@ SourceStatus PathBlender::next(IndexedSegment& out) {
   while (ready_.empty()) {
     if (end_status_ != SourceStatus::Item) return end_status_;
     IndexedSegment cur;
-    const SourceStatus st = source_(cur.seg);
+    const SourceStatus st = merger_.next(cur);
     if (st != SourceStatus::Item) {
       if (have_pending_) emit(pending_);
       have_pending_ = false;
       end_status_ = st;
       continue;
     }
-    cur.index = count_++;
     if (have_pending_ && blendable_line(cur.seg)) {
       const Segment& a = pending_.seg;
-      const double tol =
-          std::min(a.blend_tolerance_mm, cur.seg.blend_tolerance_mm) - margin_mm_;
+      const double tol = std::min(a.blend_tolerance_mm, cur.seg.blend_tolerance_mm) -
+                         std::max(merge_tolerance(a), merge_tolerance(cur.seg)) - margin_mm_;
       const double len_a = (a.end.head<3>() - a.start.head<3>()).norm();
       const double len_b = (cur.seg.end.head<3>() - cur.seg.start.head<3>()).norm();
       const ArcTransition t = arc_transition(a, cur.seg, tol,

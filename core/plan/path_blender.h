@@ -1,8 +1,10 @@
 // The blending stage of the planner: a stream of program segments in, the
 // same path with its G64 corners rounded out (plan/arc_transition.h).
 //
+// Program lines first pass the naive-CAM merger (G64 Q, plan/line_merger.h).
 // Corners between two feed lines (G1) that are both in G64 get a tangent arc
-// within the tolerance E = min(P of the two blocks) − the quantization margin
+// within the tolerance E = min(P of the two blocks) − q (the merger's share)
+// − the quantization margin
 // (half a step on each linear axis, so that after rounding to steps the
 // executed path still stays within P). Each corner may use at most half of
 // each neighbouring line (seed 000: l_s = min(S(i)/2, S(i+1)/2)). Rotary axes
@@ -17,15 +19,11 @@
 #include <deque>
 
 #include "machine/machine_config.h"
+#include "plan/line_merger.h"
 #include "plan/planned_segment.h"
 
 namespace lcnc {
 
-struct IndexedSegment {
-  Segment seg;
-  std::uint32_t index = 0;  // index of the program segment this piece belongs to
-};
-using IndexedSource = std::function<SourceStatus(IndexedSegment&)>;
 
 class PathBlender {
  public:
@@ -38,13 +36,12 @@ class PathBlender {
  private:
   void emit(const IndexedSegment& s);
 
-  SegmentSource source_;
+  LineMerger merger_;
   double margin_mm_ = 0.0;
   bool have_pending_ = false;
   IndexedSegment pending_;          // a line whose end may still be blended
   double pending_full_length_ = 0;  // its length as programmed
   std::deque<IndexedSegment> ready_;
-  std::uint32_t count_ = 0;
   SourceStatus end_status_ = SourceStatus::Item;
 };
 

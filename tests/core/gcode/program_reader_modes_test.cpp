@@ -80,7 +80,7 @@ TEST(ProgramReader, G64WithoutPUsesTheMachinePathTolerance) {
   ASSERT_EQ(segs.size(), 1u);
   EXPECT_EQ(segs[0].path_mode, PathMode::Blend);
   EXPECT_DOUBLE_EQ(segs[0].blend_tolerance_mm, 0.01);
-  EXPECT_DOUBLE_EQ(segs[0].naive_cam_tolerance_mm, 0.01);  // Q defaults to P
+  EXPECT_DOUBLE_EQ(segs[0].naive_cam_tolerance_mm, 0.0);  // no Q: no line merging
 }
 
 TEST(ProgramReader, G64PAndQSetTheTolerances) {

@@ -178,6 +178,46 @@ TEST(Lookahead, RandomPolylinesStayWithinLimitsAndTolerance) {
   }
 }
 
+TEST(Lookahead, NaiveCamMergingStaysWithinP) {
+  const auto m = testing::test_machine(100.0, 2000.0);
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Segment> segs;
+  Pose at = xyz(50, 50, 5);
+  for (int k = 0; k < 400; ++k) {  // wavy CAM chords: some runs merge, corners blend
+    const Pose to = at + xyz(0.3, 0.004 * u(rng) + (k % 40 < 20 ? 0.05 : -0.05), 0);
+    Segment s = g1(at, to, 100.0, 0.02);
+    s.naive_cam_tolerance_mm = 0.02;
+    segs.push_back(s);
+    at = to;
+  }
+  const Outcome o = run(m, segs);
+  EXPECT_LE(o.max_dev, 0.02);
+  for (int a = 0; a < 3; ++a) EXPECT_EQ(o.sum[a], o.commanded[a]);
+}
+
+TEST(Lookahead, TinyChordCircleRunsAtItsCentripetalLimit) {
+  const auto m = testing::test_machine(100.0, 2000.0);
+  std::vector<Segment> segs;
+  const double r = 2.0;  // v_max = sqrt(a·r) = 63 mm/s < F
+  const int n = 1257 * 4;  // 0.01 mm chords, 4 laps
+  auto pt = [&](int k) {
+    const double a = 2 * 3.14159265358979 * (k % 1257) / 1257.0;
+    return xyz(100 + r * std::cos(a), 100 + r * std::sin(a), 5);
+  };
+  for (int k = 0; k < n; ++k) segs.push_back(g1(pt(k), pt(k + 1), 100.0, 0.01));
+  const Outcome o = run(m, segs);
+  const double chord = (pt(0) - pt(1)).norm();
+  const double length = n * chord;
+  const double v_limit = std::sqrt(2000.0 * r);
+  // several chords per period are consumed: no per-segment cap from the
+  // period; the speed is the centripetal limit (within its 0.5 % share)
+  EXPECT_LT(o.time_s, length / (0.99 * v_limit) + 2 * v_limit / 2000.0);
+  EXPECT_GT(o.time_s, length / v_limit);
+  EXPECT_LE(o.peak_a[0], 2000.0 * (1 + 1e-6));
+  EXPECT_LE(o.max_dev, 0.01);
+}
+
 TEST(Lookahead, DenseChordCircleRunsAtFeedWithBoundedWindow) {
   const auto m = testing::test_machine(100.0, 2000.0);
   std::vector<Segment> segs;

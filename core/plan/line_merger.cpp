@@ -1,0 +1,82 @@
+#include "plan/line_merger.h"
+
+#include <algorithm>
+
+#include "plan/tolerances.h"
+
+namespace lcnc {
+namespace {
+
+bool mergeable(const Segment& s) {
+  return s.kind == MotionKind::Linear && s.path_mode == PathMode::Blend &&
+         merge_tolerance(s) > 0.0 && (s.end - s.start).tail<3>().norm() == 0.0 &&
+         (s.end.head<3>() - s.start.head<3>()).norm() > plan::kMinSegmentLength;
+}
+
+double distance_to_line(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double f = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (a + ab * f - p).norm();
+}
+
+}  // namespace
+
+double merge_tolerance(const Segment& s) noexcept {
+  return 0.5 * std::min(s.naive_cam_tolerance_mm, s.blend_tolerance_mm);
+}
+
+bool LineMerger::extends_run(const Segment& next) const {
+  const Segment& a = run_.seg;
+  if (!mergeable(a) || !mergeable(next) || inner_count_ + 1 >= kMaxMergeRun) return false;
+  if (a.feed_mm_s != next.feed_mm_s || a.duration_s != next.duration_s || a.laser != next.laser ||
+      a.power_pct != next.power_pct || a.mist != next.mist || a.flood != next.flood)
+    return false;
+  const double q = std::min(merge_tolerance(a), merge_tolerance(next));
+  const Vec3 s0 = a.start.head<3>(), s1 = next.end.head<3>();
+  if ((a.end.head<3>() - s0).dot(s1 - next.start.head<3>()) <= 0.0) return false;  // reversal
+  if (distance_to_line(next.start.head<3>(), s0, s1) > q) return false;
+  for (std::size_t k = 0; k < inner_count_; ++k)
+    if (distance_to_line(inner_[k], s0, s1) > q) return false;
+  return true;
+}
+
+SourceStatus LineMerger::next(IndexedSegment& out) {
+  for (;;) {
+    IndexedSegment cur;
+    if (have_held_) {
+      cur = held_;
+      have_held_ = false;
+    } else if (end_status_ == SourceStatus::Item) {
+      const SourceStatus st = source_(cur.seg);
+      if (st != SourceStatus::Item) {
+        end_status_ = st;
+        continue;
+      }
+      cur.index = count_++;
+    } else {
+      if (!have_run_) return end_status_;
+      out = run_;
+      have_run_ = false;
+      return SourceStatus::Item;
+    }
+    if (have_run_ && extends_run(cur.seg)) {
+      inner_[inner_count_++] = cur.seg.start.head<3>();
+      run_.seg.end = cur.seg.end;
+      run_.seg.line = cur.seg.line;
+      run_.index = cur.index;
+      continue;
+    }
+    if (have_run_) {  // the run is complete: hand it on, keep cur for later
+      out = run_;
+      run_ = cur;
+      inner_count_ = 0;
+      return SourceStatus::Item;
+    }
+    run_ = cur;
+    have_run_ = true;
+    inner_count_ = 0;
+  }
+}
+
+}  // namespace lcnc

@@ -1,0 +1,50 @@
+// G64 Q, the naive-CAM detector (as LinuxCNC): consecutive feed lines whose
+// inner points all lie within q of the straight line from the run's first
+// point to its last are merged into that one line, q = min(Q, P)/2 (the other
+// half of P is left to the corner blends that follow, plan/path_blender.h).
+// A run is at most kMaxMergeRun lines with the same feed, laser and gas, in
+// G64, without rotary motion, never reversing.
+//
+// The first stage of the planner: program segments in, indexed segments out
+// (a merged line carries the index of the last program segment it covers).
+// Streaming: holds one run back; constant memory.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "plan/planned_segment.h"
+
+namespace lcnc {
+
+struct IndexedSegment {
+  Segment seg;
+  std::uint32_t index = 0;  // index of the program segment this piece belongs to
+};
+using IndexedSource = std::function<SourceStatus(IndexedSegment&)>;
+
+// Merge tolerance q of a G64 block: half of min(Q, P); 0 turns merging off.
+[[nodiscard]] double merge_tolerance(const Segment& s) noexcept;
+
+class LineMerger {
+ public:
+  static constexpr std::size_t kMaxMergeRun = 16;
+
+  explicit LineMerger(SegmentSource source) : source_(std::move(source)) {}
+  [[nodiscard]] SourceStatus next(IndexedSegment& out);
+
+ private:
+  [[nodiscard]] bool extends_run(const Segment& next) const;
+
+  SegmentSource source_;
+  bool have_run_ = false;
+  IndexedSegment run_;                             // the run so far, as one line
+  std::array<Vec3, kMaxMergeRun> inner_{};          // its inner points
+  std::size_t inner_count_ = 0;
+  bool have_held_ = false;
+  IndexedSegment held_;  // a segment read but not yet taken into a run
+  std::uint32_t count_ = 0;
+  SourceStatus end_status_ = SourceStatus::Item;
+};
+
+}  // namespace lcnc

@@ -1,0 +1,91 @@
+#include "plan/path_blender.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "core/plan/test_machine.h"
+
+namespace lcnc {
+namespace {
+
+Segment g1(const Vec3& a, const Vec3& b, double p, double q) {
+  Segment s;
+  s.kind = MotionKind::Linear;
+  s.start.head<3>() = a;
+  s.end.head<3>() = b;
+  s.feed_mm_s = 100.0;
+  s.path_mode = PathMode::Blend;
+  s.blend_tolerance_mm = p;
+  s.naive_cam_tolerance_mm = q;
+  return s;
+}
+
+std::vector<IndexedSegment> blend(const std::vector<Segment>& segs) {
+  const auto m = testing::test_machine();
+  std::size_t i = 0;
+  PathBlender b(m, [&](Segment& out) {
+    if (i == segs.size()) return SourceStatus::End;
+    out = segs[i++];
+    return SourceStatus::Item;
+  });
+  std::vector<IndexedSegment> out;
+  IndexedSegment s;
+  while (b.next(s) == SourceStatus::Item) out.push_back(s);
+  return out;
+}
+
+// A noisy straight run: points within ±noise of the X axis.
+std::vector<Segment> noisy_run(int n, double noise, double p, double q) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-noise, noise);
+  std::vector<Segment> segs;
+  Vec3 at(10, 10, 5);
+  for (int k = 1; k <= n; ++k) {
+    const Vec3 to(10 + 0.5 * k, 10 + (k == n ? 0.0 : u(rng)), 5);
+    segs.push_back(g1(at, to, p, q));
+    at = to;
+  }
+  return segs;
+}
+
+TEST(PathBlender, NaiveCamMergesNearCollinearLines) {
+  // noise 0.002 mm < q = min(Q, P)/2 = 0.005: runs of up to 16 lines merge
+  const auto out = blend(noisy_run(64, 0.002, 0.01, 0.01));
+  EXPECT_LE(out.size(), 2u * (64 / 15 + 1));
+  EXPECT_GE(out.size(), 64u / 16);
+  // the merged path still ends where the program ends
+  EXPECT_NEAR(out.back().seg.end[0], 10 + 32.0, 1e-12);
+  // a merged line carries the index of the last program line it covers
+  EXPECT_EQ(out.back().index, 63u);
+}
+
+TEST(PathBlender, QZeroKeepsEveryLine) {
+  const auto out = blend(noisy_run(64, 0.002, 0.01, 0.0));
+  // every line kept (each corner blended: a line and an arc per corner)
+  EXPECT_GE(out.size(), 64u);
+}
+
+TEST(PathBlender, NoiseBeyondQIsNotMerged) {
+  const auto merged = blend(noisy_run(64, 0.002, 0.01, 0.01));
+  const auto kept = blend(noisy_run(64, 0.05, 0.01, 0.01));  // 0.05 mm ≫ q
+  EXPECT_GT(kept.size(), 2 * merged.size());
+}
+
+TEST(PathBlender, RotaryMotionIsNeverMerged) {
+  auto segs = noisy_run(32, 0.001, 0.01, 0.01);
+  for (std::size_t k = 0; k < segs.size(); ++k) {
+    segs[k].start[5] = static_cast<double>(k);
+    segs[k].end[5] = static_cast<double>(k + 1);
+  }
+  const auto out = blend(segs);
+  // every program line still has its own pieces (index), none merged away
+  std::vector<bool> seen(segs.size(), false);
+  for (const auto& s : out) seen[s.index] = true;
+  for (std::size_t k = 0; k < seen.size(); ++k) EXPECT_TRUE(seen[k]) << k;
+}
+
+}  // namespace
+}  // namespace lcnc
