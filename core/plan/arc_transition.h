@@ -31,3 +31,23 @@ struct ArcTransition {
                                            double max_trim_a, double max_trim_b);
 
 }  // namespace lcnc
+
+namespace lcnc {
+
+// Corner arc transition where one or both neighbours are arcs (seed 000
+// eq. 15–21): a fillet circle tangent to both curves, in their common plane,
+// found as the crossing of the two curves offset by its radius r toward the
+// inside of the corner (a line offsets to a parallel line, a circle of
+// radius R to one of radius R ∓ r). The largest r is taken whose fillet stays
+// within the tolerance of the corner point (| |P − c| − r | ≤ E) and uses at
+// most max_trim of each neighbour (bisection: both grow with r).
+//
+// Handles line–arc, arc–line and arc–arc corners whose curves lie in one of
+// the planes G17/G18/G19 with no helix and no rotary motion; anything else is
+// not blended. The trimmed neighbours are `a` ending at q0 and `b` starting at
+// q2; the fillet takes its feed, laser and modes from `a`.
+[[nodiscard]] ArcTransition fillet_transition(const Segment& a, const Segment& b,
+                                              double tolerance_mm, double max_trim_a,
+                                              double max_trim_b);
+
+}  // namespace lcnc

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "path/segment_geometry.h"
 #include "plan/arc_transition.h"
 #include "plan/tolerances.h"
 
@@ -13,6 +14,19 @@ bool blendable_line(const Segment& s) {
   return s.kind == MotionKind::Linear && s.path_mode == PathMode::Blend &&
          (s.end.head<3>() - s.start.head<3>()).norm() > plan::kMinSegmentLength;
 }
+
+// Arcs in a G17/G18/G19 plane, without helix or rotary motion, can take part
+// in a corner (fillet_transition).
+bool blendable_arc(const Segment& s) {
+  if (s.kind != MotionKind::Arc || s.path_mode != PathMode::Blend || s.plane == Plane::Free)
+    return false;
+  const Pose d = s.end - s.start;
+  return d[plane_axes(s.plane).normal] == 0.0 && d.tail<3>().norm() == 0.0;
+}
+
+bool blendable(const Segment& s) { return blendable_line(s) || blendable_arc(s); }
+
+double length_of(const Segment& s) { return SegmentGeometry(s).length(); }
 
 }  // namespace
 
@@ -44,14 +58,21 @@ SourceStatus PathBlender::next(IndexedSegment& out) {
       end_status_ = st;
       continue;
     }
-    if (have_pending_ && blendable_line(cur.seg)) {
+    if (have_pending_ && blendable(cur.seg)) {
       const Segment& a = pending_.seg;
       const double tol = std::min(a.blend_tolerance_mm, cur.seg.blend_tolerance_mm) -
                          std::max(merge_tolerance(a), merge_tolerance(cur.seg)) - margin_mm_;
-      const double len_a = (a.end.head<3>() - a.start.head<3>()).norm();
-      const double len_b = (cur.seg.end.head<3>() - cur.seg.start.head<3>()).norm();
-      const ArcTransition t = arc_transition(a, cur.seg, tol,
-                                             std::min(pending_full_length_ / 2.0, len_a), len_b / 2.0);
+      const double len_a = length_of(a);
+      const double len_b = length_of(cur.seg);
+      // A corner takes at most half of a line and 45 % of an arc (an arc
+      // trimmed to nothing would read as a full circle).
+      const double share_a = a.kind == MotionKind::Arc ? 0.45 : 0.5;
+      const double share_b = cur.seg.kind == MotionKind::Arc ? 0.45 : 0.5;
+      const double max_a = std::min(pending_full_length_ * share_a, len_a);
+      const ArcTransition t =
+          a.kind == MotionKind::Linear && cur.seg.kind == MotionKind::Linear
+              ? arc_transition(a, cur.seg, tol, max_a, len_b * share_b)
+              : fillet_transition(a, cur.seg, tol, max_a, len_b * share_b);
       if (t.blended) {
         pending_.seg.end = t.q0;
         emit(pending_);
@@ -63,10 +84,10 @@ SourceStatus PathBlender::next(IndexedSegment& out) {
       }
     }
     if (have_pending_) emit(pending_);
-    have_pending_ = blendable_line(cur.seg);
+    have_pending_ = blendable(cur.seg);
     if (have_pending_) {
       pending_ = cur;
-      pending_full_length_ = (cur.seg.end.head<3>() - cur.seg.start.head<3>()).norm();
+      pending_full_length_ = length_of(cur.seg);
     } else {
       emit(cur);
     }

@@ -8,8 +8,10 @@
 // (half a step on each linear axis, so that after rounding to steps the
 // executed path still stays within P). Each corner may use at most half of
 // each neighbouring line (seed 000: l_s = min(S(i)/2, S(i+1)/2)). Rotary axes
-// moving along do not switch blending off. Every other corner (G61, G61.1,
-// rapids, arcs, dwells) is passed through: the look-ahead decides its speed.
+// moving along do not switch blending off. Corners with an arc on one or both
+// sides get a fillet in the arc's plane (fillet_transition). Every other
+// corner (G61, G61.1, rapids, helices, dwells) is passed through: the
+// look-ahead decides its speed.
 //
 // Streaming: holds one line back (its end may still be trimmed); memory is
 // constant whatever the program's length.

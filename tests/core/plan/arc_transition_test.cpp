@@ -112,3 +112,81 @@ TEST(ArcTransition, CollinearAndReversedCornersAreNotBlended) {
 
 }  // namespace
 }  // namespace lcnc
+
+namespace lcnc {
+namespace {
+
+Segment arc_xy(const Vec3& start, const Vec3& end, const Vec3& center, bool cw) {
+  Segment s;
+  s.kind = MotionKind::Arc;
+  s.plane = Plane::XY;
+  s.path_mode = PathMode::Blend;
+  s.start.head<3>() = start;
+  s.end.head<3>() = end;
+  s.center = center;
+  s.clockwise = cw;
+  s.feed_mm_s = 100.0;
+  return s;
+}
+
+// A fillet must be tangent to both neighbours where it meets them, lie on
+// them, and stay within the tolerance of the corner.
+void expect_good_fillet(const Segment& a, const Segment& b, double tol, double max_a, double max_b) {
+  const ArcTransition t = fillet_transition(a, b, tol, max_a, max_b);
+  ASSERT_TRUE(t.blended);
+  Segment a2 = a, b2 = b;
+  a2.end = t.q0;
+  b2.start = t.q2;
+  const SegmentGeometry ga(a2), gb(b2), gf(t.arc);
+  // on the curves: the trimmed neighbours end/start where the fillet does
+  EXPECT_NEAR(SegmentGeometry(a).distance_xyz(t.q0.head<3>()), 0.0, 1e-9);
+  EXPECT_NEAR(SegmentGeometry(b).distance_xyz(t.q2.head<3>()), 0.0, 1e-9);
+  // tangent at both joins
+  EXPECT_NEAR((ga.tangent(ga.length()) - gf.tangent(0)).head<3>().norm(), 0.0, 1e-7);
+  EXPECT_NEAR((gf.tangent(gf.length()) - gb.tangent(0)).head<3>().norm(), 0.0, 1e-7);
+  // within the tolerance of the corner, and at it unless the trims bound it
+  EXPECT_LE(gf.distance_xyz(b.start.head<3>()), tol * (1 + 1e-9));
+  // the trimmed neighbours keep their direction of travel (no full circles)
+  EXPECT_LT(ga.length(), SegmentGeometry(a).length());
+  EXPECT_LT(gb.length(), SegmentGeometry(b).length());
+  EXPECT_LE(SegmentGeometry(a).length() - ga.length(), max_a + 1e-9);
+  EXPECT_LE(SegmentGeometry(b).length() - gb.length(), max_b + 1e-9);
+}
+
+TEST(FilletTransition, LineIntoArcAtAnAngle) {
+  // a line going +X meets a CCW arc that starts heading +Y (90° corner)
+  const Segment a = line({0, 0, 0}, {10, 0, 0});
+  const Segment b = arc_xy({10, 0, 0}, {5, 5, 0}, {5, 0, 0}, false);
+  expect_good_fillet(a, b, 0.01, 5.0, 3.0);
+}
+
+TEST(FilletTransition, ArcIntoLineBothTurnDirections) {
+  const Segment a = arc_xy({0, 0, 0}, {5, 5, 0}, {5, 0, 0}, true);  // CW, ends heading +X
+  expect_good_fillet(a, line({5, 5, 0}, {5, 15, 0}), 0.01, 3.0, 5.0);    // turn left
+  expect_good_fillet(a, line({5, 5, 0}, {5, -5, 0}), 0.01, 3.0, 5.0);    // turn right
+}
+
+TEST(FilletTransition, ArcIntoArc) {
+  // two CCW arcs meeting at a 90° corner
+  const Segment a = arc_xy({10, 0, 0}, {0, 10, 0}, {0, 0, 0}, false);    // ends heading −X
+  const Segment b = arc_xy({0, 10, 0}, {-5, 15, 0}, {-5, 10, 0}, false); // starts heading +Y
+  expect_good_fillet(a, b, 0.02, 5.0, 5.0);
+  // and a CW one turning the other way
+  const Segment c = arc_xy({0, 10, 0}, {-5, 5, 0}, {-5, 10, 0}, true);   // starts heading −Y
+  expect_good_fillet(a, c, 0.02, 5.0, 5.0);
+}
+
+TEST(FilletTransition, OtherPlanesAndTangentJoins) {
+  // G18: a line along +Z into a counter-clockwise ZX arc that starts heading +X
+  const Segment a = line({0, 0, 0}, {0, 0, 10});
+  Segment b = arc_xy({0, 0, 10}, {5, 0, 5}, {0, 0, 5}, false);
+  b.plane = Plane::ZX;
+  expect_good_fillet(a, b, 0.01, 5, 3);
+  // a tangent join needs no fillet
+  const Segment t1 = line({0, 0, 0}, {10, 0, 0});
+  const Segment t2 = arc_xy({10, 0, 0}, {15, 5, 0}, {10, 5, 0}, false);  // starts heading +X
+  EXPECT_FALSE(fillet_transition(t1, t2, 0.01, 5, 3).blended);
+}
+
+}  // namespace
+}  // namespace lcnc

@@ -178,6 +178,48 @@ TEST(Lookahead, RandomPolylinesStayWithinLimitsAndTolerance) {
   }
 }
 
+// Lines and arcs meeting at corners (fillets): within P, within the limits,
+// every step delivered.
+TEST(Lookahead, RandomLinesAndArcsStayWithinLimitsAndTolerance) {
+  const auto m = testing::test_machine(150.0, 3000.0);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int programs = 8;
+  if (const char* s = std::getenv("LCNC_FUZZ_SCALE")) programs *= std::atoi(s);
+  for (int p = 0; p < programs; ++p) {
+    std::vector<Segment> segs;
+    Pose at = xyz(200, 200, 50);
+    const double tol = 0.005 + 0.03 * u(rng);
+    for (int k = 0; k < 120; ++k) {
+      const double len = 0.2 + 5.0 * u(rng);
+      const double ang = 2 * 3.14159265 * u(rng);
+      const Pose to = at + xyz(len * std::cos(ang), len * std::sin(ang), 0);
+      Segment s = g1(at, to, 30 + 150 * u(rng), tol);
+      if (k % 2 == 1) {  // an arc through the same end points
+        const Vec3 a = at.head<3>(), b = to.head<3>(), mid = 0.5 * (a + b);
+        const double r = 0.5 * len * (1.05 + 3 * u(rng));
+        const Vec3 n = Vec3(-(b - a).y(), (b - a).x(), 0).normalized();
+        const double h = std::sqrt(r * r - 0.25 * len * len) * (u(rng) < 0.5 ? 1 : -1);
+        s.kind = MotionKind::Arc;
+        s.plane = Plane::XY;
+        s.center = mid + h * n;
+        s.clockwise = u(rng) < 0.5;
+      }
+      segs.push_back(s);
+      at = to;
+    }
+    const Outcome o = run(m, segs);
+    EXPECT_LE(o.max_dev, tol) << "program " << p;
+    EXPECT_GT(o.max_dev, 0.5 * tol) << "program " << p;  // the corners really are filleted
+    EXPECT_LE(o.max_entry_exit_gap, 1e-9);
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_EQ(o.sum[a], o.commanded[a]);
+      EXPECT_LE(o.peak_v[a], 150.0 * (1 + 1e-9)) << "program " << p << " axis " << a;
+      EXPECT_LE(o.peak_a[a], 3000.0 * (1 + 1e-6)) << "program " << p << " axis " << a;
+    }
+  }
+}
+
 TEST(Lookahead, NaiveCamMergingStaysWithinP) {
   const auto m = testing::test_machine(100.0, 2000.0);
   std::mt19937_64 rng(17);
