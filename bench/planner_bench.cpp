@@ -28,9 +28,7 @@
 
 #include "gcode/program_reader.h"
 #include "path/deviation_meter.h"
-#include "plan/coarse_interpolator.h"
-#include "plan/lookahead.h"
-#include "plan/path_blender.h"
+#include "plan/planner.h"
 
 using namespace lcnc;
 
@@ -145,13 +143,8 @@ PlannerRun run_planner(const std::string& program, const Pose& start, const Mach
   opt.start = start;
   auto reader = ProgramReader::from_string(program, "bench.ngc", m, opt);
   auto ref = ProgramReader::from_string(program, "bench.ngc", m, opt);
-  PathBlender blender(m, reader_source(*reader));
-  Lookahead la(m, [&](IndexedSegment& s) { return blender.next(s); });
-  CoarseInterpolator ci(m, [&](PlannedSegment& p) {
-    const SourceStatus st = la.next(p);
-    if (st == SourceStatus::Item) out.planned.push_back(p);
-    return st;
-  });
+  Planner ci(m, reader_source(*reader));
+  ci.on_planned([&](const PlannedSegment& p) { out.planned.push_back(p); });
   DeviationMeter dm(reader_source(*ref));
   StepQuantizer q(m, opt.start);
   std::array<std::int64_t, kAxisCount> pos{};
@@ -269,13 +262,11 @@ void throughput(const std::string& file, const MachineConfig& m, int runs) {
       return;
     }
     std::uint64_t segs = 0;
-    PathBlender blender(m, [&](Segment& s) {
+    Planner ci(m, [&](Segment& s) {
       const SourceStatus st = reader_source(**reader)(s);
       if (st == SourceStatus::Item) ++segs;
       return st;
     });
-    Lookahead la(m, [&](IndexedSegment& s) { return blender.next(s); });
-    CoarseInterpolator ci(m, [&](PlannedSegment& p) { return la.next(p); });
     StepQuantizer q(m, Pose::Zero());
     PeriodSample s;
     std::int64_t checksum = 0;
@@ -286,7 +277,7 @@ void throughput(const std::string& file, const MachineConfig& m, int runs) {
                 "(window max %zu, checksum %lld)\n",
                 r + 1, static_cast<unsigned long long>(segs),
                 static_cast<unsigned long long>(ci.periods()), ci.periods() * m.period_s(), sec,
-                segs / sec, la.max_window_seen(), static_cast<long long>(checksum));
+                segs / sec, ci.max_window(), static_cast<long long>(checksum));
   }
   std::sort(rates.begin(), rates.end());
   std::printf("  median: %.0f segments/s; peak memory (max RSS) %ld MB\n", rates[rates.size() / 2],

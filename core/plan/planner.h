@@ -1,0 +1,39 @@
+// The planner, stage by stage (DESIGN §2, §5.1–5.3):
+//
+//   program segments ─► LineMerger (G64 Q) ─► PathBlender (corner arcs, G64 P)
+//     ─► Lookahead (forward/backward, streaming) ─► CoarseInterpolator (one
+//     pose per RT period) ─► samples
+//
+// Pull-driven and streaming: memory stays bounded whatever the program's
+// length. One object per job; not movable (the stages refer to each other).
+#pragma once
+
+#include "machine/machine_config.h"
+#include "plan/coarse_interpolator.h"
+#include "plan/lookahead.h"
+#include "plan/path_blender.h"
+
+namespace lcnc {
+
+class Planner {
+ public:
+  Planner(const MachineConfig& machine, SegmentSource source);
+  Planner(const Planner&) = delete;
+  Planner& operator=(const Planner&) = delete;
+
+  // The next period's commanded sample; End after the one with end_of_program.
+  [[nodiscard]] SourceStatus next(PeriodSample& out);
+
+  [[nodiscard]] std::uint64_t periods() const noexcept { return interp_.periods(); }
+  [[nodiscard]] std::size_t max_window() const noexcept { return lookahead_.max_window_seen(); }
+  // Observes every planned segment as it leaves the look-ahead (tests, benchmarks).
+  void on_planned(std::function<void(const PlannedSegment&)> f) { on_planned_ = std::move(f); }
+
+ private:
+  PathBlender blender_;
+  Lookahead lookahead_;
+  CoarseInterpolator interp_;
+  std::function<void(const PlannedSegment&)> on_planned_;
+};
+
+}  // namespace lcnc
