@@ -1,0 +1,122 @@
+#include "rt/shm_interface.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <new>
+
+namespace lcnc::shm {
+namespace {
+
+constexpr mode_t kMode = 0660;
+
+bool process_alive(pid_t pid) { return pid > 0 && (kill(pid, 0) == 0 || errno == EPERM); }
+
+Diagnostic shm_error(const std::string& name, const std::string& what) {
+  return make_error(ErrorCode::Internal, "shared memory '" + name + "': " + what);
+}
+
+ShmBlock* map(int fd) {
+  void* p = mmap(nullptr, sizeof(ShmBlock), PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+  return p == MAP_FAILED ? nullptr : static_cast<ShmBlock*>(p);
+}
+
+}  // namespace
+
+Result<ShmOwner> ShmOwner::create(const std::string& name) {
+  bool stale = false;
+  int fd = shm_open(name.c_str(), O_RDWR | O_CREAT | O_EXCL, kMode);
+  if (fd < 0 && errno == EEXIST) {
+    // Someone's segment: live owner → refuse; dead owner → take it over.
+    const int old = shm_open(name.c_str(), O_RDWR, 0);
+    if (old >= 0) {
+      struct stat st {};
+      const bool sized = fstat(old, &st) == 0 && static_cast<std::size_t>(st.st_size) >= sizeof(ShmHeader);
+      pid_t pid = 0;
+      if (sized) {
+        void* p = mmap(nullptr, sizeof(ShmHeader), PROT_READ, MAP_SHARED, old, 0);
+        if (p != MAP_FAILED) {
+          pid = static_cast<const ShmHeader*>(p)->owner_pid;
+          munmap(p, sizeof(ShmHeader));
+        }
+      }
+      close(old);
+      if (process_alive(pid) && pid != getpid())
+        return shm_error(name, "already owned by running process " + std::to_string(pid) +
+                                   "; stop that daemon first");
+    }
+    shm_unlink(name.c_str());
+    stale = true;
+    fd = shm_open(name.c_str(), O_RDWR | O_CREAT | O_EXCL, kMode);
+  }
+  if (fd < 0) return shm_error(name, std::string("cannot create: ") + std::strerror(errno));
+  fchmod(fd, kMode);  // whatever the umask
+  if (ftruncate(fd, sizeof(ShmBlock)) != 0) {
+    const int e = errno;
+    close(fd);
+    shm_unlink(name.c_str());
+    return shm_error(name, std::string("cannot size: ") + std::strerror(e));
+  }
+  ShmBlock* block = map(fd);
+  close(fd);
+  if (block == nullptr) {
+    shm_unlink(name.c_str());
+    return shm_error(name, "cannot map");
+  }
+  new (block) ShmBlock();  // a fresh segment is zero-filled; construct in place
+  block->header.version = kVersion;
+  block->header.size = sizeof(ShmBlock);
+  block->header.owner_pid = getpid();
+  // release: a client that sees the magic sees the rest initialised.
+  std::atomic_ref<std::uint32_t>(block->header.magic).store(kMagic, std::memory_order_release);
+  return ShmOwner(name, block, stale);
+}
+
+ShmOwner::ShmOwner(ShmOwner&& o) noexcept
+    : name_(std::move(o.name_)), block_(o.block_), recovered_stale_(o.recovered_stale_) {
+  o.block_ = nullptr;
+}
+
+ShmOwner::~ShmOwner() {
+  if (block_ == nullptr) return;
+  munmap(block_, sizeof(ShmBlock));
+  shm_unlink(name_.c_str());
+}
+
+Result<ShmClient> ShmClient::open(const std::string& name) {
+  const int fd = shm_open(name.c_str(), O_RDWR, 0);
+  if (fd < 0)
+    return shm_error(name, std::string("cannot open (is lasercncd running?): ") + std::strerror(errno));
+  struct stat st {};
+  if (fstat(fd, &st) != 0 || static_cast<std::size_t>(st.st_size) < sizeof(ShmBlock)) {
+    close(fd);
+    return shm_error(name, "segment too small: not a LaserCNC segment of this version");
+  }
+  ShmBlock* block = map(fd);
+  close(fd);
+  if (block == nullptr) return shm_error(name, "cannot map");
+  // acquire: pairs with the owner's release store of the magic.
+  const std::uint32_t magic =
+      std::atomic_ref<std::uint32_t>(block->header.magic).load(std::memory_order_acquire);
+  if (magic != kMagic || block->header.version != kVersion || block->header.size != sizeof(ShmBlock)) {
+    munmap(block, sizeof(ShmBlock));
+    return shm_error(name, "not a LaserCNC segment of interface version " +
+                               std::to_string(kVersion) + " (magic, version or size differ)");
+  }
+  return ShmClient(block);
+}
+
+ShmClient::ShmClient(ShmClient&& o) noexcept : block_(o.block_) { o.block_ = nullptr; }
+
+ShmClient::~ShmClient() {
+  if (block_ != nullptr) munmap(block_, sizeof(ShmBlock));
+}
+
+bool ShmClient::owner_alive() const noexcept { return process_alive(block_->header.owner_pid); }
+
+}  // namespace lcnc::shm

@@ -1,0 +1,128 @@
+// The kernel ↔ HMI interface in POSIX shared memory (DESIGN §2; issue "RT
+// kernel"): the one header of rt/ the HMI includes. Fixed size, no pointers
+// (offsets only), versioned; mode 0660.
+//
+//   ShmHeader   magic, version, size, owner pid, heartbeat (stale detection)
+//   status      Seqlock<Status>: written by the kernel every period or so,
+//               read by any number of HMIs without blocking the kernel
+//   commands    SpscRing<Command>: HMI → kernel (one HMI writes)
+//   events      SpscRing<Event>:   kernel → HMI (faults, state changes)
+#pragma once
+
+#include <sys/types.h>
+
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <string>
+
+#include "common/result.h"
+#include "rt/seqlock.h"
+#include "rt/spsc_ring.h"
+
+namespace lcnc::shm {
+
+inline constexpr std::uint32_t kMagic = 0x434E434Cu;  // "LCNC" in memory
+inline constexpr std::uint32_t kVersion = 1;
+inline constexpr const char* kDefaultName = "/lasercnc";
+
+enum class MachineState : std::uint8_t { Idle, Running, FeedHold, Stopping, EStop, Jog, Homing };
+
+enum class CommandType : std::uint8_t {
+  Load,      // text: program path
+  Start,
+  Hold,
+  Resume,
+  Stop,
+  EStop,
+  Reset,     // leave e-stop
+  Override,  // value: feed override K (1 = 100 %)
+  Jog,       // axis, value: distance (mm or deg)
+  Home,      // axis
+};
+
+struct Command {
+  CommandType type = CommandType::Stop;
+  std::uint8_t axis = 0;
+  std::uint32_t seq = 0;  // the HMI's running number, echoed in events
+  double value = 0.0;
+  char text[240] = {};
+};
+
+struct Event {
+  std::uint64_t period = 0;
+  std::uint16_t code = 0;  // ErrorCode (share/errors.def), 0 for plain state changes
+  MachineState state = MachineState::Idle;
+  std::uint32_t line = 0;  // program line, 0 if none
+  std::uint32_t command_seq = 0;
+  char text[112] = {};
+};
+
+struct Status {
+  MachineState state = MachineState::Idle;
+  std::uint16_t fault = 0;  // ErrorCode of the active fault, 0 if none
+  std::uint32_t line = 0;
+  std::uint64_t periods = 0;
+  std::uint64_t underruns = 0;
+  std::array<std::int64_t, 6> pos_steps{};
+  std::array<double, 6> pos{};  // mm / deg
+  double feed_override = 1.0;
+  double machine_time_s = 0.0;
+  std::uint32_t buffer_fill = 0;
+  float power_pct = 0.0f;
+  float latency_p50_us = 0.0f, latency_p99_us = 0.0f, latency_max_us = 0.0f;
+};
+
+struct ShmHeader {
+  std::uint32_t magic = 0;
+  std::uint32_t version = 0;
+  std::uint64_t size = 0;  // sizeof(ShmBlock) of the writer
+  pid_t owner_pid = 0;
+  std::atomic<std::uint64_t> heartbeat{0};  // bumped by the kernel; stale when it stops
+};
+
+struct ShmBlock {
+  ShmHeader header;
+  rt::Seqlock<Status> status;
+  rt::SpscRing<Command, 64> commands;
+  rt::SpscRing<Event, 256> events;
+};
+static_assert(std::is_standard_layout_v<ShmHeader>);
+
+// The owner (the daemon): creates the segment, or takes over a stale one
+// whose owner process is gone; refuses when a live owner holds it.
+class ShmOwner {
+ public:
+  [[nodiscard]] static Result<ShmOwner> create(const std::string& name = kDefaultName);
+  ShmOwner(ShmOwner&&) noexcept;
+  ShmOwner& operator=(ShmOwner&&) = delete;
+  ~ShmOwner();  // unmaps and unlinks
+  [[nodiscard]] ShmBlock& block() noexcept { return *block_; }
+  [[nodiscard]] bool recovered_stale() const noexcept { return recovered_stale_; }
+
+ private:
+  ShmOwner(std::string name, ShmBlock* block, bool stale)
+      : name_(std::move(name)), block_(block), recovered_stale_(stale) {}
+  std::string name_;
+  ShmBlock* block_ = nullptr;
+  bool recovered_stale_ = false;
+};
+
+// A client (the HMI, `lasercnc status`): maps an existing segment after
+// checking magic, version and size.
+class ShmClient {
+ public:
+  [[nodiscard]] static Result<ShmClient> open(const std::string& name = kDefaultName);
+  ShmClient(ShmClient&&) noexcept;
+  ShmClient& operator=(ShmClient&&) = delete;
+  ~ShmClient();
+  [[nodiscard]] ShmBlock& block() noexcept { return *block_; }
+  // The owner process still exists.
+  [[nodiscard]] bool owner_alive() const noexcept;
+
+ private:
+  explicit ShmClient(ShmBlock* block) : block_(block) {}
+  ShmBlock* block_ = nullptr;
+};
+
+}  // namespace lcnc::shm

@@ -1,0 +1,118 @@
+#include "rt/shm_interface.h"
+
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <string>
+#include <thread>
+
+namespace lcnc::shm {
+namespace {
+
+std::string unique_name(const char* tag) {
+  return "/lasercnc_test_" + std::string(tag) + "_" + std::to_string(getpid());
+}
+
+TEST(ShmInterface, ClientInAnotherProcessSeesStatusAndSendsCommands) {
+  const std::string name = unique_name("xproc");
+  auto owner = ShmOwner::create(name);
+  ASSERT_TRUE(owner) << owner.error().to_string();
+  Status st;
+  st.state = MachineState::Running;
+  st.line = 42;
+  st.pos[0] = 12.5;
+  owner->block().status.store(st);
+
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {  // the "HMI": read status, send a command, exit with a verdict
+    auto client = ShmClient::open(name);
+    if (!client) _exit(10);
+    Status seen;
+    if (!client->block().status.load(seen) || seen.line != 42 || seen.pos[0] != 12.5) _exit(11);
+    if (!client->owner_alive()) _exit(12);
+    Command c;
+    c.type = CommandType::Override;
+    c.value = 1.25;
+    c.seq = 7;
+    if (!client->block().commands.try_push(c)) _exit(13);
+    _exit(0);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  Command got;
+  ASSERT_TRUE(owner->block().commands.try_pop(got));
+  EXPECT_EQ(got.type, CommandType::Override);
+  EXPECT_DOUBLE_EQ(got.value, 1.25);
+  EXPECT_EQ(got.seq, 7u);
+}
+
+TEST(ShmInterface, SegmentIsMode0660AndVersioned) {
+  const std::string name = unique_name("mode");
+  auto owner = ShmOwner::create(name);
+  ASSERT_TRUE(owner);
+  const int fd = shm_open(name.c_str(), O_RDONLY, 0);
+  ASSERT_GE(fd, 0);
+  struct stat s {};
+  ASSERT_EQ(fstat(fd, &s), 0);
+  close(fd);
+  EXPECT_EQ(s.st_mode & 0777, 0660u);
+  EXPECT_EQ(owner->block().header.version, kVersion);
+  EXPECT_EQ(owner->block().header.owner_pid, getpid());
+}
+
+TEST(ShmInterface, SecondOwnerIsRefusedWhileTheFirstLives) {
+  const std::string name = unique_name("twice");
+  auto first = ShmOwner::create(name);
+  ASSERT_TRUE(first);
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    auto second = ShmOwner::create(name);
+    _exit(second ? 1 : (second.error().message.find("already owned") != std::string::npos ? 0 : 2));
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+}
+
+TEST(ShmInterface, StaleSegmentOfACrashedOwnerIsRecovered) {
+  const std::string name = unique_name("stale");
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {  // an owner that dies without cleaning up
+    auto owner = ShmOwner::create(name);
+    _exit(owner ? 0 : 1);  // _exit: no destructor, the segment stays
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+  ASSERT_EQ(WEXITSTATUS(status), 0);
+  {
+    auto client = ShmClient::open(name);
+    ASSERT_TRUE(client);
+    EXPECT_FALSE(client->owner_alive());  // the HMI can tell the link is lost
+  }
+  auto owner = ShmOwner::create(name);
+  ASSERT_TRUE(owner) << owner.error().to_string();
+  EXPECT_TRUE(owner->recovered_stale());
+  Status st;
+  EXPECT_TRUE(owner->block().status.load(st));
+  EXPECT_EQ(st.state, MachineState::Idle);  // comes up safe, not moving
+}
+
+TEST(ShmInterface, OpeningWithoutADaemonSaysSo) {
+  auto client = ShmClient::open(unique_name("none"));
+  ASSERT_FALSE(client);
+  EXPECT_NE(client.error().message.find("is lasercncd running?"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace lcnc::shm
