@@ -20,7 +20,8 @@ namespace {
 constexpr const char* kUsage =
     "usage:\n"
     "  lasercnc run PROGRAM [--machine FILE] [--vmax V] [--amax A] [--tolerance E]\n"
-    "                       [--trace FILE.csv] [--json] [--[no-]progress] [--no-realtime]\n"
+    "                       [--feed-override PCT] [--trace FILE.csv] [--json]\n"
+    "                       [--[no-]progress] [--no-realtime]\n"
     "  lasercnc check PROGRAM [--machine FILE]\n"
     "  lasercnc --help | --version\n"
     "\n"
@@ -29,7 +30,11 @@ constexpr const char* kUsage =
     "  check   reads the whole program and reports the first error, runs nothing\n"
     "  --vmax/--amax   max velocity (mm/s) / acceleration (mm/s^2) of every linear axis\n"
     "  --tolerance     path tolerance (mm)\n"
-    "  --trace         commanded position every RT period as CSV t,x,y,z,a,b,c\n"
+    "  --feed-override feed override for the whole run, %: every move runs at PCT/100\n"
+    "                  of its planned speed; 0 < PCT <= 100 x machine.max_feed_override\n"
+    "                  (150 on the default machine); default 100\n"
+    "  --trace         commanded position and laser power every RT period as CSV\n"
+    "                  t,x,y,z,a,b,c,power (s of machine time, mm, deg, % of rated)\n"
     "  --progress      progress bar on stderr (default: only when stderr is a terminal)\n"
     "  --no-realtime   do not ask for SCHED_FIFO / mlockall\n";
 
@@ -100,6 +105,10 @@ int main(int argc, char** argv) {
       if (!number(opt.amax)) return usage_error("--amax needs a number (mm/s^2)");
     } else if (a == "--tolerance") {
       if (!number(opt.tolerance_mm)) return usage_error("--tolerance needs a number (mm)");
+    } else if (a == "--feed-override") {
+      std::optional<double> pct;
+      if (!number(pct)) return usage_error("--feed-override needs a number (%, e.g. 150)");
+      opt.feed_override_pct = *pct;
     } else if (a == "--json") {
       json = true;
     } else if (a == "--no-progress") {
@@ -140,6 +149,7 @@ int main(int argc, char** argv) {
   if (show_progress) progress = draw_progress;
   auto report = lcnc::app::run_job(opt, progress);
   if (!report) {
+    if (report.error().code == lcnc::ErrorCode::Usage) return usage_error(report.error().message);
     std::fprintf(stderr, "%s\n", report.error().to_string().c_str());
     return 1;
   }

@@ -23,6 +23,8 @@ std::string format_report(const RunReport& r) {
   s += printf_string("  program          %s (%u lines, %llu segments)\n", r.program.c_str(), r.lines,
                      static_cast<unsigned long long>(r.segments));
   s += printf_string("  machine          %s, RT period %.1f us\n", r.machine.c_str(), r.period_s * 1e6);
+  s += printf_string("  feed override    %.1f %% (a period lasts %.1f us)\n", r.feed_override * 100.0,
+                     r.feed_override > 0.0 ? r.period_s * 1e6 / r.feed_override : 0.0);
   s += printf_string("  cycle time       %.6f s (%llu periods)\n", r.cycle_time_s,
                      static_cast<unsigned long long>(r.periods));
   s += printf_string("  path length      %.3f mm (%.3f mm at feed)\n", r.path_length_mm,
@@ -63,6 +65,7 @@ std::string report_json(const RunReport& r) {
   j["period_s"] = r.period_s;
   j["periods"] = r.periods;
   j["cycle_time_s"] = r.cycle_time_s;
+  j["feed_override"] = r.feed_override;
   j["path_length_mm"] = r.path_length_mm;
   j["feed_length_mm"] = r.feed_length_mm;
   j["max_deviation_mm"] = r.max_deviation_mm;

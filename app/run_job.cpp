@@ -9,10 +9,8 @@
 #include "drivers/sim_machine.h"
 #include "gcode/program_reader.h"
 #include "path/deviation_meter.h"
-#include "plan/coarse_interpolator.h"
-#include "plan/lookahead.h"
-#include "plan/path_blender.h"
 #include "plan/motion_stats.h"
+#include "plan/planner.h"
 #include "rt/rt_kernel.h"
 
 namespace lcnc::app {
@@ -46,7 +44,7 @@ class TraceWriter {
     file_ = std::fopen(path.c_str(), "w");
     if (file_ != nullptr) {
       std::setvbuf(file_, nullptr, _IOFBF, 1 << 20);
-      std::fputs("t,x,y,z,a,b,c\n", file_);
+      std::fputs("t,x,y,z,a,b,c,power\n", file_);
     }
   }
   ~TraceWriter() {
@@ -57,10 +55,12 @@ class TraceWriter {
   [[nodiscard]] bool failed_to_open(const std::string& path) const {
     return !path.empty() && file_ == nullptr;
   }
-  void write(double t, const Pose& p) {
+  // t: machine time at the end of the period (s); p: commanded pose (mm,
+  // deg); power: laser output (% of rated).
+  void write(double t, const Pose& p, double power_pct) {
     if (file_ == nullptr) return;
-    std::fprintf(file_, "%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n", t, p[0], p[1], p[2], p[3], p[4],
-                 p[5]);
+    std::fprintf(file_, "%.9f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.3f\n", t, p[0], p[1], p[2], p[3],
+                 p[4], p[5], power_pct);
   }
 
  private:
@@ -96,10 +96,21 @@ Result<MachineConfig> load_machine(const RunOptions& options) {
   return m;
 }
 
+Status check_feed_override(double pct, const MachineConfig& machine) {
+  const double max_pct = 100.0 * machine.max_feed_override;
+  if (pct > 0.0 && pct <= max_pct) return {};
+  char msg[160];
+  std::snprintf(msg, sizeof msg,
+                "--feed-override %g: allowed 0 < PCT <= %g (%%, machine.max_feed_override = %g)", pct,
+                max_pct, machine.max_feed_override);
+  return make_error(ErrorCode::Usage, msg);
+}
+
 Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress) {
   Result<MachineConfig> loaded = load_machine(options);
   if (!loaded) return loaded.error();
   const MachineConfig machine = std::move(loaded).value();
+  if (Status s = check_feed_override(options.feed_override_pct, machine); !s) return s.error();
 
   // The whole program is checked before anything moves.
   ReaderOptions ropt;
@@ -155,10 +166,7 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
     StepQuantizer quant(machine, ropt.start);
     MotionStats stats(machine.period_s(), ropt.start);
     if (reader) {
-      PathBlender blender(machine, reader_source(**reader));
-      Lookahead lookahead(machine, [&blender](IndexedSegment& s) { return blender.next(s); });
-      CoarseInterpolator interp(machine,
-                                [&lookahead](PlannedSegment& s) { return lookahead.next(s); });
+      Planner interp(machine, reader_source(**reader));
       PeriodSample sample;
       PeriodSample last;
       SourceStatus st;
@@ -201,6 +209,7 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   }
   rt::RtOptions rt_options;
   rt_options.try_realtime = options.realtime;
+  kernel.set_feed_override(options.feed_override_pct / 100.0);  // before start: no ramp
   kernel.start(rt_options);
 
   // Drain the trace while the job runs: CSV, deviation, progress.
@@ -223,7 +232,7 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
       got = true;
       Pose p = Pose::Zero();
       for (int i = 0; i < kAxisCount; ++i) p[i] = static_cast<double>(rec.pos_steps[i]) / spu[i];
-      trace_out.write(static_cast<double>(rec.period + 1) * machine.period_s(), p);
+      trace_out.write(static_cast<double>(rec.t_ns) * 1e-9, p, rec.power_pct);
       deviation.add(p.head<3>(), rec.segment);
     }
     if (progress) {
@@ -243,14 +252,17 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   if (planned.failed) return planned.error;
 
   report.periods = kernel.periods();
-  report.cycle_time_s = static_cast<double>(report.periods) * machine.period_s();
+  report.cycle_time_s = static_cast<double>(kernel.machine_time_ns()) * 1e-9;
+  report.feed_override = kernel.feed_override();
+  // The plan's peaks are at the nominal period; the whole run executed at K.
+  const double k = report.feed_override;
   report.max_deviation_mm = deviation.max_mm();
   report.steps_match = true;
   for (int i = 0; i < kAxisCount; ++i) {
     AxisReport& a = report.axes[i];
     a.present = machine.axes[i].present;
-    a.peak_velocity = planned.peak_v[i];
-    a.peak_acceleration = planned.peak_a[i];
+    a.peak_velocity = planned.peak_v[i] * k;
+    a.peak_acceleration = planned.peak_a[i] * k * k;
     a.steps_sent = sim.position_steps(i) - start_steps[i];
     a.steps_commanded = planned.commanded[i] - start_steps[i];
     report.steps_match = report.steps_match && a.steps_sent == a.steps_commanded &&
@@ -260,7 +272,7 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   report.overruns = kernel.overruns();
   report.trace_drops = kernel.trace_drops();
   report.bad_frames = sim.bad_frames();
-  report.laser_on_s = static_cast<double>(sim.laser_on_periods()) * machine.period_s();
+  report.laser_on_s = static_cast<double>(kernel.laser_on_ns()) * 1e-9;
   const rt::LatencyHistogram& lat = kernel.latency();
   report.latency_p50_us = lat.quantile_us(0.50);
   report.latency_p99_us = lat.quantile_us(0.99);

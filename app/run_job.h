@@ -23,14 +23,20 @@ struct RunOptions {
   std::optional<double> vmax;           // every linear axis, mm/s
   std::optional<double> amax;           // every linear axis, mm/s²
   std::optional<double> tolerance_mm;   // path tolerance
-  std::string trace_file;               // CSV t,x,y,z,a,b,c per RT period; empty: none
+  std::string trace_file;               // CSV t,x,y,z,a,b,c,power per RT period; empty: none
   bool realtime = true;                 // try SCHED_FIFO + mlockall
+  // Feed override for the whole run, % (DESIGN §5.5): 0 < pct ≤ 100·K_max
+  // (machine.max_feed_override), else a Usage error. Set before the RT
+  // thread starts, so the run begins at it with no ramp.
+  double feed_override_pct = 100.0;
 };
 
 struct AxisReport {
   bool present = false;
-  double peak_velocity = 0.0;      // commanded, mm/s or deg/s
-  double peak_acceleration = 0.0;  // commanded, mm/s² or deg/s²
+  // Commanded, as executed at the run's feed override K: the plan's peaks
+  // (sampled at T) times K and K².
+  double peak_velocity = 0.0;      // mm/s or deg/s
+  double peak_acceleration = 0.0;  // mm/s² or deg/s²
   std::int64_t steps_sent = 0;     // net pulses the machine received
   std::int64_t steps_commanded = 0;
 };
@@ -40,9 +46,10 @@ struct RunReport {
   std::string machine;
   std::uint32_t lines = 0;
   std::uint64_t segments = 0;
-  double period_s = 0.0;
+  double period_s = 0.0;            // nominal period T; at override K a period lasts T/K
   std::uint64_t periods = 0;
-  double cycle_time_s = 0.0;
+  double cycle_time_s = 0.0;        // machine time taken: Σ of the periods' lengths
+  double feed_override = 1.0;       // K at the end of the run (1 = 100 %)
   double path_length_mm = 0.0;
   double feed_length_mm = 0.0;
   double max_deviation_mm = 0.0;
@@ -52,7 +59,7 @@ struct RunReport {
   std::uint64_t overruns = 0;
   std::uint64_t trace_drops = 0;
   std::uint64_t bad_frames = 0;
-  double laser_on_s = 0.0;
+  double laser_on_s = 0.0;          // machine time with the laser on
   double latency_p50_us = 0.0, latency_p99_us = 0.0, latency_max_us = 0.0;
   std::string schedule;    // "SCHED_FIFO" or "normal"
   std::string rt_warning;  // why real-time scheduling was not had
@@ -62,6 +69,8 @@ struct RunReport {
 using ProgressFn = std::function<void(double fraction)>;
 
 [[nodiscard]] Result<MachineConfig> load_machine(const RunOptions& options);
+// A Usage error unless 0 < pct ≤ 100·machine.max_feed_override; names the range.
+[[nodiscard]] Status check_feed_override(double pct, const MachineConfig& machine);
 [[nodiscard]] Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress = {});
 
 [[nodiscard]] std::string format_report(const RunReport& report);

@@ -1,6 +1,7 @@
 #include "rt/rt_kernel.h"
 
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <ctime>
 
@@ -24,11 +25,14 @@ inline timespec to_timespec(std::int64_t ns) noexcept {
 RtKernel::RtKernel(const MachineConfig& machine, PositionBuffer& buffer, PulseSink& sink,
                    TraceRing* trace, const std::array<std::int64_t, kAxisCount>& start_steps)
     : period_ns_(machine.period_ns),
+      ramp_(machine),
       buffer_(buffer),
       sink_(sink),
       trace_(trace),
       dda_(machine.dda),
-      pos_steps_(start_steps) {}
+      pos_steps_(start_steps) {
+  target_k_.store(ramp_.clamp_target(1.0), std::memory_order_relaxed);
+}
 
 RtKernel::~RtKernel() {
   stop();
@@ -38,6 +42,10 @@ RtKernel::~RtKernel() {
 void RtKernel::start(const RtOptions& options) {
   warning_.clear();
   schedule_ = RtSchedule::Normal;
+  // The run begins at the override already asked for, with no ramp. The
+  // thread's creation below orders these writes before its first read.
+  k_ = target_k_.load(std::memory_order_relaxed);
+  k_now_.store(k_, std::memory_order_relaxed);
   if (!options.try_realtime) {
     warning_ = "real-time scheduling not requested: normal scheduling";
   } else if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
@@ -70,23 +78,34 @@ void RtKernel::run(const RtOptions& options) noexcept {
   if (options.on_loop_enter) options.on_loop_enter();
   timespec now{};
   clock_gettime(CLOCK_MONOTONIC, &now);
-  std::int64_t deadline = to_ns(now) + period_ns_;
+  // The first period starts one nominal period from now; after that each
+  // deadline is t0 + machine time so far, rounded once (no drift).
+  const std::int64_t t0 = to_ns(now) + period_ns_;
+  double machine_ns = 0.0;  // Σ lengths of the periods before this one
   std::uint64_t period = 0;
   while (!stop_requested_.load(std::memory_order_relaxed)) {
     // 1. sleep to the absolute deadline
+    const std::int64_t deadline = t0 + std::llround(machine_ns);
     const timespec until = to_timespec(deadline);
     while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &until, nullptr) == EINTR) {
     }
-    // 2. wake-up latency
+    // 2. this period's length: T/K, or T while held
+    const bool held = ramp_.holds(k_);
+    const double length_ns = held ? static_cast<double>(period_ns_) : period_ns_ / k_;
+    // 3. wake-up latency; woken after the period's end is an overrun
     clock_gettime(CLOCK_MONOTONIC, &now);
     const std::int64_t late = to_ns(now) - deadline;
     latency_.add(late);
-    if (late > period_ns_) overruns_.fetch_add(1, std::memory_order_relaxed);
-    // 3–6. the period's work
-    cycle(period++);
+    if (static_cast<double>(late) > length_ns) overruns_.fetch_add(1, std::memory_order_relaxed);
+    // 4–7. the period's work
+    machine_ns += length_ns;
+    cycle(period++, held, length_ns, std::llround(machine_ns));
     periods_.store(period, std::memory_order_relaxed);
     if (end_seen_) break;
-    deadline += period_ns_;
+    // 8. ramp K toward the target for the next period. relaxed pairs with
+    // set_feed_override()'s relaxed store: only the value is read.
+    k_ = ramp_.step(k_, target_k_.load(std::memory_order_relaxed), length_ns * 1e-9);
+    k_now_.store(k_, std::memory_order_relaxed);
   }
   if (options.on_loop_exit) options.on_loop_exit();
   // release pairs with finished()'s acquire: counters and positions written
@@ -94,32 +113,46 @@ void RtKernel::run(const RtOptions& options) noexcept {
   finished_.store(true, std::memory_order_release);
 }
 
-void RtKernel::cycle(std::uint64_t period) noexcept {
-  PeriodIncrement inc;
-  const bool have = buffer_.try_pop(inc);
-  if (!have) {
-    inc = PeriodIncrement{};  // hold: zero increments, laser off
-    underruns_.fetch_add(1, std::memory_order_relaxed);
-  } else {
+void RtKernel::cycle(std::uint64_t period, bool held, double length_ns,
+                     std::int64_t end_ns) noexcept {
+  // 4. the period's entry
+  PeriodIncrement inc;  // held or underrun: zero increments, laser off
+  bool underrun = false;
+  if (held) {
+    held_periods_.fetch_add(1, std::memory_order_relaxed);
+  } else if (buffer_.try_pop(inc)) {
     motion_periods_.fetch_add(1, std::memory_order_relaxed);
     segment_.store(inc.segment, std::memory_order_relaxed);
     end_seen_ = inc.end_of_program;
+  } else {
+    underrun = true;
+    underruns_.fetch_add(1, std::memory_order_relaxed);
   }
+  // 5–6. DDA and the pulse sink
   dda_.run_period(inc.steps, frame_);
   frame_.power_pct = inc.power_pct;
   sink_.emit(frame_);
+  // 7. position, machine time, trace
   for (int i = 0; i < kAxisCount; ++i) {
     const std::int64_t n = frame_.axes[i].count;
     pos_steps_[i] += frame_.axes[i].negative ? -n : n;
   }
+  machine_time_ns_.store(end_ns, std::memory_order_relaxed);
+  if (inc.power_pct > 0.0f) {
+    laser_on_exact_ns_ += length_ns;
+    laser_on_ns_.store(std::llround(laser_on_exact_ns_), std::memory_order_relaxed);
+  }
   if (trace_ != nullptr) {
     TraceRecord rec;
     rec.period = period;
+    rec.t_ns = end_ns;
     rec.pos_steps = pos_steps_;
+    rec.feed_override = k_;
     rec.power_pct = inc.power_pct;
     rec.line = inc.line;
     rec.segment = inc.segment;
-    rec.underrun = !have;
+    rec.underrun = underrun;
+    rec.held = held;
     if (!trace_->try_push(rec)) trace_drops_.fetch_add(1, std::memory_order_relaxed);
   }
 }

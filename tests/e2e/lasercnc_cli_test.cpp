@@ -4,10 +4,12 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -54,6 +56,55 @@ CmdResult lasercnc(const std::string& args) {
 
 const std::string kShare = std::string(LCNC_SOURCE_DIR) + "/share";
 
+// One row of the --trace CSV: t,x,y,z,a,b,c,power.
+struct TraceRow {
+  double t = 0, x = 0, y = 0, z = 0, a = 0, b = 0, c = 0, power = 0;
+};
+
+std::vector<TraceRow> read_trace(const fs::path& file) {
+  std::vector<TraceRow> rows;
+  std::ifstream in(file);
+  std::string line;
+  if (!std::getline(in, line)) {
+    ADD_FAILURE() << "empty trace " << file;
+    return rows;
+  }
+  EXPECT_EQ(line, "t,x,y,z,a,b,c,power");
+  while (std::getline(in, line)) {
+    TraceRow r;
+    if (std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &r.t, &r.x, &r.y, &r.z, &r.a,
+                    &r.b, &r.c, &r.power) != 8) {
+      ADD_FAILURE() << "bad trace row: " << line;
+      break;
+    }
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+// Checks the default machine's X Y Z velocity limits on a trace: velocity
+// over 10-row windows against the trace's own time column, allowing the ±1
+// step quantization at each end. Returns the largest X velocity seen.
+double expect_within_velocity_limits(const std::vector<TraceRow>& rows) {
+  const double vmax[3] = {500.0, 500.0, 250.0};
+  const std::size_t w = 10;
+  double peak_x = 0.0;
+  for (std::size_t k = w; k < rows.size(); ++k) {
+    const double dt = rows[k].t - rows[k - w].t;
+    const double d[3] = {rows[k].x - rows[k - w].x, rows[k].y - rows[k - w].y,
+                         rows[k].z - rows[k - w].z};
+    for (int a = 0; a < 3; ++a) {
+      const double v = std::abs(d[a]) / dt;
+      if (a == 0) peak_x = std::max(peak_x, v);
+      if (v > vmax[a] + 0.002 / dt) {
+        ADD_FAILURE() << "axis " << a << " at " << v << " mm/s, row " << k;
+        return peak_x;
+      }
+    }
+  }
+  return peak_x;
+}
+
 fs::path write_file(const std::string& name, const std::string& text) {
   const fs::path p = temp_dir() / name;
   std::ofstream(p) << text;
@@ -80,6 +131,8 @@ TEST(LasercncRun, SampleJobRunsWithExactStepsAndAnHonestReport) {
   EXPECT_LE(j["max_deviation_mm"].get<double>(), 0.01);
   const double period = j["period_s"].get<double>();
   EXPECT_NEAR(period, 75e-6, 1e-12);
+  // at 100 % every period lasts T
+  EXPECT_EQ(j["feed_override"].get<double>(), 1.0);
   EXPECT_NEAR(j["cycle_time_s"].get<double>(), j["periods"].get<double>() * period, 1e-9);
   // cutting 480+ mm at ≤ 100 mm/s takes longer than 4.8 s
   EXPECT_GT(j["feed_length_mm"].get<double>(), 480.0);
@@ -90,29 +143,73 @@ TEST(LasercncRun, SampleJobRunsWithExactStepsAndAnHonestReport) {
   EXPECT_GT(j["latency_us"]["max"].get<double>(), 0.0);
 
   // The trace: one row per RT period, header as documented, and its motion
-  // within the axis limits (velocity over 10-period windows, allowing the
-  // ±1 step quantization at each end).
-  std::ifstream in(trace);
-  std::string line;
-  ASSERT_TRUE(std::getline(in, line));
-  EXPECT_EQ(line, "t,x,y,z,a,b,c");
-  std::vector<std::array<double, 4>> rows;  // t, x, y, z
-  while (std::getline(in, line)) {
-    std::array<double, 4> v{};
-    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2], &v[3]), 4) << line;
-    rows.push_back(v);
+  // within the axis limits.
+  const std::vector<TraceRow> rows = read_trace(trace);
+  ASSERT_EQ(rows.size(), j["periods"].get<std::size_t>());
+  for (std::size_t k = 0; k < rows.size(); ++k)
+    ASSERT_NEAR(rows[k].t, static_cast<double>(k + 1) * period, 1e-9) << "row " << k;
+  expect_within_velocity_limits(rows);
+  EXPECT_NEAR(rows.back().x, 500.0, 1e-9);
+  EXPECT_NEAR(rows.back().z, 25.0, 1e-9);
+  // the power column follows the laser: on while cutting, off at the end
+  std::size_t lit = 0;
+  for (const TraceRow& r : rows) lit += r.power > 0.0;
+  EXPECT_NEAR(static_cast<double>(lit) * period, j["laser_on_s"].get<double>(), 1e-6);
+  EXPECT_EQ(rows.back().power, 0.0);
+}
+
+// Feed override for the whole run (DESIGN §5.5): every period lasts T/K, so
+// the cycle time scales by 1/K while the steps stay exact; the default machine
+// is planned at 150 %, so at 150 % the motion reaches but never exceeds the
+// axis limits.
+TEST(LasercncRun, FeedOverrideScalesTheCycleTimeAndKeepsEveryStep) {
+  const fs::path prog = write_file("override.ngc",
+                                   "G21 G90 G61\nG0 X10 Y10 Z5\nG0 X400 Y200\n"
+                                   "G1 X450 F6000 S80 M3\nG1 Y300\nM5\nM2\n");
+  std::map<int, nlohmann::json> runs;
+  std::map<int, std::vector<TraceRow>> traces;
+  for (int pct : {100, 150, 50}) {
+    const fs::path trace = temp_dir() / ("trace" + std::to_string(pct) + ".csv");
+    const CmdResult r = lasercnc("run " + prog.string() + " --json --no-progress --feed-override " +
+                                 std::to_string(pct) + " --trace " + trace.string());
+    ASSERT_EQ(r.exit_code, 0) << pct << "\n" << r.err;
+    runs[pct] = nlohmann::json::parse(r.out);
+    traces[pct] = read_trace(trace);
   }
-  EXPECT_EQ(rows.size(), j["periods"].get<std::size_t>());
-  const double vmax[3] = {500.0, 500.0, 250.0};
-  const int w = 10;
-  for (std::size_t k = w; k < rows.size(); ++k) {
-    for (int a = 0; a < 3; ++a) {
-      const double v = std::abs(rows[k][a + 1] - rows[k - w][a + 1]) / (w * period);
-      ASSERT_LE(v, vmax[a] + 0.002 / (w * period)) << "axis " << a << " row " << k;
+  const double T = runs[100]["period_s"].get<double>();
+  const double c100 = runs[100]["cycle_time_s"].get<double>();
+  EXPECT_GT(c100, 1.0);
+  for (int pct : {150, 50}) {
+    const nlohmann::json& j = runs[pct];
+    const double k = pct / 100.0;
+    EXPECT_EQ(j["feed_override"].get<double>(), k);
+    EXPECT_TRUE(j["steps_match"].get<bool>()) << pct;
+    EXPECT_EQ(j["underruns"].get<long long>(), 0) << pct;
+    EXPECT_EQ(j["bad_frames"].get<long long>(), 0) << pct;
+    for (const auto& [name, ax] : j["axes"].items()) {
+      EXPECT_EQ(ax["steps_sent"].get<long long>(), ax["steps_commanded"].get<long long>()) << name;
+      EXPECT_EQ(ax["steps_sent"].get<long long>(),
+                runs[100]["axes"][name]["steps_sent"].get<long long>());
     }
+    // the same periods, each T/K long: the cycle time scales by 1/K
+    EXPECT_EQ(j["periods"].get<long long>(), runs[100]["periods"].get<long long>());
+    EXPECT_NEAR(j["cycle_time_s"].get<double>(), c100 / k, 3 * T) << pct;
+    EXPECT_NEAR(j["laser_on_s"].get<double>(), runs[100]["laser_on_s"].get<double>() / k, 3 * T);
+    EXPECT_NEAR(j["axes"]["X"]["peak_velocity"].get<double>(),
+                runs[100]["axes"]["X"]["peak_velocity"].get<double>() * k, 1e-6);
+    // the trace's time is machine time: the last row ends the cycle
+    const std::vector<TraceRow>& rows = traces[pct];
+    ASSERT_EQ(rows.size(), j["periods"].get<std::size_t>());
+    EXPECT_NEAR(rows.back().t, j["cycle_time_s"].get<double>(), 1e-9);
+    EXPECT_NEAR(rows.front().t, T / k, 1e-9);
   }
-  EXPECT_NEAR(rows.back()[1], 500.0, 1e-9);
-  EXPECT_NEAR(rows.back()[3], 25.0, 1e-9);
+  // at 150 % the rapid reaches the X limit (500 mm/s) and nothing exceeds any
+  // axis limit, measured from the trace against its own time column
+  const double peak150 = expect_within_velocity_limits(traces[150]);
+  EXPECT_GT(peak150, 0.95 * 500.0);
+  EXPECT_LE(runs[150]["axes"]["X"]["peak_velocity"].get<double>(), 500.0 + 1e-6);
+  EXPECT_LE(runs[150]["axes"]["X"]["peak_acceleration"].get<double>(), 5000.0 * (1 + 1e-6));
+  EXPECT_NEAR(expect_within_velocity_limits(traces[100]), peak150 / 1.5, 0.02 * peak150);
 }
 
 TEST(LasercncRun, BlendingCutsCornersWithinPAndSavesTime) {
@@ -138,8 +235,8 @@ TEST(LasercncRun, TextReportNamesEveryFigure) {
   const fs::path prog = write_file("square.ngc", "G21 G90 G61\nG0 X10 Y10 Z5\nG1 X20 F1200\nG1 Y20\nM2\n");
   const CmdResult r = lasercnc("run " + prog.string() + " --no-progress");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* key : {"cycle time", "path length", "max deviation", "peak velocity",
-                          "steps sent", "underruns", "RT latency", "p50", "p99"})
+  for (const char* key : {"feed override", "cycle time", "path length", "max deviation",
+                          "peak velocity", "steps sent", "underruns", "RT latency", "p50", "p99"})
     EXPECT_NE(r.out.find(key), std::string::npos) << key << "\n" << r.out;
   EXPECT_NE(r.out.find("sent = commanded on every axis"), std::string::npos) << r.out;
 }
@@ -193,6 +290,29 @@ TEST(LasercncRun, BadMachineConfigIsRejectedWithTheKey) {
   const CmdResult r2 = lasercnc("run " + prog.string() + " --vmax 4000");
   EXPECT_EQ(r2.exit_code, 1);
   EXPECT_NE(r2.err.find("max_velocity"), std::string::npos) << r2.err;
+}
+
+TEST(LasercncCli, FeedOverrideOutsideItsRangeIsAUsageError) {
+  for (const char* pct : {"0", "200", "-10", "150.5"}) {
+    const CmdResult r = lasercnc(std::string("run x.ngc --no-progress --feed-override ") + pct);
+    EXPECT_EQ(r.exit_code, 2) << pct;
+    EXPECT_NE(r.err.find("0 < PCT <= 150"), std::string::npos) << pct << "\n" << r.err;
+    EXPECT_NE(r.err.find("usage:"), std::string::npos);
+    EXPECT_TRUE(r.out.empty());
+  }
+  EXPECT_EQ(lasercnc("run x.ngc --feed-override fast").exit_code, 2);
+  EXPECT_EQ(lasercnc("run x.ngc --feed-override").exit_code, 2);
+  // the range follows the machine's max_feed_override
+  std::string cfg = slurp(kShare + "/machines/default.toml");
+  cfg.replace(cfg.find("max_feed_override = 1.5"), 23, "max_feed_override = 1.2");
+  const fs::path m = write_file("k12.toml", cfg);
+  const fs::path prog = write_file("p.ngc", "G0 X1\n");
+  const CmdResult r = lasercnc("run " + prog.string() + " --no-progress --machine " + m.string() +
+                               " --feed-override 130");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("0 < PCT <= 120"), std::string::npos) << r.err;
+  EXPECT_EQ(lasercnc("run " + prog.string() + " --no-progress --machine " + m.string() +
+                     " --feed-override 120").exit_code, 0);
 }
 
 TEST(LasercncCli, UsageErrorsExitWithTwo) {

@@ -11,12 +11,16 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <cstddef>
 #include <cstdlib>
 #include <memory>
 #include <new>
+#include <cmath>
+#include <iterator>
 #include <random>
 #include <thread>
+#include <vector>
 
 #include "drivers/sim_machine.h"
 
@@ -51,16 +55,20 @@ void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 namespace lcnc::rt {
 namespace {
 
+// amax/vmax = 100 /s and K_max = 1.5: the override ramps at ρ = 50 /s
+// (rt/feed_override.h eq. 4), 100 % ↔ hold in 20 ms, so a short run sees
+// many ramps and holds.
 MachineConfig machine() {
   MachineConfig m;
   m.period_ns = 75'000;
+  m.max_feed_override = 1.5;
   m.dda = DdaConfig{8, 300};
   for (int i = 0; i < 3; ++i) {
     m.axes[i].present = true;
     m.axes[i].axis = static_cast<Axis>(i);
     m.axes[i].max = 1000;
     m.axes[i].max_velocity = 500;
-    m.axes[i].max_acceleration = 5000;
+    m.axes[i].max_acceleration = 50000;
   }
   return m;
 }
@@ -84,12 +92,60 @@ std::array<std::int64_t, kAxisCount> fill(PositionBuffer& buf, std::size_t n, st
       inc.steps[a] = static_cast<std::int32_t>(rng() % 101) - 50;
       sum[a] += inc.steps[a];
     }
+    inc.power_pct = 50.0f;
     inc.segment = static_cast<std::uint32_t>(k);
     inc.end_of_program = k + 1 == n;
     EXPECT_TRUE(buf.try_push(inc));
   }
   return sum;
 }
+
+// Changes the feed override from another thread until the kernel finishes:
+// a fixed opening (a full hold and resume, a ramp to 150 %), then random
+// targets from a fixed seed — holds, the slowest (below K_min: raised to
+// it), 150 %, anything between — each for 2–25 ms.
+class OverrideChanger {
+ public:
+  OverrideChanger(RtKernel& kernel, std::uint32_t seed)
+      : thread_([this, &kernel, seed] { run(kernel, seed); }) {}
+  ~OverrideChanger() {
+    done_ = true;
+    thread_.join();
+  }
+  OverrideChanger(const OverrideChanger&) = delete;
+  OverrideChanger& operator=(const OverrideChanger&) = delete;
+  [[nodiscard]] int changes() const { return changes_.load(); }
+
+ private:
+  void run(RtKernel& kernel, std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    const double opening[][2] = {{1.0, 5}, {0.0, 40}, {1.0, 10}, {1.5, 30}, {0.4, 10}};
+    std::size_t n = 0;
+    while (!done_ && !kernel.finished()) {
+      double k = 0.0, ms = 0.0;
+      if (n < std::size(opening)) {
+        k = opening[n][0];
+        ms = opening[n][1];
+      } else {
+        const double choices[] = {0.0, 1e-3, 0.3, 1.0, 1.5,
+                                  std::uniform_real_distribution<>(0, 1.5)(rng)};
+        k = choices[rng() % std::size(choices)];
+        ms = 2 + static_cast<double>(rng() % 24);
+      }
+      ++n;
+      kernel.set_feed_override(k);
+      changes_.fetch_add(1);
+      const auto until = std::chrono::steady_clock::now() +
+                         std::chrono::microseconds(static_cast<int>(ms * 1000));
+      while (!done_ && !kernel.finished() && std::chrono::steady_clock::now() < until)
+        std::this_thread::sleep_for(std::chrono::microseconds(500));
+    }
+  }
+
+  std::atomic<bool> done_{false};
+  std::atomic<int> changes_{0};
+  std::thread thread_;
+};
 
 TEST(RtKernel, ExecutesEveryEntryAndSumOfPulsesEqualsCommandedSteps) {
   Rig r;
@@ -147,6 +203,196 @@ TEST(RtKernel, StopEndsTheLoopWithinAFewPeriods) {
   EXPECT_EQ(r.sim.position_steps(0), 0);
 }
 
+std::vector<TraceRecord> drain(TraceRing& trace) {
+  std::vector<TraceRecord> out;
+  TraceRecord rec;
+  while (trace.try_pop(rec)) out.push_back(rec);
+  return out;
+}
+
+// The override's invariants, period by period from the trace: held exactly
+// when K < K_min (position held, laser off, not an underrun); each period
+// lasts T/K (T while held) and t is the machine time at its end; K never
+// changes by more than ρ times the length of the period before — a linear
+// ramp, never a jump. Returns the number of periods in which K was ramping.
+int check_override_trace(const std::vector<TraceRecord>& recs, const RtKernel& kernel,
+                         std::uint32_t period_ns) {
+  const FeedOverrideRamp& ramp = kernel.override_ramp();
+  const double T = period_ns;
+  std::int64_t t_prev = 0;
+  double len_prev = T;
+  double k_prev = recs.empty() ? 1.0 : recs.front().feed_override;
+  std::array<std::int64_t, kAxisCount> pos_prev{};
+  double sum_len = 0.0;
+  int ramping = 0;
+  for (std::size_t i = 0; i < recs.size(); ++i) {
+    const TraceRecord& r = recs[i];
+    EXPECT_EQ(r.period, i);
+    const double k = r.feed_override;
+    EXPECT_EQ(r.held, k < ramp.k_min()) << "period " << i << " K " << k;
+    const double len = r.held ? T : T / k;
+    sum_len += len;
+    EXPECT_NEAR(static_cast<double>(r.t_ns - t_prev), len, 1.0) << "period " << i << " K " << k;
+    const double dk = std::abs(k - k_prev);
+    EXPECT_LE(dk, ramp.rate_per_s() * len_prev * 1e-9 * (1 + 1e-9)) << "period " << i;
+    if (dk > 0.0) ++ramping;
+    if (r.held) {
+      EXPECT_EQ(r.pos_steps, pos_prev) << "period " << i;
+      EXPECT_EQ(r.power_pct, 0.0f) << "period " << i;
+      EXPECT_FALSE(r.underrun) << "period " << i;
+    }
+    t_prev = r.t_ns;
+    len_prev = len;
+    k_prev = k;
+    pos_prev = r.pos_steps;
+    if (::testing::Test::HasFailure()) break;  // one report, not thousands
+  }
+  if (!recs.empty()) {
+    EXPECT_EQ(kernel.machine_time_ns(), recs.back().t_ns);
+  }
+  EXPECT_NEAR(static_cast<double>(kernel.machine_time_ns()), sum_len, 1.0);
+  return ramping;
+}
+
+TEST(RtKernel, RandomOverrideChangesAndHoldsLoseNoStep) {
+  Rig r;
+  const auto sum = fill(*r.buffer, 8000, 21);
+  r.kernel.start(RtOptions{false, 0, {}, {}});
+  {
+    OverrideChanger changer(r.kernel, 22);
+    r.kernel.join();
+    EXPECT_GT(changer.changes(), 10);
+  }
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_EQ(r.sim.position_steps(a), sum[a]) << "axis " << a;
+    EXPECT_EQ(r.kernel.position_steps(a), sum[a]) << "axis " << a;
+  }
+  EXPECT_EQ(r.kernel.motion_periods(), 8000u);
+  EXPECT_EQ(r.kernel.underruns(), 0u);
+  EXPECT_EQ(r.sim.bad_frames(), 0u);
+  EXPECT_EQ(r.kernel.trace_drops(), 0u);
+  EXPECT_EQ(r.kernel.periods(), r.kernel.motion_periods() + r.kernel.held_periods());
+  const std::vector<TraceRecord> recs = drain(*r.trace);
+  ASSERT_EQ(recs.size(), r.kernel.periods());
+  const int ramping = check_override_trace(recs, r.kernel, r.m.period_ns);
+  EXPECT_GT(ramping, 100);
+  // the opening's hold and its 150 % were reached
+  std::size_t held = 0;
+  double k_top = 0.0;
+  for (const TraceRecord& rec : recs) {
+    held += rec.held;
+    k_top = std::max(k_top, rec.feed_override);
+  }
+  EXPECT_EQ(held, r.kernel.held_periods());
+  EXPECT_GT(held, 100u);
+  EXPECT_EQ(k_top, 1.5);
+  // the laser is on exactly in the moving periods (every entry has power)
+  const double moving_ns = static_cast<double>(r.kernel.machine_time_ns()) -
+                          static_cast<double>(held) * r.m.period_ns;
+  EXPECT_NEAR(static_cast<double>(r.kernel.laser_on_ns()), moving_ns, 2.0);
+}
+
+TEST(RtKernel, FeedHoldAtStartPopsNothingThenResumesWithARamp) {
+  Rig r;
+  const auto sum = fill(*r.buffer, 2000, 31);
+  r.kernel.set_feed_override(0.0);  // before start: the run begins held
+  r.kernel.start(RtOptions{false, 0, {}, {}});
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  EXPECT_EQ(r.kernel.motion_periods(), 0u);
+  EXPECT_EQ(r.kernel.underruns(), 0u);
+  EXPECT_GT(r.kernel.held_periods(), 20u);
+  EXPECT_EQ(r.buffer->size(), 2000u);
+  EXPECT_EQ(r.sim.position_steps(0), 0);
+  EXPECT_EQ(r.sim.power_pct(), 0.0f);
+  EXPECT_EQ(r.kernel.feed_override(), 0.0);
+  r.kernel.set_feed_override(1.0);
+  r.kernel.join();
+  for (int a = 0; a < 3; ++a) EXPECT_EQ(r.sim.position_steps(a), sum[a]);
+  EXPECT_EQ(r.kernel.motion_periods(), 2000u);
+  EXPECT_EQ(r.kernel.underruns(), 0u);
+  const std::vector<TraceRecord> recs = drain(*r.trace);
+  check_override_trace(recs, r.kernel, r.m.period_ns);
+  // held first, then K rises monotonically from K_min to 1: no jump to 100 %
+  std::size_t i = 0;
+  while (i < recs.size() && recs[i].held) ++i;
+  ASSERT_LT(i, recs.size());
+  EXPECT_GE(i, 20u);
+  const FeedOverrideRamp& ramp = r.kernel.override_ramp();
+  EXPECT_GE(recs[i].feed_override, ramp.k_min());
+  EXPECT_LT(recs[i].feed_override, ramp.k_min() + ramp.rate_per_s() * r.m.period_s());
+  for (++i; i < recs.size() && recs[i].feed_override < 1.0; ++i)
+    ASSERT_GT(recs[i].feed_override, recs[i - 1].feed_override);
+  ASSERT_LT(i, recs.size());
+  EXPECT_EQ(recs[i].feed_override, 1.0);
+}
+
+TEST(RtKernel, HoldMidRunDeceleratesHoldsAndResumesFromTheHeldPosition) {
+  Rig r;
+  const auto sum = fill(*r.buffer, 8000, 41);
+  r.kernel.start(RtOptions{false, 0, {}, {}});
+  std::this_thread::sleep_for(std::chrono::milliseconds(60));
+  r.kernel.set_feed_override(0.0);
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (r.kernel.feed_override() > 0.0 && std::chrono::steady_clock::now() < give_up)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  ASSERT_EQ(r.kernel.feed_override(), 0.0);
+  ASSERT_FALSE(r.kernel.finished());
+  const std::uint64_t popped = r.kernel.motion_periods();
+  const std::size_t left = r.buffer->size();
+  const std::int64_t x = r.sim.position_steps(0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  EXPECT_EQ(r.kernel.motion_periods(), popped);  // nothing popped while held
+  EXPECT_EQ(r.buffer->size(), left);
+  EXPECT_EQ(r.sim.position_steps(0), x);
+  EXPECT_EQ(r.sim.power_pct(), 0.0f);
+  EXPECT_EQ(r.kernel.underruns(), 0u);
+  r.kernel.set_feed_override(1.0);
+  r.kernel.join();
+  for (int a = 0; a < 3; ++a) EXPECT_EQ(r.sim.position_steps(a), sum[a]);
+  EXPECT_EQ(r.kernel.underruns(), 0u);
+  const std::vector<TraceRecord> recs = drain(*r.trace);
+  check_override_trace(recs, r.kernel, r.m.period_ns);
+  // the way down: from 1 to K_min in steps, the last moving period at K_min
+  std::size_t first_held = 0;
+  while (first_held < recs.size() && !recs[first_held].held) ++first_held;
+  ASSERT_LT(first_held, recs.size());
+  EXPECT_EQ(recs[first_held - 1].feed_override, r.kernel.override_ramp().k_min());
+  std::size_t down = first_held - 1;
+  while (down > 0 && recs[down - 1].feed_override < 1.0) --down;
+  EXPECT_GT(first_held - down, 10u) << "a ramp, not a step";
+}
+
+TEST(RtKernel, ConstantOverrideRunsEveryEntryInTOverK) {
+  for (const double k : {1.5, 0.5}) {
+    Rig r;
+    const std::size_t n = k > 1.0 ? 8000 : 2000;
+    const auto sum = fill(*r.buffer, n, 51);
+    r.kernel.set_feed_override(k);  // before start: no ramp
+    const auto t0 = std::chrono::steady_clock::now();
+    r.kernel.start(RtOptions{false, 0, {}, {}});
+    r.kernel.join();
+    const double wall_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    for (int a = 0; a < 3; ++a) EXPECT_EQ(r.sim.position_steps(a), sum[a]);
+    EXPECT_EQ(r.kernel.feed_override(), k);
+    EXPECT_EQ(r.kernel.held_periods(), 0u);
+    const double machine_s = static_cast<double>(n) * r.m.period_s() / k;
+    EXPECT_NEAR(static_cast<double>(r.kernel.machine_time_ns()), machine_s * 1e9, 1.0) << k;
+    const std::vector<TraceRecord> recs = drain(*r.trace);
+    ASSERT_EQ(recs.size(), n);
+    for (const TraceRecord& rec : recs) ASSERT_EQ(rec.feed_override, k);
+    EXPECT_EQ(check_override_trace(recs, r.kernel, r.m.period_ns), 0);
+    // wall time follows machine time (absolute deadlines): loosely, as the
+    // machine is shared — but well apart from the n·T the run takes at 100 %
+    EXPECT_GE(wall_s, machine_s - r.m.period_s() / k) << k;
+    if (k > 1.0) {
+      EXPECT_LT(wall_s, static_cast<double>(n) * r.m.period_s() * 0.92) << k;
+    } else {
+      EXPECT_LT(wall_s, machine_s + 0.15) << k;
+    }
+  }
+}
+
 // The RT loop allocates nothing: the RT thread's own allocations counted over
 // the whole loop, from the enter hook to the exit hook.
 TEST(RtKernel, LoopNeverAllocates) {
@@ -163,7 +409,12 @@ TEST(RtKernel, LoopNeverAllocates) {
                   at_exit = g_allocations.load();
                 }};
   r.kernel.start(opt);
-  r.kernel.join();
+  {
+    OverrideChanger changer(r.kernel, 12);  // ramps and holds while the loop runs
+    r.kernel.join();
+    EXPECT_GT(changer.changes(), 3);
+  }
+  EXPECT_GT(r.kernel.held_periods(), 0u);
   EXPECT_EQ(r.kernel.motion_periods(), 3000u);
   EXPECT_EQ(at_exit.load() - at_enter.load(), 0u);
 }
@@ -233,7 +484,12 @@ TEST(RtKernel, LoopMakesNoSyscallButTheClockSleep) {
                 },
                 [&] { bad_at_exit = g_bad_syscalls.load(); }};
   r.kernel.start(opt);
-  r.kernel.join();
+  {
+    OverrideChanger changer(r.kernel, 13);  // ramps and holds while the loop runs
+    r.kernel.join();
+    EXPECT_GT(changer.changes(), 3);
+  }
+  EXPECT_GT(r.kernel.held_periods(), 0u);
   ASSERT_TRUE(filtered.load());
   EXPECT_EQ(r.kernel.motion_periods(), 3000u);
   EXPECT_EQ(bad_at_exit.load(), 0) << "first forbidden syscall: " << g_first_bad_syscall.load();
