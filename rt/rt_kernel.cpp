@@ -1,5 +1,6 @@
 #include "rt/rt_kernel.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -89,20 +90,38 @@ void RtKernel::run(const RtOptions& options) noexcept {
     const timespec until = to_timespec(deadline);
     while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &until, nullptr) == EINTR) {
     }
-    // 2. this period's length: T/K, or T while held
-    const bool held = ramp_.holds(k_);
-    const double length_ns = held ? static_cast<double>(period_ns_) : period_ns_ / k_;
-    // 3. wake-up latency; woken after the period's end is an overrun
+    // 2. wake-up latency
     clock_gettime(CLOCK_MONOTONIC, &now);
     const std::int64_t late = to_ns(now) - deadline;
     latency_.add(late);
+    // 3. the period's entry: held → none (zero increments, laser off, not an
+    // underrun); else one PeriodIncrement; empty while the job runs →
+    // underrun: hold position (zero increments), count it
+    const bool held = ramp_.holds(k_);
+    PeriodIncrement inc;
+    bool underrun = false;
+    if (held) {
+      held_periods_.fetch_add(1, std::memory_order_relaxed);
+    } else if (buffer_.try_pop(inc)) {
+      motion_periods_.fetch_add(1, std::memory_order_relaxed);
+      segment_.store(inc.segment, std::memory_order_relaxed);
+      end_seen_ = inc.end_of_program;
+    } else {
+      underrun = true;
+      underruns_.fetch_add(1, std::memory_order_relaxed);
+    }
+    // this period's length: T/K; T while held, and for a dwell, whose time is
+    // a process parameter (a pierce) that the override must not change
+    const bool nominal = held || (!underrun && inc.kind == MotionKind::Dwell);
+    const double length_ns = nominal ? static_cast<double>(period_ns_) : period_ns_ / k_;
+    // woken after the period's end: an overrun
     if (static_cast<double>(late) > length_ns) overruns_.fetch_add(1, std::memory_order_relaxed);
-    // 4–7. the period's work
+    // 4–6. the period's work
     machine_ns += length_ns;
-    cycle(period++, held, length_ns, std::llround(machine_ns));
+    cycle(period++, inc, held, underrun, length_ns, std::llround(machine_ns));
     periods_.store(period, std::memory_order_relaxed);
     if (end_seen_) break;
-    // 8. ramp K toward the target for the next period. relaxed pairs with
+    // 7. ramp K toward the target for the next period. relaxed pairs with
     // set_feed_override()'s relaxed store: only the value is read.
     k_ = ramp_.step(k_, target_k_.load(std::memory_order_relaxed), length_ns * 1e-9);
     k_now_.store(k_, std::memory_order_relaxed);
@@ -113,32 +132,22 @@ void RtKernel::run(const RtOptions& options) noexcept {
   finished_.store(true, std::memory_order_release);
 }
 
-void RtKernel::cycle(std::uint64_t period, bool held, double length_ns,
-                     std::int64_t end_ns) noexcept {
-  // 4. the period's entry
-  PeriodIncrement inc;  // held or underrun: zero increments, laser off
-  bool underrun = false;
-  if (held) {
-    held_periods_.fetch_add(1, std::memory_order_relaxed);
-  } else if (buffer_.try_pop(inc)) {
-    motion_periods_.fetch_add(1, std::memory_order_relaxed);
-    segment_.store(inc.segment, std::memory_order_relaxed);
-    end_seen_ = inc.end_of_program;
-  } else {
-    underrun = true;
-    underruns_.fetch_add(1, std::memory_order_relaxed);
-  }
-  // 5–6. DDA and the pulse sink
+void RtKernel::cycle(std::uint64_t period, const PeriodIncrement& inc, bool held, bool underrun,
+                     double length_ns, std::int64_t end_ns) noexcept {
+  // 4–5. DDA and the pulse sink; M4 power follows the actual speed, K times
+  // the planned one, up to the programmed power
   dda_.run_period(inc.steps, frame_);
-  frame_.power_pct = inc.power_pct;
+  float power = inc.power_pct;
+  if (inc.power_cap_pct > 0.0f) power = std::min(inc.power_cap_pct, power * static_cast<float>(k_));
+  frame_.power_pct = power;
   sink_.emit(frame_);
-  // 7. position, machine time, trace
+  // 6. position, machine time, trace
   for (int i = 0; i < kAxisCount; ++i) {
     const std::int64_t n = frame_.axes[i].count;
     pos_steps_[i] += frame_.axes[i].negative ? -n : n;
   }
   machine_time_ns_.store(end_ns, std::memory_order_relaxed);
-  if (inc.power_pct > 0.0f) {
+  if (power > 0.0f) {
     laser_on_exact_ns_ += length_ns;
     laser_on_ns_.store(std::llround(laser_on_exact_ns_), std::memory_order_relaxed);
   }
@@ -148,7 +157,7 @@ void RtKernel::cycle(std::uint64_t period, bool held, double length_ns,
     rec.t_ns = end_ns;
     rec.pos_steps = pos_steps_;
     rec.feed_override = k_;
-    rec.power_pct = inc.power_pct;
+    rec.power_pct = power;
     rec.line = inc.line;
     rec.segment = inc.segment;
     rec.underrun = underrun;

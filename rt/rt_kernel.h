@@ -5,15 +5,17 @@
 //
 // The cycle, in order:
 //   1. sleep to the absolute deadline (clock_nanosleep, TIMER_ABSTIME)
-//   2. this period's length: T/K, or T while held (K < K_min)
-//   3. record wake-up latency
-//   4. take the period's entry: held → none (zero increments, laser off, not
-//      an underrun); else pop one PeriodIncrement; empty while the job runs →
-//      underrun: hold position (zero increments), count it
-//   5. DDA for all axes → PulseFrame
-//   6. emit to the pulse sink (pulses and laser power)
-//   7. account the commanded position and machine time, publish a trace record
-//   8. ramp K one step toward the operator's target (set_feed_override)
+//   2. record wake-up latency
+//   3. take the period's entry: held (K < K_min) → none (zero increments,
+//      laser off, not an underrun); else pop one PeriodIncrement; empty while
+//      the job runs → underrun: hold position (zero increments), count it.
+//      The period lasts T/K; T while held and for a dwell, whose time is a
+//      process parameter (a pierce) that the override must not change
+//   4. DDA for all axes → PulseFrame
+//   5. emit to the pulse sink (pulses and laser power: M4 power × K — it
+//      follows the actual speed — up to the programmed power)
+//   6. account the commanded position and machine time, publish a trace record
+//   7. ramp K one step toward the operator's target (set_feed_override)
 // Deadlines follow machine time: deadline(i) = t0 + Σ_{j<i} length(j).
 // The RT path never allocates, locks, throws, logs or makes a syscall but the
 // clock sleep (clock_gettime goes through the vDSO).
@@ -134,7 +136,8 @@ class RtKernel {
  private:
   void run(const RtOptions& options) noexcept;
   // Steps 4–7 for a period of length_ns ending at machine time end_ns.
-  void cycle(std::uint64_t period, bool held, double length_ns, std::int64_t end_ns) noexcept;
+  void cycle(std::uint64_t period, const PeriodIncrement& inc, bool held, bool underrun,
+             double length_ns, std::int64_t end_ns) noexcept;
 
   std::uint32_t period_ns_;
   FeedOverrideRamp ramp_;

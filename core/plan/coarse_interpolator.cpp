@@ -76,6 +76,10 @@ SourceStatus CoarseInterpolator::next(PeriodSample& out) {
   out.pose = cur_.seg.kind == MotionKind::Dwell ? cur_.seg.end : cur_.geo.at(s);
   out.speed = v;
   out.power_pct = laser_power(v);
+  out.power_cap_pct = cur_.seg.laser == LaserMode::Dynamic &&
+                              (cur_.seg.kind == MotionKind::Linear || cur_.seg.kind == MotionKind::Arc)
+                          ? static_cast<float>(cur_.seg.power_pct)
+                          : 0.0f;
   out.line = cur_.seg.line;
   out.segment = cur_.index;
   out.kind = cur_.seg.kind;
@@ -83,6 +87,7 @@ SourceStatus CoarseInterpolator::next(PeriodSample& out) {
   if (last) {
     out.pose = cur_.seg.end;
     out.power_pct = 0.0f;
+    out.power_cap_pct = 0.0f;
     done_ = true;
   }
   return SourceStatus::Item;
@@ -110,6 +115,7 @@ PeriodIncrement StepQuantizer::emit(const PeriodSample& s) {
     emitted_[i] += step;
   }
   inc.power_pct = s.power_pct;
+  inc.power_cap_pct = s.power_cap_pct;
   inc.line = s.line;
   inc.segment = s.segment;
   inc.kind = s.kind;

@@ -28,6 +28,7 @@ struct PeriodSample {
   Pose pose = Pose::Zero();   // commanded pose at t_s (mm, deg)
   double speed = 0.0;         // path speed at t_s
   float power_pct = 0.0f;
+  float power_cap_pct = 0.0f;  // M4: the programmed power (see PeriodIncrement)
   std::uint32_t line = 0;
   std::uint32_t segment = 0;
   MotionKind kind = MotionKind::Dwell;

@@ -15,10 +15,14 @@ namespace lcnc {
 
 struct PeriodIncrement {
   std::array<std::int32_t, kAxisCount> steps{};  // increment this period, per axis
-  float power_pct = 0.0f;                        // laser output for this period
+  float power_pct = 0.0f;                        // laser output for this period (at K = 1)
+  // M4 (dynamic power): the programmed power S. The RT kernel scales the
+  // output by the feed override K — power follows the actual speed — up to
+  // this cap. 0 for M3 and laser off: their power does not follow speed.
+  float power_cap_pct = 0.0f;
   std::uint32_t line = 0;                        // source line executing
   std::uint32_t segment = 0;                     // segment index executing (0-based)
-  MotionKind kind = MotionKind::Dwell;
+  MotionKind kind = MotionKind::Linear;  // Dwell entries run at the nominal period whatever the override
   bool end_of_program = false;                   // the last entry of the job
 };
 static_assert(std::is_trivially_copyable_v<PeriodIncrement>);

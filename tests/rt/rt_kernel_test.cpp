@@ -362,6 +362,46 @@ TEST(RtKernel, HoldMidRunDeceleratesHoldsAndResumesFromTheHeldPosition) {
   EXPECT_GT(first_held - down, 10u) << "a ramp, not a step";
 }
 
+// A dwell (a pierce) lasts its programmed time whatever the override, and M4
+// power follows the actual speed: K times the planned power, up to S.
+TEST(RtKernel, OverrideLeavesDwellsAloneAndScalesDynamicPower) {
+  Rig r;
+  const std::size_t n_move = 400, n_dwell = 400;
+  for (std::size_t k = 0; k < n_move + n_dwell; ++k) {
+    PeriodIncrement inc;
+    if (k < n_move) {
+      inc.steps[0] = 10;
+      inc.power_pct = k < n_move / 2 ? 40.0f : 60.0f;  // M4 at 40 / 60 % of S
+      inc.power_cap_pct = 50.0f;                       // S = 50 %
+    } else {
+      inc.kind = MotionKind::Dwell;
+      inc.power_pct = 30.0f;  // M3 percussion: not scaled
+    }
+    inc.end_of_program = k + 1 == n_move + n_dwell;
+    ASSERT_TRUE(r.buffer->try_push(inc));
+  }
+  r.kernel.set_feed_override(1.25);
+  r.kernel.start(RtOptions{false, 0, {}, {}});
+  r.kernel.join();
+  const std::vector<TraceRecord> recs = drain(*r.trace);
+  ASSERT_EQ(recs.size(), n_move + n_dwell);
+  const double T = r.m.period_ns;
+  std::int64_t prev_t = 0;
+  for (std::size_t k = 0; k < recs.size(); ++k) {
+    const double len = static_cast<double>(recs[k].t_ns - prev_t);
+    prev_t = recs[k].t_ns;
+    if (k < n_move) {
+      EXPECT_NEAR(len, T / 1.25, 1.0) << k;
+      // 40 % · 1.25 = 50 %; 60 % · 1.25 = 75 % → capped at S = 50 %
+      EXPECT_FLOAT_EQ(recs[k].power_pct, 50.0f) << k;
+    } else {
+      EXPECT_NEAR(len, T, 1.0) << k;  // the dwell keeps its time
+      EXPECT_FLOAT_EQ(recs[k].power_pct, 30.0f) << k;
+    }
+  }
+  EXPECT_NEAR(static_cast<double>(r.kernel.machine_time_ns()), n_move * T / 1.25 + n_dwell * T, 2.0);
+}
+
 TEST(RtKernel, ConstantOverrideRunsEveryEntryInTOverK) {
   for (const double k : {1.5, 0.5}) {
     Rig r;

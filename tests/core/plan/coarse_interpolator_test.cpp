@@ -190,6 +190,7 @@ TEST(CoarseInterpolator, LaserPowerFollowsModes) {
     }
     if (s.kind == MotionKind::Linear) {
       EXPECT_NEAR(s.power_pct, 80.0 * s.speed / 100.0, 1e-3);
+      EXPECT_EQ(s.power_cap_pct, 80.0f);  // M4: the RT kernel scales by K up to S
       peak = std::max(peak, s.power_pct);
       ramp_seen = ramp_seen || (s.power_pct > 1.0f && s.power_pct < 79.0f);
     }
