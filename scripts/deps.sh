@@ -13,6 +13,7 @@ packages=(
   libdxflib-dev            # DXF input
   libmodbus-dev            # peripherals
   qtbase5-dev libqt5sql5-sqlite  # HMI, process DB
+  ghdl                     # hdl/: VHDL-2008 simulation of the interpolator
 )
 
 missing=()
