@@ -166,12 +166,12 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
     StepQuantizer quant(machine, ropt.start);
     MotionStats stats(machine.period_s(), ropt.start);
     if (reader) {
-      Planner interp(machine, reader_source(**reader));
+      Planner path_planner(machine, reader_source(**reader));
       PeriodSample sample;
       PeriodSample last;
       SourceStatus st;
       bool any = false;
-      while ((st = interp.next(sample)) == SourceStatus::Item) {
+      while ((st = path_planner.next(sample)) == SourceStatus::Item) {
         stats.add(sample.pose);
         last = sample;
         any = true;
