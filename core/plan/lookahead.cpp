@@ -93,9 +93,9 @@ bool Lookahead::fill() {
     if (in.seg.kind == MotionKind::Dwell) {
       n.p.profile = Trapezoid::hold(in.seg.dwell_s);
     } else {
-      const SegmentLimits first = segment_limits(in.seg, n.p.geo, machine_);
-      n.p.programmed_speed = target_speed(in.seg, n.p.geo, first);
-      n.lim = segment_limits(in.seg, n.p.geo, machine_, n.p.programmed_speed);
+      // one evaluation: the tangential limits are functions of the speed
+      n.lim = segment_limits(in.seg, n.p.geo, machine_);
+      n.p.programmed_speed = target_speed(in.seg, n.p.geo, n.lim);
       n.v_max = n.p.programmed_speed;
     }
     if (!window_.empty()) {

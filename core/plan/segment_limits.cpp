@@ -39,7 +39,7 @@ double box_bound(double amax, double rho, double sign, double t_lo, double t_hi,
 }  // namespace
 
 SegmentLimits segment_limits(const Segment& seg, const SegmentGeometry& geo,
-                             const MachineConfig& machine, double v_cap) {
+                             const MachineConfig& machine) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   SegmentLimits lim{kInf, kInf};
   const double L = geo.length();
@@ -88,7 +88,7 @@ SegmentLimits segment_limits(const Segment& seg, const SegmentGeometry& geo,
   const double k = machine.max_feed_override;
   lim.override_k = k;
   lim.v_max /= k;
-  lim.a_max = lim.accel_at(std::min(lim.v_max, v_cap));
+  lim.a_max = lim.accel_at(lim.v_max);
   return lim;
 }
 

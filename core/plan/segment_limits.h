@@ -36,7 +36,7 @@ namespace lcnc {
 
 struct SegmentLimits {
   double v_max = 0.0;  // path units/s: the highest speed the axes allow
-  double a_max = 0.0;  // path units/s²: tangential acceleration at v_cap (or v_max)
+  double a_max = 0.0;  // path units/s²: tangential acceleration at v_max
 
   // Tangential acceleration (speeding up) and deceleration (slowing down,
   // > 0) allowed while the speed stays ≤ v (planned units): on an arc, slower
@@ -53,11 +53,9 @@ struct SegmentLimits {
   double override_k = 1.0;
 };
 
-// Limits of the segment when its speed never exceeds v_cap (the planned
-// speed): a lower cap leaves more of an arc's acceleration for the tangent.
+// Limits of the segment (accel_at/decel_at give its acceleration at a speed).
 [[nodiscard]] SegmentLimits segment_limits(const Segment& seg, const SegmentGeometry& geo,
-                                           const MachineConfig& machine,
-                                           double v_cap = 1e300);
+                                           const MachineConfig& machine);
 
 // The speed to plan for: rapid → v_max; feed → min(F, v_max); G93 → L/duration.
 [[nodiscard]] double target_speed(const Segment& seg, const SegmentGeometry& geo,
