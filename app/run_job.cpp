@@ -6,12 +6,16 @@
 #include <memory>
 #include <thread>
 
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
 #include "drivers/sim_machine.h"
 #include "gcode/program_reader.h"
 #include "path/deviation_meter.h"
 #include "plan/motion_stats.h"
 #include "plan/planner.h"
 #include "rt/rt_kernel.h"
+#include "rt/rt_log.h"
 
 namespace lcnc::app {
 namespace {
@@ -66,6 +70,33 @@ class TraceWriter {
  private:
   std::FILE* file_ = nullptr;
 };
+
+// The RT thread's log records, written out here on a normal thread (the RT
+// path never logs itself): to stderr, so stdout stays the report.
+void drain_rt_log(rt::RtLogRing& ring, double period_s) {
+  static const std::shared_ptr<spdlog::logger> logger = [] {
+    auto l = spdlog::get("rt");
+    return l ? l : spdlog::stderr_color_mt("rt");
+  }();
+  rt::RtLogRecord r;
+  while (ring.try_pop(r)) {
+    const double t = static_cast<double>(r.period) * period_s;
+    switch (r.code) {
+      case rt::RtLogCode::UnderrunBegin:
+      case rt::RtLogCode::HoldBegin:
+      case rt::RtLogCode::HoldEnd:
+        logger->warn("period {} (t ≈ {:.4f} s): {}", r.period, t, rt::rt_log_text(r.code));
+        break;
+      case rt::RtLogCode::UnderrunEnd:
+        logger->warn("period {}: {} after {} periods", r.period, rt::rt_log_text(r.code), r.value);
+        break;
+      case rt::RtLogCode::LateWakeup:
+        logger->warn("period {}: {} by {:.3f} ms", r.period, rt::rt_log_text(r.code),
+                     static_cast<double>(r.value) * 1e-6);
+        break;
+    }
+  }
+}
 
 }  // namespace
 
@@ -144,7 +175,9 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   auto buffer = std::make_unique<rt::PositionBuffer>();
   auto trace = std::make_unique<rt::TraceRing>();
   drivers::SimMachine sim(start_steps);
+  auto rt_log = std::make_unique<rt::RtLogRing>();
   rt::RtKernel kernel(machine, *buffer, sim, trace.get(), start_steps);
+  kernel.set_log(rt_log.get());
 
   // Planner thread: plan, coarse-interpolate, quantize, keep the buffer full.
   std::atomic<bool> planner_done{false};
@@ -228,6 +261,7 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   rt::TraceRecord rec;
   for (;;) {
     bool got = false;
+    drain_rt_log(*rt_log, machine.period_s());
     while (trace->try_pop(rec)) {
       got = true;
       Pose p = Pose::Zero();
@@ -246,6 +280,7 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
     if (!got) std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
   kernel.join();
+  drain_rt_log(*rt_log, machine.period_s());
   abort = true;
   planner.join();
   if (progress) progress(1.0);

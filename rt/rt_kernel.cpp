@@ -116,6 +116,20 @@ void RtKernel::run(const RtOptions& options) noexcept {
     const double length_ns = nominal ? static_cast<double>(period_ns_) : period_ns_ / k_;
     // woken after the period's end: an overrun
     if (static_cast<double>(late) > length_ns) overruns_.fetch_add(1, std::memory_order_relaxed);
+    // a stall makes the periods after it late too, catching up: log the
+    // streak once, where it starts
+    if (late > kLateLogNs && !late_streak_) log(period, RtLogCode::LateWakeup, late);
+    late_streak_ = static_cast<double>(late) > length_ns;
+    // state changes worth a log line
+    if (underrun && underrun_since_ == 0) {
+      underrun_since_ = period + 1;
+      log(period, RtLogCode::UnderrunBegin, static_cast<std::int64_t>(period));
+    } else if (!underrun && !held && underrun_since_ != 0) {
+      log(period, RtLogCode::UnderrunEnd, static_cast<std::int64_t>(period + 1 - underrun_since_));
+      underrun_since_ = 0;
+    }
+    if (held != was_held_) log(period, held ? RtLogCode::HoldBegin : RtLogCode::HoldEnd, 0);
+    was_held_ = held;
     // 4–6. the period's work
     machine_ns += length_ns;
     cycle(period++, inc, held, underrun, length_ns, std::llround(machine_ns));
@@ -130,6 +144,12 @@ void RtKernel::run(const RtOptions& options) noexcept {
   // release pairs with finished()'s acquire: counters and positions written
   // above are visible to a thread that sees finished.
   finished_.store(true, std::memory_order_release);
+}
+
+void RtKernel::log(std::uint64_t period, RtLogCode code, std::int64_t value) noexcept {
+  if (log_ == nullptr) return;
+  if (!log_->try_push(RtLogRecord{period, code, value}))
+    log_drops_.fetch_add(1, std::memory_order_relaxed);
 }
 
 void RtKernel::cycle(std::uint64_t period, const PeriodIncrement& inc, bool held, bool underrun,

@@ -35,6 +35,7 @@
 #include "rt/dda.h"
 #include "rt/feed_override.h"
 #include "rt/latency_histogram.h"
+#include "rt/rt_log.h"
 #include "rt/spsc_ring.h"
 
 namespace lcnc::rt {
@@ -77,6 +78,13 @@ class RtKernel {
   ~RtKernel();
   RtKernel(const RtKernel&) = delete;
   RtKernel& operator=(const RtKernel&) = delete;
+
+  // Where the RT thread logs (state changes, underruns, late wake-ups); set
+  // before start(). Null: no log.
+  void set_log(RtLogRing* log) noexcept { log_ = log; }
+  [[nodiscard]] std::uint64_t log_drops() const noexcept {
+    return log_drops_.load(std::memory_order_relaxed);
+  }
 
   // Starts the RT thread. Where SCHED_FIFO or mlockall is not permitted it
   // runs anyway; warning() then says so.
@@ -135,6 +143,7 @@ class RtKernel {
 
  private:
   void run(const RtOptions& options) noexcept;
+  void log(std::uint64_t period, RtLogCode code, std::int64_t value) noexcept;
   // Steps 4–7 for a period of length_ns ending at machine time end_ns.
   void cycle(std::uint64_t period, const PeriodIncrement& inc, bool held, bool underrun,
              double length_ns, std::int64_t end_ns) noexcept;
@@ -144,6 +153,11 @@ class RtKernel {
   PositionBuffer& buffer_;
   PulseSink& sink_;
   TraceRing* trace_;
+  RtLogRing* log_ = nullptr;
+  std::uint64_t underrun_since_ = 0;  // first period of the running underrun, 0 if none
+  bool was_held_ = false;
+  bool late_streak_ = false;  // the last period woke after its end
+  std::atomic<std::uint64_t> log_drops_{0};
   Dda dda_;
   PulseFrame frame_{};
   LatencyHistogram latency_{};

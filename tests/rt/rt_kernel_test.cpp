@@ -79,8 +79,17 @@ struct Rig {
   std::unique_ptr<TraceRing> trace = std::make_unique<TraceRing>();
   std::array<std::int64_t, kAxisCount> start{};
   drivers::SimMachine sim{start};
+  std::unique_ptr<RtLogRing> log = std::make_unique<RtLogRing>();
   RtKernel kernel{m, *buffer, sim, trace.get(), start};
+  Rig() { kernel.set_log(log.get()); }  // every test runs with the RT log on
 };
+
+std::vector<RtLogRecord> drain_log(RtLogRing& ring) {
+  std::vector<RtLogRecord> out;
+  RtLogRecord r;
+  while (ring.try_pop(r)) out.push_back(r);
+  return out;
+}
 
 // Fills the buffer with random increments; returns their per-axis sum.
 std::array<std::int64_t, kAxisCount> fill(PositionBuffer& buf, std::size_t n, std::uint32_t seed) {
@@ -191,6 +200,51 @@ TEST(RtKernel, EmptyBufferWhileRunningIsAnUnderrunThatHoldsPosition) {
     }
     prev = rec.pos_steps[0];
   }
+}
+
+TEST(RtKernel, UnderrunsAndHoldsAreLoggedThroughTheRing) {
+  Rig r;
+  PeriodIncrement inc;
+  inc.steps[0] = 3;
+  ASSERT_TRUE(r.buffer->try_push(inc));
+  r.kernel.start(RtOptions{false, 0, {}, {}});
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));  // runs dry
+  inc.end_of_program = true;
+  while (!r.buffer->try_push(inc)) {
+  }
+  r.kernel.join();
+  const auto log = drain_log(*r.log);
+  std::size_t begins = 0, ends = 0;
+  std::int64_t lasted = 0;
+  for (const RtLogRecord& rec : log) {
+    if (rec.code == RtLogCode::UnderrunBegin) ++begins;
+    if (rec.code == RtLogCode::UnderrunEnd) {
+      ++ends;
+      lasted += rec.value;
+    }
+  }
+  EXPECT_EQ(begins, 1u);
+  EXPECT_EQ(ends, 1u);
+  EXPECT_EQ(static_cast<std::uint64_t>(lasted), r.kernel.underruns());  // the whole streak
+  EXPECT_EQ(r.kernel.log_drops(), 0u);
+  EXPECT_STREQ(rt_log_text(RtLogCode::UnderrunBegin), "position buffer underrun: holding position");
+}
+
+TEST(RtKernel, FeedHoldIsLoggedWhereItBeginsAndEnds) {
+  Rig r;
+  fill(*r.buffer, 500, 9);
+  r.kernel.set_feed_override(0.0);  // held from the start
+  r.kernel.start(RtOptions{false, 0, {}, {}});
+  std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  r.kernel.set_feed_override(1.0);
+  r.kernel.join();
+  const auto log = drain_log(*r.log);
+  ASSERT_GE(log.size(), 2u);
+  EXPECT_EQ(log[0].code, RtLogCode::HoldBegin);
+  EXPECT_EQ(log[0].period, 0u);
+  bool ended = false;
+  for (const RtLogRecord& rec : log) ended = ended || rec.code == RtLogCode::HoldEnd;
+  EXPECT_TRUE(ended);
 }
 
 TEST(RtKernel, StopEndsTheLoopWithinAFewPeriods) {

@@ -1,0 +1,44 @@
+// Logging from the RT thread (DESIGN §2): the RT path may not log, so it
+// pushes fixed records into a lock-free ring; a normal thread drains them
+// into the log (spdlog, in app/). A full ring drops the record and counts it:
+// the RT thread never waits.
+#pragma once
+
+#include <cstdint>
+
+#include "rt/spsc_ring.h"
+
+namespace lcnc::rt {
+
+enum class RtLogCode : std::uint16_t {
+  UnderrunBegin,  // value: periods so far
+  UnderrunEnd,    // value: periods the underrun lasted
+  HoldBegin,      // feed hold reached (K below K_min)
+  HoldEnd,        // motion resumed
+  LateWakeup,     // value: ns late (beyond kLateLogNs; once per streak of late periods)
+};
+
+// Wake-ups later than this are logged one by one; all are counted.
+inline constexpr std::int64_t kLateLogNs = 1'000'000;
+
+struct RtLogRecord {
+  std::uint64_t period = 0;
+  RtLogCode code = RtLogCode::UnderrunBegin;
+  std::int64_t value = 0;
+};
+
+using RtLogRing = SpscRing<RtLogRecord, 1024>;
+
+// Fixed text of a code, for the draining thread.
+[[nodiscard]] constexpr const char* rt_log_text(RtLogCode code) noexcept {
+  switch (code) {
+    case RtLogCode::UnderrunBegin: return "position buffer underrun: holding position";
+    case RtLogCode::UnderrunEnd: return "position buffer refilled: motion continues";
+    case RtLogCode::HoldBegin: return "feed hold: stopped";
+    case RtLogCode::HoldEnd: return "feed hold released: motion continues";
+    case RtLogCode::LateWakeup: return "RT thread woke late";
+  }
+  return "unknown RT event";
+}
+
+}  // namespace lcnc::rt
