@@ -16,6 +16,13 @@ PlaneAxes plane_axes(Plane plane) noexcept {
   return {0, 1, 2};
 }
 
+double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) noexcept {
+  const Vec3 ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double f = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (a + ab * f - p).norm();
+}
+
 SegmentGeometry::SegmentGeometry(const Segment& seg) : start_(seg.start), end_(seg.end) {
   const Pose d = end_ - start_;
   if (seg.kind != MotionKind::Arc) {
@@ -101,12 +108,7 @@ Pose SegmentGeometry::curvature(double s) const {
 double SegmentGeometry::distance_xyz(const Vec3& p) const {
   const Vec3 a = start_.head<3>();
   const Vec3 b = end_.head<3>();
-  if (!arc_) {
-    const Vec3 ab = b - a;
-    const double len2 = ab.squaredNorm();
-    const double f = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-    return (a + ab * f - p).norm();
-  }
+  if (!arc_) return distance_to_segment(p, a, b);
   // Candidate parameters: the point's polar angle in every turn of the sweep,
   // plus both ends; the nearest is the closest point for any helix whose
   // pitch is small against its radius (all real arcs).

@@ -22,6 +22,9 @@ struct PlaneAxes {
 };
 [[nodiscard]] PlaneAxes plane_axes(Plane plane) noexcept;
 
+// Distance from p to the straight segment a–b (a point when a == b).
+[[nodiscard]] double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) noexcept;
+
 class SegmentGeometry {
  public:
   explicit SegmentGeometry(const Segment& seg);

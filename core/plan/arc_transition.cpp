@@ -7,6 +7,17 @@
 
 namespace lcnc {
 
+Segment blend_arc(const Segment& a, const Segment& b, const Pose& q0, const Pose& q2) {
+  Segment arc = a;
+  arc.kind = MotionKind::Arc;
+  arc.clockwise = false;
+  arc.extra_turns = 0;
+  arc.start = q0;
+  arc.end = q2;
+  arc.line = b.line;
+  return arc;
+}
+
 ArcTransition arc_transition(const Segment& a, const Segment& b, double tolerance_mm,
                              double max_trim_a, double max_trim_b) {
   ArcTransition t;
@@ -33,16 +44,10 @@ ArcTransition arc_transition(const Segment& a, const Segment& b, double toleranc
   t.q0.head<3>() = p - l * d1;  // exact on the line, whatever the rounding above
   t.q2.head<3>() = p + l * d2;
 
-  t.arc = a;
-  t.arc.kind = MotionKind::Arc;
+  t.arc = blend_arc(a, b, t.q0, t.q2);
   t.arc.plane = Plane::Free;
   t.arc.normal = cross.normalized();
   t.arc.center = p + (d2 - d1).normalized() * (r / std::cos(half));
-  t.arc.clockwise = false;
-  t.arc.extra_turns = 0;
-  t.arc.start = t.q0;
-  t.arc.end = t.q2;
-  t.arc.line = b.line;
   return t;
 }
 

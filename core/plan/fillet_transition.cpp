@@ -179,17 +179,12 @@ ArcTransition fillet_transition(const Segment& a, const Segment& b, double toler
   t.trim = std::max(f.trim_a, f.trim_b);
   t.q0 = pose_at(a, f.ta);
   t.q2 = pose_at(b, f.tb);
-  t.arc = a;
-  t.arc.kind = MotionKind::Arc;
+  t.arc = blend_arc(a, b, t.q0, t.q2);
   t.arc.plane = arc.plane;
   t.arc.center = b.start.head<3>();
   t.arc.center[pa.first] = f.center.x();
   t.arc.center[pa.second] = f.center.y();
   t.arc.clockwise = side < 0.0;
-  t.arc.extra_turns = 0;
-  t.arc.start = t.q0;
-  t.arc.end = t.q2;
-  t.arc.line = b.line;
   return t;
 }
 

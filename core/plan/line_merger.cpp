@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "path/segment_geometry.h"
 #include "plan/tolerances.h"
 
 namespace lcnc {
@@ -11,13 +12,6 @@ bool mergeable(const Segment& s) {
   return s.kind == MotionKind::Linear && s.path_mode == PathMode::Blend &&
          merge_tolerance(s) > 0.0 && (s.end - s.start).tail<3>().norm() == 0.0 &&
          (s.end.head<3>() - s.start.head<3>()).norm() > plan::kMinSegmentLength;
-}
-
-double distance_to_line(const Vec3& p, const Vec3& a, const Vec3& b) {
-  const Vec3 ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double f = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (a + ab * f - p).norm();
 }
 
 }  // namespace
@@ -35,9 +29,9 @@ bool LineMerger::extends_run(const Segment& next) const {
   const double q = std::min(merge_tolerance(a), merge_tolerance(next));
   const Vec3 s0 = a.start.head<3>(), s1 = next.end.head<3>();
   if ((a.end.head<3>() - s0).dot(s1 - next.start.head<3>()) <= 0.0) return false;  // reversal
-  if (distance_to_line(next.start.head<3>(), s0, s1) > q) return false;
+  if (distance_to_segment(next.start.head<3>(), s0, s1) > q) return false;
   for (std::size_t k = 0; k < inner_count_; ++k)
-    if (distance_to_line(inner_[k], s0, s1) > q) return false;
+    if (distance_to_segment(inner_[k], s0, s1) > q) return false;
   return true;
 }
 
