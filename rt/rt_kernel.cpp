@@ -134,6 +134,9 @@ void RtKernel::run(const RtOptions& options) noexcept {
     machine_ns += length_ns;
     cycle(period++, inc, held, underrun, length_ns, std::llround(machine_ns));
     periods_.store(period, std::memory_order_relaxed);
+    timespec done{};
+    clock_gettime(CLOCK_MONOTONIC, &done);
+    compute_.add(to_ns(done) - to_ns(now));
     if (end_seen_) break;
     // 7. ramp K toward the target for the next period. relaxed pairs with
     // set_feed_override()'s relaxed store: only the value is read.

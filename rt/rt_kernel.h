@@ -139,6 +139,9 @@ class RtKernel {
 
   // Valid after join().
   [[nodiscard]] const LatencyHistogram& latency() const noexcept { return latency_; }
+  // Compute time of each period's work: from the wake-up to the end of the
+  // cycle (pop, DDA for every axis, emit, publish), in 10 ns buckets.
+  [[nodiscard]] const LatencyHistogram& compute_time() const noexcept { return compute_; }
   [[nodiscard]] std::int64_t position_steps(int axis) const noexcept { return pos_steps_[axis]; }
 
  private:
@@ -161,6 +164,7 @@ class RtKernel {
   Dda dda_;
   PulseFrame frame_{};
   LatencyHistogram latency_{};
+  LatencyHistogram compute_{10};
   std::array<std::int64_t, kAxisCount> pos_steps_{};
   bool end_seen_ = false;
   double k_ = 1.0;                  // RT thread's current K (from the target in start())
