@@ -4,6 +4,7 @@
 // leave a default silently in force.
 #include "machine/machine_config.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -12,6 +13,31 @@
 #include <toml++/toml.h>
 
 namespace lcnc {
+
+double PitchTable::at(double x) const noexcept {
+  if (values.empty()) return 0.0;
+  if (!(x > start) || values.size() < 2) return values.front();
+  if (x >= end()) return values.back();
+  // start < x < end, so 0 < u < n − 1; the clamp only guards rounding.
+  const double u = (x - start) / interval;
+  const std::size_t k = std::min(static_cast<std::size_t>(u), values.size() - 2);
+  const double f = u - static_cast<double>(k);
+  return values[k] + (values[k + 1] - values[k]) * f;
+}
+
+double PitchTable::max_slope() const noexcept {
+  double slope = 0.0;
+  for (std::size_t k = 0; k + 1 < values.size(); ++k)
+    slope = std::max(slope, std::abs(values[k + 1] - values[k]) / interval);
+  return slope;
+}
+
+PitchTable PitchTable::scaled(double k) const {
+  PitchTable t{start * k, interval * k, values};
+  for (double& v : t.values) v *= k;
+  return t;
+}
+
 namespace {
 
 struct Loader {
@@ -84,11 +110,47 @@ struct Loader {
                 "'" + std::string(prefix) + std::string(key) + "' must be a string");
   }
 
-  const toml::table* subtable(const toml::table& t, std::string_view key) {
+  // Reads an optional number: `out` stays empty when the key is absent.
+  bool optional_number(const toml::table& t, std::string_view prefix, std::string_view key,
+                       std::optional<double>& out) {
+    if (t.get(key) == nullptr) return true;
+    double v = 0.0;
+    if (!number(t, prefix, key, v, false)) return false;
+    out = v;
+    return true;
+  }
+
+  // Reads an array of numbers (integers or floats).
+  bool numbers(const toml::table& t, std::string_view prefix, std::string_view key,
+               std::vector<double>& out) {
+    const toml::node* n = t.get(key);
+    if (n == nullptr)
+      return fail(ErrorCode::ConfigMissingKey, t.source(),
+                  "missing key '" + std::string(prefix) + std::string(key) + "'");
+    const toml::array* arr = n->as_array();
+    if (arr == nullptr)
+      return fail(ErrorCode::ConfigBadValue, n->source(),
+                  "'" + std::string(prefix) + std::string(key) + "' must be an array of numbers");
+    out.clear();
+    for (std::size_t i = 0; i < arr->size(); ++i) {
+      const toml::node& e = *arr->get(i);
+      auto v = e.value<double>();
+      if (!v || !(e.is_floating_point() || e.is_integer()))
+        return fail(ErrorCode::ConfigBadValue, e.source(),
+                    "'" + std::string(prefix) + std::string(key) + "[" + std::to_string(i) +
+                        "]' must be a number");
+      out.push_back(*v);
+    }
+    return true;
+  }
+
+  const toml::table* subtable(const toml::table& t, std::string_view key,
+                              std::string_view prefix = {}) {
     const toml::node* n = t.get(key);
     if (n == nullptr) return nullptr;
     if (!n->is_table()) {
-      fail(ErrorCode::ConfigBadValue, n->source(), "'" + std::string(key) + "' must be a table");
+      fail(ErrorCode::ConfigBadValue, n->source(),
+           "'" + std::string(prefix) + std::string(key) + "' must be a table");
       return nullptr;
     }
     return n->as_table();
@@ -101,10 +163,91 @@ std::string fmt(double v) {
   return s.str();
 }
 
+// [axes.X.pitch_compensation]: start, interval and values, all required.
+bool load_pitch_table(Loader& L, const toml::table& axis_table, const std::string& axis_prefix,
+                      PitchTable& table) {
+  const toml::table* t = L.subtable(axis_table, "pitch_compensation", axis_prefix);
+  if (t == nullptr) return !L.failed;
+  const std::string p = axis_prefix + "pitch_compensation.";
+  if (!(L.only_keys(*t, p, {"start", "interval", "values"}) &&
+        L.number(*t, p, "start", table.start, true) &&
+        L.number(*t, p, "interval", table.interval, true) &&
+        L.numbers(*t, p, "values", table.values)))
+    return false;
+  // Caught here, not only in validate(): `values = []` would otherwise read
+  // as "no table" and silently switch the compensation off.
+  if (table.values.size() < 2)
+    return L.fail(ErrorCode::ConfigBadValue, t->get("values")->source(),
+                  p + "values has " + std::to_string(table.values.size()) +
+                      " value(s); allowed 2 or more (one per interval end)");
+  return true;
+}
+
+// Homing and pitch-compensation keys of one axis; the axis' own ranges
+// (min < max, max_velocity > 0) are already checked.
+Status validate_home_and_pitch(const MachineConfig& m, const AxisConfig& a,
+                               const std::string& file) {
+  auto bad = [&](std::string msg) {
+    return Status(make_error(ErrorCode::ConfigBadValue, std::move(msg), file));
+  };
+  const std::string p = std::string("axes.") + letter(a.axis) + ".";
+  const std::string unit = is_rotary(a.axis) ? "deg" : "mm";
+  const double home = a.home_position_or_default();
+  if (!(std::isfinite(home) && home >= a.min && home <= a.max))
+    return bad(p + "home_position = " + fmt(home) + "; allowed min … max = " + fmt(a.min) +
+               " … " + fmt(a.max) + " " + unit);
+  const double search = a.home_search_velocity_or_default();
+  if (!(std::isfinite(search) && search != 0.0 && std::abs(search) <= a.max_velocity))
+    return bad(p + "home_search_velocity = " + fmt(search) + "; allowed " +
+               fmt(-a.max_velocity) + " … " + fmt(a.max_velocity) + " " + unit +
+               "/s (±max_velocity), not 0: the sign is the direction toward the home switch");
+  const double latch = a.home_latch_velocity_or_default();
+  if (!(std::isfinite(latch) && latch > 0.0 && latch <= std::abs(search)))
+    return bad(p + "home_latch_velocity = " + fmt(latch) + "; allowed > 0 … " +
+               fmt(std::abs(search)) + " " + unit + "/s (|home_search_velocity|)");
+
+  const PitchTable& t = a.pitch_compensation;
+  if (t.empty()) return {};
+  const std::string pp = p + "pitch_compensation.";
+  if (t.values.size() < 2)
+    return bad(pp + "values has " + std::to_string(t.values.size()) +
+               " value(s); allowed 2 or more (one per interval end)");
+  if (!(std::isfinite(t.interval) && t.interval > 0.0))
+    return bad(pp + "interval = " + fmt(t.interval) + "; allowed > 0 " + unit);
+  for (std::size_t k = 0; k < t.values.size(); ++k) {
+    if (!(std::isfinite(t.values[k]) && std::abs(t.values[k]) <= kMaxPitchCorrection))
+      return bad(pp + "values[" + std::to_string(k) + "] = " + fmt(t.values[k]) + "; allowed " +
+                 fmt(-kMaxPitchCorrection) + " … " + fmt(kMaxPitchCorrection) + " " + unit);
+  }
+  auto slack = [](double limit) {
+    return kPitchTableEndTolerance * std::max(1.0, std::abs(limit));
+  };
+  if (!(std::isfinite(t.start) && t.start >= a.min - slack(a.min) &&
+        t.end() <= a.max + slack(a.max)))
+    return bad(pp + "start … start + (n−1)·interval = " + fmt(t.start) + " … " + fmt(t.end()) +
+               " " + unit + "; the table must lie within min … max = " + fmt(a.min) + " … " +
+               fmt(a.max) + " " + unit);
+  // The RT kernel outputs commanded + correction(commanded): at max_velocity
+  // a period moves pulses·(1 + slope) steps, +1 for the rounding of the
+  // correction to whole steps. That must still fit the DDA preset.
+  const double slope = t.max_slope();
+  if (slope > 0.0) {
+    const double pulses = a.max_velocity * a.steps_per_unit * m.period_s() * (1.0 + slope) + 1.0;
+    if (pulses > m.dda.max_pulses())
+      return bad(pp + "values: slope " + fmt(slope) + " at max_velocity = " +
+                 fmt(a.max_velocity) + " " + unit + "/s needs " + fmt(pulses) +
+                 " pulses per period (with 1 for rounding); the DDA preset gives at most " +
+                 std::to_string(m.dda.max_pulses()) +
+                 " (flatten the table, raise dda.magnitude_bits or lower max_velocity)");
+  }
+  return {};
+}
+
 bool load_axis(Loader& L, const toml::table& t, Axis axis, AxisConfig& a) {
   const std::string p = std::string("axes.") + letter(axis) + ".";
   if (!L.only_keys(t, p, {"type", "min", "max", "max_velocity", "max_acceleration",
-                          "steps_per_unit", "wrap"}))
+                          "steps_per_unit", "wrap", "home_position", "home_search_velocity",
+                          "home_latch_velocity", "pitch_compensation"}))
     return false;
   a.present = true;
   a.axis = axis;
@@ -120,7 +263,11 @@ bool load_axis(Loader& L, const toml::table& t, Axis axis, AxisConfig& a) {
          L.number(t, p, "max_velocity", a.max_velocity, true) &&
          L.number(t, p, "max_acceleration", a.max_acceleration, true) &&
          L.number(t, p, "steps_per_unit", a.steps_per_unit, false) &&
-         L.boolean(t, p, "wrap", a.wrap);
+         L.boolean(t, p, "wrap", a.wrap) &&
+         L.optional_number(t, p, "home_position", a.home_position) &&
+         L.optional_number(t, p, "home_search_velocity", a.home_search_velocity) &&
+         L.optional_number(t, p, "home_latch_velocity", a.home_latch_velocity) &&
+         load_pitch_table(L, t, p, a.pitch_compensation);
 }
 
 }  // namespace
@@ -178,6 +325,7 @@ Status validate(const MachineConfig& m, const std::string& file) {
                  fmt(pulses) + " pulses per " + fmt(m.period_ns / 1000.0) +
                  " µs period; the DDA preset gives at most " + std::to_string(m.dda.max_pulses()) +
                  " (raise dda.magnitude_bits or lower max_velocity)");
+    if (Status s = validate_home_and_pitch(m, a, file); !s) return s;
   }
   if (!any) return bad("no axes configured; expected at least one [axes.X] … [axes.C] table");
   return {};

@@ -4,13 +4,43 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "common/result.h"
 #include "geom/pose.h"
 
 namespace lcnc {
+
+// A leadscrew pitch-error table: values[k] is the correction added to the
+// commanded position at start + k·interval. Between points the correction is
+// linear, outside the table the end values hold:
+//   at(x) = values[0]                           for x ≤ start
+//         = values[k] + (values[k+1] − values[k])·(x − x_k)/interval
+//                                              for x_k ≤ x ≤ x_k+1, x_k = start + k·interval
+//         = values[n−1]                         for x ≥ start + (n−1)·interval
+// Units are the axis' (mm or deg) in the config; rt/pitch_compensation.h and
+// the simulated machine use the same table scaled to steps. Empty = none.
+struct PitchTable {
+  double start = 0.0;          // position of values[0]
+  double interval = 0.0;       // distance between values, > 0
+  std::vector<double> values;  // correction at start + k·interval
+
+  [[nodiscard]] bool empty() const noexcept { return values.empty(); }
+  [[nodiscard]] double end() const noexcept {
+    return values.empty() ? start : start + interval * static_cast<double>(values.size() - 1);
+  }
+  // at(x) above. noexcept and allocation-free: safe on the RT path.
+  [[nodiscard]] double at(double x) const noexcept;
+  // Largest |Δvalue / Δposition| over the table (dimensionless; 0 when empty).
+  [[nodiscard]] double max_slope() const noexcept;
+  // The same table with positions and values multiplied by k (e.g. by
+  // steps_per_unit to work in steps). k > 0.
+  [[nodiscard]] PitchTable scaled(double k) const;
+};
 
 struct AxisConfig {
   bool present = false;
@@ -21,7 +51,38 @@ struct AxisConfig {
   double max_acceleration = 0.0;  // mm/s² or deg/s²
   double steps_per_unit = 1000.0; // steps per mm or per degree
   bool wrap = false;              // rotary, continuous: position kept in [min, max)
+
+  // Homing. Each is optional in the TOML; when not given the default is
+  // derived from the other keys by the *_or_default() functions below, so a
+  // config built in code, or one whose max_velocity is changed after loading
+  // (--vmax), keeps consistent defaults.
+  std::optional<double> home_position;         // machine coordinate of the home switch's trip point
+  std::optional<double> home_search_velocity;  // mm/s or deg/s; sign = direction toward the switch
+  std::optional<double> home_latch_velocity;   // > 0: the slow second approach to the switch
+  // Leadscrew pitch-error compensation, mm or deg (empty = none).
+  PitchTable pitch_compensation{};
+
+  // Default min: the switch sits at the low end of travel.
+  [[nodiscard]] double home_position_or_default() const noexcept {
+    return home_position.value_or(min);
+  }
+  // Default −0.1·max_velocity: toward min at a tenth of full speed.
+  [[nodiscard]] double home_search_velocity_or_default() const noexcept {
+    return home_search_velocity.value_or(-0.1 * max_velocity);
+  }
+  // Default |search| / 10.
+  [[nodiscard]] double home_latch_velocity_or_default() const noexcept {
+    const double search = home_search_velocity_or_default();
+    return home_latch_velocity.value_or((search < 0.0 ? -search : search) / 10.0);
+  }
 };
+
+// Largest |pitch correction| accepted, mm or deg: a real leadscrew's error is
+// tens of µm; anything near a millimetre is a typo or a wrong unit.
+inline constexpr double kMaxPitchCorrection = 1.0;
+// Slack for the table's end landing on max through rounding of
+// start + (n−1)·interval, relative to max(1, |limit|).
+inline constexpr double kPitchTableEndTolerance = 1e-9;
 
 // DDA fine interpolation preset (DESIGN §5.4). The period is capacity ticks of
 // the DDA clock, so clock_hz = capacity / period.

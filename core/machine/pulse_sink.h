@@ -1,6 +1,7 @@
 // Where the DDA's pulses go (DESIGN §2): the simulated machine, the GHDL
-// co-simulation, or a hardware driver. Called from the RT thread once per
-// period, so implementations are noexcept and must not allocate, lock or block.
+// co-simulation, or a hardware driver — and where the machine's switch inputs
+// come from. Called from the RT thread once per period, so implementations are
+// noexcept and must not allocate, lock or block.
 #pragma once
 
 #include <array>
@@ -22,10 +23,22 @@ struct PulseFrame {
   float power_pct = 0.0f;              // laser output during the period
 };
 
+// The machine's switch inputs as sampled once per period; true = active
+// (tripped), whatever the wiring's polarity. Indexed by index(Axis).
+struct MachineInputs {
+  std::array<bool, kAxisCount> home{};       // home switch
+  std::array<bool, kAxisCount> limit_min{};  // hard limit at the low end of travel
+  std::array<bool, kAxisCount> limit_max{};  // hard limit at the high end of travel
+  bool estop = false;                        // emergency stop pressed
+};
+
 class PulseSink {
  public:
   virtual ~PulseSink() = default;
   virtual void emit(const PulseFrame& frame) noexcept = 0;
+  // The inputs now. Called from the RT thread once per period (noexcept, no
+  // allocation, no lock). Default: a sink without inputs (nothing active).
+  [[nodiscard]] virtual MachineInputs read_inputs() noexcept { return {}; }
 };
 
 }  // namespace lcnc

@@ -175,3 +175,240 @@ TEST(MachineConfig, MaxFeedOverrideIsReadAndBounded) {
 
 }  // namespace
 }  // namespace lcnc
+
+// Homing keys and the pitch-compensation table (optional per axis).
+namespace lcnc {
+namespace {
+
+// kMinimal with `extra` appended to its [axes.X] table (the last one).
+std::string with_x(const std::string& extra) { return std::string(kMinimal) + extra; }
+
+TEST(MachineConfigHoming, DefaultsFollowTheAxis) {
+  auto m = parse_machine_config(kMinimal, "m.toml");
+  ASSERT_TRUE(m) << m.error().to_string();
+  const AxisConfig& x = m->axis(Axis::X);
+  EXPECT_FALSE(x.home_position.has_value());
+  EXPECT_DOUBLE_EQ(x.home_position_or_default(), 0.0);            // min
+  EXPECT_DOUBLE_EQ(x.home_search_velocity_or_default(), -15.0);   // −0.1 · 150
+  EXPECT_DOUBLE_EQ(x.home_latch_velocity_or_default(), 1.5);      // |search| / 10
+  EXPECT_TRUE(x.pitch_compensation.empty());
+}
+
+TEST(MachineConfigHoming, DefaultLatchFollowsAGivenSearchVelocity) {
+  auto m = parse_machine_config(with_x("home_search_velocity = 40\n"), "m.toml");
+  ASSERT_TRUE(m) << m.error().to_string();
+  EXPECT_DOUBLE_EQ(m->axis(Axis::X).home_search_velocity_or_default(), 40.0);
+  EXPECT_DOUBLE_EQ(m->axis(Axis::X).home_latch_velocity_or_default(), 4.0);
+}
+
+TEST(MachineConfigHoming, GivenKeysAreRead) {
+  auto m = parse_machine_config(
+      with_x("home_position = 100\nhome_search_velocity = 20.5\nhome_latch_velocity = 0.5\n"),
+      "m.toml");
+  ASSERT_TRUE(m) << m.error().to_string();
+  const AxisConfig& x = m->axis(Axis::X);
+  EXPECT_DOUBLE_EQ(x.home_position_or_default(), 100.0);  // max is allowed
+  EXPECT_DOUBLE_EQ(x.home_search_velocity_or_default(), 20.5);
+  EXPECT_DOUBLE_EQ(x.home_latch_velocity_or_default(), 0.5);
+}
+
+TEST(MachineConfigHoming, DefaultMachineHomesEachAxis) {
+  auto m = load_machine_config(kShare + "/machines/default.toml");
+  ASSERT_TRUE(m) << m.error().to_string();
+  for (Axis a : kAllAxes) {
+    const AxisConfig& ax = m->axis(a);
+    if (!ax.present) continue;
+    EXPECT_TRUE(ax.home_position && ax.home_search_velocity && ax.home_latch_velocity)
+        << letter(a) << ": home keys given explicitly";
+  }
+  EXPECT_DOUBLE_EQ(m->axis(Axis::X).home_search_velocity_or_default(), -50.0);
+  EXPECT_DOUBLE_EQ(m->axis(Axis::Z).home_position_or_default(), 500.0);
+  EXPECT_GT(m->axis(Axis::Z).home_search_velocity_or_default(), 0.0);  // Z homes up
+  const PitchTable& t = m->axis(Axis::X).pitch_compensation;
+  ASSERT_EQ(t.values.size(), 11u);
+  EXPECT_DOUBLE_EQ(t.start, 0.0);
+  EXPECT_DOUBLE_EQ(t.end(), 1000.0);
+  EXPECT_TRUE(m->axis(Axis::Y).pitch_compensation.empty());
+}
+
+// Each bad value is rejected with the key, the value and the allowed range.
+TEST(MachineConfigHoming, RangeChecksNameKeyValueAndRange) {
+  struct Case {
+    const char* extra;
+    const char* key_and_value;
+    const char* range;
+  };
+  const Case cases[] = {
+      {"home_position = 150\n", "axes.X.home_position = 150", "0 … 100"},
+      {"home_position = -0.5\n", "axes.X.home_position = -0.5", "0 … 100"},
+      {"home_search_velocity = 0\n", "axes.X.home_search_velocity = 0", "-150 … 150"},
+      {"home_search_velocity = -151\n", "axes.X.home_search_velocity = -151", "-150 … 150"},
+      {"home_latch_velocity = 0\n", "axes.X.home_latch_velocity = 0", "> 0 … 15"},
+      {"home_latch_velocity = -1\n", "axes.X.home_latch_velocity = -1", "> 0 … 15"},
+      {"home_latch_velocity = 16\n", "axes.X.home_latch_velocity = 16", "> 0 … 15"},
+      {"home_search_velocity = 4\nhome_latch_velocity = 5\n", "axes.X.home_latch_velocity = 5",
+       "> 0 … 4"},
+  };
+  for (const Case& c : cases) {
+    auto m = parse_machine_config(with_x(c.extra), "m.toml");
+    ASSERT_FALSE(m) << c.extra;
+    EXPECT_EQ(m.error().code, ErrorCode::ConfigBadValue) << c.extra;
+    EXPECT_NE(m.error().message.find(c.key_and_value), std::string::npos)
+        << c.extra << " -> " << m.error().message;
+    EXPECT_NE(m.error().message.find(c.range), std::string::npos)
+        << c.extra << " -> " << m.error().message;
+  }
+}
+
+TEST(MachineConfigHoming, WrongTypeAndMisspeltKeyAreErrors) {
+  auto m = parse_machine_config(with_x("home_position = \"left\"\n"), "m.toml");
+  ASSERT_FALSE(m);
+  EXPECT_EQ(m.error().code, ErrorCode::ConfigBadValue);
+  EXPECT_NE(m.error().message.find("'axes.X.home_position' must be a number"), std::string::npos);
+
+  auto typo = parse_machine_config(with_x("home_serch_velocity = -5\n"), "m.toml");
+  ASSERT_FALSE(typo);
+  EXPECT_EQ(typo.error().code, ErrorCode::ConfigUnknownKey);
+  EXPECT_NE(typo.error().message.find("axes.X.home_serch_velocity"), std::string::npos);
+}
+
+// A --vmax below the default search speed keeps the defaults consistent: they
+// are derived from max_velocity when asked for, not frozen at load.
+TEST(MachineConfigHoming, DefaultsFollowAChangedMaxVelocity) {
+  auto m = parse_machine_config(kMinimal, "m.toml");
+  ASSERT_TRUE(m);
+  m->axis(Axis::X).max_velocity = 10.0;
+  EXPECT_TRUE(validate(*m));
+  EXPECT_DOUBLE_EQ(m->axis(Axis::X).home_search_velocity_or_default(), -1.0);
+}
+
+const char* kPitch = "[axes.X.pitch_compensation]\nstart = 10\ninterval = 20\n";
+
+TEST(MachineConfigPitch, TableIsRead) {
+  auto m = parse_machine_config(with_x(std::string(kPitch) + "values = [0, 0.01, -0.02, 1]\n"),
+                                "m.toml");
+  ASSERT_TRUE(m) << m.error().to_string();
+  const PitchTable& t = m->axis(Axis::X).pitch_compensation;
+  EXPECT_DOUBLE_EQ(t.start, 10.0);
+  EXPECT_DOUBLE_EQ(t.interval, 20.0);
+  ASSERT_EQ(t.values.size(), 4u);
+  EXPECT_DOUBLE_EQ(t.values[2], -0.02);
+  EXPECT_DOUBLE_EQ(t.values[3], 1.0);  // integers count as numbers; 1.0 is the bound
+  EXPECT_DOUBLE_EQ(t.end(), 70.0);
+}
+
+TEST(MachineConfigPitch, BadTablesNameKeyValueAndRange) {
+  struct Case {
+    std::string toml;
+    ErrorCode code;
+    const char* expect;
+    const char* range;
+  };
+  const std::string p = kPitch;
+  const Case cases[] = {
+      {p + "values = [0]\n", ErrorCode::ConfigBadValue, "axes.X.pitch_compensation.values has 1",
+       "2 or more"},
+      {p + "values = []\n", ErrorCode::ConfigBadValue, "axes.X.pitch_compensation.values has 0",
+       "2 or more"},
+      {p + "values = [0, 0.5, 1.5]\n", ErrorCode::ConfigBadValue,
+       "axes.X.pitch_compensation.values[2] = 1.5", "-1 … 1 mm"},
+      {p + "values = [0, -1.01]\n", ErrorCode::ConfigBadValue,
+       "axes.X.pitch_compensation.values[1] = -1.01", "-1 … 1 mm"},
+      {"[axes.X.pitch_compensation]\nstart = 0\ninterval = 0\nvalues = [0, 0]\n",
+       ErrorCode::ConfigBadValue, "axes.X.pitch_compensation.interval = 0", "> 0"},
+      {"[axes.X.pitch_compensation]\nstart = 0\ninterval = -5\nvalues = [0, 0]\n",
+       ErrorCode::ConfigBadValue, "axes.X.pitch_compensation.interval = -5", "> 0"},
+      // 10 + 5·20 = 110 > max 100
+      {p + "values = [0, 0, 0, 0, 0, 0]\n", ErrorCode::ConfigBadValue, "10 … 110",
+       "min … max = 0 … 100"},
+      {"[axes.X.pitch_compensation]\nstart = -1\ninterval = 1\nvalues = [0, 0]\n",
+       ErrorCode::ConfigBadValue, "-1 … 0", "min … max = 0 … 100"},
+      {p + "values = 0.1\n", ErrorCode::ConfigBadValue,
+       "'axes.X.pitch_compensation.values' must be an array of numbers", ""},
+      {p + "values = [0, \"a\"]\n", ErrorCode::ConfigBadValue,
+       "'axes.X.pitch_compensation.values[1]' must be a number", ""},
+      {p + "values = [0, 0]\nstep = 1\n", ErrorCode::ConfigUnknownKey,
+       "axes.X.pitch_compensation.step", "start, interval, values"},
+      {"[axes.X.pitch_compensation]\nstart = 0\nvalues = [0, 0]\n", ErrorCode::ConfigMissingKey,
+       "axes.X.pitch_compensation.interval", ""},
+      {"pitch_compensation = 3\n", ErrorCode::ConfigBadValue,
+       "'axes.X.pitch_compensation' must be a table", ""},
+  };
+  for (const Case& c : cases) {
+    auto m = parse_machine_config(with_x(c.toml), "m.toml");
+    ASSERT_FALSE(m) << c.toml;
+    EXPECT_EQ(m.error().code, c.code) << c.toml << " -> " << m.error().message;
+    EXPECT_NE(m.error().message.find(c.expect), std::string::npos)
+        << c.toml << " -> " << m.error().message;
+    EXPECT_NE(m.error().message.find(c.range), std::string::npos)
+        << c.toml << " -> " << m.error().message;
+  }
+}
+
+// validate() checks a table built in code the same way as one loaded.
+TEST(MachineConfigPitch, ValidateChecksATableBuiltInCode) {
+  auto m = parse_machine_config(kMinimal, "m.toml");
+  ASSERT_TRUE(m);
+  m->axis(Axis::X).pitch_compensation = PitchTable{0.0, 10.0, {0.01}};
+  Status one = validate(*m);
+  ASSERT_FALSE(one);
+  EXPECT_NE(one.error().message.find("values has 1 value(s)"), std::string::npos);
+  m->axis(Axis::X).pitch_compensation = PitchTable{0.0, 10.0, {0.01, -0.01}};
+  EXPECT_TRUE(validate(*m));
+}
+
+// start + (n−1)·interval = 0 + 12·0.1 is 1.2000000000000002 in doubles: a
+// table written to end on max must not be refused for that.
+TEST(MachineConfigPitch, EndOnMaxSurvivesRounding) {
+  std::string text = kMinimal;
+  text.replace(text.find("max = 100"), 9, "max = 1.2");
+  text += "[axes.X.pitch_compensation]\nstart = 0\ninterval = 0.1\n"
+          "values = [0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0]\n";
+  auto m = parse_machine_config(text, "m.toml");
+  ASSERT_TRUE(m) << m.error().to_string();
+  EXPECT_GT(m->axis(Axis::X).pitch_compensation.end(), 1.2);  // the case is real
+}
+
+// Seed preset: 15 pulses per period; 150 mm/s needs 11.25. With slope s the
+// kernel may output 11.25·(1 + s) + 1: s = 0.2 fits (14.5), s = 0.3 does not
+// (15.625).
+TEST(MachineConfigPitch, SlopeMustFitTheDdaPreset) {
+  auto too_big = parse_machine_config(with_x(std::string(kPitch) + "values = [0, 4]\n"), "m.toml");
+  ASSERT_FALSE(too_big);  // |4| > 1: the value check comes first
+  EXPECT_NE(too_big.error().message.find("values[1] = 4"), std::string::npos);
+  auto fits = parse_machine_config(
+      with_x("[axes.X.pitch_compensation]\nstart = 0\ninterval = 1\nvalues = [0, 0.2, 0]\n"),
+      "m.toml");
+  ASSERT_TRUE(fits) << fits.error().to_string();
+  EXPECT_NEAR(fits->axis(Axis::X).pitch_compensation.max_slope(), 0.2, 1e-12);
+  auto steep = parse_machine_config(
+      with_x("[axes.X.pitch_compensation]\nstart = 0\ninterval = 1\nvalues = [0, 0.3, 0]\n"),
+      "m.toml");
+  ASSERT_FALSE(steep);
+  EXPECT_NE(steep.error().message.find("axes.X.pitch_compensation.values: slope 0.3"),
+            std::string::npos)
+      << steep.error().message;
+  EXPECT_NE(steep.error().message.find("15.625"), std::string::npos) << steep.error().message;
+}
+
+TEST(PitchTable, InterpolatesAndHoldsTheEnds) {
+  const PitchTable t{10.0, 20.0, {0.0, 0.02, -0.02}};
+  EXPECT_DOUBLE_EQ(t.at(-100.0), 0.0);
+  EXPECT_DOUBLE_EQ(t.at(10.0), 0.0);
+  EXPECT_DOUBLE_EQ(t.at(20.0), 0.01);
+  EXPECT_DOUBLE_EQ(t.at(30.0), 0.02);
+  EXPECT_DOUBLE_EQ(t.at(35.0), 0.01);
+  EXPECT_DOUBLE_EQ(t.at(50.0), -0.02);
+  EXPECT_DOUBLE_EQ(t.at(1e9), -0.02);
+  EXPECT_DOUBLE_EQ(t.max_slope(), 0.002);
+  const PitchTable s = t.scaled(1000.0);
+  EXPECT_DOUBLE_EQ(s.start, 10'000.0);
+  EXPECT_DOUBLE_EQ(s.interval, 20'000.0);
+  EXPECT_DOUBLE_EQ(s.at(20'000.0), 10.0);
+  EXPECT_DOUBLE_EQ(s.max_slope(), t.max_slope());
+  EXPECT_DOUBLE_EQ(PitchTable{}.at(5.0), 0.0);
+  EXPECT_DOUBLE_EQ(PitchTable{}.max_slope(), 0.0);
+}
+
+}  // namespace
+}  // namespace lcnc
