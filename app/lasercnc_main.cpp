@@ -11,7 +11,9 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
+#include "app/control_client.h"
 #include "app/run_job.h"
 #include "gcode/program_reader.h"
 
@@ -23,11 +25,17 @@ constexpr const char* kUsage =
     "                       [--feed-override PCT] [--trace FILE.csv] [--json]\n"
     "                       [--[no-]progress] [--no-realtime]\n"
     "  lasercnc check PROGRAM [--machine FILE]\n"
+    "  lasercnc status [--json] [--shm NAME]\n"
+    "  lasercnc send CMD [ARG...] [--wait] [--timeout S] [--shm NAME]\n"
+    "       CMD: load PROGRAM | start | hold | resume | stop | estop | reset |\n"
+    "            override PCT | jog AXIS DIST | home AXIS\n"
     "  lasercnc --help | --version\n"
     "\n"
     "  run     plans PROGRAM, runs it on the simulated machine with the real RT thread\n"
     "          and prints the report (--json: as one JSON object on stdout)\n"
     "  check   reads the whole program and reports the first error, runs nothing\n"
+    "  status  the state of lasercncd (machine, job, latency)\n"
+    "  send    a command to lasercncd; prints its answer (--wait: start waits for the job)\n"
     "  --vmax/--amax   max velocity (mm/s) / acceleration (mm/s^2) of every linear axis\n"
     "  --tolerance     path tolerance (mm)\n"
     "  --feed-override feed override for the whole run, %: every move runs at PCT/100\n"
@@ -73,6 +81,33 @@ int main(int argc, char** argv) {
   if (cmd == "--version") {
     std::puts("lasercnc 0.1.0");
     return 0;
+  }
+  if (cmd == "status" || cmd == "send") {
+    lcnc::app::ClientOptions co;
+    std::vector<std::string> args;
+    for (int i = 2; i < argc; ++i) {
+      const std::string_view a = argv[i];
+      if (a == "--shm" && i + 1 < argc) {
+        co.shm_name = argv[++i];
+      } else if (a == "--json") {
+        co.json = true;
+      } else if (a == "--wait") {
+        co.wait = true;
+      } else if (a == "--timeout" && i + 1 < argc) {
+        const auto t = parse_number(argv[++i]);
+        if (!t || *t <= 0) return usage_error("--timeout needs a number of seconds");
+        co.timeout_s = *t;
+      } else if (a.size() > 2 && a.substr(0, 2) == "--") {
+        return usage_error("unknown option '" + std::string(a) + "'");
+      } else {
+        args.emplace_back(a);
+      }
+    }
+    if (cmd == "status") {
+      if (!args.empty()) return usage_error("status takes no argument");
+      return lcnc::app::client_status(co);
+    }
+    return lcnc::app::client_send(args, co);
   }
   if (cmd != "run" && cmd != "check") return usage_error("unknown command '" + std::string(cmd) + "'");
 
@@ -158,5 +193,5 @@ int main(int argc, char** argv) {
   } else {
     std::fputs(lcnc::app::format_report(*report).c_str(), stdout);
   }
-  return (report->steps_match && report->bad_frames == 0) ? 0 : 3;
+  return (report->steps_match && report->bad_frames == 0 && report->fault.empty()) ? 0 : 3;
 }

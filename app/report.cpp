@@ -50,6 +50,10 @@ std::string format_report(const RunReport& r) {
                      static_cast<unsigned long long>(r.overruns),
                      static_cast<unsigned long long>(r.trace_drops),
                      static_cast<unsigned long long>(r.bad_frames));
+  if (r.starvations > 0)
+    s += printf_string("  planner behind   %llu times: decelerated along the path to refill the buffer\n",
+                       static_cast<unsigned long long>(r.starvations));
+  if (!r.fault.empty()) s += "  FAULT            " + r.fault + " (stopped before the end)\n";
   s += printf_string("  RT latency       p50 %.0f us, p99 %.0f us, max %.1f us (%s)\n",
                      r.latency_p50_us, r.latency_p99_us, r.latency_max_us, r.schedule.c_str());
   if (!r.rt_warning.empty()) s += "  warning          " + r.rt_warning + "\n";
@@ -84,6 +88,8 @@ std::string report_json(const RunReport& r) {
   j["axes"] = axes;
   j["steps_match"] = r.steps_match;
   j["underruns"] = r.underruns;
+  j["starvations"] = r.starvations;
+  j["fault"] = r.fault;
   j["overruns"] = r.overruns;
   j["trace_drops"] = r.trace_drops;
   j["bad_frames"] = r.bad_frames;

@@ -12,34 +12,12 @@
 #include "drivers/sim_machine.h"
 #include "gcode/program_reader.h"
 #include "path/deviation_meter.h"
-#include "plan/motion_stats.h"
-#include "plan/planner.h"
+#include "app/planner_feed.h"
 #include "rt/rt_kernel.h"
 #include "rt/rt_log.h"
 
 namespace lcnc::app {
 namespace {
-
-// Adapts a ProgramReader to the planner's pull interface.
-SegmentSource reader_source(ProgramReader& reader) {
-  return [&reader](Segment& out) {
-    switch (reader.next(out)) {
-      case ProgramReader::Next::Segment: return SourceStatus::Item;
-      case ProgramReader::Next::End: return SourceStatus::End;
-      case ProgramReader::Next::Error: return SourceStatus::Error;
-    }
-    return SourceStatus::Error;
-  };
-}
-
-// What the planner thread hands back when it is done.
-struct PlannerResult {
-  bool failed = false;
-  Diagnostic error;
-  std::array<std::int64_t, kAxisCount> commanded{};
-  std::array<double, kAxisCount> peak_v{};
-  std::array<double, kAxisCount> peak_a{};
-};
 
 class TraceWriter {
  public:
@@ -73,32 +51,119 @@ class TraceWriter {
 
 // The RT thread's log records, written out here on a normal thread (the RT
 // path never logs itself): to stderr, so stdout stays the report.
-void drain_rt_log(rt::RtLogRing& ring, double period_s) {
+void drain_rt_log(rt::RtLogRing& ring, const MachineConfig& machine) {
   static const std::shared_ptr<spdlog::logger> logger = [] {
     auto l = spdlog::get("rt");
     return l ? l : spdlog::stderr_color_mt("rt");
   }();
   rt::RtLogRecord r;
   while (ring.try_pop(r)) {
-    const double t = static_cast<double>(r.period) * period_s;
-    switch (r.code) {
-      case rt::RtLogCode::UnderrunBegin:
-      case rt::RtLogCode::HoldBegin:
-      case rt::RtLogCode::HoldEnd:
-        logger->warn("period {} (t ≈ {:.4f} s): {}", r.period, t, rt::rt_log_text(r.code));
-        break;
-      case rt::RtLogCode::UnderrunEnd:
-        logger->warn("period {}: {} after {} periods", r.period, rt::rt_log_text(r.code), r.value);
-        break;
-      case rt::RtLogCode::LateWakeup:
-        logger->warn("period {}: {} by {:.3f} ms", r.period, rt::rt_log_text(r.code),
-                     static_cast<double>(r.value) * 1e-6);
-        break;
+    const RtLogLine line = describe_rt_log(r, machine);
+    if (line.warning) {
+      logger->warn("period {} (t ≈ {:.4f} s): {}", r.period, static_cast<double>(r.period) * machine.period_s(), line.text);
+    } else {
+      logger->info("period {}: {}", r.period, line.text);
     }
   }
 }
 
 }  // namespace
+
+std::string describe_fault(const rt::RtFault& f, const MachineConfig& machine) {
+  std::string text(error_summary(f.code));
+  if (f.axis >= 0 && f.axis < kAxisCount) {
+    const AxisConfig& ax = machine.axes[f.axis];
+    text += std::string(": axis ") + kAxisLetters[f.axis];
+    char range[96];
+    std::snprintf(range, sizeof range, " (travel %g … %g)", ax.min, ax.max);
+    if (f.code == ErrorCode::RtSoftLimit || f.code == ErrorCode::RtHardLimit) text += range;
+  }
+  if (f.line > 0) text += " at line " + std::to_string(f.line);
+  return text;
+}
+
+RtLogLine describe_rt_log(const rt::RtLogRecord& r, const MachineConfig& machine) {
+  RtLogLine out;
+  out.text = rt::rt_log_text(r.code);
+  const std::string axis = r.axis >= 0 && r.axis < kAxisCount
+                               ? std::string(": axis ") + kAxisLetters[r.axis] : std::string();
+  switch (r.code) {
+    case rt::RtLogCode::UnderrunBegin:
+      out.code = static_cast<std::uint16_t>(ErrorCode::RtUnderrun);
+      out.warning = true;
+      break;
+    case rt::RtLogCode::UnderrunEnd:
+      out.text += " after " + std::to_string(r.value) + " periods";
+      out.warning = true;
+      break;
+    case rt::RtLogCode::HoldBegin:
+    case rt::RtLogCode::HoldEnd:
+    case rt::RtLogCode::StarveBegin:
+    case rt::RtLogCode::StarveEnd:
+      out.warning = true;
+      break;
+    case rt::RtLogCode::LateWakeup: {
+      char ms[64];
+      std::snprintf(ms, sizeof ms, " by %.3f ms", static_cast<double>(r.value) * 1e-6);
+      out.text += ms;
+      out.warning = true;
+      break;
+    }
+    case rt::RtLogCode::StateChange:
+      out.text = std::string("state: ") + state_name(static_cast<rt::MachineState>(r.value));
+      break;
+    case rt::RtLogCode::Fault: {
+      rt::RtFault f;
+      f.code = static_cast<ErrorCode>(r.value);
+      f.axis = r.axis;
+      f.line = r.line;
+      f.active = true;
+      out.code = static_cast<std::uint16_t>(r.value);
+      out.text = "fault: " + describe_fault(f, machine);
+      out.warning = true;
+      break;
+    }
+    case rt::RtLogCode::JogShort:
+      out.text += axis + " (" + std::to_string(r.value) + " steps short)";
+      break;
+    case rt::RtLogCode::Homed:
+      out.text += axis;
+      break;
+    case rt::RtLogCode::Refused:
+      out.text += std::string(": ") + rt_command_name(static_cast<rt::RtCommandType>(r.value)) + axis;
+      out.code = static_cast<std::uint16_t>(ErrorCode::RtRefused);
+      out.warning = true;
+      break;
+  }
+  return out;
+}
+
+const char* state_name(rt::MachineState s) {
+  switch (s) {
+    case rt::MachineState::Idle: return "idle";
+    case rt::MachineState::Running: return "running";
+    case rt::MachineState::FeedHold: return "feed hold";
+    case rt::MachineState::Stopping: return "stopping";
+    case rt::MachineState::EStop: return "e-stop";
+    case rt::MachineState::Jog: return "jog";
+    case rt::MachineState::Homing: return "homing";
+  }
+  return "?";
+}
+
+const char* rt_command_name(rt::RtCommandType t) {
+  switch (t) {
+    case rt::RtCommandType::StartJob: return "start";
+    case rt::RtCommandType::Hold: return "hold";
+    case rt::RtCommandType::Resume: return "resume";
+    case rt::RtCommandType::Stop: return "stop";
+    case rt::RtCommandType::EStop: return "e-stop";
+    case rt::RtCommandType::Reset: return "reset";
+    case rt::RtCommandType::Jog: return "jog";
+    case rt::RtCommandType::Home: return "home";
+  }
+  return "?";
+}
 
 std::string default_machine_file() {
   if (const char* share = std::getenv("LASERCNC_SHARE")) {
@@ -179,67 +244,11 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   rt::RtKernel kernel(machine, *buffer, sim, trace.get(), start_steps);
   kernel.set_log(rt_log.get());
 
-  // Planner thread: plan, coarse-interpolate, quantize, keep the buffer full.
-  std::atomic<bool> planner_done{false};
-  std::atomic<bool> abort{false};
-  PlannerResult planned;
-  std::thread planner([&] {
-    Result<std::unique_ptr<ProgramReader>> reader = ProgramReader::open(options.program, machine, ropt);
-    if (!reader) {
-      planned.failed = true;
-      planned.error = reader.error();
-    }
-    auto push = [&](const PeriodIncrement& inc) {
-      while (!buffer->try_push(inc)) {
-        if (abort.load(std::memory_order_relaxed)) return false;
-        std::this_thread::sleep_for(std::chrono::nanoseconds(machine.period_ns * 16));
-      }
-      return true;
-    };
-    StepQuantizer quant(machine, ropt.start);
-    MotionStats stats(machine.period_s(), ropt.start);
-    if (reader) {
-      Planner path_planner(machine, reader_source(**reader));
-      PeriodSample sample;
-      PeriodSample last;
-      SourceStatus st;
-      bool any = false;
-      while ((st = path_planner.next(sample)) == SourceStatus::Item) {
-        stats.add(sample.pose);
-        last = sample;
-        any = true;
-        if (!push(quant.quantize(sample))) break;
-      }
-      if (st == SourceStatus::Error) {
-        planned.failed = true;
-        planned.error = (*reader)->error();
-      }
-      while (quant.owed() && !abort.load()) {
-        stats.add(last.pose);
-        if (!push(quant.pay_owed(last))) break;
-      }
-      stats.finish();
-      if (!any || planned.failed) {
-        PeriodIncrement end;  // a controlled end: no motion, laser off
-        end.end_of_program = true;
-        push(end);
-      }
-    } else {
-      PeriodIncrement end;
-      end.end_of_program = true;
-      push(end);
-    }
-    for (int i = 0; i < kAxisCount; ++i) planned.commanded[i] = quant.commanded(i);
-    planned.peak_v = stats.peak_velocity();
-    planned.peak_a = stats.peak_acceleration();
-    planner_done.store(true, std::memory_order_release);
-  });
-
-  // Prefill half the buffer (or the whole job) before the RT thread starts.
-  while (!planner_done.load(std::memory_order_acquire) &&
-         buffer->size() < rt::kPositionBufferCapacity / 2) {
-    std::this_thread::sleep_for(std::chrono::microseconds(200));
-  }
+  // Planner thread: plan, coarse-interpolate, quantize, keep the buffer
+  // full; the RT thread starts once half the buffer (or the whole job) is in.
+  PlannerFeed feed(machine, *buffer, kernel);
+  feed.start(options.program, ropt);
+  feed.wait_prefilled();
   rt::RtOptions rt_options;
   rt_options.try_realtime = options.realtime;
   kernel.set_feed_override(options.feed_override_pct / 100.0);  // before start: no ramp
@@ -249,19 +258,19 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   Result<std::unique_ptr<ProgramReader>> ref_reader =
       ProgramReader::open(options.program, machine, ropt);
   if (!ref_reader) {
-    abort = true;
-    kernel.stop();
+    feed.abort();
+    kernel.shutdown();
     kernel.join();
-    planner.join();
     return ref_reader.error();
   }
   DeviationMeter deviation(reader_source(**ref_reader));
   const double total_segments = std::max<double>(1.0, static_cast<double>(summary->segments));
   auto last_progress = std::chrono::steady_clock::now();
   rt::TraceRecord rec;
+  bool stop_sent = false;
   for (;;) {
     bool got = false;
-    drain_rt_log(*rt_log, machine.period_s());
+    drain_rt_log(*rt_log, machine);
     while (trace->try_pop(rec)) {
       got = true;
       Pose p = Pose::Zero();
@@ -276,14 +285,20 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
         progress(std::min(1.0, kernel.current_segment() / total_segments));
       }
     }
+    // short of a soft limit: stop along the path with what is queued
+    if (feed.limit_hit() && !stop_sent) stop_sent = kernel.command({rt::RtCommandType::Stop, 0, 0.0});
+    // a fault (an e-stop, a limit) or a stop ends the job: the planner stops pushing
+    if (kernel.state() == rt::MachineState::EStop || kernel.fault().active ||
+        kernel.jobs_ended() > 0)
+      feed.abort();
     if (kernel.finished() && trace->empty()) break;
     if (!got) std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
   kernel.join();
-  drain_rt_log(*rt_log, machine.period_s());
-  abort = true;
-  planner.join();
+  drain_rt_log(*rt_log, machine);
+  feed.abort();
   if (progress) progress(1.0);
+  const PlannedJob& planned = feed.result();
   if (planned.failed) return planned.error;
 
   report.periods = kernel.periods();
@@ -298,12 +313,20 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
     a.present = machine.axes[i].present;
     a.peak_velocity = planned.peak_v[i] * k;
     a.peak_acceleration = planned.peak_a[i] * k * k;
+    // the pulses are the commanded steps plus the change of the pitch
+    // correction between the start and the end (rt/pitch_compensation.h)
+    const rt::PitchCompensation comp(machine.axes[i]);
     a.steps_sent = sim.position_steps(i) - start_steps[i];
-    a.steps_commanded = planned.commanded[i] - start_steps[i];
+    a.steps_commanded = planned.commanded[i] - start_steps[i] +
+                        comp.correction_steps(planned.commanded[i]) -
+                        comp.correction_steps(start_steps[i]);
     report.steps_match = report.steps_match && a.steps_sent == a.steps_commanded &&
-                         kernel.position_steps(i) == sim.position_steps(i);
+                         kernel.pulses_emitted(i) == a.steps_sent;
   }
   report.underruns = kernel.underruns();
+  report.starvations = kernel.starvations();
+  if (const rt::RtFault f = kernel.fault(); f.active) report.fault = describe_fault(f, machine);
+  if (planned.limit) report.fault = planned.limit_error.to_string();
   report.overruns = kernel.overruns();
   report.trace_drops = kernel.trace_drops();
   report.bad_frames = sim.bad_frames();

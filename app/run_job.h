@@ -14,6 +14,7 @@
 #include "common/result.h"
 #include "geom/pose.h"
 #include "machine/machine_config.h"
+#include "rt/rt_kernel.h"
 
 namespace lcnc::app {
 
@@ -61,6 +62,8 @@ struct RunReport {
   std::uint64_t bad_frames = 0;
   double laser_on_s = 0.0;          // machine time with the laser on
   double latency_p50_us = 0.0, latency_p99_us = 0.0, latency_max_us = 0.0;
+  std::uint64_t starvations = 0;    // decelerations for a low buffer (planner behind)
+  std::string fault;       // what stopped the job early (soft/hard limit, e-stop); empty if none
   std::string schedule;    // "SCHED_FIFO" or "normal"
   std::string rt_warning;  // why real-time scheduling was not had
 };
@@ -72,6 +75,19 @@ using ProgressFn = std::function<void(double fraction)>;
 // A Usage error unless 0 < pct ≤ 100·machine.max_feed_override; names the range.
 [[nodiscard]] Status check_feed_override(double pct, const MachineConfig& machine);
 [[nodiscard]] Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress = {});
+
+// "soft limit reached: axis X (travel 0 … 1000) at line 12"
+[[nodiscard]] std::string describe_fault(const rt::RtFault& f, const MachineConfig& machine);
+
+// The RT kernel's log records in words, for the log and the HMI's events.
+struct RtLogLine {
+  std::string text;
+  std::uint16_t code = 0;  // ErrorCode when it is a fault or a warning with one, else 0
+  bool warning = false;
+};
+[[nodiscard]] RtLogLine describe_rt_log(const rt::RtLogRecord& r, const MachineConfig& machine);
+[[nodiscard]] const char* state_name(rt::MachineState s);
+[[nodiscard]] const char* rt_command_name(rt::RtCommandType t);
 
 [[nodiscard]] std::string format_report(const RunReport& report);
 [[nodiscard]] std::string report_json(const RunReport& report);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <ctime>
+#include <limits>
 
 #include <pthread.h>
 #include <sched.h>
@@ -26,6 +27,7 @@ inline timespec to_timespec(std::int64_t ns) noexcept {
 RtKernel::RtKernel(const MachineConfig& machine, PositionBuffer& buffer, PulseSink& sink,
                    TraceRing* trace, const std::array<std::int64_t, kAxisCount>& start_steps)
     : period_ns_(machine.period_ns),
+      period_s_(machine.period_s()),
       ramp_(machine),
       buffer_(buffer),
       sink_(sink),
@@ -33,26 +35,80 @@ RtKernel::RtKernel(const MachineConfig& machine, PositionBuffer& buffer, PulseSi
       dda_(machine.dda),
       pos_steps_(start_steps) {
   target_k_.store(ramp_.clamp_target(1.0), std::memory_order_relaxed);
+  max_pulses_ = machine.dda.max_pulses();
+  comp_.reserve(kAxisCount);
+  for (int i = 0; i < kAxisCount; ++i) {
+    comp_.emplace_back(machine.axes[i]);
+    comp_now_[i] = comp_[i].correction_steps(start_steps[i]);
+  }
+  std::uint32_t known = 0;
+  for (int i = 0; i < kAxisCount; ++i) {
+    const AxisConfig& ax = machine.axes[i];
+    pos_pub_[i].store(start_steps[i], std::memory_order_relaxed);
+    units_per_step_[i] = 1.0 / (ax.present ? ax.steps_per_unit : 1.0);
+    if (!ax.present) continue;
+    AxisLimits& l = axes_[i];
+    const double spu = ax.steps_per_unit;
+    l.present = true;
+    l.min_steps = std::llround(ax.min * spu);
+    l.max_steps = std::llround(ax.max * spu);
+    // Jog and homing moves run at the planner's limits (DESIGN §5.5: speed
+    // and acceleration planned for the highest override), the jog at a
+    // quarter of the speed — an operator's speed, not a rapid.
+    const double k_max = machine.max_feed_override;
+    l.accel = ax.max_acceleration * spu / (k_max * k_max);
+    l.jog_speed = 0.25 * ax.max_velocity * spu / k_max;
+    l.search_speed = ax.home_search_velocity_or_default() * spu;
+    l.latch_speed = ax.home_latch_velocity_or_default() * spu;
+    l.home_steps = std::llround(ax.home_position_or_default() * spu);
+    // A rotary axis that wraps has no travel limits.
+    if (ax.wrap) {
+      l.min_steps = std::numeric_limits<std::int64_t>::min() / 2;
+      l.max_steps = std::numeric_limits<std::int64_t>::max() / 2;
+    }
+    known |= 1u << i;
+  }
+  // The simulated machine's position is known at power-on.
+  homed_.store(known, std::memory_order_relaxed);
 }
 
 RtKernel::~RtKernel() {
-  stop();
+  shutdown();
   join();
+}
+
+std::size_t RtKernel::braking_reserve(double k) const noexcept {
+  // Entries consumed while K ramps linearly to 0 at ρ: ∫ K/T dt = K²/(2ρT).
+  const double n = k * k / (2.0 * ramp_.rate_per_s() * period_s_);
+  return static_cast<std::size_t>(std::ceil(n)) + 64;
+}
+
+RtFault RtKernel::fault() const noexcept {
+  RtFault f;
+  const std::uint16_t code = fault_code_.load(std::memory_order_acquire);
+  f.active = code != 0;
+  f.code = static_cast<ErrorCode>(code);
+  f.axis = fault_axis_.load(std::memory_order_relaxed);
+  f.line = fault_line_.load(std::memory_order_relaxed);
+  return f;
 }
 
 void RtKernel::start(const RtOptions& options) {
   warning_.clear();
   schedule_ = RtSchedule::Normal;
+  options_ = options;
   // The run begins at the override already asked for, with no ramp. The
   // thread's creation below orders these writes before its first read.
   k_ = target_k_.load(std::memory_order_relaxed);
   k_now_.store(k_, std::memory_order_relaxed);
+  state_now_ = options.start_running ? MachineState::Running : MachineState::Idle;
+  state_.store(state_now_, std::memory_order_release);
   if (!options.try_realtime) {
     warning_ = "real-time scheduling not requested: normal scheduling";
   } else if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
     warning_ = std::string("mlockall failed (") + std::strerror(errno) + "): memory may page; ";
   }
-  thread_ = std::thread([this, options] { run(options); });
+  thread_ = std::thread([this] { run(options_); });
   // From here the RT thread runs: the warning string may still grow below
   // (on this thread, before anyone reads it), nothing else is touched.
   if (options.try_realtime) {
@@ -83,8 +139,8 @@ void RtKernel::run(const RtOptions& options) noexcept {
   // deadline is t0 + machine time so far, rounded once (no drift).
   const std::int64_t t0 = to_ns(now) + period_ns_;
   double machine_ns = 0.0;  // Σ lengths of the periods before this one
-  std::uint64_t period = 0;
-  while (!stop_requested_.load(std::memory_order_relaxed)) {
+  publish_status(true);
+  while (!shutdown_requested_.load(std::memory_order_relaxed)) {
     // 1. sleep to the absolute deadline
     const std::int64_t deadline = t0 + std::llround(machine_ns);
     const timespec until = to_timespec(deadline);
@@ -94,80 +150,388 @@ void RtKernel::run(const RtOptions& options) noexcept {
     clock_gettime(CLOCK_MONOTONIC, &now);
     const std::int64_t late = to_ns(now) - deadline;
     latency_.add(late);
-    // 3. the period's entry: held → none (zero increments, laser off, not an
-    // underrun); else one PeriodIncrement; empty while the job runs →
-    // underrun: hold position (zero increments), count it
-    const bool held = ramp_.holds(k_);
-    PeriodIncrement inc;
-    bool underrun = false;
-    if (held) {
-      held_periods_.fetch_add(1, std::memory_order_relaxed);
-    } else if (buffer_.try_pop(inc)) {
-      motion_periods_.fetch_add(1, std::memory_order_relaxed);
-      segment_.store(inc.segment, std::memory_order_relaxed);
-      end_seen_ = inc.end_of_program;
-    } else {
-      underrun = true;
-      underruns_.fetch_add(1, std::memory_order_relaxed);
+    // 3–4. commands and inputs
+    take_commands();
+    take_inputs();
+    // 5. the period's motion
+    Motion m;
+    if (on_path_state()) {
+      path_motion(m);
+    } else if (state_now_ == MachineState::Jog || state_now_ == MachineState::Homing) {
+      axis_motion(m);
     }
-    // this period's length: T/K; T while held, and for a dwell, whose time is
-    // a process parameter (a pierce) that the override must not change
-    const bool nominal = held || (!underrun && inc.kind == MotionKind::Dwell);
-    const double length_ns = nominal ? static_cast<double>(period_ns_) : period_ns_ / k_;
+    if (flushing_) flush_some();
+    // 6. limits
+    guard_limits(m);
+    const double length_ns = m.nominal ? static_cast<double>(period_ns_) : period_ns_ / k_;
     // woken after the period's end: an overrun
     if (static_cast<double>(late) > length_ns) overruns_.fetch_add(1, std::memory_order_relaxed);
     // a stall makes the periods after it late too, catching up: log the
     // streak once, where it starts
-    if (late > kLateLogNs && !late_streak_) log(period, RtLogCode::LateWakeup, late);
+    if (late > kLateLogNs && !late_streak_) log(RtLogCode::LateWakeup, late);
     late_streak_ = static_cast<double>(late) > length_ns;
-    // state changes worth a log line
-    if (underrun && underrun_since_ == 0) {
-      underrun_since_ = period + 1;
-      log(period, RtLogCode::UnderrunBegin, static_cast<std::int64_t>(period));
-    } else if (!underrun && !held && underrun_since_ != 0) {
-      log(period, RtLogCode::UnderrunEnd, static_cast<std::int64_t>(period + 1 - underrun_since_));
-      underrun_since_ = 0;
-    }
-    if (held != was_held_) log(period, held ? RtLogCode::HoldBegin : RtLogCode::HoldEnd, 0);
-    was_held_ = held;
-    // 4–6. the period's work
+    // 7–8. the period's work
     machine_ns += length_ns;
-    cycle(period++, inc, held, underrun, length_ns, std::llround(machine_ns));
-    periods_.store(period, std::memory_order_relaxed);
+    cycle(m, length_ns, std::llround(machine_ns));
+    periods_.store(++period_, std::memory_order_relaxed);
+    publish_status(false);
     timespec done{};
     clock_gettime(CLOCK_MONOTONIC, &done);
     compute_.add(to_ns(done) - to_ns(now));
-    if (end_seen_) break;
-    // 7. ramp K toward the target for the next period. relaxed pairs with
-    // set_feed_override()'s relaxed store: only the value is read.
-    k_ = ramp_.step(k_, target_k_.load(std::memory_order_relaxed), length_ns * 1e-9);
+    if (end_seen_) {
+      end_seen_ = false;
+      jobs_ended_.fetch_add(1, std::memory_order_release);
+      if (options.exit_at_end) break;
+      set_state(MachineState::Idle);
+    }
+    // a one-shot run ends once a stop or an e-stop has settled
+    if (options.exit_at_end && job_aborted_ && !flushing_) break;
+    // 9. ramp K toward the effective target for the next period. relaxed
+    // pairs with set_feed_override()'s relaxed store: only the value is read.
+    double target = target_k_.load(std::memory_order_relaxed);
+    if (hold_ || stopping_ || starving_) target = 0.0;
+    k_ = ramp_.step(k_, target, length_ns * 1e-9);
     k_now_.store(k_, std::memory_order_relaxed);
   }
+  publish_status(true);
   if (options.on_loop_exit) options.on_loop_exit();
   // release pairs with finished()'s acquire: counters and positions written
   // above are visible to a thread that sees finished.
   finished_.store(true, std::memory_order_release);
 }
 
-void RtKernel::log(std::uint64_t period, RtLogCode code, std::int64_t value) noexcept {
+void RtKernel::log(RtLogCode code, std::int64_t value, int axis, std::uint32_t line) noexcept {
   if (log_ == nullptr) return;
-  if (!log_->try_push(RtLogRecord{period, code, value}))
+  if (!log_->try_push(RtLogRecord{period_, code, static_cast<std::int8_t>(axis), line, value}))
     log_drops_.fetch_add(1, std::memory_order_relaxed);
 }
 
-void RtKernel::cycle(std::uint64_t period, const PeriodIncrement& inc, bool held, bool underrun,
-                     double length_ns, std::int64_t end_ns) noexcept {
-  // 4–5. DDA and the pulse sink; M4 power follows the actual speed, K times
-  // the planned one, up to the programmed power
-  dda_.run_period(inc.steps, frame_);
-  float power = inc.power_pct;
-  if (inc.power_cap_pct > 0.0f) power = std::min(inc.power_cap_pct, power * static_cast<float>(k_));
+void RtKernel::set_state(MachineState s) noexcept {
+  if (s == state_now_) return;
+  state_now_ = s;
+  state_.store(s, std::memory_order_release);
+  log(RtLogCode::StateChange, static_cast<std::int64_t>(s));
+  publish_status(true);
+}
+
+void RtKernel::take_commands() noexcept {
+  RtCommand c;
+  const MachineState s = state_now_;
+  while (commands_.try_pop(c)) {
+    const int axis = c.axis;
+    const bool axis_ok = axis >= 0 && axis < kAxisCount && axes_[axis].present;
+    bool refused = false;
+    switch (c.type) {
+      case RtCommandType::EStop:
+        enter_estop(ErrorCode::RtEstop, -1, line_);
+        break;
+      case RtCommandType::Reset:
+        if (s == MachineState::EStop) reset_asked_ = true;
+        break;
+      case RtCommandType::StartJob:
+        if (s != MachineState::Idle || flushing_) {
+          refused = true;
+          break;
+        }
+        fault_code_.store(0, std::memory_order_release);
+        hold_ = stopping_ = starving_ = job_aborted_ = false;
+        end_seen_ = false;
+        // a job starts at rest: at the operator's override, no ramp
+        k_ = target_k_.load(std::memory_order_relaxed);
+        k_now_.store(k_, std::memory_order_relaxed);
+        set_state(MachineState::Running);
+        break;
+      case RtCommandType::Hold:
+        if (s == MachineState::Running) {
+          hold_ = true;
+          set_state(MachineState::FeedHold);
+        }
+        break;
+      case RtCommandType::Resume:
+        if (s == MachineState::FeedHold) {
+          hold_ = false;
+          set_state(MachineState::Running);
+        }
+        break;
+      case RtCommandType::Stop:
+        if (on_path_state()) {
+          begin_stop(ErrorCode::Internal, -1, 0);
+        } else if (s == MachineState::Jog || s == MachineState::Homing) {
+          move_.stop();
+          move_abort_ = true;
+        }
+        break;
+      case RtCommandType::Jog: {
+        if (s != MachineState::Idle || flushing_ || !axis_ok) {
+          refused = true;
+          break;
+        }
+        const AxisLimits& l = axes_[axis];
+        std::int64_t target = pos_steps_[axis] + std::llround(c.value / units_per_step_[axis]);
+        if ((homed_.load(std::memory_order_relaxed) >> axis) & 1u) {
+          const std::int64_t clamped = std::clamp(target, std::min(l.min_steps, pos_steps_[axis]),
+                                                  std::max(l.max_steps, pos_steps_[axis]));
+          if (clamped != target) log(RtLogCode::JogShort, std::llabs(target - clamped), axis);
+          target = clamped;
+        }
+        move_axis_ = axis;
+        move_abort_ = false;
+        move_.start(target - pos_steps_[axis], l.jog_speed, l.accel, period_s_);
+        set_state(MachineState::Jog);
+        break;
+      }
+      case RtCommandType::Home: {
+        if (s != MachineState::Idle || flushing_ || !axis_ok || axes_[axis].search_speed == 0.0) {
+          refused = true;
+          break;
+        }
+        move_axis_ = axis;
+        move_abort_ = false;
+        homed_.fetch_and(~(1u << axis), std::memory_order_relaxed);
+        home_travel_ = 0;
+        const AxisLimits& l = axes_[axis];
+        if (inputs_.home[axis]) {
+          // already on the switch: back off and latch
+          home_phase_ = HomePhase::Latch;
+          move_.start_velocity(l.search_speed < 0 ? l.latch_speed : -l.latch_speed, l.accel, period_s_);
+        } else {
+          home_phase_ = HomePhase::Search;
+          move_.start_velocity(l.search_speed, l.accel, period_s_);
+        }
+        set_state(MachineState::Homing);
+        break;
+      }
+    }
+    if (refused) log(RtLogCode::Refused, static_cast<std::int64_t>(c.type), axis);
+  }
+  if (reset_asked_ && !flushing_ && state_now_ == MachineState::EStop) {
+    reset_asked_ = false;
+    fault_code_.store(0, std::memory_order_release);
+    set_state(MachineState::Idle);
+  }
+}
+
+void RtKernel::take_inputs() noexcept {
+  inputs_ = sink_.read_inputs();
+  if (inputs_.estop && state_now_ != MachineState::EStop) enter_estop(ErrorCode::RtEstop, -1, line_);
+}
+
+void RtKernel::set_fault(ErrorCode code, int axis, std::uint32_t line) noexcept {
+  // the first fault stands until Reset or StartJob
+  if (fault_code_.load(std::memory_order_relaxed) != 0) return;
+  fault_axis_.store(static_cast<std::int8_t>(axis), std::memory_order_relaxed);
+  fault_line_.store(line, std::memory_order_relaxed);
+  fault_code_.store(static_cast<std::uint16_t>(code), std::memory_order_release);
+  log(RtLogCode::Fault, static_cast<std::int64_t>(code), axis, line);
+}
+
+void RtKernel::enter_estop(ErrorCode code, int axis, std::uint32_t line) noexcept {
+  // The job's remaining entries are discarded; nothing moves from this
+  // period on.
+  set_fault(code, axis, line);
+  if (on_path_state() || stopping_) {
+    flushing_ = true;
+    job_aborted_ = true;
+    jobs_ended_.fetch_add(1, std::memory_order_release);
+  }
+  hold_ = stopping_ = starving_ = false;
+  move_ = AxisMove{};
+  move_axis_ = -1;
+  reset_asked_ = false;
+  set_state(MachineState::EStop);
+}
+
+void RtKernel::begin_stop(ErrorCode code, int axis, std::uint32_t line) noexcept {
+  if (code != ErrorCode::Internal) set_fault(code, axis, line);
+  stopping_ = true;
+  set_state(MachineState::Stopping);
+}
+
+void RtKernel::path_motion(Motion& m) noexcept {
+  m.on_path = true;
+  // the buffer's braking reserve while a producer streams
+  const bool streaming = streaming_.load(std::memory_order_acquire);
+  const std::size_t fill = buffer_.size();
+  if (!stopping_ && streaming && !starving_ && fill < braking_reserve(k_)) {
+    starving_ = true;
+    starvations_.fetch_add(1, std::memory_order_relaxed);
+    log(RtLogCode::StarveBegin, static_cast<std::int64_t>(fill), -1, line_);
+  } else if (starving_ && (!streaming || fill >= std::min(kPositionBufferCapacity - 1,
+                                                          2 * braking_reserve(ramp_.k_max())))) {
+    starving_ = false;
+    log(RtLogCode::StarveEnd, static_cast<std::int64_t>(fill), -1, line_);
+  }
+  // held → none (zero increments, laser off, not an underrun); else one
+  // PeriodIncrement; empty while the job runs → underrun: hold position
+  m.held = ramp_.holds(k_);
+  if (m.held) {
+    held_periods_.fetch_add(1, std::memory_order_relaxed);
+    if (stopping_) {
+      // at rest on the path: discard the rest of the job
+      stopping_ = false;
+      flushing_ = true;
+      job_aborted_ = true;
+      jobs_ended_.fetch_add(1, std::memory_order_release);
+      set_state(MachineState::Idle);
+    }
+  } else if (buffer_.try_pop(m.inc)) {
+    motion_periods_.fetch_add(1, std::memory_order_relaxed);
+    segment_.store(m.inc.segment, std::memory_order_relaxed);
+    line_ = m.inc.line;
+    end_seen_ = m.inc.end_of_program;
+  } else {
+    m.underrun = true;
+    underruns_.fetch_add(1, std::memory_order_relaxed);
+  }
+  // this period's length: T/K; T while held, and for a dwell, whose time is
+  // a process parameter (a pierce) that the override must not change
+  m.nominal = m.held || (!m.underrun && m.inc.kind == MotionKind::Dwell);
+  // state changes worth a log line
+  if (m.underrun && underrun_since_ == 0) {
+    underrun_since_ = period_ + 1;
+    log(RtLogCode::UnderrunBegin, static_cast<std::int64_t>(period_));
+  } else if (!m.underrun && !m.held && underrun_since_ != 0) {
+    log(RtLogCode::UnderrunEnd, static_cast<std::int64_t>(period_ + 1 - underrun_since_));
+    underrun_since_ = 0;
+  }
+  if (m.held != was_held_) log(m.held ? RtLogCode::HoldBegin : RtLogCode::HoldEnd, 0);
+  was_held_ = m.held;
+}
+
+void RtKernel::axis_motion(Motion& m) noexcept {
+  if (state_now_ == MachineState::Homing) homing_step();
+  if (move_axis_ < 0) return;
+  m.inc.steps[move_axis_] = move_.next();
+  if (move_.done() && state_now_ == MachineState::Jog) {
+    move_axis_ = -1;
+    set_state(MachineState::Idle);
+  }
+}
+
+void RtKernel::homing_step() noexcept {
+  const int a = move_axis_;
+  const AxisLimits& l = axes_[a];
+  const bool on_switch = inputs_.home[a];
+  if (move_abort_) {  // the operator stopped homing: brake, then Idle
+    if (move_.done()) {
+      move_axis_ = -1;
+      set_state(MachineState::Idle);
+    }
+    return;
+  }
+  switch (home_phase_) {
+    case HomePhase::Search:
+      if (on_switch) {
+        move_.stop();
+        home_phase_ = HomePhase::SearchBrake;
+      } else if (std::llabs(home_travel_) > 2 * (l.max_steps - l.min_steps) + 1) {
+        // twice the travel and no switch: give up, brake, then Idle
+        set_fault(ErrorCode::RtHoming, a, 0);
+        move_.stop();
+        move_abort_ = true;
+      }
+      break;
+    case HomePhase::SearchBrake:
+      if (move_.done())  {
+        home_phase_ = HomePhase::Latch;
+        move_.start_velocity(l.search_speed < 0 ? l.latch_speed : -l.latch_speed, l.accel, period_s_);
+      }
+      break;
+    case HomePhase::Latch:
+      if (!on_switch) {
+        // the switch released at the last step: that is its position
+        home_latch_ = pos_steps_[a];
+        move_.stop();
+        home_phase_ = HomePhase::LatchBrake;
+      }
+      break;
+    case HomePhase::LatchBrake:
+      if (move_.done()) {
+        // re-base the coordinate: the latch position is home_steps
+        pos_steps_[a] = l.home_steps + (pos_steps_[a] - home_latch_);
+        pos_pub_[a].store(pos_steps_[a], std::memory_order_relaxed);
+        comp_now_[a] = comp_[a].correction_steps(pos_steps_[a]);  // a coordinate, not a move
+        homed_.fetch_or(1u << a, std::memory_order_relaxed);
+        log(RtLogCode::Homed, l.home_steps, a);
+        move_axis_ = -1;
+        set_state(MachineState::Idle);
+      }
+      break;
+  }
+}
+
+void RtKernel::flush_some() noexcept {
+  // An aborted job's entries, a bounded number per period (the RT thread is
+  // the buffer's only consumer). Done once the producer has stopped and the
+  // buffer is empty.
+  PeriodIncrement dropped;
+  for (int i = 0; i < 512 && buffer_.try_pop(dropped); ++i) {
+  }
+  if (!streaming_.load(std::memory_order_acquire) && buffer_.empty()) flushing_ = false;
+}
+
+void RtKernel::guard_limits(Motion& m) noexcept {
+  const std::uint32_t homed = homed_.load(std::memory_order_relaxed);
+  for (int i = 0; i < kAxisCount; ++i) {
+    const std::int32_t s = m.inc.steps[i];
+    if (s == 0) continue;
+    // hard limit switch in the direction of motion: e-stop, this period
+    if ((s < 0 && inputs_.limit_min[i]) || (s > 0 && inputs_.limit_max[i])) {
+      enter_estop(ErrorCode::RtHardLimit, i, line_);
+      m = Motion{};
+      return;
+    }
+    if (!((homed >> i) & 1u)) continue;
+    const AxisLimits& l = axes_[i];
+    const std::int64_t next = pos_steps_[i] + s;
+    if (next < l.min_steps || next > l.max_steps) {
+      // this entry would cross the soft limit: not executed; e-stop. (The
+      // planner thread checks its increments before they are queued and
+      // stops the job short of the limit along the path; this is the last
+      // line of defence.)
+      enter_estop(ErrorCode::RtSoftLimit, i, m.on_path ? m.inc.line : line_);
+      m = Motion{};
+      return;
+    }
+  }
+}
+
+void RtKernel::cycle(const Motion& m, double length_ns, std::int64_t end_ns) noexcept {
+  // 7. pitch compensation, DDA and the pulse sink; M4 power follows the
+  // actual speed, K times the planned one, up to the programmed power; off
+  // unless on the path
+  std::array<std::int32_t, kAxisCount> out = m.inc.steps;
+  for (int i = 0; i < kAxisCount; ++i) {
+    std::int64_t n = m.inc.steps[i] + owed_[i];
+    if (!comp_[i].empty()) {
+      const std::int64_t c = comp_[i].correction_steps(pos_steps_[i] + m.inc.steps[i]);
+      n += c - comp_now_[i];
+      comp_now_[i] = c;
+    }
+    const std::int64_t sent = std::clamp(n, -max_pulses_, max_pulses_);
+    owed_[i] = n - sent;
+    out[i] = static_cast<std::int32_t>(sent);
+  }
+  dda_.run_period(out, frame_);
+  float power = m.on_path ? m.inc.power_pct : 0.0f;
+  if (m.on_path && m.inc.power_cap_pct > 0.0f)
+    power = std::min(m.inc.power_cap_pct, power * static_cast<float>(k_));
   frame_.power_pct = power;
+  power_now_ = power;
   sink_.emit(frame_);
-  // 6. position, machine time, trace
+  // 8. position, machine time, trace
   for (int i = 0; i < kAxisCount; ++i) {
     const std::int64_t n = frame_.axes[i].count;
-    pos_steps_[i] += frame_.axes[i].negative ? -n : n;
+    const std::int64_t pulses = frame_.axes[i].negative ? -n : n;
+    const std::int64_t d = m.inc.steps[i];
+    if (pulses != 0) {
+      emitted_[i] += pulses;
+      emitted_pub_[i].store(emitted_[i], std::memory_order_relaxed);
+    }
+    if (d == 0) continue;
+    pos_steps_[i] += d;
+    pos_pub_[i].store(pos_steps_[i], std::memory_order_relaxed);
+    if (state_now_ == MachineState::Homing && i == move_axis_) home_travel_ += d;
   }
   machine_time_ns_.store(end_ns, std::memory_order_relaxed);
   if (power > 0.0f) {
@@ -176,17 +540,50 @@ void RtKernel::cycle(std::uint64_t period, const PeriodIncrement& inc, bool held
   }
   if (trace_ != nullptr) {
     TraceRecord rec;
-    rec.period = period;
+    rec.period = period_;
     rec.t_ns = end_ns;
     rec.pos_steps = pos_steps_;
     rec.feed_override = k_;
     rec.power_pct = power;
-    rec.line = inc.line;
-    rec.segment = inc.segment;
-    rec.underrun = underrun;
-    rec.held = held;
+    rec.line = m.on_path ? m.inc.line : line_;
+    rec.segment = m.inc.segment;
+    rec.underrun = m.underrun;
+    rec.held = m.held;
     if (!trace_->try_push(rec)) trace_drops_.fetch_add(1, std::memory_order_relaxed);
   }
+}
+
+void RtKernel::publish_status(bool force) noexcept {
+  if (status_ == nullptr) return;
+  if (!force && period_ - last_status_ < kStatusEvery) return;
+  last_status_ = period_;
+  // quantiles scan the histogram: once every 64 publications
+  if (force || (period_ / kStatusEvery) % 64 == 0) {
+    lat_p50_ = latency_.quantile_us(0.50);
+    lat_p99_ = latency_.quantile_us(0.99);
+  }
+  shm::Status st;
+  st.state = state_now_;
+  st.fault = fault_code_.load(std::memory_order_relaxed);
+  st.fault_axis = fault_axis_.load(std::memory_order_relaxed);
+  st.line = line_;
+  st.periods = period_;
+  st.underruns = underruns_.load(std::memory_order_relaxed);
+  st.starvations = starvations_.load(std::memory_order_relaxed);
+  st.homed_mask = homed_.load(std::memory_order_relaxed);
+  for (int i = 0; i < kAxisCount; ++i) {
+    st.pos_steps[i] = pos_steps_[i];
+    st.pos[i] = static_cast<double>(pos_steps_[i]) * units_per_step_[i];
+  }
+  st.feed_override = k_;
+  st.feed_override_target = target_k_.load(std::memory_order_relaxed);
+  st.machine_time_s = static_cast<double>(machine_time_ns_.load(std::memory_order_relaxed)) * 1e-9;
+  st.buffer_fill = static_cast<std::uint32_t>(buffer_.size());
+  st.power_pct = power_now_;
+  st.latency_p50_us = static_cast<float>(lat_p50_);
+  st.latency_p99_us = static_cast<float>(lat_p99_);
+  st.latency_max_us = static_cast<float>(static_cast<double>(latency_.max_ns()) / 1000.0);
+  status_->store(st);
 }
 
 }  // namespace lcnc::rt

@@ -1,22 +1,36 @@
-// The real-time kernel: one thread that, every period, pops one entry of the
-// position buffer, runs the DDA for every axis and hands the pulses to the
-// pulse sink (DESIGN §2, §5.3, §5.4), at the feed override K (DESIGN §5.5):
-// a period lasts T/K, so the DDA clock runs at K·F (rt/feed_override.h).
+// The real-time kernel (DESIGN §2, §5.3–5.5; issue "RT kernel"): one thread
+// that, every period, takes the operator's commands, reads the machine's
+// inputs, makes the period's motion (a position-buffer entry, or its own jog
+// or homing move), guards the limits, runs the DDA for every axis, emits the
+// pulses and the laser power, and publishes what it did.
 //
 // The cycle, in order:
 //   1. sleep to the absolute deadline (clock_nanosleep, TIMER_ABSTIME)
 //   2. record wake-up latency
-//   3. take the period's entry: held (K < K_min) → none (zero increments,
-//      laser off, not an underrun); else pop one PeriodIncrement; empty while
-//      the job runs → underrun: hold position (zero increments), count it.
-//      The period lasts T/K; T while held and for a dwell, whose time is a
-//      process parameter (a pierce) that the override must not change
-//   4. DDA for all axes → PulseFrame
-//   5. emit to the pulse sink (pulses and laser power: M4 power × K — it
-//      follows the actual speed — up to the programmed power)
-//   6. account the commanded position and machine time, publish a trace record
-//   7. ramp K one step toward the operator's target (set_feed_override)
-// Deadlines follow machine time: deadline(i) = t0 + Σ_{j<i} length(j).
+//   3. commands (a lock-free ring from one control thread): start, hold,
+//      resume, stop, e-stop, reset, jog, home — an e-stop acts in this period
+//   4. inputs (e-stop, hard limits, home switches) from the pulse sink
+//   5. the period's motion, by state:
+//        Running/FeedHold/Stopping: held (K < K_min) → none; else pop one
+//          PeriodIncrement; empty while the job runs → underrun: hold
+//          position, count it. The effective override target is 0 while the
+//          operator holds, while stopping and while the buffer is below its
+//          braking reserve (a streaming producer fell behind): the machine
+//          then decelerates along the path instead of running dry.
+//        Jog/Homing: the kernel's own single-axis move (rt/axis_move.h)
+//        Idle/EStop: none (an aborted job's entries are discarded)
+//   6. limits: hard-limit inputs in the direction of motion → e-stop; an
+//      entry that would take a homed axis across its soft limit is not
+//      executed → e-stop naming the axis and line. (The planner thread checks
+//      increments before queueing them and stops a job short of the limit,
+//      along the path: app/planner_feed.h.)
+//   7. DDA for all axes → PulseFrame; emit to the pulse sink (M4 power × K up
+//      to the programmed power; laser off when not on the path)
+//   8. account the position and machine time; trace record; status (under
+//      the seqlock, every kStatusEvery periods and on every state change)
+//   9. ramp K one step toward the effective target
+// A period lasts T/K on the path (T while held, for a dwell, and in every
+// other state). Deadlines follow machine time: deadline(i) = t0 + Σ lengths.
 // The RT path never allocates, locks, throws, logs or makes a syscall but the
 // clock sleep (clock_gettime goes through the vDSO).
 #pragma once
@@ -28,19 +42,23 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "machine/machine_config.h"
 #include "machine/pulse_sink.h"
 #include "plan/period_increment.h"
 #include "rt/dda.h"
 #include "rt/feed_override.h"
+#include "rt/axis_move.h"
 #include "rt/latency_histogram.h"
+#include "rt/pitch_compensation.h"
 #include "rt/rt_log.h"
+#include "rt/shm_interface.h"
 #include "rt/spsc_ring.h"
 
 namespace lcnc::rt {
 
-inline constexpr std::size_t kPositionBufferCapacity = 8192;  // 0.6 s at 75 µs
+inline constexpr std::size_t kPositionBufferCapacity = 16384;  // 1.2 s at 75 µs
 inline constexpr std::size_t kTraceRingCapacity = 1 << 16;    // 4.9 s at 75 µs
 
 using PositionBuffer = SpscRing<PeriodIncrement, kPositionBufferCapacity>;
@@ -61,6 +79,37 @@ using TraceRing = SpscRing<TraceRecord, kTraceRingCapacity>;
 
 enum class RtSchedule : std::uint8_t { Fifo, Normal };
 
+using shm::MachineState;
+
+// What the control thread asks of the kernel (rt::RtKernel::command).
+enum class RtCommandType : std::uint8_t {
+  StartJob,  // Idle → Running: the position buffer holds (the start of) a job
+  Hold,      // feed hold: ramp to 0 along the path and hold
+  Resume,    // release a feed hold
+  Stop,      // ramp to rest along the path, discard the rest of the job → Idle
+  EStop,     // this period: no more motion, laser off; the job is discarded
+  Reset,     // EStop → Idle
+  Jog,       // Idle: move `axis` by `value` (mm or deg) at its jog speed
+  Home,      // Idle: home `axis` (search, back off, latch)
+};
+struct RtCommand {
+  RtCommandType type = RtCommandType::Stop;
+  std::int8_t axis = 0;
+  double value = 0.0;
+};
+using RtCommandRing = SpscRing<RtCommand, 16>;
+
+// The fault that ended motion, if any.
+struct RtFault {
+  ErrorCode code = ErrorCode::Internal;
+  int axis = -1;          // axis index, −1 if none
+  std::uint32_t line = 0; // program line, 0 if none
+  bool active = false;
+};
+
+// Status publication period (periods): ~5 ms at 75 µs.
+inline constexpr std::uint64_t kStatusEvery = 64;
+
 struct RtOptions {
   bool try_realtime = true;  // SCHED_FIFO + mlockall when permitted
   int fifo_priority = 80;
@@ -69,6 +118,11 @@ struct RtOptions {
   // RT path itself.
   std::function<void()> on_loop_enter;
   std::function<void()> on_loop_exit;
+  // One job, then the thread ends (lasercnc run, tests). Otherwise the kernel
+  // runs until shutdown(), Idle between jobs (the daemon).
+  bool exit_at_end = true;
+  // Begin Running (the buffer holds a job); otherwise Idle until StartJob.
+  bool start_running = true;
 };
 
 class RtKernel {
@@ -86,13 +140,42 @@ class RtKernel {
     return log_drops_.load(std::memory_order_relaxed);
   }
 
+  // Where the RT thread publishes its status (the shm block's seqlock); set
+  // before start(). Null: none.
+  void set_status(Seqlock<shm::Status>* status) noexcept { status_ = status; }
+
   // Starts the RT thread. Where SCHED_FIFO or mlockall is not permitted it
   // runs anyway; warning() then says so.
   void start(const RtOptions& options = {});
-  // Waits for the thread to finish (end of program or stop()).
+  // Waits for the thread to finish (end of a one-shot job, or shutdown()).
   void join();
-  // Asks the thread to end after the current period (holding position).
-  void stop() noexcept { stop_requested_.store(true, std::memory_order_relaxed); }
+  // Ends the thread after the current period (holding position).
+  void shutdown() noexcept { shutdown_requested_.store(true, std::memory_order_relaxed); }
+
+  // A command for the RT thread, executed at the start of its next period.
+  // From one control thread only (single producer). False if the ring is
+  // full (16 pending commands).
+  bool command(const RtCommand& c) noexcept { return commands_.try_push(c); }
+
+  // The producer of the position buffer streams a job that is longer than
+  // the buffer: while streaming, the kernel keeps a braking reserve in the
+  // buffer and decelerates along the path when the fill drops below it
+  // (DESIGN §5.3). stream_end() after the job's last entry is pushed (or
+  // the producer gave up): the kernel then runs the buffer dry, and a
+  // stopped job's flush completes.
+  void stream_begin() noexcept { streaming_.store(true, std::memory_order_release); }
+  void stream_end() noexcept { streaming_.store(false, std::memory_order_release); }
+  // Entries the kernel keeps in the buffer to brake from K to 0 along the
+  // path at the override ramp: K²/(2ρT) plus a margin.
+  [[nodiscard]] std::size_t braking_reserve(double k) const noexcept;
+
+  [[nodiscard]] MachineState state() const noexcept { return state_.load(std::memory_order_acquire); }
+  // The last fault (code, axis, line), cleared by Reset/StartJob.
+  [[nodiscard]] RtFault fault() const noexcept;
+  // Axes whose position is known (homed, or known at start): bit per axis.
+  [[nodiscard]] std::uint32_t homed_mask() const noexcept { return homed_.load(std::memory_order_relaxed); }
+  // Jobs that have ended (at their end, by a stop or by an e-stop).
+  [[nodiscard]] std::uint32_t jobs_ended() const noexcept { return jobs_ended_.load(std::memory_order_acquire); }
 
   // Feed override K (1 = 100 %), from any thread, lock-free. Clamped to
   // 0 … K_max (FeedOverrideRamp::clamp_target); 0 is a feed hold. While
@@ -119,6 +202,8 @@ class RtKernel {
     return motion_periods_.load(std::memory_order_relaxed);
   }
   [[nodiscard]] std::uint64_t underruns() const noexcept { return underruns_.load(std::memory_order_relaxed); }
+  // Times the buffer fell below its braking reserve while streaming.
+  [[nodiscard]] std::uint64_t starvations() const noexcept { return starvations_.load(std::memory_order_relaxed); }
   [[nodiscard]] std::uint64_t overruns() const noexcept { return overruns_.load(std::memory_order_relaxed); }
   [[nodiscard]] std::uint64_t trace_drops() const noexcept { return trace_drops_.load(std::memory_order_relaxed); }
   [[nodiscard]] std::uint32_t current_segment() const noexcept {
@@ -142,17 +227,99 @@ class RtKernel {
   // Compute time of each period's work: from the wake-up to the end of the
   // cycle (pop, DDA for every axis, emit, publish), in 10 ns buckets.
   [[nodiscard]] const LatencyHistogram& compute_time() const noexcept { return compute_; }
-  [[nodiscard]] std::int64_t position_steps(int axis) const noexcept { return pos_steps_[axis]; }
+  // Commanded position, machine coordinates (steps); relaxed snapshot.
+  [[nodiscard]] std::int64_t position_steps(int axis) const noexcept {
+    return pos_pub_[axis].load(std::memory_order_relaxed);
+  }
+  // Net pulses emitted since start, per axis: the commanded motion plus the
+  // change of the pitch correction (homing moves the coordinate, not the
+  // pulses).
+  [[nodiscard]] std::int64_t pulses_emitted(int axis) const noexcept {
+    return emitted_pub_[axis].load(std::memory_order_relaxed);
+  }
 
  private:
+  // What step 5 decided for this period.
+  struct Motion {
+    PeriodIncrement inc{};
+    bool on_path = false;   // a job's entry (override, power, trace line)
+    bool held = false;      // on the path, K < K_min: no entry taken
+    bool underrun = false;  // on the path, buffer empty while running
+    bool nominal = true;    // the period lasts T, not T/K
+  };
+
   void run(const RtOptions& options) noexcept;
-  void log(std::uint64_t period, RtLogCode code, std::int64_t value) noexcept;
-  // Steps 4–7 for a period of length_ns ending at machine time end_ns.
-  void cycle(std::uint64_t period, const PeriodIncrement& inc, bool held, bool underrun,
-             double length_ns, std::int64_t end_ns) noexcept;
+  void log(RtLogCode code, std::int64_t value, int axis = -1, std::uint32_t line = 0) noexcept;
+  void set_state(MachineState s) noexcept;
+  void take_commands() noexcept;
+  void take_inputs() noexcept;
+  void set_fault(ErrorCode code, int axis, std::uint32_t line) noexcept;
+  void enter_estop(ErrorCode code, int axis, std::uint32_t line) noexcept;
+  void begin_stop(ErrorCode code, int axis, std::uint32_t line) noexcept;
+  void path_motion(Motion& m) noexcept;
+  void axis_motion(Motion& m) noexcept;
+  void homing_step() noexcept;
+  void flush_some() noexcept;
+  void guard_limits(Motion& m) noexcept;
+  // Steps 7–8 for a period of length_ns ending at machine time end_ns.
+  void cycle(const Motion& m, double length_ns, std::int64_t end_ns) noexcept;
+  void publish_status(bool force) noexcept;
+  [[nodiscard]] bool on_path_state() const noexcept {
+    return state_now_ == MachineState::Running || state_now_ == MachineState::FeedHold ||
+           state_now_ == MachineState::Stopping;
+  }
+
+  // Homing of one axis (issue "RT kernel"): search toward the switch at the
+  // search speed, brake, back off at the latch speed until the switch
+  // releases — that step is the switch's position — brake, and re-base the
+  // axis's coordinate there.
+  enum class HomePhase : std::uint8_t { Search, SearchBrake, Latch, LatchBrake };
+  struct AxisLimits {
+    bool present = false;
+    std::int64_t min_steps = 0, max_steps = 0;  // soft limits
+    double jog_speed = 0.0;                     // steps/s
+    double accel = 0.0;                         // steps/s², jog and homing
+    double search_speed = 0.0;                  // steps/s, signed toward the switch
+    double latch_speed = 0.0;                   // steps/s, > 0
+    std::int64_t home_steps = 0;                // coordinate of the switch
+  };
 
   std::uint32_t period_ns_;
+  double period_s_;
   FeedOverrideRamp ramp_;
+  std::array<AxisLimits, kAxisCount> axes_{};
+  std::array<double, kAxisCount> units_per_step_{};
+  RtCommandRing commands_;
+  Seqlock<shm::Status>* status_ = nullptr;
+  RtOptions options_;
+  // RT thread's state (the atomics below publish it).
+  MachineState state_now_ = MachineState::Idle;
+  bool hold_ = false;         // operator's feed hold
+  bool stopping_ = false;     // a stop (operator's or a fault's) ramps down
+  bool starving_ = false;     // below the braking reserve while streaming
+  bool flushing_ = false;     // discarding an aborted job's entries
+  bool reset_asked_ = false;  // EStop → Idle once the flush is done
+  bool job_aborted_ = false;  // the job ended by a stop or an e-stop
+  bool move_abort_ = false;   // Jog/Homing stopped by the operator or a fault
+  int move_axis_ = -1;        // Jog/Homing: the axis
+  AxisMove move_;
+  HomePhase home_phase_ = HomePhase::Search;
+  std::int64_t home_latch_ = 0;
+  std::int64_t home_travel_ = 0;  // steps searched so far
+  std::uint32_t line_ = 0;        // line of the last entry executed
+  std::uint64_t period_ = 0;      // index of the period being executed
+  std::uint64_t last_status_ = 0;
+  MachineInputs inputs_{};
+  float power_now_ = 0.0f;
+  double lat_p50_ = 0.0, lat_p99_ = 0.0;
+  std::array<std::int64_t, kAxisCount> emitted_{};
+  // Pitch-error compensation (rt/pitch_compensation.h): the pulses are the
+  // commanded steps plus the change of the correction; what the DDA cannot
+  // take in one period is carried to the next.
+  std::vector<PitchCompensation> comp_;
+  std::array<std::int64_t, kAxisCount> comp_now_{};
+  std::array<std::int64_t, kAxisCount> owed_{};
+  std::int64_t max_pulses_ = 0;
   PositionBuffer& buffer_;
   PulseSink& sink_;
   TraceRing* trace_;
@@ -170,7 +337,17 @@ class RtKernel {
   double k_ = 1.0;                  // RT thread's current K (from the target in start())
   double laser_on_exact_ns_ = 0.0;  // RT thread's laser-on time, unrounded
 
-  std::atomic<bool> stop_requested_{false};
+  std::atomic<bool> shutdown_requested_{false};
+  std::atomic<bool> streaming_{false};
+  std::atomic<MachineState> state_{MachineState::Idle};
+  std::atomic<std::uint32_t> homed_{0};
+  std::atomic<std::uint16_t> fault_code_{0};
+  std::atomic<std::int8_t> fault_axis_{-1};
+  std::atomic<std::uint32_t> fault_line_{0};
+  std::atomic<std::uint64_t> starvations_{0};
+  std::atomic<std::uint32_t> jobs_ended_{0};
+  std::array<std::atomic<std::int64_t>, kAxisCount> pos_pub_{};
+  std::array<std::atomic<std::int64_t>, kAxisCount> emitted_pub_{};
   std::atomic<bool> finished_{false};
   std::atomic<std::uint64_t> periods_{0};
   std::atomic<std::uint64_t> motion_periods_{0};

@@ -1,7 +1,8 @@
 // Logging from the RT thread (DESIGN §2): the RT path may not log, so it
 // pushes fixed records into a lock-free ring; a normal thread drains them
-// into the log (spdlog, in app/). A full ring drops the record and counts it:
-// the RT thread never waits.
+// into the log (spdlog, in app/) and, in the daemon, into the shared-memory
+// event ring. A full ring drops the record and counts it: the RT thread never
+// waits.
 #pragma once
 
 #include <cstdint>
@@ -16,6 +17,13 @@ enum class RtLogCode : std::uint16_t {
   HoldBegin,      // feed hold reached (K below K_min)
   HoldEnd,        // motion resumed
   LateWakeup,     // value: ns late (beyond kLateLogNs; once per streak of late periods)
+  StateChange,    // value: the new shm::MachineState
+  Fault,          // value: ErrorCode; axis and line where it applies
+  StarveBegin,    // buffer below its braking reserve: decelerating along the path
+  StarveEnd,      // buffer refilled: back to the operator's override
+  JogShort,       // axis: a jog clamped at a soft limit; value: steps not moved
+  Homed,          // axis; value: machine position given to the switch, steps
+  Refused,        // value: the RtCommandType refused in this state
 };
 
 // Wake-ups later than this are logged one by one; all are counted.
@@ -24,6 +32,8 @@ inline constexpr std::int64_t kLateLogNs = 1'000'000;
 struct RtLogRecord {
   std::uint64_t period = 0;
   RtLogCode code = RtLogCode::UnderrunBegin;
+  std::int8_t axis = -1;   // axis index, −1 if none
+  std::uint32_t line = 0;  // program line, 0 if none
   std::int64_t value = 0;
 };
 
@@ -37,6 +47,13 @@ using RtLogRing = SpscRing<RtLogRecord, 1024>;
     case RtLogCode::HoldBegin: return "feed hold: stopped";
     case RtLogCode::HoldEnd: return "feed hold released: motion continues";
     case RtLogCode::LateWakeup: return "RT thread woke late";
+    case RtLogCode::StateChange: return "machine state";
+    case RtLogCode::Fault: return "fault";
+    case RtLogCode::StarveBegin: return "position buffer low: decelerating along the path";
+    case RtLogCode::StarveEnd: return "position buffer refilled: back to speed";
+    case RtLogCode::JogShort: return "jog stopped short at the soft limit";
+    case RtLogCode::Homed: return "axis homed";
+    case RtLogCode::Refused: return "command refused in this state";
   }
   return "unknown RT event";
 }

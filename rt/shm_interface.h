@@ -3,8 +3,9 @@
 // (offsets only), versioned; mode 0660.
 //
 //   ShmHeader   magic, version, size, owner pid, heartbeat (stale detection)
-//   status      Seqlock<Status>: written by the kernel every period or so,
+//   status      Seqlock<Status>: written by the RT kernel every few periods,
 //               read by any number of HMIs without blocking the kernel
+//   job         Seqlock<JobStatus>: the daemon's answers to commands, jobs
 //   commands    SpscRing<Command>: HMI → kernel (one HMI writes)
 //   events      SpscRing<Event>:   kernel → HMI (faults, state changes)
 #pragma once
@@ -23,7 +24,7 @@
 namespace lcnc::shm {
 
 inline constexpr std::uint32_t kMagic = 0x434E434Cu;  // "LCNC" in memory
-inline constexpr std::uint32_t kVersion = 1;
+inline constexpr std::uint32_t kVersion = 2;
 inline constexpr const char* kDefaultName = "/lasercnc";
 
 enum class MachineState : std::uint8_t { Idle, Running, FeedHold, Stopping, EStop, Jog, Homing };
@@ -39,6 +40,7 @@ enum class CommandType : std::uint8_t {
   Override,  // value: feed override K (1 = 100 %)
   Jog,       // axis, value: distance (mm or deg)
   Home,      // axis
+  Count,     // not a command: the number of them (a larger type byte is a bad frame)
 };
 
 struct Command {
@@ -60,17 +62,39 @@ struct Event {
 
 struct Status {
   MachineState state = MachineState::Idle;
-  std::uint16_t fault = 0;  // ErrorCode of the active fault, 0 if none
-  std::uint32_t line = 0;
+  std::uint16_t fault = 0;      // ErrorCode of the active fault, 0 if none
+  std::int8_t fault_axis = -1;  // axis of the fault, −1 if none
+  std::uint32_t line = 0;       // program line executing (or last executed)
+  std::uint32_t homed_mask = 0; // bit per axis whose position is known
   std::uint64_t periods = 0;
-  std::uint64_t underruns = 0;
+  std::uint64_t underruns = 0;    // periods with the buffer empty while running
+  std::uint64_t starvations = 0;  // decelerations for a low buffer while streaming
   std::array<std::int64_t, 6> pos_steps{};
   std::array<double, 6> pos{};  // mm / deg
-  double feed_override = 1.0;
+  double feed_override = 1.0;         // K now
+  double feed_override_target = 1.0;  // the operator's K
   double machine_time_s = 0.0;
   std::uint32_t buffer_fill = 0;
   float power_pct = 0.0f;
   float latency_p50_us = 0.0f, latency_p99_us = 0.0f, latency_max_us = 0.0f;
+};
+
+// What the daemon says of jobs and commands (written by its control thread,
+// a second seqlock beside the kernel's Status): the answer to the last
+// command — any number of `lasercnc send` and HMIs read it, none consumes it.
+struct JobStatus {
+  std::uint32_t ack_seq = 0;   // seq of the last command taken
+  std::uint16_t ack_code = 0;  // 0: accepted; else the ErrorCode why not
+  char message[256] = {};      // what came of it (an error says file:line:col)
+  char program[256] = {};      // the loaded program, "" if none
+  std::uint32_t lines = 0;
+  std::uint64_t segments = 0;
+  bool job_active = false;     // planning/executing a job
+  double progress = 0.0;       // 0 … 1 of the active (or last) job
+  std::uint32_t jobs_ended = 0;
+  double last_cycle_time_s = 0.0;
+  std::uint64_t last_underruns = 0;
+  std::uint16_t last_fault = 0;  // ErrorCode that ended the last job, 0 if it ran to the end
 };
 
 struct ShmHeader {
@@ -84,6 +108,7 @@ struct ShmHeader {
 struct ShmBlock {
   ShmHeader header;
   rt::Seqlock<Status> status;
+  rt::Seqlock<JobStatus> job;
   rt::SpscRing<Command, 64> commands;
   rt::SpscRing<Event, 256> events;
 };

@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <dlfcn.h>
 #include <linux/filter.h>
+#include <pthread.h>
 #include <linux/seccomp.h>
 #include <signal.h>
 #include <sys/prctl.h>
@@ -20,6 +22,7 @@
 #include <iterator>
 #include <random>
 #include <thread>
+#include <mutex>
 #include <vector>
 
 #include "drivers/sim_machine.h"
@@ -47,6 +50,36 @@ void* operator new[](std::size_t n) {
   if (void* p = std::malloc(n ? n : 1)) return p;
   throw std::bad_alloc();
 }
+// Locks taken by a watched thread are counted the same way: these wrappers
+// interpose the pthread lock entry points (std::mutex, condition variables,
+// stdio's locks and spdlog all go through them) and forward to libc's.
+namespace {
+std::atomic<std::uint64_t> g_locks{0};
+template <typename Fn>
+Fn next_symbol(const char* name) {
+  return reinterpret_cast<Fn>(dlsym(RTLD_NEXT, name));
+}
+}  // namespace
+extern "C" int pthread_mutex_lock(pthread_mutex_t* m) {
+  static const auto real = next_symbol<int (*)(pthread_mutex_t*)>("pthread_mutex_lock");
+  if (t_count_allocations) g_locks.fetch_add(1, std::memory_order_relaxed);
+  return real(m);
+}
+extern "C" int pthread_mutex_trylock(pthread_mutex_t* m) {
+  static const auto real = next_symbol<int (*)(pthread_mutex_t*)>("pthread_mutex_trylock");
+  if (t_count_allocations) g_locks.fetch_add(1, std::memory_order_relaxed);
+  return real(m);
+}
+extern "C" int pthread_rwlock_rdlock(pthread_rwlock_t* l) {
+  static const auto real = next_symbol<int (*)(pthread_rwlock_t*)>("pthread_rwlock_rdlock");
+  if (t_count_allocations) g_locks.fetch_add(1, std::memory_order_relaxed);
+  return real(l);
+}
+extern "C" int pthread_rwlock_wrlock(pthread_rwlock_t* l) {
+  static const auto real = next_symbol<int (*)(pthread_rwlock_t*)>("pthread_rwlock_wrlock");
+  if (t_count_allocations) g_locks.fetch_add(1, std::memory_order_relaxed);
+  return real(l);
+}
 void operator delete(void* p) noexcept { std::free(p); }
 void operator delete[](void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
@@ -66,6 +99,7 @@ MachineConfig machine() {
   for (int i = 0; i < 3; ++i) {
     m.axes[i].present = true;
     m.axes[i].axis = static_cast<Axis>(i);
+    m.axes[i].min = -1000;  // the random walks stay well inside the soft limits
     m.axes[i].max = 1000;
     m.axes[i].max_velocity = 500;
     m.axes[i].max_acceleration = 50000;
@@ -251,7 +285,7 @@ TEST(RtKernel, StopEndsTheLoopWithinAFewPeriods) {
   Rig r;
   r.kernel.start(RtOptions{false, 0, {}, {}});  // empty buffer: holds forever
   std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  r.kernel.stop();
+  r.kernel.shutdown();
   r.kernel.join();
   EXPECT_TRUE(r.kernel.finished());
   EXPECT_EQ(r.sim.position_steps(0), 0);
@@ -511,6 +545,98 @@ TEST(RtKernel, LoopNeverAllocates) {
   EXPECT_GT(r.kernel.held_periods(), 0u);
   EXPECT_EQ(r.kernel.motion_periods(), 3000u);
   EXPECT_EQ(at_exit.load() - at_enter.load(), 0u);
+}
+
+// A million periods of a daemon-style kernel (1 µs periods: the loop runs as
+// fast as it can, every deadline already past) with a streaming producer,
+// feed-override changes, a hold, a stop and a second job: no allocation and
+// no lock on the RT thread, from the first period to the last.
+TEST(RtKernel, MillionPeriodsWithoutAllocationOrLock) {
+  MachineConfig m = machine();
+  m.period_ns = 1'000;
+  std::unique_ptr<PositionBuffer> buffer = std::make_unique<PositionBuffer>();
+  std::array<std::int64_t, kAxisCount> start{};
+  drivers::SimMachine sim{start};
+  std::unique_ptr<RtLogRing> log = std::make_unique<RtLogRing>();
+  std::unique_ptr<TraceRing> trace = std::make_unique<TraceRing>();
+  std::unique_ptr<shm::ShmBlock> block = std::make_unique<shm::ShmBlock>();
+  RtKernel kernel{m, *buffer, sim, trace.get(), start};
+  kernel.set_log(log.get());
+  kernel.set_status(&block->status);
+  std::atomic<std::uint64_t> allocs_enter{0}, allocs_exit{0}, locks_enter{0}, locks_exit{0};
+  RtOptions opt{false, 0,
+                [&] {
+                  allocs_enter = g_allocations.load();
+                  locks_enter = g_locks.load();
+                  t_count_allocations = true;
+                },
+                [&] {
+                  t_count_allocations = false;
+                  allocs_exit = g_allocations.load();
+                  locks_exit = g_locks.load();
+                }};
+  opt.exit_at_end = false;
+  opt.start_running = false;
+  kernel.stream_begin();
+  kernel.start(opt);
+  std::atomic<bool> done{false};
+  std::thread drainer([&] {  // the normal threads that read the rings
+    TraceRecord t;
+    RtLogRecord l;
+    while (!done) {
+      while (trace->try_pop(t)) {
+      }
+      while (log->try_pop(l)) {
+      }
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+  });
+  std::mt19937 rng(5);
+  auto push_job = [&](std::size_t n) {
+    for (std::size_t k = 0; k < n; ++k) {
+      PeriodIncrement inc;
+      for (int a = 0; a < 3; ++a) inc.steps[a] = static_cast<std::int32_t>(rng() % 21) - 10;
+      inc.power_pct = 40.0f;
+      inc.end_of_program = k + 1 == n;
+      while (!buffer->try_push(inc)) std::this_thread::yield();
+    }
+  };
+  kernel.command({RtCommandType::StartJob, 0, 0.0});
+  std::thread producer([&] { push_job(600'000); });
+  for (double k : {1.5, 0.3, 1.0}) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(30));
+    kernel.set_feed_override(k);
+  }
+  kernel.command({RtCommandType::Hold, 0, 0.0});
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  kernel.command({RtCommandType::Resume, 0, 0.0});
+  producer.join();
+  kernel.stream_end();
+  while (kernel.jobs_ended() < 1) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  while (kernel.state() != MachineState::Idle) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  kernel.command({RtCommandType::Jog, 0, 2.0});
+  while (kernel.periods() < 1'000'000) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  kernel.shutdown();
+  kernel.join();
+  done = true;
+  drainer.join();
+  EXPECT_GE(kernel.periods(), 1'000'000u);
+  EXPECT_EQ(kernel.motion_periods(), 600'000u);
+  EXPECT_EQ(allocs_exit.load() - allocs_enter.load(), 0u);
+  EXPECT_EQ(locks_exit.load() - locks_enter.load(), 0u);
+}
+
+// The lock counter works: a mutex locked on a watched thread is seen.
+TEST(RtKernel, LockCounterSeesLocks) {
+  const std::uint64_t before = g_locks.load();
+  std::thread([] {
+    std::mutex mu;
+    t_count_allocations = true;
+    mu.lock();
+    mu.unlock();
+    t_count_allocations = false;
+  }).join();
+  EXPECT_GE(g_locks.load() - before, 1u);
 }
 
 // The counter works: an allocation on a counting thread is seen.

@@ -1,0 +1,229 @@
+#include "app/control_client.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "common/error.h"
+#include "geom/pose.h"
+#include "app/run_job.h"
+#include "rt/shm_interface.h"
+
+namespace lcnc::app {
+namespace {
+
+std::string segment_name(const ClientOptions& o) {
+  return o.shm_name.empty() ? shm::kDefaultName : o.shm_name;
+}
+
+// The daemon's segment, or an error printed and nullopt.
+std::optional<shm::ShmClient> connect(const ClientOptions& o) {
+  Result<shm::ShmClient> c = shm::ShmClient::open(segment_name(o));
+  if (!c) {
+    std::fprintf(stderr, "lasercnc: no daemon: %s\n", c.error().to_string().c_str());
+    return std::nullopt;
+  }
+  if (!c->owner_alive()) {
+    std::fprintf(stderr, "lasercnc: the daemon that owned %s is gone (stale segment)\n",
+                 segment_name(o).c_str());
+    return std::nullopt;
+  }
+  return std::move(c).value();
+}
+
+bool read_both(shm::ShmBlock& b, shm::Status& st, shm::JobStatus& job) {
+  return b.status.load(st) && b.job.load(job);
+}
+
+std::optional<int> axis_index(const std::string& s) {
+  if (s.size() != 1) return std::nullopt;
+  for (int i = 0; i < kAxisCount; ++i)
+    if (std::toupper(static_cast<unsigned char>(s[0])) == kAxisLetters[i]) return i;
+  return std::nullopt;
+}
+
+std::optional<double> number(const std::string& s) {
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || *end != '\0' || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+}  // namespace
+
+int client_status(const ClientOptions& options) {
+  auto client = connect(options);
+  if (!client) return 1;
+  shm::Status st;
+  shm::JobStatus job;
+  if (!read_both(client->block(), st, job)) {
+    std::fprintf(stderr, "lasercnc: the status is being rewritten too often to read\n");
+    return 1;
+  }
+  if (options.json) {
+    nlohmann::json j;
+    j["state"] = state_name(st.state);
+    j["fault"] = st.fault == 0 ? "" : std::string(error_summary(static_cast<ErrorCode>(st.fault)));
+    j["fault_axis"] = st.fault_axis >= 0 ? std::string(1, kAxisLetters[st.fault_axis]) : "";
+    j["line"] = st.line;
+    j["position"] = st.pos;
+    j["position_steps"] = st.pos_steps;
+    j["homed_mask"] = st.homed_mask;
+    j["feed_override"] = st.feed_override;
+    j["feed_override_target"] = st.feed_override_target;
+    j["buffer_fill"] = st.buffer_fill;
+    j["underruns"] = st.underruns;
+    j["starvations"] = st.starvations;
+    j["periods"] = st.periods;
+    j["machine_time_s"] = st.machine_time_s;
+    j["power_pct"] = st.power_pct;
+    j["latency_us"] = {{"p50", st.latency_p50_us}, {"p99", st.latency_p99_us}, {"max", st.latency_max_us}};
+    j["program"] = job.program;
+    j["job_active"] = job.job_active;
+    j["progress"] = job.progress;
+    j["jobs_ended"] = job.jobs_ended;
+    j["last_cycle_time_s"] = job.last_cycle_time_s;
+    j["last_fault"] = job.last_fault;
+    j["message"] = job.message;
+    std::printf("%s\n", j.dump(2).c_str());
+    return 0;
+  }
+  std::printf("state      %s%s\n", state_name(st.state),
+              st.fault ? (std::string(" — ") + std::string(error_summary(static_cast<ErrorCode>(st.fault))) +
+                          (st.fault_axis >= 0 ? std::string(" (axis ") + kAxisLetters[st.fault_axis] + ")" : ""))
+                             .c_str()
+                       : "");
+  std::printf("position  ");
+  for (int i = 0; i < kAxisCount; ++i)
+    std::printf(" %c %.3f%s", kAxisLetters[i], st.pos[i], (st.homed_mask >> i) & 1u ? "" : "?");
+  std::printf("\noverride   %.0f %% (target %.0f %%)   buffer %u   line %u\n",
+              st.feed_override * 100.0, st.feed_override_target * 100.0, st.buffer_fill, st.line);
+  std::printf("program    %s%s  %.1f %%\n", job.program[0] ? job.program : "(none)",
+              job.job_active ? " (running)" : "", job.progress * 100.0);
+  std::printf("underruns  %llu   decelerations for a low buffer %llu   machine time %.3f s\n",
+              static_cast<unsigned long long>(st.underruns),
+              static_cast<unsigned long long>(st.starvations), st.machine_time_s);
+  std::printf("RT latency p50 %.0f us, p99 %.0f us, max %.1f us\n", st.latency_p50_us,
+              st.latency_p99_us, st.latency_max_us);
+  if (job.message[0]) std::printf("last       %s\n", job.message);
+  return 0;
+}
+
+int client_send(const std::vector<std::string>& args, const ClientOptions& options) {
+  if (args.empty()) {
+    std::fprintf(stderr, "lasercnc send: missing command\n");
+    return 2;
+  }
+  const std::string& cmd = args[0];
+  shm::Command c;
+  const auto need = [&](std::size_t n, const char* what) {
+    if (args.size() == n + 1) return true;
+    std::fprintf(stderr, "lasercnc send %s: expects %s\n", cmd.c_str(), what);
+    return false;
+  };
+  if (cmd == "load") {
+    if (!need(1, "a program file")) return 2;
+    std::error_code ec;
+    const std::string path = std::filesystem::absolute(args[1], ec).string();
+    if (path.size() >= sizeof c.text) {
+      std::fprintf(stderr, "lasercnc send load: path longer than %zu bytes\n", sizeof c.text - 1);
+      return 2;
+    }
+    c.type = shm::CommandType::Load;
+    std::snprintf(c.text, sizeof c.text, "%s", path.c_str());
+  } else if (cmd == "start" || cmd == "hold" || cmd == "resume" || cmd == "stop" ||
+             cmd == "estop" || cmd == "reset") {
+    if (!need(0, "no argument")) return 2;
+    c.type = cmd == "start"    ? shm::CommandType::Start
+             : cmd == "hold"   ? shm::CommandType::Hold
+             : cmd == "resume" ? shm::CommandType::Resume
+             : cmd == "stop"   ? shm::CommandType::Stop
+             : cmd == "estop"  ? shm::CommandType::EStop
+                               : shm::CommandType::Reset;
+  } else if (cmd == "override") {
+    if (!need(1, "a percentage (0 … 150)")) return 2;
+    const auto v = number(args[1]);
+    if (!v) {
+      std::fprintf(stderr, "lasercnc send override: '%s' is not a number\n", args[1].c_str());
+      return 2;
+    }
+    c.type = shm::CommandType::Override;
+    c.value = *v / 100.0;
+  } else if (cmd == "jog") {
+    if (!need(2, "an axis and a distance, e.g. jog X 10")) return 2;
+    const auto a = axis_index(args[1]);
+    const auto v = number(args[2]);
+    if (!a || !v) {
+      std::fprintf(stderr, "lasercnc send jog: expects an axis (X Y Z A B C) and a distance\n");
+      return 2;
+    }
+    c.type = shm::CommandType::Jog;
+    c.axis = static_cast<std::uint8_t>(*a);
+    c.value = *v;
+  } else if (cmd == "home") {
+    if (!need(1, "an axis")) return 2;
+    const auto a = axis_index(args[1]);
+    if (!a) {
+      std::fprintf(stderr, "lasercnc send home: '%s' is not an axis (X Y Z A B C)\n", args[1].c_str());
+      return 2;
+    }
+    c.type = shm::CommandType::Home;
+    c.axis = static_cast<std::uint8_t>(*a);
+  } else {
+    std::fprintf(stderr,
+                 "lasercnc send: unknown command '%s' (load, start, hold, resume, stop, estop, "
+                 "reset, override, jog, home)\n",
+                 cmd.c_str());
+    return 2;
+  }
+  auto client = connect(options);
+  if (!client) return 1;
+  shm::ShmBlock& b = client->block();
+  shm::Status st;
+  shm::JobStatus job;
+  if (!read_both(b, st, job)) return 1;
+  // a number the daemon has not answered lately
+  c.seq = (static_cast<std::uint32_t>(getpid()) << 12) ^ (job.ack_seq + 1);
+  if (c.seq == job.ack_seq) ++c.seq;
+  const std::uint32_t ended_before = job.jobs_ended;
+  if (!b.commands.try_push(c)) {
+    std::fprintf(stderr, "lasercnc send: the daemon's command queue is full\n");
+    return 1;
+  }
+  const auto deadline = std::chrono::steady_clock::now() +
+                        std::chrono::milliseconds(static_cast<int>(options.timeout_s * 1000));
+  for (;;) {
+    if (read_both(b, st, job) && job.ack_seq == c.seq) break;
+    if (std::chrono::steady_clock::now() > deadline || !client->owner_alive()) {
+      std::fprintf(stderr, "lasercnc send %s: no answer from the daemon\n", cmd.c_str());
+      return 1;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  if (job.ack_code != 0) {
+    std::fprintf(stderr, "lasercnc: %s\n", job.message);
+    return 1;
+  }
+  std::printf("%s\n", job.message);
+  if (options.wait && c.type == shm::CommandType::Start) {
+    while (!(read_both(b, st, job) && job.jobs_ended != ended_before && !job.job_active)) {
+      if (!client->owner_alive()) {
+        std::fprintf(stderr, "lasercnc: the daemon died during the job\n");
+        return 1;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    std::printf("%s\n", job.message);
+    return job.last_fault == 0 ? 0 : 3;
+  }
+  return 0;
+}
+
+}  // namespace lcnc::app

@@ -1,0 +1,25 @@
+// `lasercnc status` and `lasercnc send CMD`: a client of lasercncd through
+// its shared-memory segment (rt/shm_interface.h). Reads the status and job
+// blocks (never blocking the daemon) and sends commands, waiting for the
+// daemon's answer to each.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace lcnc::app {
+
+struct ClientOptions {
+  std::string shm_name;  // empty: shm::kDefaultName
+  bool json = false;     // status as one JSON object
+  double timeout_s = 5.0;
+  bool wait = false;     // send start: wait for the job to end, print its result
+};
+
+// Prints the daemon's status; returns the exit code (0, or 1 without daemon).
+int client_status(const ClientOptions& options);
+// Sends one command: args = {CMD, ARG...}; returns the exit code (0 accepted,
+// 1 refused or no daemon, 2 bad command line).
+int client_send(const std::vector<std::string>& args, const ClientOptions& options);
+
+}  // namespace lcnc::app

@@ -1,0 +1,339 @@
+#include "app/daemon.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <thread>
+
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include "app/planner_feed.h"
+#include "app/run_job.h"
+#include "drivers/sim_machine.h"
+#include "gcode/program_reader.h"
+#include "rt/rt_kernel.h"
+#include "rt/shm_interface.h"
+
+namespace lcnc::app {
+namespace {
+
+constexpr auto kTick = std::chrono::microseconds(500);  // control loop period
+
+template <std::size_t N>
+void copy_text(char (&dst)[N], const std::string& src) {
+  std::snprintf(dst, N, "%s", src.c_str());
+}
+
+std::shared_ptr<spdlog::logger> logger() {
+  static const std::shared_ptr<spdlog::logger> l = [] {
+    auto existing = spdlog::get("lasercncd");
+    return existing ? existing : spdlog::stderr_color_mt("lasercncd");
+  }();
+  return l;
+}
+
+}  // namespace
+
+struct Daemon::Impl {
+  MachineConfig machine;
+  shm::ShmOwner shm;
+  std::array<std::int64_t, kAxisCount> start_steps{};
+  std::unique_ptr<rt::PositionBuffer> buffer = std::make_unique<rt::PositionBuffer>();
+  std::unique_ptr<rt::RtLogRing> rt_log = std::make_unique<rt::RtLogRing>();
+  std::unique_ptr<drivers::SimMachine> sim;
+  std::unique_ptr<rt::RtKernel> kernel;
+  std::unique_ptr<PlannerFeed> feed;
+  bool realtime = true;
+
+  // the job
+  std::string program;  // loaded, checked
+  ProgramSummary summary{};
+  bool job_active = false;
+  bool start_pending = false;  // planning ahead, the kernel not yet started
+  bool stop_sent = false;      // the planner stopped short of a soft limit
+  std::uint32_t jobs_ended_seen = 0;
+  std::int64_t job_time_start_ns = 0;
+  std::uint64_t job_underruns_start = 0;
+  shm::JobStatus job{};
+
+  Impl(MachineConfig m, shm::ShmOwner owner) : machine(std::move(m)), shm(std::move(owner)) {}
+
+  Pose position() const {
+    Pose p = Pose::Zero();
+    for (int i = 0; i < kAxisCount; ++i)
+      if (machine.axes[i].present)
+        p[i] = static_cast<double>(kernel->position_steps(i)) / machine.axes[i].steps_per_unit;
+    return p;
+  }
+
+  void ack(const shm::Command& c, ErrorCode code, const std::string& message, bool ok) {
+    job.ack_seq = c.seq;
+    job.ack_code = ok ? 0 : static_cast<std::uint16_t>(code);
+    copy_text(job.message, message);
+    shm.block().job.store(job);
+    if (ok) {
+      logger()->info("{}", message);
+    } else {
+      logger()->warn("{}", message);
+    }
+  }
+
+  void event(std::uint16_t code, std::uint32_t line, std::uint32_t seq, const std::string& text) {
+    shm::Event e;
+    e.period = kernel->periods();
+    e.code = code;
+    e.state = kernel->state();
+    e.line = line;
+    e.command_seq = seq;
+    copy_text(e.text, text);
+    // A full event ring (no HMI reading) drops the oldest news: the status
+    // and job blocks still tell the state.
+    (void)shm.block().events.try_push(e);
+  }
+
+  // Checks the program from where the machine stands now.
+  Result<ProgramSummary> check(const std::string& path) {
+    ReaderOptions ropt;
+    ropt.start = position();
+    return check_program(path, machine, ropt);
+  }
+
+  void handle(const shm::Command& c) {
+    const shm::MachineState st = kernel->state();
+    const auto refuse = [&](const std::string& why) { ack(c, ErrorCode::RtRefused, why, false); };
+    if (static_cast<std::uint8_t>(c.type) >= static_cast<std::uint8_t>(shm::CommandType::Count)) {
+      refuse("bad command frame: type " + std::to_string(static_cast<int>(c.type)) + " unknown");
+      return;
+    }
+    const bool axis_ok = c.axis < kAxisCount && machine.axes[c.axis].present;
+    const std::string axis_text =
+        c.axis < kAxisCount ? std::string(1, kAxisLetters[c.axis]) : std::to_string(c.axis);
+    switch (c.type) {
+      case shm::CommandType::Load: {
+        if (std::memchr(c.text, '\0', sizeof c.text) == nullptr) {
+          refuse("bad command frame: load path not terminated");
+          return;
+        }
+        if (job_active) {
+          refuse("load refused: a job is running (stop it first)");
+          return;
+        }
+        Result<ProgramSummary> s = check(c.text);
+        if (!s) {
+          ack(c, s.error().code, "load: " + s.error().to_string(), false);
+          return;
+        }
+        program = c.text;
+        summary = *s;
+        copy_text(job.program, program);
+        job.lines = s->lines;
+        job.segments = s->segments;
+        job.progress = 0.0;
+        char msg[256];
+        std::snprintf(msg, sizeof msg, "loaded %s: %u lines, %llu segments, path %.3f mm",
+                      program.c_str(), s->lines, static_cast<unsigned long long>(s->segments),
+                      s->path_length_mm);
+        ack(c, ErrorCode::Internal, msg, true);
+        return;
+      }
+      case shm::CommandType::Start: {
+        if (program.empty()) return refuse("start refused: no program loaded");
+        if (job_active || st != shm::MachineState::Idle)
+          return refuse(std::string("start refused: the machine is ") + state_name(st));
+        // checked again: the machine may have moved (jog, home) since the
+        // load, or the file changed
+        Result<ProgramSummary> s = check(program);
+        if (!s) return ack(c, s.error().code, "start: " + s.error().to_string(), false);
+        summary = *s;
+        ReaderOptions ropt;
+        ropt.start = position();
+        feed->start(program, ropt);
+        job_active = true;
+        start_pending = true;
+        stop_sent = false;
+        job.job_active = true;
+        job.progress = 0.0;
+        job_time_start_ns = kernel->machine_time_ns();
+        job_underruns_start = kernel->underruns();
+        ack(c, ErrorCode::Internal, "started " + program, true);
+        return;
+      }
+      case shm::CommandType::Hold:
+        kernel->command({rt::RtCommandType::Hold, 0, 0.0});
+        return ack(c, ErrorCode::Internal, "hold", true);
+      case shm::CommandType::Resume:
+        kernel->command({rt::RtCommandType::Resume, 0, 0.0});
+        return ack(c, ErrorCode::Internal, "resume", true);
+      case shm::CommandType::Stop:
+        kernel->command({rt::RtCommandType::Stop, 0, 0.0});
+        return ack(c, ErrorCode::Internal, "stop", true);
+      case shm::CommandType::EStop:
+        kernel->command({rt::RtCommandType::EStop, 0, 0.0});
+        return ack(c, ErrorCode::RtEstop, "e-stop", true);
+      case shm::CommandType::Reset:
+        if (st != shm::MachineState::EStop) return refuse("reset refused: not in e-stop");
+        kernel->command({rt::RtCommandType::Reset, 0, 0.0});
+        return ack(c, ErrorCode::Internal, "reset", true);
+      case shm::CommandType::Override: {
+        const double kmax = machine.max_feed_override;
+        if (!std::isfinite(c.value) || c.value < 0.0 || c.value > kmax) {
+          char msg[160];
+          std::snprintf(msg, sizeof msg, "override %g %% refused: allowed 0 … %g %%",
+                        c.value * 100.0, kmax * 100.0);
+          return refuse(msg);
+        }
+        kernel->set_feed_override(c.value);
+        char msg[64];
+        std::snprintf(msg, sizeof msg, "override %g %%", c.value * 100.0);
+        return ack(c, ErrorCode::Internal, msg, true);
+      }
+      case shm::CommandType::Jog: {
+        if (!axis_ok) return refuse("jog refused: no axis " + axis_text);
+        if (!std::isfinite(c.value) || std::abs(c.value) > 1e5)
+          return refuse("jog refused: distance not a number of range");
+        if (st != shm::MachineState::Idle || job_active)
+          return refuse(std::string("jog refused: the machine is ") + state_name(st));
+        kernel->command({rt::RtCommandType::Jog, static_cast<std::int8_t>(c.axis), c.value});
+        char msg[96];
+        std::snprintf(msg, sizeof msg, "jog %s %+g", axis_text.c_str(), c.value);
+        return ack(c, ErrorCode::Internal, msg, true);
+      }
+      case shm::CommandType::Home: {
+        if (!axis_ok) return refuse("home refused: no axis " + axis_text);
+        if (st != shm::MachineState::Idle || job_active)
+          return refuse(std::string("home refused: the machine is ") + state_name(st));
+        kernel->command({rt::RtCommandType::Home, static_cast<std::int8_t>(c.axis), 0.0});
+        return ack(c, ErrorCode::Internal, "home " + axis_text, true);
+      }
+      case shm::CommandType::Count: break;
+    }
+  }
+
+  // The kernel's log: to stderr and, as events, to the HMI.
+  void drain_rt_log() {
+    rt::RtLogRecord r;
+    while (rt_log->try_pop(r)) {
+      const RtLogLine line = describe_rt_log(r, machine);
+      if (line.warning) {
+        logger()->warn("{}", line.text);
+      } else {
+        logger()->info("{}", line.text);
+      }
+      event(line.code, r.line, 0, line.text);
+    }
+  }
+
+  // Starts the kernel on a job once it is planned far enough ahead; ends the
+  // job when the kernel says so.
+  void follow_job() {
+    if (!job_active) return;
+    if (start_pending && feed->prefilled()) {
+      start_pending = false;
+      kernel->command({rt::RtCommandType::StartJob, 0, 0.0});
+    }
+    if (feed->limit_hit() && !stop_sent) stop_sent = kernel->command({rt::RtCommandType::Stop, 0, 0.0});
+    if (summary.segments > 0)
+      job.progress = std::min(1.0, kernel->current_segment() / static_cast<double>(summary.segments));
+    const std::uint32_t ended = kernel->jobs_ended();
+    const bool estopped = kernel->state() == shm::MachineState::EStop;
+    if (ended == jobs_ended_seen && !estopped) return;
+    jobs_ended_seen = ended;
+    feed->abort();  // a stopped job: the planner stops; a finished one has
+    const PlannedJob& planned = feed->result();
+    job_active = false;
+    start_pending = false;
+    const rt::RtFault f = kernel->fault();
+    job.job_active = false;
+    job.jobs_ended = ended;
+    job.last_cycle_time_s = static_cast<double>(kernel->machine_time_ns() - job_time_start_ns) * 1e-9;
+    job.last_underruns = kernel->underruns() - job_underruns_start;
+    job.last_fault = f.active ? static_cast<std::uint16_t>(f.code) : 0;
+    char msg[256];
+    if (planned.failed) {
+      std::snprintf(msg, sizeof msg, "job failed: %s", planned.error.to_string().c_str());
+    } else if (planned.limit) {
+      job.last_fault = static_cast<std::uint16_t>(ErrorCode::RtSoftLimit);
+      std::snprintf(msg, sizeof msg, "job stopped: %s", planned.limit_error.to_string().c_str());
+    } else if (f.active) {
+      std::snprintf(msg, sizeof msg, "job stopped: %s", describe_fault(f, machine).c_str());
+    } else {
+      job.progress = 1.0;
+      std::snprintf(msg, sizeof msg, "job done: %s, cycle %.3f s, %llu underruns",
+                    program.c_str(), job.last_cycle_time_s,
+                    static_cast<unsigned long long>(job.last_underruns));
+    }
+    copy_text(job.message, msg);
+    logger()->info("{}", msg);
+    event(job.last_fault, f.line, 0, msg);
+  }
+};
+
+Result<std::unique_ptr<Daemon>> Daemon::create(const DaemonOptions& options) {
+  RunOptions ro;
+  ro.machine_file = options.machine_file;
+  Result<MachineConfig> machine = load_machine(ro);
+  if (!machine) return machine.error();
+  Result<shm::ShmOwner> owner =
+      shm::ShmOwner::create(options.shm_name.empty() ? shm::kDefaultName : options.shm_name);
+  if (!owner) return owner.error();
+  auto impl = std::make_unique<Impl>(std::move(machine).value(), std::move(owner).value());
+  Impl& d = *impl;
+  d.realtime = options.realtime;
+  StepQuantizer q(d.machine, Pose::Zero());
+  for (int i = 0; i < kAxisCount; ++i) d.start_steps[i] = q.commanded(i);
+  // the simulated machine wired as a real one: hard limits beyond the soft
+  // ones, a home switch per axis (drivers/sim_machine.h)
+  d.sim = std::make_unique<drivers::SimMachine>(d.start_steps, drivers::wired_switches(d.machine));
+  d.kernel = std::make_unique<rt::RtKernel>(d.machine, *d.buffer, *d.sim, nullptr, d.start_steps);
+  d.kernel->set_log(d.rt_log.get());
+  d.kernel->set_status(&d.shm.block().status);
+  d.feed = std::make_unique<PlannerFeed>(d.machine, *d.buffer, *d.kernel);
+  d.shm.block().job.store(d.job);
+  return std::unique_ptr<Daemon>(new Daemon(std::move(impl)));
+}
+
+Daemon::Daemon(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Daemon::~Daemon() = default;
+
+bool Daemon::recovered_stale() const noexcept { return impl_->shm.recovered_stale(); }
+
+int Daemon::run(const std::atomic<bool>& quit) {
+  Impl& d = *impl_;
+  rt::RtOptions o;
+  o.try_realtime = d.realtime;
+  o.exit_at_end = false;
+  o.start_running = false;
+  d.kernel->start(o);
+  if (!d.kernel->warning().empty()) logger()->warn("{}", d.kernel->warning());
+  logger()->info("lasercncd: machine '{}', period {} us, ready", d.machine.name,
+                 d.machine.period_ns / 1000);
+  shm::ShmBlock& block = d.shm.block();
+  while (!quit.load()) {
+    block.header.heartbeat.fetch_add(1, std::memory_order_relaxed);
+    shm::Command c;
+    while (block.commands.try_pop(c)) d.handle(c);
+    d.follow_job();
+    d.drain_rt_log();
+    block.job.store(d.job);
+    std::this_thread::sleep_for(kTick);
+  }
+  // SIGTERM: motion ends along the path, then the threads end.
+  logger()->info("lasercncd: shutting down");
+  const shm::MachineState st = d.kernel->state();
+  if (st != shm::MachineState::Idle && st != shm::MachineState::EStop) {
+    d.kernel->command({rt::RtCommandType::Stop, 0, 0.0});
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(3);
+    while (d.kernel->state() != shm::MachineState::Idle &&
+           d.kernel->state() != shm::MachineState::EStop && std::chrono::steady_clock::now() < until)
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  d.feed->abort();
+  d.kernel->shutdown();
+  d.kernel->join();
+  d.drain_rt_log();
+  return 0;
+}
+
+}  // namespace lcnc::app

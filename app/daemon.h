@@ -1,0 +1,44 @@
+// lasercncd: the controller as a service (issue "RT kernel"). It hosts the
+// planner and RT threads on the simulated machine and publishes them in
+// POSIX shared memory (rt/shm_interface.h): the RT kernel writes the status,
+// this control thread takes the commands of the HMI and `lasercnc send`,
+// answers each in the job status, and turns the kernel's log into events.
+#pragma once
+
+#include <atomic>
+#include <memory>
+#include <string>
+
+#include "common/result.h"
+
+namespace lcnc::app {
+
+struct DaemonOptions {
+  std::string machine_file;  // empty: the default machine
+  std::string shm_name;      // empty: shm::kDefaultName
+  bool realtime = true;      // try SCHED_FIFO + mlockall
+};
+
+class Daemon {
+ public:
+  // Loads the machine and takes the shared-memory segment: refused when a
+  // live daemon holds it, recovered when its owner died.
+  [[nodiscard]] static Result<std::unique_ptr<Daemon>> create(const DaemonOptions& options);
+  ~Daemon();
+  Daemon(const Daemon&) = delete;
+  Daemon& operator=(const Daemon&) = delete;
+
+  // Runs until `quit` is set (SIGTERM), then stops any motion along the
+  // path, ends the threads and removes the segment. Returns the exit code.
+  int run(const std::atomic<bool>& quit);
+
+  // The segment was left by a daemon that died; it was taken over.
+  [[nodiscard]] bool recovered_stale() const noexcept;
+
+ private:
+  struct Impl;
+  explicit Daemon(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace lcnc::app

@@ -1,0 +1,55 @@
+// lasercncd — the LaserCNC daemon: the planner and RT threads on the
+// simulated machine, published in shared memory for the HMI and `lasercnc
+// status` / `lasercnc send`. SIGTERM or SIGINT: a clean shutdown.
+//
+// Exit codes: 0 clean shutdown, 1 could not start (config, segment taken),
+// 2 bad command line.
+#include <csignal>
+#include <cstdio>
+#include <string>
+#include <string_view>
+
+#include "app/daemon.h"
+
+namespace {
+
+std::atomic<bool> g_quit{false};
+extern "C" void on_signal(int) { g_quit.store(true); }
+
+constexpr const char* kUsage =
+    "usage: lasercncd [--machine FILE] [--shm NAME] [--no-realtime]\n"
+    "  --machine      machine config (default: share/machines/default.toml)\n"
+    "  --shm          shared-memory segment name (default /lasercnc)\n"
+    "  --no-realtime  do not ask for SCHED_FIFO / mlockall\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  lcnc::app::DaemonOptions opt;
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view a = argv[i];
+    if ((a == "--machine" || a == "--shm") && i + 1 < argc) {
+      (a == "--machine" ? opt.machine_file : opt.shm_name) = argv[++i];
+    } else if (a == "--no-realtime") {
+      opt.realtime = false;
+    } else if (a == "--help" || a == "-h") {
+      std::fputs(kUsage, stdout);
+      return 0;
+    } else {
+      std::fprintf(stderr, "lasercncd: bad argument '%s'\n%s", argv[i], kUsage);
+      return 2;
+    }
+  }
+  auto daemon = lcnc::app::Daemon::create(opt);
+  if (!daemon) {
+    std::fprintf(stderr, "lasercncd: %s\n", daemon.error().to_string().c_str());
+    return 1;
+  }
+  if ((*daemon)->recovered_stale())
+    std::fprintf(stderr, "lasercncd: recovered a stale segment left by a daemon that died\n");
+  struct sigaction sa {};
+  sa.sa_handler = on_signal;
+  sigaction(SIGTERM, &sa, nullptr);
+  sigaction(SIGINT, &sa, nullptr);
+  return (*daemon)->run(g_quit);
+}

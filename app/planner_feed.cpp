@@ -1,0 +1,142 @@
+#include "app/planner_feed.h"
+
+#include <chrono>
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "plan/motion_stats.h"
+#include "plan/planner.h"
+
+namespace lcnc::app {
+
+SegmentSource reader_source(ProgramReader& reader) {
+  return [&reader](Segment& out) {
+    switch (reader.next(out)) {
+      case ProgramReader::Next::Segment: return SourceStatus::Item;
+      case ProgramReader::Next::End: return SourceStatus::End;
+      case ProgramReader::Next::Error: return SourceStatus::Error;
+    }
+    return SourceStatus::Error;
+  };
+}
+
+PlannerFeed::PlannerFeed(const MachineConfig& machine, rt::PositionBuffer& buffer,
+                         rt::RtKernel& kernel)
+    : machine_(machine), buffer_(buffer), kernel_(kernel) {
+  for (int i = 0; i < kAxisCount; ++i) {
+    const AxisConfig& ax = machine.axes[i];
+    const bool limited = ax.present && !ax.wrap;
+    min_steps_[i] = limited ? std::llround(ax.min * ax.steps_per_unit) : INT64_MIN / 2;
+    max_steps_[i] = limited ? std::llround(ax.max * ax.steps_per_unit) : INT64_MAX / 2;
+  }
+}
+
+PlannerFeed::~PlannerFeed() { abort(); }
+
+void PlannerFeed::start(const std::string& program, const ReaderOptions& options) {
+  abort();
+  abort_ = false;
+  done_ = false;
+  limit_hit_ = false;
+  result_ = PlannedJob{};
+  kernel_.stream_begin();
+  thread_ = std::thread([this, program, options] { run(program, options); });
+}
+
+bool PlannerFeed::prefilled() const noexcept {
+  return done() || buffer_.size() >= rt::kPositionBufferCapacity / 2;
+}
+
+void PlannerFeed::wait_prefilled() const {
+  while (!prefilled()) std::this_thread::sleep_for(std::chrono::microseconds(200));
+}
+
+void PlannerFeed::abort() {
+  abort_ = true;
+  if (thread_.joinable()) thread_.join();
+}
+
+void PlannerFeed::join() {
+  if (thread_.joinable()) thread_.join();
+}
+
+bool PlannerFeed::within_limits(const PeriodIncrement& inc) {
+  for (int i = 0; i < kAxisCount; ++i) {
+    const std::int64_t next = at_[i] + inc.steps[i];
+    if (inc.steps[i] == 0 || (next >= min_steps_[i] && next <= max_steps_[i])) continue;
+    const AxisConfig& ax = machine_.axes[i];
+    char msg[200];
+    std::snprintf(msg, sizeof msg,
+                  "soft limit: axis %c would reach %.4f, outside its travel %g … %g; the job "
+                  "stops short along the path",
+                  kAxisLetters[i], static_cast<double>(next) / ax.steps_per_unit, ax.min, ax.max);
+    result_.limit = true;
+    result_.limit_error = Diagnostic{ErrorCode::RtSoftLimit, program_, inc.line, 0, msg};
+    limit_hit_.store(true, std::memory_order_release);
+    return false;
+  }
+  for (int i = 0; i < kAxisCount; ++i) at_[i] += inc.steps[i];
+  return true;
+}
+
+bool PlannerFeed::push(const PeriodIncrement& inc) {
+  if (!within_limits(inc)) return false;
+  while (!buffer_.try_push(inc)) {
+    if (abort_.load(std::memory_order_relaxed)) return false;
+    std::this_thread::sleep_for(std::chrono::nanoseconds(machine_.period_ns * 16));
+  }
+  ++result_.increments;
+  return true;
+}
+
+void PlannerFeed::run(std::string program, ReaderOptions options) {
+  StepQuantizer quant(machine_, options.start);
+  for (int i = 0; i < kAxisCount; ++i) result_.start_steps[i] = at_[i] = quant.commanded(i);
+  program_ = program;
+  MotionStats stats(machine_.period_s(), options.start);
+  Result<std::unique_ptr<ProgramReader>> reader = ProgramReader::open(program, machine_, options);
+  bool any = false;
+  if (!reader) {
+    result_.failed = true;
+    result_.error = reader.error();
+  } else {
+    Planner planner(machine_, reader_source(**reader));
+    PeriodSample sample;
+    PeriodSample last;
+    SourceStatus st;
+    bool pushed = true;
+    while (pushed && (st = planner.next(sample)) == SourceStatus::Item) {
+      stats.add(sample.pose);
+      last = sample;
+      any = true;
+      pushed = push(quant.quantize(sample));
+    }
+    if (pushed && st == SourceStatus::Error) {
+      result_.failed = true;
+      result_.error = (*reader)->error();
+    }
+    while (pushed && quant.owed() && !abort_.load()) {
+      stats.add(last.pose);
+      pushed = push(quant.pay_owed(last));
+    }
+    stats.finish();
+  }
+  if (!any || result_.failed) {
+    PeriodIncrement end;  // a controlled end: no motion, laser off
+    end.end_of_program = true;
+    push(end);
+  }
+  // Short of a soft limit: the stream stays open (the kernel keeps braking
+  // along the path with what is queued) until the caller's stop aborts it.
+  while (limit_hit_.load() && !abort_.load()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  for (int i = 0; i < kAxisCount; ++i) result_.commanded[i] = quant.commanded(i);
+  result_.peak_v = stats.peak_velocity();
+  result_.peak_a = stats.peak_acceleration();
+  // release pairs with the kernel's acquire: the last entry is in the buffer
+  kernel_.stream_end();
+  done_.store(true, std::memory_order_release);
+}
+
+}  // namespace lcnc::app

@@ -1,0 +1,89 @@
+// The planner thread of a job (DESIGN §2, §5.3): reads the program, plans it
+// (blends, look-ahead, coarse interpolation), quantizes to steps and keeps
+// the RT kernel's position buffer filled, streaming: memory stays bounded
+// whatever the program's length. Used by `lasercnc run` and by lasercncd.
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <string>
+#include <thread>
+
+#include "common/result.h"
+#include "gcode/program_reader.h"
+#include "machine/machine_config.h"
+#include "plan/planner.h"
+#include "rt/rt_kernel.h"
+
+namespace lcnc::app {
+
+// A ProgramReader as the planner's pull source.
+[[nodiscard]] SegmentSource reader_source(ProgramReader& reader);
+
+// What the planner thread hands back when it is done.
+struct PlannedJob {
+  bool failed = false;
+  Diagnostic error;
+  std::array<std::int64_t, kAxisCount> start_steps{};  // where the job began
+  std::array<std::int64_t, kAxisCount> commanded{};    // where the plan ends
+  std::array<double, kAxisCount> peak_v{};              // per axis, at the nominal period
+  std::array<double, kAxisCount> peak_a{};
+  std::uint64_t increments = 0;                         // entries pushed
+  // An increment that would have crossed a soft limit: the planner stopped
+  // queueing before it (limit_hit()); says the axis, the position and the
+  // line. Code RtSoftLimit.
+  bool limit = false;
+  Diagnostic limit_error;
+};
+
+class PlannerFeed {
+ public:
+  PlannerFeed(const MachineConfig& machine, rt::PositionBuffer& buffer, rt::RtKernel& kernel);
+  ~PlannerFeed();  // aborts and joins
+  PlannerFeed(const PlannerFeed&) = delete;
+  PlannerFeed& operator=(const PlannerFeed&) = delete;
+
+  // Starts the planner thread on a (checked) program from options.start; it
+  // tells the kernel it streams (RtKernel::stream_begin) until its last push.
+  void start(const std::string& program, const ReaderOptions& options);
+  // True once half the buffer is filled or the whole job is in it: the
+  // moment to start the kernel on the job.
+  [[nodiscard]] bool prefilled() const noexcept;
+  // Blocks until prefilled().
+  void wait_prefilled() const;
+  // Stops pushing (a stopped or e-stopped job) and joins the thread.
+  void abort();
+  // Joins the thread once it has finished by itself.
+  void join();
+  [[nodiscard]] bool done() const noexcept { return done_.load(std::memory_order_acquire); }
+  // The next increment would cross a soft limit: nothing more is queued.
+  // The caller stops the kernel (RtCommandType::Stop): the buffer holds at
+  // least the braking reserve, so the machine stops along the path short of
+  // the limit.
+  [[nodiscard]] bool limit_hit() const noexcept { return limit_hit_.load(std::memory_order_acquire); }
+  [[nodiscard]] bool running() const noexcept { return thread_.joinable(); }
+  // Valid once done().
+  [[nodiscard]] const PlannedJob& result() const noexcept { return result_; }
+
+ private:
+  void run(std::string program, ReaderOptions options);
+  bool push(const PeriodIncrement& inc);
+  // Checks inc against the soft limits from the position so far; false (and
+  // the fault recorded) if it would cross one.
+  bool within_limits(const PeriodIncrement& inc);
+
+  const MachineConfig& machine_;
+  rt::PositionBuffer& buffer_;
+  rt::RtKernel& kernel_;
+  PlannedJob result_;
+  std::atomic<bool> abort_{false};
+  std::atomic<bool> done_{false};
+  std::atomic<bool> limit_hit_{false};
+  std::string program_;
+  std::array<std::int64_t, kAxisCount> at_{};       // position after the queued entries, steps
+  std::array<std::int64_t, kAxisCount> min_steps_{}, max_steps_{};
+  std::thread thread_;
+};
+
+}  // namespace lcnc::app

@@ -1,0 +1,268 @@
+// End to end: lasercncd hosts the planner and RT threads on the simulated
+// machine; `lasercnc status` and `lasercnc send` drive it through the
+// shared-memory segment, as an HMI would — real processes, real POSIX shm.
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/mman.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+fs::path temp_dir() {
+  fs::path d = fs::temp_directory_path() /
+               ("lasercncd_e2e_" + std::to_string(::getpid()) + "_" +
+                ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  fs::create_directories(d);
+  return d;
+}
+
+struct CmdResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+CmdResult lasercnc(const std::string& args) {
+  const fs::path dir = temp_dir();
+  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  const std::string cmd = std::string(LASERCNC_EXE) + " " + args + " >" + out.string() + " 2>" +
+                          err.string() + " </dev/null";
+  const int status = std::system(cmd.c_str());
+  CmdResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+// A lasercncd child process on its own segment.
+class Daemon {
+ public:
+  explicit Daemon(std::string shm) : shm_(std::move(shm)), log_(temp_dir() / ("daemon_" + std::to_string(++count_) + ".log")) {
+    const std::string exe = LASERCNCD_EXE;
+    const char* argv[] = {exe.c_str(), "--shm", shm_.c_str(), "--no-realtime", nullptr};
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, 2, log_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn(&pid_, exe.c_str(), &fa, nullptr, const_cast<char**>(argv), environ);
+    posix_spawn_file_actions_destroy(&fa);
+  }
+  ~Daemon() {
+    if (pid_ > 0) {
+      kill(pid_, SIGKILL);
+      waitpid(pid_, nullptr, 0);
+      shm_unlink(shm_.c_str());
+    }
+  }
+  // Waits until `lasercnc status` reaches it.
+  bool ready() const {
+    for (int i = 0; i < 500; ++i) {
+      if (lasercnc("status --shm " + shm_).exit_code == 0) return true;
+      std::this_thread::sleep_for(10ms);
+    }
+    return false;
+  }
+  // Sends a signal and waits for the exit; returns the exit code (-1: killed).
+  int stop(int sig) {
+    kill(pid_, sig);
+    int status = 0;
+    waitpid(pid_, &status, 0);
+    pid_ = -1;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+  // Waits for the exit of a daemon that ends by itself.
+  int wait_exit() {
+    int status = 0;
+    waitpid(pid_, &status, 0);
+    pid_ = -1;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+  [[nodiscard]] std::string log() const { return slurp(log_); }
+
+ private:
+  static inline int count_ = 0;
+  std::string shm_;
+  fs::path log_;
+  pid_t pid_ = -1;
+};
+
+std::string shm_name() {
+  return "/lcnc_e2e_" + std::to_string(getpid()) + "_" +
+         ::testing::UnitTest::GetInstance()->current_test_info()->name();
+}
+
+nlohmann::json status(const std::string& shm) {
+  const CmdResult r = lasercnc("status --json --shm " + shm);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return nlohmann::json::parse(r.out, nullptr, false);
+}
+
+bool wait_state(const std::string& shm, const std::string& state, std::chrono::milliseconds t = 5000ms) {
+  const auto until = std::chrono::steady_clock::now() + t;
+  while (std::chrono::steady_clock::now() < until) {
+    const nlohmann::json s = status(shm);
+    if (s.is_object() && s["state"] == state) return true;
+    std::this_thread::sleep_for(5ms);
+  }
+  return false;
+}
+
+fs::path write_program(const std::string& name, const std::string& text) {
+  const fs::path p = temp_dir() / name;
+  std::ofstream(p) << text;
+  return p;
+}
+
+const char* kShortJob =
+    "G21 G90 G64 P0.01\n"
+    "G0 X10 Y10\n"
+    "M3 S60\n"
+    "G1 X30 F6000\n"
+    "G1 Y25\n"
+    "G1 X10\n"
+    "G1 Y10\n"
+    "M5\n"
+    "G0 X12 Y12\n"
+    "M2\n";
+
+TEST(Lasercncd, RunsAJobSentByTheCliAndReportsIt) {
+  const std::string shm = shm_name();
+  Daemon d(shm);
+  ASSERT_TRUE(d.ready()) << d.log();
+  EXPECT_EQ(status(shm)["state"], "idle");
+  // a bad program: refused with file:line:col, nothing loaded
+  const fs::path bad = write_program("bad.ngc", "G21 G90\nG1 X10 Y10 F1000\nG2 X20 Y0 R2\nM2\n");
+  CmdResult r = lasercnc("send load " + bad.string() + " --shm " + shm);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("bad.ngc:3:"), std::string::npos) << r.err;
+  r = lasercnc("send start --shm " + shm);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("no program loaded"), std::string::npos) << r.err;
+  // a good one runs to its end
+  const fs::path good = write_program("square.ngc", kShortJob);
+  r = lasercnc("send load " + good.string() + " --shm " + shm);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("10 lines"), std::string::npos) << r.out;
+  r = lasercnc("send start --wait --shm " + shm);
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("job done"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("0 underruns"), std::string::npos) << r.out;
+  const nlohmann::json s = status(shm);
+  EXPECT_EQ(s["state"], "idle");
+  EXPECT_NEAR(s["position"][0].get<double>(), 12.0, 1e-9);
+  EXPECT_NEAR(s["position"][1].get<double>(), 12.0, 1e-9);
+  EXPECT_EQ(s["jobs_ended"], 1);
+  EXPECT_EQ(s["underruns"], 0);
+  // it runs again from where the machine stands
+  r = lasercnc("send start --wait --shm " + shm);
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  EXPECT_EQ(status(shm)["jobs_ended"], 2);
+  EXPECT_EQ(d.stop(SIGTERM), 0) << d.log();
+  EXPECT_FALSE(fs::exists("/dev/shm" + shm));  // removed on a clean shutdown
+}
+
+TEST(Lasercncd, HoldResumeEStopResetAndJog) {
+  const std::string shm = shm_name();
+  Daemon d(shm);
+  ASSERT_TRUE(d.ready()) << d.log();
+  const fs::path prog = write_program("long.ngc",
+                                      "G21 G90\nG0 X10 Y10\nM3 S50\nG1 X300 F1200\nG1 Y200\nG1 X10\nM5\nM2\n");
+  ASSERT_EQ(lasercnc("send load " + prog.string() + " --shm " + shm).exit_code, 0);
+  ASSERT_EQ(lasercnc("send start --shm " + shm).exit_code, 0);
+  ASSERT_TRUE(wait_state(shm, "running"));
+  ASSERT_EQ(lasercnc("send hold --shm " + shm).exit_code, 0);
+  ASSERT_TRUE(wait_state(shm, "feed hold"));
+  std::this_thread::sleep_for(300ms);  // the ramp (0.2 s) is over: at rest
+  const double x_held = status(shm)["position"][0].get<double>();
+  std::this_thread::sleep_for(100ms);
+  EXPECT_EQ(status(shm)["position"][0].get<double>(), x_held);
+  ASSERT_EQ(lasercnc("send resume --shm " + shm).exit_code, 0);
+  ASSERT_TRUE(wait_state(shm, "running"));
+  // jog refused while running
+  CmdResult r = lasercnc("send jog X 5 --shm " + shm);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("jog refused"), std::string::npos) << r.err;
+  ASSERT_EQ(lasercnc("send estop --shm " + shm).exit_code, 0);
+  ASSERT_TRUE(wait_state(shm, "e-stop"));
+  nlohmann::json s = status(shm);
+  EXPECT_EQ(s["fault"], "emergency stop");
+  const double x_stop = s["position"][0].get<double>();
+  std::this_thread::sleep_for(50ms);
+  EXPECT_EQ(status(shm)["position"][0].get<double>(), x_stop);
+  ASSERT_EQ(lasercnc("send reset --shm " + shm).exit_code, 0);
+  ASSERT_TRUE(wait_state(shm, "idle"));
+  EXPECT_EQ(status(shm)["job_active"], false);
+  // jog: an exact distance
+  ASSERT_EQ(lasercnc("send jog X -5.5 --shm " + shm).exit_code, 0);
+  std::this_thread::sleep_for(50ms);
+  ASSERT_TRUE(wait_state(shm, "idle"));
+  EXPECT_NEAR(status(shm)["position"][0].get<double>(), x_stop - 5.5, 1e-9);
+  // bad commands: a clear answer, nothing changed
+  r = lasercnc("send override 500 --shm " + shm);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("allowed 0"), std::string::npos) << r.err;
+  r = lasercnc("send jog B 1 --shm " + shm);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("no axis B"), std::string::npos) << r.err;
+  r = lasercnc("send jog Q 1 --shm " + shm);
+  EXPECT_EQ(r.exit_code, 2);
+  r = lasercnc("send fly --shm " + shm);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NEAR(status(shm)["feed_override_target"].get<double>(), 1.0, 1e-12);
+  EXPECT_EQ(d.stop(SIGTERM), 0) << d.log();
+}
+
+TEST(Lasercncd, SecondDaemonRefusedStaleSegmentRecovered) {
+  const std::string shm = shm_name();
+  {
+    Daemon first(shm);
+    ASSERT_TRUE(first.ready()) << first.log();
+    Daemon second(shm);
+    EXPECT_EQ(second.wait_exit(), 1);
+    EXPECT_NE(second.log().find("already owned by running process"), std::string::npos)
+        << second.log();
+    EXPECT_EQ(first.stop(SIGKILL), -1);  // crashes: the segment stays behind
+  }
+  ASSERT_TRUE(fs::exists("/dev/shm" + shm));
+  const CmdResult r = lasercnc("status --shm " + shm);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("stale"), std::string::npos) << r.err;
+  Daemon again(shm);
+  ASSERT_TRUE(again.ready()) << again.log();
+  EXPECT_NE(again.log().find("recovered a stale segment"), std::string::npos) << again.log();
+  EXPECT_EQ(again.stop(SIGTERM), 0);
+}
+
+TEST(Lasercncd, StatusWithoutDaemonSaysSo) {
+  const CmdResult r = lasercnc("status --shm /lcnc_e2e_nobody_here");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("no daemon"), std::string::npos) << r.err;
+}
+
+}  // namespace
