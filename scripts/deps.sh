@@ -14,6 +14,7 @@ packages=(
   libmodbus-dev            # peripherals
   qtbase5-dev libqt5sql5-sqlite  # HMI, process DB
   ghdl                     # hdl/: VHDL-2008 simulation of the interpolator
+  rt-tests                 # cyclictest: the RT latency reference (bench/rt_latency_vs_cyclictest.sh)
 )
 
 missing=()
