@@ -144,10 +144,16 @@ void RtKernel::run(const RtOptions& options) noexcept {
     // 1. sleep to the absolute deadline
     const std::int64_t deadline = t0 + std::llround(machine_ns);
     const timespec until = to_timespec(deadline);
-    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &until, nullptr) == EINTR) {
-    }
-    // 2. wake-up latency
+    // a period already due (catching up after a stall) starts at once: on a
+    // VM the sleep call alone can cost ~20 µs, which a 25 µs period cannot
+    // afford while it catches up
     clock_gettime(CLOCK_MONOTONIC, &now);
+    if (to_ns(now) < deadline) {
+      while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &until, nullptr) == EINTR) {
+      }
+      // 2. wake-up latency
+      clock_gettime(CLOCK_MONOTONIC, &now);
+    }
     const std::int64_t late = to_ns(now) - deadline;
     latency_.add(late);
     // 3–4. commands and inputs

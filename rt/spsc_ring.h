@@ -9,6 +9,7 @@
 // side's index to avoid touching its cache line on every call.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -67,7 +68,9 @@ class SpscRing {
     // acquire: pairs with both release stores; a snapshot, may be stale.
     const std::uint64_t head = head_.load(std::memory_order_acquire);
     const std::uint64_t tail = tail_.load(std::memory_order_acquire);
-    return tail >= head ? static_cast<std::size_t>(tail - head) : 0;
+    // A third thread may see head and tail from different moments: never
+    // more than the ring holds.
+    return tail >= head ? static_cast<std::size_t>(std::min<std::uint64_t>(tail - head, Capacity)) : 0;
   }
   [[nodiscard]] bool empty() const noexcept { return size() == 0; }
 
