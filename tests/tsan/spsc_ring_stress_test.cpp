@@ -24,6 +24,7 @@
 #include <cstdint>
 #include <memory>
 #include <new>
+#include <chrono>
 #include <thread>
 
 #include "stress_scale.h"
@@ -60,17 +61,21 @@ struct Outcome {
   std::uint64_t corrupt = 0;        // right number, wrong content
   std::uint64_t full = 0, empty = 0;  // how often each side found the ring so
   bool empty_at_end = false;
+  int full_pause = 0;  // the consumer's pause is done
 };
 
 // Producer pushes n items through `in`, the consumer pops them from `out`
 // (the same ring, or an alias of it). Neither side spins on the ring: a
-// refused push or pop yields, as the planner and the RT thread do.
+// refused push or pop yields, as the planner and the RT thread do. Each side
+// pauses once (the producer at n/4, the consumer at n/2), so that the other
+// certainly finds the ring empty, then full, whatever the scheduling.
 template <typename Ring>
 Outcome run_pair(Ring& in, Ring& out, std::uint64_t n) {
   Outcome o;
   std::uint64_t full = 0;
   std::thread producer([&] {
     for (std::uint64_t i = 0; i < n; ++i) {
+      if (i == n / 4) std::this_thread::sleep_for(std::chrono::milliseconds(20));
       const Item it = make_item(i);
       while (!in.try_push(it)) {
         ++full;
@@ -81,6 +86,10 @@ Outcome run_pair(Ring& in, Ring& out, std::uint64_t n) {
   std::thread consumer([&] {
     Item it;
     while (o.received < n) {
+      if (o.received == n / 2 && o.full_pause == 0) {
+        o.full_pause = 1;
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      }
       if (!out.try_pop(it)) {
         ++o.empty;
         std::this_thread::yield();
