@@ -17,11 +17,22 @@ void Dda::run_period(const std::array<std::int32_t, kAxisCount>& steps,
     std::uint32_t n = static_cast<std::uint32_t>(s < 0 ? -s : s);
     if (n > max_pulses_) n = max_pulses_;  // the planner guarantees |s| ≤ max; never overrun storage
     std::uint32_t* out = ticks_.data() + static_cast<std::size_t>(i) * max_pulses_;
-    const std::uint64_t acc0 = acc_[i];
-    for (std::uint32_t j = 0; j < n; ++j) {
-      // first t with acc0 + (t+1)·n ≥ (j+1)·N
-      const std::uint64_t need = static_cast<std::uint64_t>(j + 1) * n_cap_ - acc0;
-      out[j] = static_cast<std::uint32_t>((need + n - 1) / n - 1);
+    if (n > 0) {
+      // t_j = ceil(need_j / n) − 1 with need_j = (j+1)·N − acc0: one
+      // division per axis, then need_{j+1} = need_j + N adds q = N / n to
+      // the quotient and r = N % n to the remainder, carrying.
+      const std::uint32_t q = n_cap_ / n, r = n_cap_ % n;
+      const std::uint32_t x0 = n_cap_ - acc_[i] + n - 1;  // need_0 + n − 1
+      std::uint32_t a = x0 / n, b = x0 % n;
+      for (std::uint32_t j = 0; j < n; ++j) {
+        out[j] = a - 1;
+        a += q;
+        b += r;
+        if (b >= n) {
+          b -= n;
+          ++a;
+        }
+      }
     }
     // acc is unchanged over a whole period (exactly n overflows of N).
     frame.axes[i] = AxisPulses{n, s < 0, out};

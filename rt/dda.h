@@ -9,7 +9,9 @@
 // (j = 0 … n−1) falls on the first tick t with acc0 + (t+1)·n ≥ (j+1)·N:
 //   t_j = ceil(((j+1)·N − acc0) / n) − 1,
 // and acc_end = acc0 + N·n − N·n = acc0: a full period leaves the
-// accumulator unchanged; only the tick positions depend on it.
+// accumulator unchanged; only the tick positions depend on it. The
+// numerators grow by N from one pulse to the next, so after one division per
+// axis each t_j follows from the last by adding N / n and carrying N % n.
 // reference_period() runs the tick loop itself; tests hold the two equal.
 #pragma once
 
