@@ -101,6 +101,12 @@ struct LaserConfig {
 
 inline constexpr int kWorkOffsetCount = 6;  // G54 .. G59
 
+[[nodiscard]] inline std::array<Pose, kWorkOffsetCount> zero_work_offsets() {
+  std::array<Pose, kWorkOffsetCount> z;
+  for (Pose& p : z) p.setZero();
+  return z;
+}
+
 struct MachineConfig {
   std::string name = "default";
   std::uint32_t period_ns = 75'000;
@@ -113,7 +119,9 @@ struct MachineConfig {
   DdaConfig dda{};
   LaserConfig laser{};
   std::array<AxisConfig, kAxisCount> axes{};
-  std::array<Pose, kWorkOffsetCount> work_offsets{};  // G54..G59, machine coords of work zero
+  // G54..G59, machine coords of work zero. Zeroed explicitly: `{}` leaves an
+  // Eigen matrix uninitialised.
+  std::array<Pose, kWorkOffsetCount> work_offsets = zero_work_offsets();
 
   [[nodiscard]] const AxisConfig& axis(Axis a) const { return axes[index(a)]; }
   [[nodiscard]] AxisConfig& axis(Axis a) { return axes[index(a)]; }

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <new>
+
 #include <string>
 
 namespace lcnc {
@@ -412,3 +415,13 @@ TEST(PitchTable, InterpolatesAndHoldsTheEnds) {
 
 }  // namespace
 }  // namespace lcnc
+
+// A config built in code has zero work offsets, whatever the memory held
+// before (an Eigen matrix is not zeroed by `{}`).
+TEST(MachineConfigDefaults, WorkOffsetsStartAtZero) {
+  alignas(lcnc::MachineConfig) unsigned char storage[sizeof(lcnc::MachineConfig)];
+  std::memset(storage, 0xA5, sizeof storage);
+  auto* m = new (storage) lcnc::MachineConfig();
+  for (const lcnc::Pose& p : m->work_offsets) EXPECT_TRUE(p.isZero());
+  m->~MachineConfig();
+}
