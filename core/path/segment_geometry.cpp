@@ -23,11 +23,25 @@ double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) noexcept
   return (a + ab * f - p).norm();
 }
 
+namespace {
+
+// Linear axes if they move, else rotary (as RS274NGC measures feed).
+double line_length(const Pose& d) {
+  const double lin = d.head<3>().norm();
+  return lin > 0.0 ? lin : d.tail<3>().norm();
+}
+
+}  // namespace
+
+double path_length(const Segment& seg) {
+  if (seg.kind != MotionKind::Arc) return line_length(seg.end - seg.start);
+  return SegmentGeometry(seg).length();
+}
+
 SegmentGeometry::SegmentGeometry(const Segment& seg) : start_(seg.start), end_(seg.end) {
   const Pose d = end_ - start_;
   if (seg.kind != MotionKind::Arc) {
-    const double lin = d.head<3>().norm();
-    length_ = lin > 0.0 ? lin : d.tail<3>().norm();
+    length_ = line_length(d);
     return;
   }
   arc_ = true;
@@ -62,8 +76,11 @@ SegmentGeometry::SegmentGeometry(const Segment& seg) : start_(seg.start), end_(s
     if (sweep <= 1e-12) sweep += two_pi;                 // end == start: one full turn
     sweep_ = sweep + two_pi * seg.extra_turns;
   }
+  sin_sweep_ = std::sin(sweep_);
+  cos_sweep_ = std::cos(sweep_);
   const double plane_len = radius_ * sweep_;
-  length_ = std::hypot(plane_len, helix_h_);
+  // hypot(x, 0) is |x| exactly (C Annex F): skip the call for plane arcs
+  length_ = helix_h_ == 0.0 ? std::abs(plane_len) : std::hypot(plane_len, helix_h_);
   plane_ratio_ = length_ > 0.0 ? plane_len / length_ : 0.0;
 }
 
@@ -84,17 +101,26 @@ Pose SegmentGeometry::at(double s) const {
   return p;
 }
 
-Pose SegmentGeometry::tangent(double s) const {
+Pose SegmentGeometry::tangent_at_angle(double sin_phi, double cos_phi) const {
   if (length_ <= 0.0) return Pose::Zero();
   Pose t = (end_ - start_) / length_;
   if (arc_) {
-    const double phi = angle_at(s);
     const double dphi_ds = sweep_ / length_;
-    t.head<3>() = radius_ * dphi_ds * (-std::sin(phi) * u_ + std::cos(phi) * w_) +
-                  (helix_h_ / length_) * axis_n_;
+    t.head<3>() = radius_ * dphi_ds * (-sin_phi * u_ + cos_phi * w_) + (helix_h_ / length_) * axis_n_;
   }
   return t;
 }
+
+Pose SegmentGeometry::tangent(double s) const {
+  if (!arc_) return tangent_at_angle(0.0, 1.0);
+  const double phi = angle_at(s);
+  return tangent_at_angle(std::sin(phi), std::cos(phi));
+}
+
+// angle_at(0) is 0 and angle_at(length_) is sweep_ exactly (s / L is 0 and 1).
+Pose SegmentGeometry::start_tangent() const { return tangent_at_angle(0.0, 1.0); }
+
+Pose SegmentGeometry::end_tangent() const { return tangent_at_angle(sin_sweep_, cos_sweep_); }
 
 Pose SegmentGeometry::curvature(double s) const {
   Pose k = Pose::Zero();

@@ -25,6 +25,10 @@ struct PlaneAxes {
 // Distance from p to the straight segment a–b (a point when a == b).
 [[nodiscard]] double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) noexcept;
 
+// Path length of a segment: SegmentGeometry(seg).length(), straight from the
+// end points for lines.
+[[nodiscard]] double path_length(const Segment& seg);
+
 class SegmentGeometry {
  public:
   explicit SegmentGeometry(const Segment& seg);
@@ -34,6 +38,9 @@ class SegmentGeometry {
   [[nodiscard]] double radius() const noexcept { return radius_; }
   // Total sweep angle of an arc (rad, > 0, about the turning normal), incl. turns.
   [[nodiscard]] double sweep_rad() const noexcept { return sweep_; }
+  // std::sin and std::cos of sweep_rad(), computed once.
+  [[nodiscard]] double sin_sweep() const noexcept { return sin_sweep_; }
+  [[nodiscard]] double cos_sweep() const noexcept { return cos_sweep_; }
   // In-plane unit vectors of an arc (u: centre → start, w: start tangent).
   [[nodiscard]] const Vec3& u() const noexcept { return u_; }
   [[nodiscard]] const Vec3& w() const noexcept { return w_; }
@@ -41,6 +48,10 @@ class SegmentGeometry {
   [[nodiscard]] Pose at(double s) const;
   // dp/ds: per-axis rate of change (the unit tangent in path units).
   [[nodiscard]] Pose tangent(double s) const;
+  // dp/ds at the start and at the end: equal to tangent(0) and tangent(length()),
+  // without evaluating sin and cos (those of the sweep are kept).
+  [[nodiscard]] Pose start_tangent() const;
+  [[nodiscard]] Pose end_tangent() const;
   // d²p/ds²: the curvature vector (zero on lines).
   [[nodiscard]] Pose curvature(double s) const;
   // Fraction of the path speed seen in the arc plane (r·sweep / L); 0 for lines.
@@ -50,6 +61,8 @@ class SegmentGeometry {
 
  private:
   [[nodiscard]] double angle_at(double s) const noexcept;
+  // dp/ds at arc angle phi, given sin φ and cos φ.
+  [[nodiscard]] Pose tangent_at_angle(double sin_phi, double cos_phi) const;
 
   Pose start_, end_;
   bool arc_ = false;
@@ -58,6 +71,7 @@ class SegmentGeometry {
   Vec3 axis_n_ = Vec3::Zero();  // helix direction (unit) or zero
   double helix_h_ = 0.0;        // travel along axis_n_
   double radius_ = 0.0, sweep_ = 0.0, length_ = 0.0, plane_ratio_ = 0.0;
+  double sin_sweep_ = 0.0, cos_sweep_ = 1.0;  // of sweep_ (arcs): the end tangent, the limits
 };
 
 }  // namespace lcnc

@@ -11,25 +11,23 @@ CoarseInterpolator::CoarseInterpolator(const MachineConfig& machine, PlannedSour
     : period_s_(machine.period_s()), source_(std::move(source)) {}
 
 bool CoarseInterpolator::pull() {
-  PlannedSegment next;
   for (;;) {
+    PlannedSegment& next = slots_[1 - cur_slot_];
     const SourceStatus st = source_(next);
     if (st == SourceStatus::Error) error_ = true;
     if (st != SourceStatus::Item) return false;
     ++started_;
+    // A zero-length move takes no time: read on.
     if (next.profile.duration() > 0.0) {
-      cur_ = std::move(next);
+      cur_slot_ = 1 - cur_slot_;
       have_cur_ = true;
       return true;
     }
-    // A zero-length move takes no time; keep its pose as the current end.
-    cur_ = std::move(next);
-    have_cur_ = true;
   }
 }
 
 float CoarseInterpolator::laser_power(double speed) const {
-  const Segment& s = cur_.seg;
+  const Segment& s = cur().seg;
   if (s.kind == MotionKind::Rapid) return 0.0f;
   if (s.kind == MotionKind::Dwell) {
     return s.laser == LaserMode::Constant ? static_cast<float>(s.power_pct) : 0.0f;
@@ -38,8 +36,8 @@ float CoarseInterpolator::laser_power(double speed) const {
     case LaserMode::Off: return 0.0f;
     case LaserMode::Constant: return static_cast<float>(s.power_pct);
     case LaserMode::Dynamic: {
-      if (cur_.programmed_speed <= plan::kMinVelocity) return 0.0f;
-      const double k = std::clamp(speed / cur_.programmed_speed, 0.0, 1.0);
+      if (cur().programmed_speed <= plan::kMinVelocity) return 0.0f;
+      const double k = std::clamp(speed / cur().programmed_speed, 0.0, 1.0);
       return static_cast<float>(s.power_pct * k);
     }
   }
@@ -54,38 +52,37 @@ SourceStatus CoarseInterpolator::next(PeriodSample& out) {
   }
   tau_ += period_s_;
   bool last = false;
-  while (tau_ >= cur_.profile.duration()) {
-    const double rest = tau_ - cur_.profile.duration();
-    const PlannedSegment prev = cur_;
+  while (tau_ >= cur().profile.duration()) {
+    const double rest = tau_ - cur().profile.duration();
     if (!pull()) {
       if (error_) {
         done_ = true;
         return SourceStatus::Error;
       }
-      cur_ = prev;
-      tau_ = cur_.profile.duration();
+      tau_ = cur().profile.duration();
       last = true;
       break;
     }
     tau_ = rest;
   }
   ++periods_;
-  const double s = cur_.profile.position(tau_);
-  const double v = cur_.profile.speed(tau_);
+  const PlannedSegment& c = cur();
+  const double s = c.profile.position(tau_);
+  const double v = c.profile.speed(tau_);
   out.t_s = static_cast<double>(periods_) * period_s_;
-  out.pose = cur_.seg.kind == MotionKind::Dwell ? cur_.seg.end : cur_.geo.at(s);
+  out.pose = c.seg.kind == MotionKind::Dwell ? c.seg.end : c.geo.at(s);
   out.speed = v;
   out.power_pct = laser_power(v);
-  out.power_cap_pct = cur_.seg.laser == LaserMode::Dynamic &&
-                              (cur_.seg.kind == MotionKind::Linear || cur_.seg.kind == MotionKind::Arc)
-                          ? static_cast<float>(cur_.seg.power_pct)
+  out.power_cap_pct = c.seg.laser == LaserMode::Dynamic &&
+                              (c.seg.kind == MotionKind::Linear || c.seg.kind == MotionKind::Arc)
+                          ? static_cast<float>(c.seg.power_pct)
                           : 0.0f;
-  out.line = cur_.seg.line;
-  out.segment = cur_.index;
-  out.kind = cur_.seg.kind;
+  out.line = c.seg.line;
+  out.segment = c.index;
+  out.kind = c.seg.kind;
   out.end_of_program = last;
   if (last) {
-    out.pose = cur_.seg.end;
+    out.pose = c.seg.end;
     out.power_pct = 0.0f;
     out.power_cap_pct = 0.0f;
     done_ = true;
@@ -99,16 +96,34 @@ StepQuantizer::StepQuantizer(const MachineConfig& machine, const Pose& start)
     steps_per_unit_[i] = machine.axes[i].present ? machine.axes[i].steps_per_unit : 0.0;
     target_[i] = to_steps(i, start[i]);
     emitted_[i] = target_[i];
+    if (machine.axes[i].present) present_[present_count_++] = i;
   }
 }
 
+namespace {
+
+// std::llround without the library call (which was most of the quantizer's
+// time): truncate toward zero, then round the remainder half away from zero.
+// Same result: x − trunc(x) is exact in doubles.
+std::int64_t round_half_away(double x) noexcept {
+  if (!(std::abs(x) < 0x1p62)) return std::llround(x);  // huge or NaN: as before
+  std::int64_t i = static_cast<std::int64_t>(x);
+  const double rest = x - static_cast<double>(i);
+  if (rest >= 0.5) ++i;
+  if (rest <= -0.5) --i;
+  return i;
+}
+
+}  // namespace
+
 std::int64_t StepQuantizer::to_steps(int axis, double pos) const noexcept {
-  return std::llround(pos * steps_per_unit_[axis]);
+  return round_half_away(pos * steps_per_unit_[axis]);
 }
 
 PeriodIncrement StepQuantizer::emit(const PeriodSample& s) {
-  PeriodIncrement inc;
-  for (int i = 0; i < kAxisCount; ++i) {
+  PeriodIncrement inc;  // absent axes: 0
+  for (int k = 0; k < present_count_; ++k) {
+    const int i = present_[k];
     const std::int64_t owed = target_[i] - emitted_[i];
     const std::int64_t step = std::clamp<std::int64_t>(owed, -max_pulses_, max_pulses_);
     inc.steps[i] = static_cast<std::int32_t>(step);
@@ -124,7 +139,10 @@ PeriodIncrement StepQuantizer::emit(const PeriodSample& s) {
 }
 
 PeriodIncrement StepQuantizer::quantize(const PeriodSample& s) {
-  for (int i = 0; i < kAxisCount; ++i) target_[i] = to_steps(i, s.pose[i]);
+  for (int k = 0; k < present_count_; ++k) {
+    const int i = present_[k];
+    target_[i] = to_steps(i, s.pose[i]);
+  }
   return emit(s);
 }
 

@@ -44,12 +44,17 @@ class CoarseInterpolator {
   [[nodiscard]] std::uint32_t segments_started() const noexcept { return started_; }
 
  private:
-  bool pull();  // next non-empty segment into cur_; false at end or error
+  bool pull();  // next non-empty segment into cur(); false (cur() kept) at end or error
   [[nodiscard]] float laser_power(double speed) const;
+  [[nodiscard]] const PlannedSegment& cur() const noexcept { return slots_[cur_slot_]; }
 
   double period_s_;
   PlannedSource source_;
-  PlannedSegment cur_;
+  // The current segment and the one being read: pull() reads into the spare
+  // slot and swaps only when it has a segment that takes time, so nothing is
+  // copied and the current one survives the end of the program.
+  std::array<PlannedSegment, 2> slots_;
+  std::size_t cur_slot_ = 0;
   bool have_cur_ = false;
   bool done_ = false;
   bool error_ = false;
@@ -78,6 +83,10 @@ class StepQuantizer {
   PeriodIncrement emit(const PeriodSample& s);
 
   std::array<double, kAxisCount> steps_per_unit_{};
+  // The axes the machine has: an absent axis stays at 0 steps (its
+  // steps_per_unit is 0), so only these are quantized.
+  std::array<int, kAxisCount> present_{};
+  int present_count_ = 0;
   std::int32_t max_pulses_ = 0;
   std::array<std::int64_t, kAxisCount> target_{};
   std::array<std::int64_t, kAxisCount> emitted_{};

@@ -1,21 +1,71 @@
 #include "plan/lookahead.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <limits>
+#include <optional>
+#include <utility>
 
 #include "plan/tolerances.h"
 
 namespace lcnc {
 namespace {
 
-// Speed reachable from v over length L — speeding up (sign +1, forward pass)
-// or, read backward, the entry speed from which v is reached slowing down
-// (sign −1) — with the acceleration taken at an upper bound of the speeds on
-// the way (it falls as the speed rises, so the result is safe).
-double reach(const SegmentLimits& lim, double sign, double v, double L, double v_max) {
-  const double guess = std::min(v_max, std::sqrt(v * v + 2.0 * lim.tangential(v, sign) * L));
-  return std::min(v_max, std::sqrt(v * v + 2.0 * lim.tangential(guess, sign) * L));
+enum class Side : std::uint8_t { SpeedUp, SlowDown };
+
+// A segment's accelerations as a function of the speed (SegmentLimits::at),
+// remembering what was asked for: one segment's passes and its profile ask
+// for the same few speeds, and on arcs each answer costs a dozen divisions.
+// Those at the segment's top speed are computed once, in fill(): a cruising
+// segment asks for nothing else.
+class AccelAt {
+ public:
+  AccelAt(const SegmentLimits& lim, double v_max, const Accel& at_v_max)
+      : lim_(lim), v_max_(v_max), at_v_max_(at_v_max) {}
+
+  [[nodiscard]] double v_max() const noexcept { return v_max_; }
+
+  [[nodiscard]] Accel operator()(double v) {
+    if (v == v_max_) return at_v_max_;
+    if (!lim_.arc) return lim_.at(v);  // the same at every speed
+    for (std::size_t k = 0; k < std::min(known_count_, kKnown); ++k)
+      if (known_v_[k] == v) return known_[k];
+    const Accel a = lim_.at(v);
+    remember(v, a);
+    return a;
+  }
+  [[nodiscard]] double operator()(double v, Side side) {
+    const Accel a = (*this)(v);
+    return side == Side::SpeedUp ? a.accel : a.decel;
+  }
+  // An answer found earlier (the backward pass's, kept in the window).
+  void remember(double v, const Accel& a) {
+    known_v_[known_count_ % kKnown] = v;
+    known_[known_count_ % kKnown] = a;
+    ++known_count_;
+  }
+
+ private:
+  static constexpr std::size_t kKnown = 3;
+  const SegmentLimits& lim_;
+  double v_max_;
+  const Accel& at_v_max_;
+  std::array<double, kKnown> known_v_{};
+  std::array<Accel, kKnown> known_{};
+  std::size_t known_count_ = 0;
+};
+
+// Speed reachable from v over length L — speeding up (forward pass) or, read
+// backward, the entry speed from which v is reached slowing down — with the
+// acceleration taken at an upper bound of the speeds on the way (it falls as
+// the speed rises, so the result is safe). Never below min(v, v_max):
+// sqrt(v·v + x) ≥ v in floating point for x ≥ 0.
+double reach(AccelAt& acc, Side side, double v, double L) {
+  const double guess = std::min(acc.v_max(), std::sqrt(v * v + 2.0 * acc(v, side) * L));
+  return std::min(acc.v_max(), std::sqrt(v * v + 2.0 * acc(guess, side) * L));
 }
 
 // The trapezoid v0 → vc → v1 with (nearly) the highest vc ≤ v_max that fits
@@ -23,22 +73,27 @@ double reach(const SegmentLimits& lim, double sign, double v, double L, double v
 // the peak at the accelerations of max(v0, v1) overshoots (they are the
 // largest); the peak at the accelerations of that overshoot is safe (theirs
 // are no larger than at the final speed) and within a hair of the optimum.
-Trapezoid fit_profile(const SegmentLimits& lim, double L, double v0, double v1, double v_max) {
-  auto fits = [&](double vc) {
-    return (vc * vc - v0 * v0) / lim.accel_at(vc) + (vc * vc - v1 * v1) / lim.decel_at(vc) <=
-           2.0 * L * (1.0 + 1e-12);
+Trapezoid fit_profile(AccelAt& acc, double L, double v0, double v1) {
+  auto fits = [&](double vc, const Accel& a) {
+    return (vc * vc - v0 * v0) / a.accel + (vc * vc - v1 * v1) / a.decel <= 2.0 * L * (1.0 + 1e-12);
   };
-  auto peak = [&](double a, double d) {
-    return std::sqrt((2.0 * L + v0 * v0 / a + v1 * v1 / d) / (1.0 / a + 1.0 / d));
+  auto peak = [&](const Accel& a) {
+    return std::sqrt((2.0 * L + v0 * v0 / a.accel + v1 * v1 / a.decel) /
+                     (1.0 / a.accel + 1.0 / a.decel));
   };
   const double lo = std::max(v0, v1);
-  double vc = std::max(lo, v_max);
-  if (!fits(vc)) {
-    const double over = std::min(v_max, peak(lim.accel_at(lo), lim.decel_at(lo)));
-    vc = std::max(lo, std::min(v_max, peak(lim.accel_at(over), lim.decel_at(over))));
-    if (!fits(vc)) vc = lo;
+  double vc = std::max(lo, acc.v_max());
+  Accel at_vc = acc(vc);
+  if (!fits(vc, at_vc)) {
+    const double over = std::min(acc.v_max(), peak(acc(lo)));
+    vc = std::max(lo, std::min(acc.v_max(), peak(acc(over))));
+    at_vc = acc(vc);
+    if (!fits(vc, at_vc)) {
+      vc = lo;
+      at_vc = acc(vc);
+    }
   }
-  return Trapezoid::plan(L, lim.accel_at(vc), lim.decel_at(vc), v0, vc, v1);
+  return Trapezoid::plan(L, at_vc.accel, at_vc.decel, v0, vc, v1);
 }
 
 }  // namespace
@@ -57,17 +112,20 @@ Lookahead::Lookahead(const MachineConfig& machine, IndexedSource source)
   braking_length_ = std::isfinite(a_min) ? v2 / (2.0 * a_min) : 0.0;
 }
 
-double Lookahead::junction_limit(const Node& a, const Node& b) const {
+double Lookahead::junction_limit(const Node& a, const Node& b) {
+  // a's end tangent if known; b's is known below when b is a line
+  std::optional<Pose> ta = std::exchange(back_end_tangent_, std::nullopt);
   const Segment& sa = a.p.seg;
   const Segment& sb = b.p.seg;
   if (sa.kind == MotionKind::Dwell || sb.kind == MotionKind::Dwell) return 0.0;
   if (sa.path_mode != PathMode::Blend) return 0.0;  // G61 / G61.1: stop at the end
   if ((sa.kind == MotionKind::Rapid) != (sb.kind == MotionKind::Rapid)) return 0.0;
-  const Pose ta = a.p.geo.tangent(a.p.geo.length());
-  const Pose tb = b.p.geo.tangent(0.0);
+  if (!ta) ta = a.p.geo.end_tangent();
+  const Pose tb = b.p.geo.start_tangent();
+  if (!b.p.geo.is_arc()) back_end_tangent_ = tb;  // a line ends as it starts
   double v = std::min(a.v_max, b.v_max);
   for (int i = 0; i < kAxisCount; ++i) {
-    const double jump = std::abs(tb[i] - ta[i]);
+    const double jump = std::abs(tb[i] - (*ta)[i]);
     if (jump <= plan::kTangentJump) continue;          // tangent (blends, tangent arcs)
     if (jump > plan::kMaxJunctionJump) return 0.0;     // a corner: stop there
     v = std::min(v, plan::kJunctionJumpShare * machine_.axes[i].max_acceleration *
@@ -86,10 +144,8 @@ bool Lookahead::fill() {
       source_error_ = st == SourceStatus::Error;
       break;
     }
-    Node n;
-    n.p.seg = in.seg;
-    n.p.geo = SegmentGeometry(in.seg);
-    n.p.index = in.index;
+    Node& n = window_.emplace_back(in);
+    if (window_.size() == 1) back_end_tangent_.reset();  // belonged to a released segment
     if (in.seg.kind == MotionKind::Dwell) {
       n.p.profile = Trapezoid::hold(in.seg.dwell_s);
     } else {
@@ -98,11 +154,12 @@ bool Lookahead::fill() {
       n.p.programmed_speed = target_speed(in.seg, n.p.geo, n.lim);
       n.v_max = n.p.programmed_speed;
     }
-    if (!window_.empty()) {
-      window_.back().v_junction = junction_limit(window_.back(), n);
+    n.at_v_max = n.lim.at(n.v_max);
+    if (window_.size() > 1) {
+      Node& prev = window_[window_.size() - 2];
+      prev.v_junction = junction_limit(prev, n);
       tail_length_ += n.p.geo.length();
     }
-    window_.push_back(std::move(n));
     max_window_ = std::max(max_window_, window_.size());
   }
   return !window_.empty();
@@ -110,52 +167,65 @@ bool Lookahead::fill() {
 
 void Lookahead::plan_and_release() {
   const std::size_t n = window_.size();
+  // What to release: the front, while what stays behind it covers the
+  // braking length (all of it at the program's end).
+  double behind = tail_length_;
+  std::size_t count = 0;
+  while (count < n && (source_done_ || behind >= braking_length_ || count == 0)) {
+    ++count;
+    if (count < n) behind -= window_[count].p.geo.length();
+  }
+  tail_length_ = count == n ? 0.0 : std::max(0.0, behind);
+
   // Backward: the window's last segment ends at rest (program end, or the
-  // conservative assumption that it might).
-  window_[n - 1].v_junction = source_done_ ? 0.0 : window_[n - 1].v_junction;
+  // conservative assumption that it might). A segment's entry depends only
+  // on its exit: once one comes out as in the previous plan, so does
+  // everything before it.
   double next_entry = 0.0;
   for (std::size_t k = n; k-- > 0;) {
     Node& s = window_[k];
-    s.v_exit = (k + 1 == n) ? 0.0 : std::min(s.v_junction, next_entry);
-    s.v_entry = reach(s.lim, -1.0, s.v_exit, s.p.geo.length(), s.v_max);
-    if (s.p.seg.kind == MotionKind::Dwell) s.v_entry = 0.0;
-    next_entry = s.v_entry;
+    const double exit = (k + 1 == n) ? 0.0 : std::min(s.v_junction, next_entry);
+    AccelAt acc(s.lim, s.v_max, s.at_v_max);
+    s.at_exit_back = acc(exit);
+    const double entry = s.p.seg.kind == MotionKind::Dwell
+                             ? 0.0
+                             : reach(acc, Side::SlowDown, exit, s.p.geo.length());
+    const bool unchanged = s.planned_back && entry == s.v_entry_back;
+    s.v_exit_back = exit;
+    s.v_entry_back = entry;
+    s.planned_back = true;
+    if (unchanged) break;
+    next_entry = entry;
   }
-  // Forward from the speed we are committed to.
+  // Forward from the speed we are committed to, over the segments released.
   double entry = v_start_;
-  for (std::size_t k = 0; k < n; ++k) {
+  for (std::size_t k = 0; k < count; ++k) {
     Node& s = window_[k];
-    s.v_entry = std::min(s.v_entry, entry);
-    s.v_exit = std::min(s.v_exit, reach(s.lim, +1.0, s.v_entry, s.p.geo.length(), s.v_max));
-    entry = s.v_exit;
+    AccelAt acc(s.lim, s.v_max, s.at_v_max);
+    acc.remember(s.v_exit_back, s.at_exit_back);
+    const double L = s.p.geo.length();
+    const double v_entry = std::min(s.v_entry_back, entry);
+    // reach() gives at least v_entry (≤ v_max): no need to ask when that
+    // already covers the exit the backward pass allows
+    const double v_exit = v_entry >= s.v_exit_back
+                              ? s.v_exit_back
+                              : std::min(s.v_exit_back, reach(acc, Side::SpeedUp, v_entry, L));
+    if (s.p.seg.kind != MotionKind::Dwell) s.p.profile = fit_profile(acc, L, v_entry, v_exit);
+    entry = v_exit;
   }
-  // Release the front while what stays behind it covers the braking length.
-  double behind = tail_length_;
-  std::size_t released = 0;
-  while (!window_.empty()) {
-    const bool deep = behind >= braking_length_;
-    if (!(source_done_ || deep || released == 0)) break;
-    Node& s = window_.front();
-    if (s.p.seg.kind != MotionKind::Dwell) {
-      s.p.profile = fit_profile(s.lim, s.p.geo.length(), s.v_entry, s.v_exit, s.v_max);
-    }
-    v_start_ = s.v_exit;
-    ready_.push_back(std::move(s.p));
-    window_.pop_front();
-    ++released;
-    if (!window_.empty()) behind -= window_.front().p.geo.length();
-  }
-  tail_length_ = std::max(0.0, behind);
-  if (window_.empty()) tail_length_ = 0.0;
+  v_start_ = entry;
+  released_ = count;
+  handed_ = 0;
 }
 
 SourceStatus Lookahead::next(PlannedSegment& out) {
-  while (ready_.empty()) {
+  while (handed_ == released_) {
+    window_.erase(window_.begin(), window_.begin() + static_cast<std::ptrdiff_t>(released_));
+    released_ = handed_ = 0;
     if (!fill()) return source_error_ ? SourceStatus::Error : SourceStatus::End;
     plan_and_release();
   }
-  out = std::move(ready_.front());
-  ready_.pop_front();
+  out = window_[handed_++].p;
   return SourceStatus::Item;
 }
 

@@ -20,6 +20,12 @@
 // Each segment then runs a trapezoid Vs → Vc → Ve (plan/trapezoid.h) with the
 // highest Vc ≤ Vm whose acceleration a(Vc) still fits the segment.
 //
+// Only what changes is recomputed: the backward pass stops at the first
+// segment (from the end) whose entry speed is what the previous plan found —
+// nothing before it can change — and the forward pass covers the segments
+// released. Cruising segments take their accelerations at the top speed,
+// computed once.
+//
 // Streaming: the window holds segments until what follows the front is
 // longer than the braking distance from the highest path speed, so a stop
 // assumed at the window's end cannot slow the segments released. Memory is
@@ -28,7 +34,8 @@
 #pragma once
 
 #include <cstdint>
-#include <deque>
+#include <optional>
+#include <vector>
 
 #include "machine/machine_config.h"
 #include "plan/path_blender.h"
@@ -52,21 +59,35 @@ class Lookahead {
 
  private:
   struct Node {
+    explicit Node(const IndexedSegment& in)
+        : p{in.seg, SegmentGeometry(in.seg), Trapezoid{}, 0.0, in.index} {}
+
     PlannedSegment p;
     double v_max = 0.0;     // top speed on the segment
     SegmentLimits lim;      // tangential acceleration as a function of speed
+    Accel at_v_max;         // lim.at(v_max): all a cruising segment asks for
     double v_junction = 0;  // limit where this segment ends and the next starts
-    double v_entry = 0.0, v_exit = 0.0;
+    // The backward pass's speeds, kept from one plan to the next: the pass
+    // stops at the first segment whose entry speed comes out unchanged.
+    double v_entry_back = 0.0, v_exit_back = 0.0;
+    Accel at_exit_back;  // accelerations at v_exit_back
+    bool planned_back = false;
   };
 
   bool fill();  // pull until the window is deep enough; false when nothing is left
   void plan_and_release();
-  [[nodiscard]] double junction_limit(const Node& a, const Node& b) const;
+  [[nodiscard]] double junction_limit(const Node& a, const Node& b);
 
   const MachineConfig& machine_;
   IndexedSource source_;
-  std::deque<Node> window_;
-  std::deque<PlannedSegment> ready_;
+  // The window, oldest first. window_[0, released_) are planned and handed
+  // out in order (handed_ of them so far); they are erased before the next
+  // fill, so the vector's storage is reused: no allocation once it has grown.
+  std::vector<Node> window_;
+  std::size_t released_ = 0, handed_ = 0;
+  // The unit tangent (dp/ds) where window_.back() ends, when already known:
+  // a line's is its start tangent, found for the junction before it.
+  std::optional<Pose> back_end_tangent_;
   double tail_length_ = 0.0;  // length of the window behind its front segment
   double braking_length_ = 0.0;
   double v_start_ = 0.0;      // speed the last released segment ends at

@@ -26,8 +26,6 @@ bool blendable_arc(const Segment& s) {
 
 bool blendable(const Segment& s) { return blendable_line(s) || blendable_arc(s); }
 
-double length_of(const Segment& s) { return SegmentGeometry(s).length(); }
-
 }  // namespace
 
 PathBlender::PathBlender(const MachineConfig& machine, SegmentSource source)
@@ -44,11 +42,11 @@ void PathBlender::emit(const IndexedSegment& s) {
   const Pose d = s.seg.end - s.seg.start;
   // Lines used up entirely by their two blends carry no motion: drop them.
   if (s.seg.kind == MotionKind::Linear && d.norm() <= plan::kMinSegmentLength) return;
-  ready_.push_back(s);
+  ready_[(ready_front_ + ready_count_++) % ready_.size()] = s;
 }
 
 SourceStatus PathBlender::next(IndexedSegment& out) {
-  while (ready_.empty()) {
+  while (ready_count_ == 0) {
     if (end_status_ != SourceStatus::Item) return end_status_;
     IndexedSegment cur;
     const SourceStatus st = merger_.next(cur);
@@ -62,8 +60,8 @@ SourceStatus PathBlender::next(IndexedSegment& out) {
       const Segment& a = pending_.seg;
       const double tol = std::min(a.blend_tolerance_mm, cur.seg.blend_tolerance_mm) -
                          std::max(merge_tolerance(a), merge_tolerance(cur.seg)) - margin_mm_;
-      const double len_a = length_of(a);
-      const double len_b = length_of(cur.seg);
+      const double len_a = path_length(a);
+      const double len_b = path_length(cur.seg);
       // A corner takes at most half of a line and 45 % of an arc (an arc
       // trimmed to nothing would read as a full circle).
       const double share_a = a.kind == MotionKind::Arc ? 0.45 : 0.5;
@@ -87,13 +85,14 @@ SourceStatus PathBlender::next(IndexedSegment& out) {
     have_pending_ = blendable(cur.seg);
     if (have_pending_) {
       pending_ = cur;
-      pending_full_length_ = length_of(cur.seg);
+      pending_full_length_ = path_length(cur.seg);
     } else {
       emit(cur);
     }
   }
-  out = ready_.front();
-  ready_.pop_front();
+  out = ready_[ready_front_];
+  ready_front_ = (ready_front_ + 1) % ready_.size();
+  --ready_count_;
   return SourceStatus::Item;
 }
 

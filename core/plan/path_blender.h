@@ -17,8 +17,8 @@
 // constant whatever the program's length.
 #pragma once
 
+#include <array>
 #include <cstdint>
-#include <deque>
 
 #include "machine/machine_config.h"
 #include "plan/line_merger.h"
@@ -43,7 +43,11 @@ class PathBlender {
   bool have_pending_ = false;
   IndexedSegment pending_;          // a line whose end may still be blended
   double pending_full_length_ = 0;  // its length as programmed
-  std::deque<IndexedSegment> ready_;
+  // Segments ready to hand out, oldest first: one step of next() emits at
+  // most two (a trimmed line and its blend arc), and next() hands one out
+  // before it takes another step.
+  std::array<IndexedSegment, 2> ready_;
+  std::size_t ready_front_ = 0, ready_count_ = 0;
   SourceStatus end_status_ = SourceStatus::Item;
 };
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "plan/tolerances.h"
@@ -9,31 +10,46 @@
 namespace lcnc {
 namespace {
 
-// Range [lo, hi] of a·cos φ + b·sin φ for φ in [0, sweep].
-void sinusoid_range(double a, double b, double sweep, double& lo, double& hi) {
-  constexpr double kPi = 3.14159265358979323846;
-  auto f = [&](double phi) { return a * std::cos(phi) + b * std::sin(phi); };
-  lo = std::min(f(0.0), f(sweep));
-  hi = std::max(f(0.0), f(sweep));
-  const double amp = std::hypot(a, b);
-  // maximum at atan2(b, a) + 2kπ, minimum half a turn later
-  double phi = std::atan2(b, a);
-  if (phi < 0.0) phi += 2 * kPi;
-  for (double p = phi; p <= sweep; p += 2 * kPi) hi = amp;
-  for (double p = phi >= kPi ? phi - kPi : phi + kPi; p <= sweep; p += 2 * kPi) lo = -amp;
+constexpr double kPi = 3.14159265358979323846;
+
+enum class Within : std::uint8_t { No, Yes, Unsure };
+
+// Whether the angle of (a, b) lies in [0, sweep], decided without atan2 where
+// the answer is certain: short sweeps (the blend arcs) by the signs of a and
+// b and the cross product a·sin(sweep) − b·cos(sweep) = |(a, b)|·sin(sweep −
+// angle), when it is further from 0 than kSure·(|a| + |b|), far beyond the
+// rounding of atan2, sin and cos. Unsure otherwise: the caller asks atan2.
+Within quick_within(double a, double b, double sweep, double cos_sweep, double sin_sweep) {
+  constexpr double kSure = 1e-9;
+  const double size = std::abs(a) + std::abs(b);
+  if (!(sweep < 1.5) || size == 0.0 || (b != 0.0 && std::abs(b) < 1e-300)) return Within::Unsure;
+  if (b < 0.0 || a <= 0.0) return Within::No;  // angle in (π/2, 2π): beyond the sweep
+  const double cross = a * sin_sweep - b * cos_sweep;
+  if (cross > kSure * size) return Within::Yes;
+  if (cross < -kSure * size) return Within::No;
+  return Within::Unsure;
 }
 
-// Largest a ≥ 0 with lo ≤ ρ·a·s·t + c ≤ hi for every t in [t_lo, t_hi],
-// c ∈ [c_lo, c_hi]: the box bound (s = +1 speeding up, −1 slowing down).
-double box_bound(double amax, double rho, double sign, double t_lo, double t_hi, double c_lo,
-                 double c_hi) {
-  // with x = s·t ranging over [x_lo, x_hi]
-  const double x_lo = sign > 0 ? t_lo : -t_hi, x_hi = sign > 0 ? t_hi : -t_lo;
-  double a = std::numeric_limits<double>::infinity();
-  if (c_hi > amax || c_lo < -amax) return 0.0;
-  if (x_hi > 1e-15) a = std::min(a, (amax - c_hi) / (rho * x_hi));
-  if (x_lo < -1e-15) a = std::min(a, (amax + c_lo) / (rho * -x_lo));
-  return std::max(0.0, a);
+// Range [lo, hi] of a·cos φ + b·sin φ for φ in [0, sweep].
+void sinusoid_range(double a, double b, const SegmentGeometry& geo, double& lo, double& hi) {
+  const double sweep = geo.sweep_rad();
+  auto f = [&](double cos_phi, double sin_phi) { return a * cos_phi + b * sin_phi; };
+  lo = std::min(f(1.0, 0.0), f(geo.cos_sweep(), geo.sin_sweep()));
+  hi = std::max(f(1.0, 0.0), f(geo.cos_sweep(), geo.sin_sweep()));
+  // maximum at atan2(b, a) + 2kπ, minimum half a turn later
+  Within max_in = quick_within(a, b, sweep, geo.cos_sweep(), geo.sin_sweep());
+  Within min_in = quick_within(-a, -b, sweep, geo.cos_sweep(), geo.sin_sweep());
+  if (max_in == Within::Unsure || min_in == Within::Unsure) {
+    double phi = std::atan2(b, a);
+    if (phi < 0.0) phi += 2 * kPi;
+    const double phi_min = phi >= kPi ? phi - kPi : phi + kPi;
+    max_in = phi <= sweep ? Within::Yes : Within::No;
+    min_in = phi_min <= sweep ? Within::Yes : Within::No;
+  }
+  if (max_in == Within::No && min_in == Within::No) return;
+  const double amp = std::hypot(a, b);
+  if (max_in == Within::Yes) hi = amp;
+  if (min_in == Within::Yes) lo = -amp;
 }
 
 }  // namespace
@@ -41,39 +57,52 @@ double box_bound(double amax, double rho, double sign, double t_lo, double t_hi,
 SegmentLimits segment_limits(const Segment& seg, const SegmentGeometry& geo,
                              const MachineConfig& machine) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
-  SegmentLimits lim{kInf, kInf};
+  SegmentLimits lim;
+  lim.v_max = kInf;
+  lim.a_linear = kInf;
   const double L = geo.length();
-  if (L <= plan::kMinSegmentLength) return {0.0, 0.0};
+  if (L <= plan::kMinSegmentLength) return {};
   // Linearly moving part of every axis (whole line; helix normal and rotary axes of an arc).
   Pose lin = (seg.end - seg.start) / L;
-  if (geo.is_arc()) lin.head<3>() = geo.tangent(0.0).head<3>() -
+  if (geo.is_arc()) lin.head<3>() = geo.start_tangent().head<3>() -
                                     geo.plane_speed_ratio() * geo.w();
   for (int i = 0; i < kAxisCount; ++i) {
     const double k = std::abs(lin[i]);
     if (k <= 1e-15) continue;
     const AxisConfig& ax = machine.axes[i];
-    if (!ax.present) return {0.0, 0.0};  // the reader rejects such moves first
+    if (!ax.present) return {};  // the reader rejects such moves first
     lim.v_max = std::min(lim.v_max, ax.max_velocity / k);
-    lim.a_max = std::min(lim.a_max, ax.max_acceleration / k);
+    lim.a_linear = std::min(lim.a_linear, ax.max_acceleration / k);
   }
-  lim.a_linear = lim.a_max;
   if (geo.is_arc() && geo.plane_speed_ratio() > 0.0) {
     const double rho = geo.plane_speed_ratio();
-    const double sweep = geo.sweep_rad();
     lim.arc = true;
     lim.rho = rho;
     lim.radius = geo.radius();
     double a_n_max = kInf;
     for (int i = 0; i < 3; ++i) {
       const double ui = geo.u()[i], wi = geo.w()[i];
-      lim.g[i] = std::hypot(ui, wi);
-      if (lim.g[i] <= 1e-15) continue;
+      const double g = std::hypot(ui, wi);
+      if (g <= 1e-15) continue;
       const AxisConfig& ax = machine.axes[i];
-      lim.a_axis[i] = ax.max_acceleration;
-      sinusoid_range(wi, -ui, sweep, lim.t_lo[i], lim.t_hi[i]);  // t = −sin φ·u + cos φ·w
-      sinusoid_range(-ui, -wi, sweep, lim.n_lo[i], lim.n_hi[i]); // n = −cos φ·u − sin φ·w
-      const double t_abs = std::max(std::abs(lim.t_lo[i]), std::abs(lim.t_hi[i]));
-      const double n_abs = std::max(std::abs(lim.n_lo[i]), std::abs(lim.n_hi[i]));
+      double t_lo, t_hi, n_lo, n_hi;
+      sinusoid_range(wi, -ui, geo, t_lo, t_hi);   // t = −sin φ·u + cos φ·w
+      sinusoid_range(-ui, -wi, geo, n_lo, n_hi);  // n = −cos φ·u − sin φ·w
+      SegmentLimits::ArcAxis& x = lim.arc_axes[lim.arc_axis_count++];
+      x.a_axis = ax.max_acceleration;
+      const double by_norm = ax.max_acceleration / g;
+      x.by_norm_sqr = by_norm * by_norm;
+      x.a1_cap = std::sqrt(x.by_norm_sqr) / rho;  // the norm bound at a_n = 0
+      x.n_lo = n_lo;
+      x.n_hi = n_hi;
+      // box bound, x = s·t over [x_lo, x_hi]: s = +1 speeding up, −1 slowing down
+      for (int side = 0; side < 2; ++side) {
+        const double x_lo = side == 0 ? t_lo : -t_hi, x_hi = side == 0 ? t_hi : -t_lo;
+        x.den_hi[side] = x_hi > 1e-15 ? rho * x_hi : 0.0;
+        x.den_lo[side] = x_lo < -1e-15 ? rho * -x_lo : 0.0;
+      }
+      const double t_abs = std::max(std::abs(t_lo), std::abs(t_hi));
+      const double n_abs = std::max(std::abs(n_lo), std::abs(n_hi));
       lim.v_max = std::min(lim.v_max, ax.max_velocity / (rho * t_abs + std::abs(lin[i])));
       if (n_abs > 1e-15) a_n_max = std::min(a_n_max, ax.max_acceleration / n_abs);
     }
@@ -88,28 +117,40 @@ SegmentLimits segment_limits(const Segment& seg, const SegmentGeometry& geo,
   const double k = machine.max_feed_override;
   lim.override_k = k;
   lim.v_max /= k;
-  lim.a_max = lim.accel_at(lim.v_max);
   return lim;
 }
 
-double SegmentLimits::tangential(double v, double sign) const noexcept {
+// Per axis the larger a_t either bound allows (both bounds are true):
+//   by the norm  a1 = sqrt((amax_i/g_i)² − a_n²)/ρ
+//   the box      largest a with −amax_i ≤ ρ·a·x + c ≤ amax_i for x in
+//                [x_lo, x_hi], c in [min(0, a_n·n_lo), max(0, a_n·n_hi)]
+// a_n anywhere in [0, a_n(v)]: the bound then holds at every speed ≤ v,
+// and falls as v rises (the look-ahead relies on that).
+Accel SegmentLimits::arc_at(double v) const noexcept {
   const double k2 = override_k * override_k;
-  if (!arc) return a_linear / k2;
   const double vp = rho * v * override_k;  // physical in-plane speed
   const double a_n = vp * vp / radius;
-  double a_t = a_linear;
-  for (int i = 0; i < 3; ++i) {
-    if (g[i] <= 1e-15) continue;
-    // the larger a_t either bound allows (both bounds are true)
-    const double by_norm = a_axis[i] / g[i];
-    const double a1 = std::sqrt(std::max(0.0, by_norm * by_norm - a_n * a_n)) / rho;
-    // a_n anywhere in [0, a_n(v)]: the bound then holds at every speed ≤ v,
-    // and falls as v rises (the look-ahead relies on that)
-    const double a2 = box_bound(a_axis[i], rho, sign, t_lo[i], t_hi[i],
-                                std::min(0.0, a_n * n_lo[i]), std::max(0.0, a_n * n_hi[i]));
-    a_t = std::min(a_t, std::max(a1, a2));
+  auto box_bound = [](const ArcAxis& x, int side, double c_lo, double c_hi) {
+    if (c_hi > x.a_axis || c_lo < -x.a_axis) return 0.0;
+    double a = std::numeric_limits<double>::infinity();
+    if (x.den_hi[side] != 0.0) a = std::min(a, (x.a_axis - c_hi) / x.den_hi[side]);
+    if (x.den_lo[side] != 0.0) a = std::min(a, (x.a_axis + c_lo) / x.den_lo[side]);
+    return std::max(0.0, a);
+  };
+  double accel = a_linear, decel = a_linear;
+  for (int j = 0; j < arc_axis_count; ++j) {
+    const ArcAxis& x = arc_axes[j];
+    const double c_lo = std::min(0.0, a_n * x.n_lo), c_hi = std::max(0.0, a_n * x.n_hi);
+    const double up = box_bound(x, 0, c_lo, c_hi), down = box_bound(x, 1, c_lo, c_hi);
+    // a1 ≤ a1_cap (its value at a_n = 0): max(a1, b) is b when b ≥ a1_cap,
+    // so the square root is taken only when a box bound falls below that
+    double a1 = x.a1_cap;
+    if (up < x.a1_cap || down < x.a1_cap || std::isnan(a_n))
+      a1 = std::sqrt(std::max(0.0, x.by_norm_sqr - a_n * a_n)) / rho;
+    accel = std::min(accel, std::max(a1, up));
+    decel = std::min(decel, std::max(a1, down));
   }
-  return a_t / k2;
+  return {accel / k2, decel / k2};
 }
 
 double target_speed(const Segment& seg, const SegmentGeometry& geo, const SegmentLimits& lim) {

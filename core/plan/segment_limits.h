@@ -22,8 +22,11 @@
 // a_n·max(|n_lo|, |n_hi|) ≤ kArcNormalShare·amax_i.
 // Normal (helix) and rotary axes move linearly with the path, as on a line.
 // All of it is planned at the highest feed override K (DESIGN §5.5): the
-// limits returned are v_max/K and a_max/K², so any override up to K keeps
-// every axis within its limits.
+// limits returned are v_max/K and accelerations/K², so any override up to K
+// keeps every axis within its limits.
+// Cost: the look-ahead asks for accelerations many times per segment, so
+// everything that does not depend on the speed is computed once, and the
+// ranges over the sweep avoid atan2 where the answer is certain.
 #pragma once
 
 #include <array>
@@ -34,23 +37,54 @@
 
 namespace lcnc {
 
+// Tangential acceleration and deceleration (> 0) at one speed (path units/s²).
+struct Accel {
+  double accel = 0.0;
+  double decel = 0.0;
+};
+
 struct SegmentLimits {
   double v_max = 0.0;  // path units/s: the highest speed the axes allow
-  double a_max = 0.0;  // path units/s²: tangential acceleration at v_max
 
   // Tangential acceleration (speeding up) and deceleration (slowing down,
   // > 0) allowed while the speed stays ≤ v (planned units): on an arc, slower
-  // means less centripetal load; on a line both are a_max whatever v.
-  [[nodiscard]] double accel_at(double v) const noexcept { return tangential(v, +1.0); }
-  [[nodiscard]] double decel_at(double v) const noexcept { return tangential(v, -1.0); }
-  [[nodiscard]] double tangential(double v, double sign) const noexcept;
+  // means less centripetal load; on a line both are the same whatever v.
+  [[nodiscard]] double accel_at(double v) const noexcept { return at(v).accel; }
+  [[nodiscard]] double decel_at(double v) const noexcept { return at(v).decel; }
+  [[nodiscard]] double tangential(double v, double sign) const noexcept {
+    return sign > 0 ? accel_at(v) : decel_at(v);
+  }
+  // Both at once (they share the centripetal part); inline for lines.
+  [[nodiscard]] Accel at(double v) const noexcept {
+    if (!arc) {
+      const double a = a_linear / (override_k * override_k);
+      return {a, a};
+    }
+    return arc_at(v);
+  }
 
-  // What accel_at() needs (physical units).
+  // What at() needs (physical units), fixed per segment.
   double a_linear = 0.0;  // bound from the linearly moving axes
   bool arc = false;
   double rho = 0.0, radius = 0.0;
-  std::array<double, 3> a_axis{}, g{}, t_lo{}, t_hi{}, n_lo{}, n_hi{};  // per linear axis, arcs only
   double override_k = 1.0;
+  // Per linear axis an arc moves in (g_i > 0), the constants of the two
+  // bounds, computed once per segment (at() is asked many times): the range
+  // [n_lo, n_hi] of the unit normal over the sweep, and the box bound's
+  // denominators ρ·x_hi and ρ·(−x_lo) for speeding up [0] and slowing down
+  // [1] (x = ±t_i over the sweep; 0: that side gives no bound).
+  struct ArcAxis {
+    double a_axis = 0.0;       // amax_i
+    double by_norm_sqr = 0.0;  // (amax_i/g_i)²
+    double a1_cap = 0.0;       // sqrt(by_norm_sqr)/ρ: the norm bound at a_n = 0, its largest
+    double n_lo = 0.0, n_hi = 0.0;
+    std::array<double, 2> den_hi{}, den_lo{};
+  };
+  std::array<ArcAxis, 3> arc_axes{};
+  int arc_axis_count = 0;
+
+ private:
+  [[nodiscard]] Accel arc_at(double v) const noexcept;
 };
 
 // Limits of the segment (accel_at/decel_at give its acceleration at a speed).

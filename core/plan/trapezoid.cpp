@@ -38,24 +38,4 @@ Trapezoid Trapezoid::hold(double duration_s) {
   return p;
 }
 
-double Trapezoid::position(double t) const noexcept {
-  if (t <= 0.0) return 0.0;
-  if (t < t_acc) return v0 * t + 0.5 * accel * t * t;
-  t -= t_acc;
-  if (t < t_cruise) return s_acc + vc * t;
-  t -= t_cruise;
-  if (t < t_dec) return std::min(length, s_acc + s_cruise + vc * t - 0.5 * decel * t * t);
-  return length;
-}
-
-double Trapezoid::speed(double t) const noexcept {
-  if (t <= 0.0) return v0;
-  if (t < t_acc) return v0 + accel * t;
-  t -= t_acc;
-  if (t < t_cruise) return vc;
-  t -= t_cruise;
-  if (t < t_dec) return vc - decel * t;
-  return v1;
-}
-
 }  // namespace lcnc

@@ -16,6 +16,8 @@
 // and hinders the other.)
 #pragma once
 
+#include <algorithm>
+
 namespace lcnc {
 
 struct Trapezoid {
@@ -37,9 +39,26 @@ struct Trapezoid {
 
   [[nodiscard]] double duration() const noexcept { return t_acc + t_cruise + t_dec; }
   // Path length travelled after time t (clamped to [0, duration]).
-  [[nodiscard]] double position(double t) const noexcept;
+  // (Inline: the coarse interpolator asks every period.)
+  [[nodiscard]] double position(double t) const noexcept {
+    if (t <= 0.0) return 0.0;
+    if (t < t_acc) return v0 * t + 0.5 * accel * t * t;
+    t -= t_acc;
+    if (t < t_cruise) return s_acc + vc * t;
+    t -= t_cruise;
+    if (t < t_dec) return std::min(length, s_acc + s_cruise + vc * t - 0.5 * decel * t * t);
+    return length;
+  }
   // Path speed at time t.
-  [[nodiscard]] double speed(double t) const noexcept;
+  [[nodiscard]] double speed(double t) const noexcept {
+    if (t <= 0.0) return v0;
+    if (t < t_acc) return v0 + accel * t;
+    t -= t_acc;
+    if (t < t_cruise) return vc;
+    t -= t_cruise;
+    if (t < t_dec) return vc - decel * t;
+    return v1;
+  }
 };
 
 }  // namespace lcnc

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "path/deviation_meter.h"
 
@@ -52,6 +53,37 @@ TEST(SegmentGeometry, DistanceToLineAndArc) {
   const SegmentGeometry ga(arc(5.0, false));
   EXPECT_NEAR(ga.distance_xyz(Vec3(50, 56, 10)), 1.0, 1e-12);
   EXPECT_NEAR(ga.distance_xyz(Vec3(50, 50, 10)), 5.0, 1e-12);
+}
+
+// start_tangent(), end_tangent() and path_length() skip work (sin and cos of
+// the ends, the arc set-up of a line) but must give the same bits.
+TEST(SegmentGeometry, EndTangentsAndPathLengthMatchTheGeneralForms) {
+  std::vector<Segment> segs = {arc(5.0, false), arc(5.0, true, 1), arc(2.0, false, 2, 3.0)};
+  Segment l;
+  l.kind = MotionKind::Linear;
+  l.start << 1, 2, 3, 0, 0, 0;
+  l.end << 4, -2, 3.5, 0, 0, 10;
+  segs.push_back(l);
+  Segment rot = l;
+  rot.end.head<3>() = rot.start.head<3>();  // rotary only
+  segs.push_back(rot);
+  Segment part = arc(3.0, false);  // a quarter
+  part.end << 50, 53, 10, 0, 0, 0;
+  segs.push_back(part);
+  Segment blend = part;  // a free-plane arc
+  blend.plane = Plane::Free;
+  blend.center = Vec3(50, 50, 10);
+  blend.end << 50 + 3 * std::cos(0.3), 50 + 3 * std::sin(0.3), 10, 0, 0, 0;
+  blend.normal = Vec3(0, 0, 1);
+  segs.push_back(blend);
+  for (const Segment& s : segs) {
+    const SegmentGeometry g(s);
+    EXPECT_EQ(g.start_tangent(), g.tangent(0.0));
+    EXPECT_EQ(g.end_tangent(), g.tangent(g.length()));
+    EXPECT_EQ(path_length(s), g.length());
+    EXPECT_EQ(g.sin_sweep(), std::sin(g.sweep_rad()));
+    EXPECT_EQ(g.cos_sweep(), std::cos(g.sweep_rad()));
+  }
 }
 
 TEST(DeviationMeter, MeasuresAgainstTheWindowOfSegments) {

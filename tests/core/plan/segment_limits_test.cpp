@@ -1,0 +1,202 @@
+#include "plan/segment_limits.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <limits>
+#include <random>
+
+#include "core/plan/test_machine.h"
+#include "plan/arc_transition.h"
+#include "plan/coarse_interpolator.h"
+#include "plan/tolerances.h"
+
+namespace lcnc {
+namespace {
+
+// Reference model: the limits as first written — the sinusoid ranges from
+// atan2, every bound recomputed per call. segment_limits() precomputes per
+// segment and skips atan2 where the answer is certain; the results must be
+// the same bit for bit.
+struct ReferenceLimits {
+  double v_max = 0.0;
+  double a_linear = 0.0;
+  bool arc = false;
+  double rho = 0.0, radius = 0.0, override_k = 1.0;
+  std::array<double, 3> a_axis{}, g{}, t_lo{}, t_hi{}, n_lo{}, n_hi{};
+
+  static void sinusoid_range(double a, double b, double sweep, double& lo, double& hi) {
+    constexpr double kPi = 3.14159265358979323846;
+    auto f = [&](double phi) { return a * std::cos(phi) + b * std::sin(phi); };
+    lo = std::min(f(0.0), f(sweep));
+    hi = std::max(f(0.0), f(sweep));
+    const double amp = std::hypot(a, b);
+    double phi = std::atan2(b, a);
+    if (phi < 0.0) phi += 2 * kPi;
+    for (double p = phi; p <= sweep; p += 2 * kPi) hi = amp;
+    for (double p = phi >= kPi ? phi - kPi : phi + kPi; p <= sweep; p += 2 * kPi) lo = -amp;
+  }
+
+  static double box_bound(double amax, double rho, double sign, double t_lo, double t_hi,
+                          double c_lo, double c_hi) {
+    const double x_lo = sign > 0 ? t_lo : -t_hi, x_hi = sign > 0 ? t_hi : -t_lo;
+    double a = std::numeric_limits<double>::infinity();
+    if (c_hi > amax || c_lo < -amax) return 0.0;
+    if (x_hi > 1e-15) a = std::min(a, (amax - c_hi) / (rho * x_hi));
+    if (x_lo < -1e-15) a = std::min(a, (amax + c_lo) / (rho * -x_lo));
+    return std::max(0.0, a);
+  }
+
+  ReferenceLimits(const Segment& seg, const SegmentGeometry& geo, const MachineConfig& m) {
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    v_max = kInf;
+    a_linear = kInf;
+    override_k = m.max_feed_override;
+    const double L = geo.length();
+    Pose lin = (seg.end - seg.start) / L;
+    if (geo.is_arc()) lin.head<3>() = geo.tangent(0.0).head<3>() - geo.plane_speed_ratio() * geo.w();
+    for (int i = 0; i < kAxisCount; ++i) {
+      const double k = std::abs(lin[i]);
+      if (k <= 1e-15) continue;
+      v_max = std::min(v_max, m.axes[i].max_velocity / k);
+      a_linear = std::min(a_linear, m.axes[i].max_acceleration / k);
+    }
+    if (geo.is_arc() && geo.plane_speed_ratio() > 0.0) arc_limits(geo, m, lin);
+    v_max /= override_k;
+  }
+
+  void arc_limits(const SegmentGeometry& geo, const MachineConfig& m, const Pose& lin) {
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    arc = true;
+    rho = geo.plane_speed_ratio();
+    radius = geo.radius();
+    double a_n_max = kInf;
+    for (int i = 0; i < 3; ++i) {
+      const double ui = geo.u()[i], wi = geo.w()[i];
+      g[i] = std::hypot(ui, wi);
+      if (g[i] <= 1e-15) continue;
+      a_axis[i] = m.axes[i].max_acceleration;
+      sinusoid_range(wi, -ui, geo.sweep_rad(), t_lo[i], t_hi[i]);
+      sinusoid_range(-ui, -wi, geo.sweep_rad(), n_lo[i], n_hi[i]);
+      const double t_abs = std::max(std::abs(t_lo[i]), std::abs(t_hi[i]));
+      const double n_abs = std::max(std::abs(n_lo[i]), std::abs(n_hi[i]));
+      v_max = std::min(v_max, m.axes[i].max_velocity / (rho * t_abs + std::abs(lin[i])));
+      if (n_abs > 1e-15) a_n_max = std::min(a_n_max, a_axis[i] / n_abs);
+    }
+    if (std::isfinite(a_n_max))
+      v_max = std::min(v_max, std::sqrt(plan::kArcNormalShare * a_n_max * radius) / rho);
+  }
+
+  [[nodiscard]] double tangential(double v, double sign) const {
+    const double k2 = override_k * override_k;
+    if (!arc) return a_linear / k2;
+    const double vp = rho * v * override_k;
+    const double a_n = vp * vp / radius;
+    double a_t = a_linear;
+    for (int i = 0; i < 3; ++i) {
+      if (g[i] <= 1e-15) continue;
+      const double by_norm = a_axis[i] / g[i];
+      const double a1 = std::sqrt(std::max(0.0, by_norm * by_norm - a_n * a_n)) / rho;
+      const double a2 = box_bound(a_axis[i], rho, sign, t_lo[i], t_hi[i],
+                                  std::min(0.0, a_n * n_lo[i]), std::max(0.0, a_n * n_hi[i]));
+      a_t = std::min(a_t, std::max(a1, a2));
+    }
+    return a_t / k2;
+  }
+};
+
+Pose pose(const Vec3& p) {
+  Pose q = Pose::Zero();
+  q.head<3>() = p;
+  return q;
+}
+
+// Checks segment_limits() against the reference at speeds from rest to past v_max.
+void expect_same_limits(const Segment& seg, const MachineConfig& m, std::mt19937& rng) {
+  const SegmentGeometry geo(seg);
+  const SegmentLimits lim = segment_limits(seg, geo, m);
+  const ReferenceLimits ref(seg, geo, m);
+  ASSERT_EQ(lim.v_max, ref.v_max);
+  std::uniform_real_distribution<double> share(0.0, 1.2);
+  for (int k = 0; k < 20; ++k) {
+    const double v = k == 0 ? lim.v_max : share(rng) * lim.v_max;
+    ASSERT_EQ(lim.accel_at(v), ref.tangential(v, +1.0)) << "v " << v;
+    ASSERT_EQ(lim.decel_at(v), ref.tangential(v, -1.0)) << "v " << v;
+    const Accel both = lim.at(v);
+    ASSERT_EQ(both.accel, lim.accel_at(v));
+    ASSERT_EQ(both.decel, lim.decel_at(v));
+  }
+}
+
+TEST(SegmentLimits, BlendArcsMatchTheReferenceModel) {
+  const MachineConfig m = testing::test_machine(100.0, 2000.0);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> coord(-20.0, 20.0), turn(-1.0, 1.0);
+  int corners = 3000;
+  if (const char* s = std::getenv("LCNC_FUZZ_SCALE")) corners *= std::atoi(s);
+  for (int k = 0; k < corners; ++k) {
+    // corners from nearly straight (tiny sweeps, the quick decision) to sharp
+    const Vec3 p0(coord(rng), coord(rng), coord(rng));
+    const Vec3 p1 = p0 + Vec3(coord(rng), coord(rng), coord(rng));
+    const double scale = std::pow(10.0, -6.0 * std::abs(turn(rng)));
+    const Vec3 p2 = p1 + (p1 - p0) + scale * (p1 - p0).norm() * Vec3(turn(rng), turn(rng), turn(rng));
+    Segment a, b;
+    a.kind = b.kind = MotionKind::Linear;
+    a.start = pose(p0);
+    a.end = b.start = pose(p1);
+    b.end = pose(p2);
+    const ArcTransition t = arc_transition(a, b, 0.01, 1e9, 1e9);
+    if (!t.blended) continue;
+    expect_same_limits(t.arc, m, rng);
+  }
+}
+
+TEST(SegmentLimits, PlaneArcsAndHelicesMatchTheReferenceModel) {
+  MachineConfig m = testing::test_machine(100.0, 2000.0);
+  m.max_feed_override = 1.5;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  constexpr double kPi = 3.14159265358979323846;
+  for (int k = 0; k < 2000; ++k) {
+    Segment s;
+    s.kind = MotionKind::Arc;
+    s.plane = static_cast<Plane>(k % 3);
+    s.clockwise = k % 2 == 0;
+    s.extra_turns = k % 17 == 0 ? 1 : 0;
+    const PlaneAxes pa = plane_axes(s.plane);
+    s.center = Vec3(100, 100, 100);
+    const double r = 0.1 + 20.0 * unit(rng);
+    // start angles on and near the axes, where the extremes sit at the ends
+    const double a0 = k % 5 == 0 ? kPi / 2 * (k % 4) + 1e-12 * (unit(rng) - 0.5) : 2 * kPi * unit(rng);
+    const double sweep = (s.clockwise ? -1.0 : 1.0) * std::pow(10.0, -6.0 * unit(rng)) * 3.0;
+    Vec3 p0 = s.center, p1 = s.center;
+    p0[pa.first] += r * std::cos(a0);
+    p0[pa.second] += r * std::sin(a0);
+    p1[pa.first] += r * std::cos(a0 + sweep);
+    p1[pa.second] += r * std::sin(a0 + sweep);
+    if (k % 7 == 0) p1[pa.normal] += unit(rng);  // helix
+    s.start = pose(p0);
+    s.end = pose(p1);
+    expect_same_limits(s, m, rng);
+  }
+}
+
+TEST(StepQuantizer, RoundsLikeLlround) {
+  const MachineConfig m = testing::test_machine();
+  const StepQuantizer q(m, Pose::Zero());
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> mm(-2000.0, 2000.0);
+  for (int k = 0; k < 100000; ++k) {
+    // every fourth value sits on a half step, where the rounding direction shows
+    const double x = k % 4 == 0 ? (std::floor(mm(rng) * 1000.0) + 0.5) / 1000.0 : mm(rng);
+    ASSERT_EQ(q.to_steps(0, x), std::llround(x * 1000.0)) << x;
+  }
+  for (const double x : {0.0, -0.0, 0.0005, -0.0005, 0.00049999999999999995, 1e15, -1e15, 3e16})
+    EXPECT_EQ(q.to_steps(0, x), std::llround(x * 1000.0)) << x;
+}
+
+}  // namespace
+}  // namespace lcnc
