@@ -12,33 +12,7 @@
 #include <string>
 #include <thread>
 
-// The replacement operators below pair malloc with free on purpose; gcc
-// cannot see that when it inlines them.
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-
-// Allocations are counted while t_count_allocations is set on the calling
-// thread, so a test can show the RT-path calls allocate nothing.
-namespace {
-std::atomic<std::uint64_t> g_allocations{0};
-thread_local bool t_count_allocations = false;
-void count_allocation() {
-  if (t_count_allocations) g_allocations.fetch_add(1, std::memory_order_relaxed);
-}
-}  // namespace
-void* operator new(std::size_t n) {
-  count_allocation();
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n) {
-  count_allocation();
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+#include "support/rt_watch.h"
 
 namespace lcnc::drivers {
 namespace {

@@ -22,43 +22,12 @@
 
 extern char** environ;
 
+#include "e2e_support.h"
+
 namespace {
 
-namespace fs = std::filesystem;
+using namespace e2e;
 using namespace std::chrono_literals;
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-fs::path temp_dir() {
-  fs::path d = fs::temp_directory_path() /
-               ("lasercncd_e2e_" + std::to_string(::getpid()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-  fs::create_directories(d);
-  return d;
-}
-
-struct CmdResult {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-CmdResult lasercnc(const std::string& args) {
-  const fs::path dir = temp_dir();
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string cmd = std::string(LASERCNC_EXE) + " " + args + " >" + out.string() + " 2>" +
-                          err.string() + " </dev/null";
-  const int status = std::system(cmd.c_str());
-  CmdResult r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
-}
 
 // A lasercncd child process on its own segment.
 class Daemon {
