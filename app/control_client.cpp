@@ -76,6 +76,7 @@ int client_status(const ClientOptions& options) {
     j["position"] = st.pos;
     j["position_steps"] = st.pos_steps;
     j["homed_mask"] = st.homed_mask;
+    j["axes_mask"] = st.axes_mask;
     j["feed_override"] = st.feed_override;
     j["feed_override_target"] = st.feed_override_target;
     j["buffer_fill"] = st.buffer_fill;
@@ -101,8 +102,9 @@ int client_status(const ClientOptions& options) {
                              .c_str()
                        : "");
   std::printf("position  ");
-  for (int i = 0; i < kAxisCount; ++i)
-    std::printf(" %c %.3f%s", kAxisLetters[i], st.pos[i], (st.homed_mask >> i) & 1u ? "" : "?");
+  for (int i = 0; i < kAxisCount; ++i)  // "?": not homed
+    if ((st.axes_mask >> i) & 1u)
+      std::printf(" %c %.3f%s", kAxisLetters[i], st.pos[i], (st.homed_mask >> i) & 1u ? "" : "?");
   std::printf("\noverride   %.0f %% (target %.0f %%)   buffer %u   line %u\n",
               st.feed_override * 100.0, st.feed_override_target * 100.0, st.buffer_fill, st.line);
   std::printf("program    %s%s  %.1f %%\n", job.program[0] ? job.program : "(none)",

@@ -1,17 +1,17 @@
 #!/usr/bin/env bash
 # Zero underruns while the daemon runs a 1,000,000-segment program (issue
-# "RT kernel"): lasercncd streams a dense CAM program (chords of 0.01–0.05 mm)
+# "RT kernel"): lasercncd streams a dense CAM program (chords of 0.01–0.02 mm)
 # through the position buffer while the RT thread runs it; prints the job's
 # result and the kernel's underrun / low-buffer counts.
 #
 #   bench/daemon_stream.sh [BUILD_DIR] [LINES]
 set -euo pipefail
 build=${1:-build}
-lines=${2:-1000000}
+lines=${2:-1011500}  # lines; ~1,000,000 segments (the rest are S words and comments)
 here=$(cd "$(dirname "$0")" && pwd)
 prog=/tmp/lcnc_daemon_stream_${lines}.ngc
 shm=/lcnc_bench_$$
-[ -f "$prog" ] || python3 "$here/gen_program.py" "$prog" --lines "$lines" --chord 0.01 0.05
+[ -f "$prog" ] || python3 "$here/gen_program.py" "$prog" --lines "$lines" --chord 0.01 0.02
 "$build/app/lasercnc" check "$prog"
 "$build/app/lasercncd" --shm "$shm" 2>/tmp/lcnc_daemon_stream.log &
 pid=$!
@@ -23,7 +23,7 @@ for _ in $(seq 100); do "$build/app/lasercnc" status --shm "$shm" >/dev/null 2>&
 "$build/app/lasercnc" status --json --shm "$shm" | python3 -c '
 import json, sys
 s = json.load(sys.stdin)
-print(f"underruns {s[\"underruns\"]}  low-buffer decelerations {s[\"starvations\"]}  "
-      f"cycle {s[\"last_cycle_time_s\"]:.3f} s  RT latency p99 {s[\"latency_us\"][\"p99\"]} us")'
+print("underruns %d  low-buffer decelerations %d  cycle %.3f s  RT latency p99 %s us"
+      % (s["underruns"], s["starvations"], s["last_cycle_time_s"], s["latency_us"]["p99"]))'
 kill -TERM $pid
 wait $pid

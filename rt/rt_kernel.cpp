@@ -68,6 +68,7 @@ RtKernel::RtKernel(const MachineConfig& machine, PositionBuffer& buffer, PulseSi
     }
     known |= 1u << i;
   }
+  axes_mask_ = known;
   // The simulated machine's position is known at power-on.
   homed_.store(known, std::memory_order_relaxed);
 }
@@ -577,6 +578,7 @@ void RtKernel::publish_status(bool force) noexcept {
   st.underruns = underruns_.load(std::memory_order_relaxed);
   st.starvations = starvations_.load(std::memory_order_relaxed);
   st.homed_mask = homed_.load(std::memory_order_relaxed);
+  st.axes_mask = axes_mask_;
   for (int i = 0; i < kAxisCount; ++i) {
     st.pos_steps[i] = pos_steps_[i];
     st.pos[i] = static_cast<double>(pos_steps_[i]) * units_per_step_[i];

@@ -289,6 +289,7 @@ class RtKernel {
   FeedOverrideRamp ramp_;
   std::array<AxisLimits, kAxisCount> axes_{};
   std::array<double, kAxisCount> units_per_step_{};
+  std::uint32_t axes_mask_ = 0;  // bit per axis present
   RtCommandRing commands_;
   Seqlock<shm::Status>* status_ = nullptr;
   RtOptions options_;

@@ -24,7 +24,7 @@
 namespace lcnc::shm {
 
 inline constexpr std::uint32_t kMagic = 0x434E434Cu;  // "LCNC" in memory
-inline constexpr std::uint32_t kVersion = 2;
+inline constexpr std::uint32_t kVersion = 3;
 inline constexpr const char* kDefaultName = "/lasercnc";
 
 enum class MachineState : std::uint8_t { Idle, Running, FeedHold, Stopping, EStop, Jog, Homing };
@@ -66,6 +66,7 @@ struct Status {
   std::int8_t fault_axis = -1;  // axis of the fault, −1 if none
   std::uint32_t line = 0;       // program line executing (or last executed)
   std::uint32_t homed_mask = 0; // bit per axis whose position is known
+  std::uint32_t axes_mask = 0;  // bit per axis the machine has
   std::uint64_t periods = 0;
   std::uint64_t underruns = 0;    // periods with the buffer empty while running
   std::uint64_t starvations = 0;  // decelerations for a low buffer while streaming

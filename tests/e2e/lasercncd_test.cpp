@@ -147,6 +147,7 @@ TEST(Lasercncd, RunsAJobSentByTheCliAndReportsIt) {
   EXPECT_NEAR(s["position"][0].get<double>(), 12.0, 1e-9);
   EXPECT_NEAR(s["position"][1].get<double>(), 12.0, 1e-9);
   EXPECT_EQ(s["jobs_ended"], 1);
+  EXPECT_EQ(s["axes_mask"], 0b101111);  // X Y Z A C: the default machine has no B
   EXPECT_EQ(s["underruns"], 0);
   // it runs again from where the machine stands
   r = lasercnc("send start --wait --shm " + shm);
