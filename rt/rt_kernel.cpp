@@ -149,14 +149,22 @@ void RtKernel::run(const RtOptions& options) noexcept {
     // VM the sleep call alone can cost ~20 µs, which a 25 µs period cannot
     // afford while it catches up
     clock_gettime(CLOCK_MONOTONIC, &now);
-    if (to_ns(now) < deadline) {
+    const bool slept = to_ns(now) < deadline;
+    if (slept) {
       while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &until, nullptr) == EINTR) {
       }
-      // 2. wake-up latency
       clock_gettime(CLOCK_MONOTONIC, &now);
     }
+    // 2. wake-up latency: how late the scheduler woke the thread after its
+    // deadline (as cyclictest measures it). A period that was already due
+    // — the machine catching up after a stall — is no wake-up: it is counted
+    // apart, and the stall once, in the wake-up that ended it.
     const std::int64_t late = to_ns(now) - deadline;
-    latency_.add(late);
+    if (slept) {
+      latency_.add(late);
+    } else {
+      catch_up_.fetch_add(1, std::memory_order_relaxed);
+    }
     // 3–4. commands and inputs
     take_commands();
     take_inputs();

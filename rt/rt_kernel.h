@@ -6,7 +6,8 @@
 //
 // The cycle, in order:
 //   1. sleep to the absolute deadline (clock_nanosleep, TIMER_ABSTIME)
-//   2. record wake-up latency
+//   2. record wake-up latency (of periods that slept; one already due, the
+//      machine catching up after a stall, starts at once and is counted)
 //   3. commands (a lock-free ring from one control thread): start, hold,
 //      resume, stop, e-stop, reset, jog, home — an e-stop acts in this period
 //   4. inputs (e-stop, hard limits, home switches) from the pulse sink
@@ -205,6 +206,11 @@ class RtKernel {
   // Times the buffer fell below its braking reserve while streaming.
   [[nodiscard]] std::uint64_t starvations() const noexcept { return starvations_.load(std::memory_order_relaxed); }
   [[nodiscard]] std::uint64_t overruns() const noexcept { return overruns_.load(std::memory_order_relaxed); }
+  // Periods that were already due when the last one ended (catching up after
+  // a stall): started at once, without a sleep, so without a wake-up latency.
+  [[nodiscard]] std::uint64_t catch_up_periods() const noexcept {
+    return catch_up_.load(std::memory_order_relaxed);
+  }
   [[nodiscard]] std::uint64_t trace_drops() const noexcept { return trace_drops_.load(std::memory_order_relaxed); }
   [[nodiscard]] std::uint32_t current_segment() const noexcept {
     return segment_.load(std::memory_order_relaxed);
@@ -354,6 +360,7 @@ class RtKernel {
   std::atomic<std::uint64_t> motion_periods_{0};
   std::atomic<std::uint64_t> underruns_{0};
   std::atomic<std::uint64_t> overruns_{0};
+  std::atomic<std::uint64_t> catch_up_{0};
   std::atomic<std::uint64_t> trace_drops_{0};
   std::atomic<std::uint32_t> segment_{0};
   // The operator's target K: set_feed_override()'s relaxed store pairs with
