@@ -3,7 +3,8 @@
 // planner throughput and memory.
 //
 //   build/bench/planner_bench [--csv DIR] [PROGRAM.ngc]   # the four cases (and
-//                                     # their speed profiles as CSV), then throughput
+//                                     # their speed profiles as CSV), the square and
+//                                     # the gear with a jerk limit, then throughput
 //   build/bench/planner_bench --throughput-only PROGRAM.ngc [runs]
 //
 // The reference is computed here, independently of the planner: the blended
@@ -125,6 +126,8 @@ std::string gear_program(std::size_t* segments = nullptr) {
 struct PlannerRun {
   double cycle_s = 0.0;
   double max_dev_mm = 0.0;
+  double peak_jerk = 0.0;  // mm/s³, largest |third difference|/T³ of a linear axis' poses
+  JerkLimit jerk;          // the filter the planner used
   std::vector<PlannedSegment> planned;  // the blended path, for the reference
   std::uint64_t segments = 0;
 };
@@ -149,8 +152,18 @@ PlannerRun run_planner(const std::string& program, const Pose& start, const Mach
   StepQuantizer q(m, opt.start);
   std::array<std::int64_t, kAxisCount> pos{};
   for (int i = 0; i < kAxisCount; ++i) pos[i] = q.commanded(i);
+  out.jerk = ci.jerk_limit();
+  std::array<Pose, 4> last;  // the last poses, newest first
+  last.fill(opt.start);
+  const double T = m.period_s();
   PeriodSample s;
   while (ci.next(s) == SourceStatus::Item) {
+    for (std::size_t k = last.size() - 1; k > 0; --k) last[k] = last[k - 1];
+    last[0] = s.pose;
+    for (int i = 0; i < 3; ++i) {
+      const double d3 = last[0][i] - 3 * last[1][i] + 3 * last[2][i] - last[3][i];
+      out.peak_jerk = std::max(out.peak_jerk, std::abs(d3) / (T * T * T));
+    }
     const PeriodIncrement inc = q.quantize(s);
     for (int i = 0; i < 3; ++i) pos[i] += inc.steps[i];
     // rapids are not part of the contour
@@ -326,6 +339,24 @@ int main(int argc, char** argv) {
     if (csv != nullptr) std::fclose(csv);
     std::printf("%-46s %10.4f %10.4f %7.4f %10.5f\n", c.name, r.cycle_s, opt, r.cycle_s / opt,
                 r.max_dev_mm);
+  }
+  // Jerk limit (machine.max_jerk, plan/jerk_filter.h): the same programs at
+  // J = 50 and 500 m/s³, against the plan without it.
+  std::printf("\njerk limit: cycle time against the same plan without it\n");
+  std::printf("%-46s %6s %5s %7s %9s %8s %9s %7s %9s %10s\n", "case", "J m/s3", "taps", "tau ms",
+              "a mm/s2", "e_f mm", "ours [s]", "ratio", "dev [mm]", "jerk m/s3");
+  for (const Case& c : cases) {
+    if (std::strcmp(c.key, "square") != 0 && std::strcmp(c.key, "gear") != 0) continue;
+    const PlannerRun plain = run_planner(c.program, c.start, m);
+    for (const double jerk_m_s3 : {50.0, 500.0}) {
+      MachineConfig mj = m;
+      mj.max_jerk = jerk_m_s3 * 1000.0;
+      const PlannerRun r = run_planner(c.program, c.start, mj);
+      std::printf("%-46s %6.0f %5u %7.2f %9.1f %8.5f %9.4f %7.3f %9.5f %10.2f\n", c.name, jerk_m_s3,
+                  r.jerk.taps, r.jerk.taps * m.period_s() * 1e3, r.jerk.accel_scale * kAmax,
+                  r.jerk.error_mm, r.cycle_s, r.cycle_s / plain.cycle_s, r.max_dev_mm,
+                  r.peak_jerk / 1000.0);
+    }
   }
   if (argc >= 2) {
     std::printf("throughput on %s\n", argv[1]);

@@ -283,6 +283,9 @@ Status validate(const MachineConfig& m, const std::string& file) {
                "; allowed > 0 … 10 mm");
   if (!(m.max_feed_override >= 1.0 && m.max_feed_override <= 2.0))
     return bad("machine.max_feed_override = " + fmt(m.max_feed_override) + "; allowed 1.0 … 2.0");
+  if (!(m.max_jerk == 0.0 || (m.max_jerk >= kMinMaxJerk && m.max_jerk <= kMaxMaxJerk)))
+    return bad("machine.max_jerk = " + fmt(m.max_jerk) + "; allowed " + fmt(kMinMaxJerk) +
+               " … " + fmt(kMaxMaxJerk) + " mm/s³, or 0 for no jerk limit");
   if (m.dda.magnitude_bits < 1 || m.dda.magnitude_bits > 16)
     return bad("dda.magnitude_bits = " + std::to_string(m.dda.magnitude_bits) +
                "; allowed 1 … 16");
@@ -347,8 +350,11 @@ Result<MachineConfig> parse_machine_config(std::string_view text, const std::str
 
   if (const toml::table* t = L.subtable(root, "machine")) {
     double period_us = m.period_ns / 1000.0;
-    if (!L.only_keys(*t, "machine.", {"name", "period_us", "path_tolerance_mm", "max_feed_override"}) ||
+    std::optional<double> max_jerk;
+    if (!L.only_keys(*t, "machine.",
+                     {"name", "period_us", "path_tolerance_mm", "max_feed_override", "max_jerk"}) ||
         !L.number(*t, "machine.", "max_feed_override", m.max_feed_override, false) ||
+        !L.optional_number(*t, "machine.", "max_jerk", max_jerk) ||
         !L.string(*t, "machine.", "name", m.name) ||
         !L.number(*t, "machine.", "period_us", period_us, false) ||
         !L.number(*t, "machine.", "path_tolerance_mm", m.path_tolerance_mm, false))
@@ -359,6 +365,14 @@ Result<MachineConfig> parse_machine_config(std::string_view text, const std::str
                         t->get("period_us")->source().begin.line,
                         t->get("period_us")->source().begin.column);
     m.period_ns = static_cast<std::uint32_t>(std::llround(period_us * 1000.0));
+    // Given means on: 0 is for a config built in code (no key, no limit).
+    if (max_jerk && !(*max_jerk >= kMinMaxJerk && *max_jerk <= kMaxMaxJerk))
+      return make_error(ErrorCode::ConfigBadValue,
+                        "machine.max_jerk = " + fmt(*max_jerk) + "; allowed " + fmt(kMinMaxJerk) +
+                            " … " + fmt(kMaxMaxJerk) + " mm/s³ (leave the key out for no jerk limit)",
+                        name, t->get("max_jerk")->source().begin.line,
+                        t->get("max_jerk")->source().begin.column);
+    if (max_jerk) m.max_jerk = *max_jerk;
   }
   if (L.failed) return L.err;
   if (const toml::table* t = L.subtable(root, "dda")) {

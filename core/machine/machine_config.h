@@ -101,6 +101,11 @@ struct LaserConfig {
 
 inline constexpr int kWorkOffsetCount = 6;  // G54 .. G59
 
+// machine.max_jerk range, mm/s³ (0.001 … 10⁷ m/s³). Below the minimum the
+// filter's window would grow past ~10⁵ periods.
+inline constexpr double kMinMaxJerk = 1.0;
+inline constexpr double kMaxMaxJerk = 1e10;
+
 [[nodiscard]] inline std::array<Pose, kWorkOffsetCount> zero_work_offsets() {
   std::array<Pose, kWorkOffsetCount> z;
   for (Pose& p : z) p.setZero();
@@ -116,6 +121,10 @@ struct MachineConfig {
   // v ≤ vmax/K_max and a ≤ amax/K_max² so that any K ≤ K_max stays within the
   // axis limits.
   double max_feed_override = 1.0;
+  // Jerk limit of the linear axes, mm/s³ (S-curve acceleration by a moving
+  // average of the planned path, plan/jerk_filter.h); 0 = none. Planned, like
+  // the acceleration, for the highest override: J/K_max³.
+  double max_jerk = 0.0;
   DdaConfig dda{};
   LaserConfig laser{};
   std::array<AxisConfig, kAxisCount> axes{};

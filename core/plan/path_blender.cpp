@@ -28,8 +28,9 @@ bool blendable(const Segment& s) { return blendable_line(s) || blendable_arc(s);
 
 }  // namespace
 
-PathBlender::PathBlender(const MachineConfig& machine, SegmentSource source)
-    : merger_(std::move(source)) {
+PathBlender::PathBlender(const MachineConfig& machine, SegmentSource source,
+                         double filter_error_mm)
+    : merger_(std::move(source)), filter_error_mm_(filter_error_mm) {
   double sum = 0.0;
   for (int i = 0; i < 3; ++i) {
     const AxisConfig& ax = machine.axes[i];
@@ -59,7 +60,8 @@ SourceStatus PathBlender::next(IndexedSegment& out) {
     if (have_pending_ && blendable(cur.seg)) {
       const Segment& a = pending_.seg;
       const double tol = std::min(a.blend_tolerance_mm, cur.seg.blend_tolerance_mm) -
-                         std::max(merge_tolerance(a), merge_tolerance(cur.seg)) - margin_mm_;
+                         std::max(merge_tolerance(a), merge_tolerance(cur.seg)) - margin_mm_ -
+                         filter_error_mm_;
       const double len_a = path_length(a);
       const double len_b = path_length(cur.seg);
       // A corner takes at most half of a line and 45 % of an arc (an arc

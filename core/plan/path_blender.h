@@ -4,12 +4,13 @@
 // Program lines first pass the naive-CAM merger (G64 Q, plan/line_merger.h).
 // Corners between two feed lines (G1) that are both in G64 get a tangent arc
 // within the tolerance E = min(P of the two blocks) − q (the merger's share)
-// − the quantization margin
-// (half a step on each linear axis, so that after rounding to steps the
-// executed path still stays within P). Each corner may use at most half of
-// each neighbouring line (seed 000: l_s = min(S(i)/2, S(i+1)/2)). Rotary axes
-// moving along do not switch blending off. Corners with an arc on one or both
-// sides get a fillet in the arc's plane (fillet_transition). Every other
+// − e_f (the jerk filter's deviation, plan/jerk_filter.h; 0 without a jerk
+// limit) − the quantization margin (half a step on each linear axis, so that
+// after rounding to steps the executed path still stays within P). Each
+// corner may use at most half of each neighbouring line (seed 000:
+// l_s = min(S(i)/2, S(i+1)/2)). Rotary axes moving along do not switch
+// blending off. Corners with an arc on one or both sides get a fillet in the
+// arc's plane (fillet_transition). Every other
 // corner (G61, G61.1, rapids, helices, dwells) is passed through: the
 // look-ahead decides its speed.
 //
@@ -29,7 +30,8 @@ namespace lcnc {
 
 class PathBlender {
  public:
-  PathBlender(const MachineConfig& machine, SegmentSource source);
+  // filter_error_mm: e_f, kept out of every blend's tolerance.
+  PathBlender(const MachineConfig& machine, SegmentSource source, double filter_error_mm = 0.0);
   [[nodiscard]] SourceStatus next(IndexedSegment& out);
 
   // Half a step on every linear axis, as a distance (mm).
@@ -40,6 +42,7 @@ class PathBlender {
 
   LineMerger merger_;
   double margin_mm_ = 0.0;
+  double filter_error_mm_ = 0.0;
   bool have_pending_ = false;
   IndexedSegment pending_;          // a line whose end may still be blended
   double pending_full_length_ = 0;  // its length as programmed

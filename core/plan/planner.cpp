@@ -3,14 +3,24 @@
 namespace lcnc {
 
 Planner::Planner(const MachineConfig& machine, SegmentSource source)
-    : blender_(machine, std::move(source)),
-      lookahead_(machine, [this](IndexedSegment& s) { return blender_.next(s); }),
-      interp_(machine, [this](PlannedSegment& p) {
-        const SourceStatus st = lookahead_.next(p);
-        if (st == SourceStatus::Item && on_planned_) on_planned_(p);
-        return st;
-      }) {}
+    : jerk_(lcnc::jerk_limit(machine)),
+      planned_(planned_machine(machine, jerk_)),
+      blender_(machine, std::move(source), jerk_.error_mm),
+      lookahead_(planned_, [this](IndexedSegment& s) { return blender_.next(s); }),
+      holds_(
+          [this](PlannedSegment& p) {
+            const SourceStatus st = lookahead_.next(p);
+            if (st == SourceStatus::Item && on_planned_) on_planned_(p);
+            return st;
+          },
+          jerk_, machine.period_s()),
+      interp_(machine, [this](PlannedSegment& p) { return holds_.next(p); }),
+      filter_(jerk_.taps) {}
 
-SourceStatus Planner::next(PeriodSample& out) { return interp_.next(out); }
+SourceStatus Planner::next_filtered(PeriodSample& out) {
+  const SourceStatus st = interp_.next(out);
+  if (st == SourceStatus::Item) out = filter_.filter(out);
+  return st;
+}
 
 }  // namespace lcnc

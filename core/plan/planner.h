@@ -4,12 +4,19 @@
 //     ─► Lookahead (forward/backward, streaming) ─► CoarseInterpolator (one
 //     pose per RT period) ─► samples
 //
+// With a jerk limit (machine.max_jerk, plan/jerk_filter.h) the look-ahead
+// plans at the accelerations the filter leaves, a hold is inserted at every
+// stop before coarse interpolation (StopHolds), and the samples pass a moving
+// average (JerkFilter); the blends keep the filter's deviation out of P.
+// Without it every stage runs as before: the output is bit-identical.
+//
 // Pull-driven and streaming: memory stays bounded whatever the program's
 // length. One object per job; not movable (the stages refer to each other).
 #pragma once
 
 #include "machine/machine_config.h"
 #include "plan/coarse_interpolator.h"
+#include "plan/jerk_filter.h"
 #include "plan/lookahead.h"
 #include "plan/path_blender.h"
 
@@ -22,18 +29,28 @@ class Planner {
   Planner& operator=(const Planner&) = delete;
 
   // The next period's commanded sample; End after the one with end_of_program.
-  [[nodiscard]] SourceStatus next(PeriodSample& out);
+  [[nodiscard]] SourceStatus next(PeriodSample& out) {
+    return jerk_.enabled() ? next_filtered(out) : interp_.next(out);
+  }
 
   [[nodiscard]] std::uint64_t periods() const noexcept { return interp_.periods(); }
   [[nodiscard]] std::size_t max_window() const noexcept { return lookahead_.max_window_seen(); }
+  // The jerk filter in force (taps 1: none).
+  [[nodiscard]] const JerkLimit& jerk_limit() const noexcept { return jerk_; }
   // Observes every planned segment as it leaves the look-ahead (tests, benchmarks).
   void on_planned(std::function<void(const PlannedSegment&)> f) { on_planned_ = std::move(f); }
 
  private:
+  JerkLimit jerk_;
+  MachineConfig planned_;  // the machine as the look-ahead plans it (planned_machine())
   PathBlender blender_;
   Lookahead lookahead_;
+  StopHolds holds_;
   CoarseInterpolator interp_;
+  JerkFilter filter_;
   std::function<void(const PlannedSegment&)> on_planned_;
+
+  [[nodiscard]] SourceStatus next_filtered(PeriodSample& out);
 };
 
 }  // namespace lcnc

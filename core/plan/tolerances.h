@@ -21,6 +21,10 @@ inline constexpr double kMaxBlendAngle = 3.14159265358979323846 - 1e-6;
 inline constexpr double kTangentJump = 1e-9;
 inline constexpr double kMaxJunctionJump = 1e-3;
 inline constexpr double kJunctionJumpShare = 0.1;
+// Share of the machine's path tolerance that the jerk filter's own deviation
+// may take (plan/jerk_filter.h): beyond it the planned acceleration is lowered.
+// The rest stays for the corner blends of programs at the machine's P.
+inline constexpr double kJerkFilterShare = 0.5;
 // Velocities below this (mm/s) count as standing still.
 inline constexpr double kMinVelocity = 1e-9;
 

@@ -2,9 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdlib>
+#include <random>
 #include <vector>
 
 #include "core/plan/test_machine.h"
+#include "path/deviation_meter.h"
 
 namespace lcnc {
 namespace {
@@ -40,6 +44,336 @@ TEST(Planner, ChainsMergerBlenderLookaheadAndInterpolator) {
   ASSERT_EQ(kinds.size(), 3u);  // line, blend arc, line
   EXPECT_EQ(kinds[1], MotionKind::Arc);
   EXPECT_EQ(planner.periods(), static_cast<std::uint64_t>(std::llround(last.t_s / m.period_s())));
+}
+
+}  // namespace
+}  // namespace lcnc
+
+// --- jerk limit (machine.max_jerk, plan/jerk_filter.h) -----------------------
+
+namespace lcnc {
+namespace {
+
+Pose xyzc(double x, double y, double z, double c = 0.0) {
+  Pose p = Pose::Zero();
+  p << x, y, z, 0, 0, c;
+  return p;
+}
+
+Segment cut(const Pose& a, const Pose& b, double feed, double tol,
+            PathMode mode = PathMode::Blend) {
+  Segment s;
+  s.kind = MotionKind::Linear;
+  s.start = a;
+  s.end = b;
+  s.feed_mm_s = feed;
+  s.path_mode = mode;
+  s.blend_tolerance_mm = mode == PathMode::Blend ? tol : 0.0;
+  s.laser = LaserMode::Constant;
+  s.power_pct = 50.0;
+  return s;
+}
+
+SegmentSource from(const std::vector<Segment>& segs, std::size_t& i) {
+  return [&segs, &i](Segment& out) {
+    if (i == segs.size()) return SourceStatus::End;
+    out = segs[i++];
+    return SourceStatus::Item;
+  };
+}
+
+// Peaks of one run, measured two ways:
+//   * on the commanded poses, one period apart (v, a, j by first, second and
+//     third differences over T);
+//   * on the executed, step-quantized positions: the third difference over a
+//     stride of h periods, Δ³_h/(h·T)³. Each position is within half a step q
+//     of its pose, so the quantization adds at most (1+3+3+1)·q/2 = 4q to a
+//     third difference: the allowance is 4q/(h·T)³. The stride-h difference
+//     is a weighted mean of the period ones, so it never exceeds their peak.
+// and the deviation of the executed positions from the programmed path.
+struct JerkRun {
+  std::array<double, kAxisCount> v{}, a{}, j{}, j_steps{};
+  double max_dev = 0.0;
+  double time_s = 0.0;
+  std::vector<PeriodSample> samples;  // when asked for
+  std::array<std::int64_t, kAxisCount> executed{}, commanded{};
+  bool ended = false;
+};
+
+constexpr int kStride = 80;  // h, periods
+
+JerkRun run_jerk(const MachineConfig& m, const std::vector<Segment>& segs, bool keep = false) {
+  std::size_t i = 0, k = 0;
+  Planner planner(m, from(segs, i));
+  DeviationMeter dm(from(segs, k));
+  const Pose start = segs.front().start;
+  StepQuantizer q(m, start);
+  JerkRun r;
+  for (int ax = 0; ax < kAxisCount; ++ax) r.executed[ax] = q.commanded(ax);
+  const double T = m.period_s();
+  // the machine stands at the start before the first period
+  std::vector<Pose> poses(3, start);
+  std::vector<std::array<std::int64_t, kAxisCount>> steps(3 * kStride, r.executed);
+  PeriodSample s;
+  while (planner.next(s) == SourceStatus::Item) {
+    if (keep) r.samples.push_back(s);
+    const PeriodIncrement inc = q.quantize(s);
+    for (int ax = 0; ax < kAxisCount; ++ax) r.executed[ax] += inc.steps[ax];
+    poses.push_back(s.pose);
+    steps.push_back(r.executed);
+    const std::size_t n = poses.size(), ns = steps.size();
+    for (int ax = 0; ax < kAxisCount; ++ax) {
+      const double x0 = poses[n - 1][ax], x1 = poses[n - 2][ax], x2 = poses[n - 3][ax];
+      r.v[ax] = std::max(r.v[ax], std::abs(x0 - x1) / T);
+      r.a[ax] = std::max(r.a[ax], std::abs(x0 - 2 * x1 + x2) / (T * T));
+      if (n >= 4) {
+        const double x3 = poses[n - 4][ax];
+        r.j[ax] = std::max(r.j[ax], std::abs(x0 - 3 * x1 + 3 * x2 - x3) / (T * T * T));
+      }
+      const double h = kStride * T;
+      const auto& s0 = steps[ns - 1];
+      const auto& s1 = steps[ns - 1 - kStride];
+      const auto& s2 = steps[ns - 1 - 2 * kStride];
+      const auto& s3 = steps[ns - 1 - 3 * kStride];
+      const double d3 =
+          static_cast<double>(s0[ax] - 3 * s1[ax] + 3 * s2[ax] - s3[ax]) / 1000.0;  // mm
+      r.j_steps[ax] = std::max(r.j_steps[ax], std::abs(d3) / (h * h * h));
+    }
+    if (poses.size() > 8) poses.erase(poses.begin(), poses.begin() + 4);
+    if (steps.size() > 6 * kStride) steps.erase(steps.begin(), steps.begin() + 3 * kStride);
+    Vec3 exec;
+    for (int ax = 0; ax < 3; ++ax) exec[ax] = static_cast<double>(r.executed[ax]) / 1000.0;
+    r.max_dev = std::max(r.max_dev, dm.add(exec, s.segment));
+    r.time_s = s.t_s;
+    r.ended = s.end_of_program;
+  }
+  EXPECT_FALSE(q.owed());
+  for (int ax = 0; ax < kAxisCount; ++ax) r.commanded[ax] = q.commanded(ax);
+  return r;
+}
+
+// The quantization allowance of JerkRun::j_steps (q = 1 µm).
+double steps_allowance(const MachineConfig& m) {
+  const double h = kStride * m.period_s();
+  return 4.0 * 0.001 / (h * h * h);
+}
+
+// Random polylines (fixed seed; LCNC_FUZZ_SCALE scales the count), blended at
+// P, C turning along; J at which the acceleration must be lowered, and one at
+// which it need not; planned for override 1 and 1.5 (then every limit holds
+// at K_max: v/K, a/K², J/K³ in planned time).
+TEST(Planner, JerkLimitKeepsJerkAccelerationVelocityAndTolerance) {
+  std::mt19937_64 rng(2024);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int programs = 8;
+  if (const char* s = std::getenv("LCNC_FUZZ_SCALE")) programs *= std::atoi(s);
+  for (int p = 0; p < programs; ++p) {
+    auto m = testing::test_machine(150.0, 3000.0);
+    m.max_jerk = p % 2 == 0 ? 1e5 : 2e6;
+    m.max_feed_override = p % 4 < 2 ? 1.0 : 1.5;
+    const double k = m.max_feed_override;
+    const JerkLimit lim = jerk_limit(m);
+    ASSERT_TRUE(lim.enabled());
+    std::vector<Segment> segs;
+    Pose at = xyzc(100 + 50 * u(rng), 100 + 50 * u(rng), 50);
+    const double tol = 0.01 + 0.04 * u(rng);
+    const double scale = p % 3 == 0 ? 0.2 : (p % 3 == 1 ? 1.0 : 8.0);
+    for (int k = 0; k < 60; ++k) {
+      Pose to = at + xyzc(scale * (u(rng) - 0.5), scale * (u(rng) - 0.5), 0.1 * scale * (u(rng) - 0.5));
+      to[5] = at[5] + 2.0 * u(rng);
+      segs.push_back(cut(at, to, 20 + 200 * u(rng), tol));
+      at = to;
+    }
+    const JerkRun r = run_jerk(m, segs);
+    EXPECT_TRUE(r.ended);
+    EXPECT_LE(r.max_dev, tol) << "program " << p;
+    for (int ax = 0; ax < kAxisCount; ++ax) {
+      EXPECT_EQ(r.executed[ax], r.commanded[ax]);
+      EXPECT_EQ(r.executed[ax], std::llround(at[ax] * 1000.0)) << "end pose, axis " << ax;
+    }
+    for (int ax = 0; ax < 3; ++ax) {
+      // poses: exact up to rounding of the mean (~1e-13 mm: 1 mm/s³ here)
+      const double jerk = m.max_jerk / (k * k * k);
+      EXPECT_LE(r.j[ax], jerk + 10.0) << "program " << p << " axis " << ax;
+      EXPECT_LE(r.j_steps[ax], jerk + steps_allowance(m)) << "program " << p << " axis " << ax;
+      EXPECT_LE(r.a[ax], lim.accel_scale * 3000.0 / (k * k) * (1 + 1e-6)) << "program " << p;
+      EXPECT_LE(r.v[ax], 150.0 / k * (1 + 1e-9)) << "program " << p << " axis " << ax;
+    }
+    EXPECT_LE(r.a[5], 3600.0 / (k * k) * (1 + 1e-6));
+  }
+}
+
+// The same check fails without the filter: the trapezoid's acceleration
+// steps (3000 mm/s² in one period) are far beyond J = 100 m/s³ on the
+// quantized trace, allowance included (~0.75·Δa/(h·T) ≈ 3.8e5 mm/s³).
+TEST(Planner, WithoutJerkLimitTheQuantizedJerkIsFarAboveJ) {
+  const auto m = testing::test_machine(150.0, 3000.0);
+  const std::vector<Segment> segs = {cut(xyzc(10, 10, 5), xyzc(60, 10, 5), 100.0, 0.01)};
+  const JerkRun r = run_jerk(m, segs);
+  EXPECT_GT(r.j_steps[0], 3 * (1e5 + steps_allowance(m)));
+}
+
+// Lines and arcs meeting in fillets, at J where the acceleration is lowered.
+TEST(Planner, JerkLimitStaysWithinPOnArcsAndFillets) {
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int programs = 4;
+  if (const char* s = std::getenv("LCNC_FUZZ_SCALE")) programs *= std::atoi(s);
+  auto m = testing::test_machine(150.0, 3000.0);
+  m.max_jerk = 2e5;
+  for (int p = 0; p < programs; ++p) {
+    std::vector<Segment> segs;
+    Pose at = xyzc(200, 200, 50);
+    const double tol = 0.01 + 0.03 * u(rng);
+    for (int k = 0; k < 60; ++k) {
+      const double len = 0.2 + 5.0 * u(rng);
+      const double ang = 2 * 3.14159265 * u(rng);
+      const Pose to = at + xyzc(len * std::cos(ang), len * std::sin(ang), 0);
+      Segment s = cut(at, to, 30 + 150 * u(rng), tol);
+      if (k % 2 == 1) {
+        const Vec3 a = at.head<3>(), b = to.head<3>(), mid = 0.5 * (a + b);
+        const double r = 0.5 * len * (1.05 + 3 * u(rng));
+        const Vec3 n = Vec3(-(b - a).y(), (b - a).x(), 0).normalized();
+        const double h = std::sqrt(r * r - 0.25 * len * len) * (u(rng) < 0.5 ? 1 : -1);
+        s.kind = MotionKind::Arc;
+        s.plane = Plane::XY;
+        s.center = mid + h * n;
+        s.clockwise = u(rng) < 0.5;
+      }
+      segs.push_back(s);
+      at = to;
+    }
+    const JerkRun r = run_jerk(m, segs);
+    EXPECT_LE(r.max_dev, tol) << "program " << p;
+    EXPECT_GT(r.max_dev, 0.5 * tol) << "program " << p;  // the corners are still blended
+    for (int ax = 0; ax < 3; ++ax) {
+      EXPECT_EQ(r.executed[ax], r.commanded[ax]);
+      EXPECT_LE(r.j[ax], m.max_jerk + 10.0) << "program " << p << " axis " << ax;
+      EXPECT_LE(r.j_steps[ax], m.max_jerk + steps_allowance(m)) << "program " << p;
+    }
+  }
+}
+
+// G61: every corner is reached exactly (the commanded pose passes through it
+// and the executed steps equal it), with a dwell and a rapid in between;
+// outputs the RT kernel runs at the nominal period (Dwell) never move.
+TEST(Planner, JerkLimitReachesExactStopsExactly) {
+  auto m = testing::test_machine(150.0, 3000.0);
+  m.max_jerk = 1e5;
+  const Pose c[5] = {xyzc(10, 10, 5), xyzc(40.0001, 10, 5), xyzc(40.0001, 33.3333, 5),
+                     xyzc(10, 33.3333, 5), xyzc(10, 10, 5)};
+  std::vector<Segment> segs;
+  for (int k = 0; k < 4; ++k) segs.push_back(cut(c[k], c[k + 1], 100.0, 0.0, PathMode::ExactPath));
+  Segment dwell = segs.back();
+  dwell.kind = MotionKind::Dwell;
+  dwell.start = dwell.end = c[4];
+  dwell.dwell_s = 0.05;
+  segs.push_back(dwell);
+  Segment rapid = cut(c[4], xyzc(70, 70, 20), 0.0, 0.0, PathMode::ExactPath);
+  rapid.kind = MotionKind::Rapid;
+  segs.push_back(rapid);
+  const JerkRun r = run_jerk(m, segs, true);
+  for (int k = 1; k < 5; ++k) {
+    bool reached = false;
+    for (const PeriodSample& s : r.samples) reached = reached || s.pose == c[k];
+    EXPECT_TRUE(reached) << "corner " << k;
+  }
+  EXPECT_EQ(r.samples.back().pose, rapid.end);
+  EXPECT_TRUE(r.samples.back().end_of_program);
+  Pose prev = c[0];
+  for (const PeriodSample& s : r.samples) {
+    if (s.kind == MotionKind::Dwell) {
+      EXPECT_EQ(s.pose, prev) << s.t_s;
+    }
+    prev = s.pose;
+  }
+  EXPECT_LE(r.max_dev, 0.0006);  // only the step rounding: lines stay lines
+  for (int ax = 0; ax < 3; ++ax) EXPECT_LE(r.j_steps[ax], m.max_jerk + steps_allowance(m));
+}
+
+// Laser in step with the delayed motion: M3 lights only where the head is on
+// a cut, the G4 fires exactly its own time standing, rapids stay dark; M4
+// follows the filtered speed and is dark at rest.
+TEST(Planner, JerkLimitKeepsTheLaserInStepWithMotion) {
+  auto m = testing::test_machine(150.0, 3000.0);
+  m.max_jerk = 1e5;
+  const Pose a = xyzc(10, 10, 5), b = xyzc(50, 10, 5), c = xyzc(50, 40, 5), d = xyzc(90, 40, 5);
+  Segment m3 = cut(a, b, 100.0, 0.0, PathMode::ExactPath);
+  Segment pierce = m3;
+  pierce.kind = MotionKind::Dwell;
+  pierce.start = pierce.end = b;
+  pierce.dwell_s = 0.03;
+  Segment rapid = cut(b, c, 0.0, 0.0, PathMode::ExactPath);
+  rapid.kind = MotionKind::Rapid;
+  Segment m4 = cut(c, d, 80.0, 0.01);
+  m4.laser = LaserMode::Dynamic;
+  const JerkRun r = run_jerk(m, {m3, pierce, rapid, m4}, true);
+  const double T = m.period_s();
+  int lit_standing = 0;
+  Pose prev = a;
+  for (const PeriodSample& s : r.samples) {
+    const Vec3 p = s.pose.head<3>();
+    const double speed = (s.pose - prev).head<3>().norm() / T;
+    const bool standing = s.pose == prev;
+    if (s.kind == MotionKind::Rapid) {
+      EXPECT_EQ(s.power_pct, 0.0f) << s.t_s;
+    }
+    if (s.power_cap_pct == 0.0f && s.power_pct > 0.0f) {  // M3: on the first cut
+      EXPECT_LE(distance_to_segment(p, a.head<3>(), b.head<3>()), 1e-9) << s.t_s;
+      if (standing) ++lit_standing;
+    }
+    if (s.power_cap_pct > 0.0f) {  // M4: S · speed / F, speed the filtered one
+      EXPECT_LE(distance_to_segment(p, c.head<3>(), d.head<3>()), 1e-9) << s.t_s;
+      if (standing) {
+        EXPECT_EQ(s.power_pct, 0.0f) << s.t_s;
+      }
+      // the mean of speeds at period ends vs the mean over the period: ≤ a·T/2
+      EXPECT_NEAR(s.power_pct, 50.0 * speed / 80.0, 50.0 * (3000.0 * T / 2) / 80.0 + 1e-4) << s.t_s;
+    }
+    prev = s.pose;
+  }
+  // the pierce's periods, plus at most the one or two periods the head
+  // stands at each end of the cut with M3 on (the hold's turn)
+  const int pierce_periods = static_cast<int>(std::lround(0.03 / T));
+  EXPECT_GE(lit_standing, pierce_periods - 1);
+  EXPECT_LE(lit_standing, pierce_periods + 1 + 2 * 2);
+  EXPECT_EQ(r.samples.back().power_pct, 0.0f);
+}
+
+// Without the key every stage runs as before: the samples are those of the
+// stages chained directly, bit for bit.
+TEST(Planner, WithoutJerkLimitThePlanIsBitIdentical) {
+  const auto m = testing::test_machine(150.0, 3000.0);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<Segment> segs;
+  Pose at = xyzc(100, 100, 50);
+  for (int k = 0; k < 80; ++k) {
+    const Pose to = at + xyzc(5 * (u(rng) - 0.5), 5 * (u(rng) - 0.5), 0.5 * (u(rng) - 0.5));
+    segs.push_back(cut(at, to, 20 + 200 * u(rng), 0.01, k % 7 == 0 ? PathMode::ExactPath : PathMode::Blend));
+    at = to;
+  }
+  std::size_t i = 0, j = 0;
+  Planner planner(m, from(segs, i));
+  PathBlender blender(m, from(segs, j));
+  Lookahead la(m, [&](IndexedSegment& s) { return blender.next(s); });
+  CoarseInterpolator ci(m, [&](PlannedSegment& p) { return la.next(p); });
+  PeriodSample x, y;
+  std::uint64_t n = 0;
+  for (;;) {
+    const SourceStatus sx = planner.next(x), sy = ci.next(y);
+    ASSERT_EQ(sx, sy);
+    if (sx != SourceStatus::Item) break;
+    ASSERT_EQ(x.pose, y.pose) << n;
+    ASSERT_EQ(x.t_s, y.t_s);
+    ASSERT_EQ(x.speed, y.speed);
+    ASSERT_EQ(x.power_pct, y.power_pct);
+    ASSERT_EQ(x.segment, y.segment);
+    ASSERT_EQ(x.kind, y.kind);
+    ++n;
+  }
+  EXPECT_GT(n, 1000u);
+  EXPECT_FALSE(planner.jerk_limit().enabled());
 }
 
 }  // namespace
