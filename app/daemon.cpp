@@ -233,7 +233,7 @@ struct Daemon::Impl {
       start_pending = false;
       kernel->command({rt::RtCommandType::StartJob, 0, 0.0});
     }
-    if (feed->limit_hit() && !stop_sent) stop_sent = kernel->command({rt::RtCommandType::Stop, 0, 0.0});
+    if (feed->stopped_short() && !stop_sent) stop_sent = kernel->command({rt::RtCommandType::Stop, 0, 0.0});
     if (summary.segments > 0)
       job.progress = std::min(1.0, kernel->current_segment() / static_cast<double>(summary.segments));
     const std::uint32_t ended = kernel->jobs_ended();
@@ -252,7 +252,8 @@ struct Daemon::Impl {
     job.last_fault = f.active ? static_cast<std::uint16_t>(f.code) : 0;
     char msg[256];
     if (planned.failed) {
-      std::snprintf(msg, sizeof msg, "job failed: %s", planned.error.to_string().c_str());
+      job.last_fault = static_cast<std::uint16_t>(planned.error.code);
+      std::snprintf(msg, sizeof msg, "job stopped: %s", planned.error.to_string().c_str());
     } else if (planned.limit) {
       job.last_fault = static_cast<std::uint16_t>(ErrorCode::RtSoftLimit);
       std::snprintf(msg, sizeof msg, "job stopped: %s", planned.limit_error.to_string().c_str());

@@ -39,14 +39,14 @@ void PlannerFeed::start(const std::string& program, const ReaderOptions& options
   abort();
   abort_ = false;
   done_ = false;
-  limit_hit_ = false;
+  stopped_short_ = false;
   result_ = PlannedJob{};
   kernel_.stream_begin();
   thread_ = std::thread([this, program, options] { run(program, options); });
 }
 
 bool PlannerFeed::prefilled() const noexcept {
-  return done() || buffer_.size() >= rt::kPositionBufferCapacity / 2;
+  return done() || stopped_short() || buffer_.size() >= rt::kPositionBufferCapacity / 2;
 }
 
 void PlannerFeed::wait_prefilled() const {
@@ -74,7 +74,6 @@ bool PlannerFeed::within_limits(const PeriodIncrement& inc) {
                   kAxisLetters[i], static_cast<double>(next) / ax.steps_per_unit, ax.min, ax.max);
     result_.limit = true;
     result_.limit_error = Diagnostic{ErrorCode::RtSoftLimit, program_, inc.line, 0, msg};
-    limit_hit_.store(true, std::memory_order_release);
     return false;
   }
   for (int i = 0; i < kAxisCount; ++i) at_[i] += inc.steps[i];
@@ -117,20 +116,26 @@ void PlannerFeed::run(std::string program, ReaderOptions options) {
       result_.failed = true;
       result_.error = (*reader)->error();
     }
+    // A read error mid-way (the file changed since it was checked) ends the
+    // motion like the end does: at rest where the last good segment ends.
     while (pushed && quant.owed() && !abort_.load()) {
       stats.add(last.pose);
       pushed = push(quant.pay_owed(last));
     }
     stats.finish();
   }
-  if (!any || result_.failed) {
-    PeriodIncrement end;  // a controlled end: no motion, laser off
+  if (!any) {
+    PeriodIncrement end;  // nothing moved: a controlled end, laser off
     end.end_of_program = true;
     push(end);
+  } else if (result_.limit) {
+    // Stopped short of a soft limit while the machine may be moving: no end
+    // entry, which would stop it dead; the stream stays open, so the kernel
+    // brakes along the path with what is queued, until the caller's stop
+    // (RtCommandType::Stop) aborts the job.
+    stopped_short_.store(true, std::memory_order_release);
+    while (!abort_.load()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
-  // Short of a soft limit: the stream stays open (the kernel keeps braking
-  // along the path with what is queued) until the caller's stop aborts it.
-  while (limit_hit_.load() && !abort_.load()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
   for (int i = 0; i < kAxisCount; ++i) result_.commanded[i] = quant.commanded(i);
   result_.peak_v = stats.peak_velocity();
   result_.peak_a = stats.peak_acceleration();

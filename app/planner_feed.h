@@ -47,8 +47,8 @@ class PlannerFeed {
   // Starts the planner thread on a (checked) program from options.start; it
   // tells the kernel it streams (RtKernel::stream_begin) until its last push.
   void start(const std::string& program, const ReaderOptions& options);
-  // True once half the buffer is filled or the whole job is in it: the
-  // moment to start the kernel on the job.
+  // True once half the buffer is filled, or the whole job is in it, or the
+  // planner stopped short: the moment to start the kernel on the job.
   [[nodiscard]] bool prefilled() const noexcept;
   // Blocks until prefilled().
   void wait_prefilled() const;
@@ -57,11 +57,16 @@ class PlannerFeed {
   // Joins the thread once it has finished by itself.
   void join();
   [[nodiscard]] bool done() const noexcept { return done_.load(std::memory_order_acquire); }
-  // The next increment would cross a soft limit: nothing more is queued.
-  // The caller stops the kernel (RtCommandType::Stop): the buffer holds at
-  // least the braking reserve, so the machine stops along the path short of
-  // the limit.
-  [[nodiscard]] bool limit_hit() const noexcept { return limit_hit_.load(std::memory_order_acquire); }
+  // The planner stopped queueing short of a soft limit, while the machine
+  // may be moving (a cross-check: the reader already refuses moves beyond
+  // the travel). The caller stops the kernel (RtCommandType::Stop): the
+  // buffer holds at least the braking reserve, so the machine stops along
+  // the path, short of the limit. A read error mid-way needs no stop: the
+  // motion before it is planned to rest and ends as a job does, and
+  // result().failed says why.
+  [[nodiscard]] bool stopped_short() const noexcept {
+    return stopped_short_.load(std::memory_order_acquire);
+  }
   [[nodiscard]] bool running() const noexcept { return thread_.joinable(); }
   // Valid once done().
   [[nodiscard]] const PlannedJob& result() const noexcept { return result_; }
@@ -79,7 +84,7 @@ class PlannerFeed {
   PlannedJob result_;
   std::atomic<bool> abort_{false};
   std::atomic<bool> done_{false};
-  std::atomic<bool> limit_hit_{false};
+  std::atomic<bool> stopped_short_{false};
   std::string program_;
   std::array<std::int64_t, kAxisCount> at_{};       // position after the queued entries, steps
   std::array<std::int64_t, kAxisCount> min_steps_{}, max_steps_{};

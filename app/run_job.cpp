@@ -286,7 +286,7 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
       }
     }
     // short of a soft limit: stop along the path with what is queued
-    if (feed.limit_hit() && !stop_sent) stop_sent = kernel.command({rt::RtCommandType::Stop, 0, 0.0});
+    if (feed.stopped_short() && !stop_sent) stop_sent = kernel.command({rt::RtCommandType::Stop, 0, 0.0});
     // a fault (an e-stop, a limit) or a stop ends the job: the planner stops pushing
     if (kernel.state() == rt::MachineState::EStop || kernel.fault().active ||
         kernel.jobs_ended() > 0)

@@ -55,10 +55,9 @@ SourceStatus CoarseInterpolator::next(PeriodSample& out) {
   while (tau_ >= cur().profile.duration()) {
     const double rest = tau_ - cur().profile.duration();
     if (!pull()) {
-      if (error_) {
-        done_ = true;
-        return SourceStatus::Error;
-      }
+      // The end, or a source error after the last good segment: the plan
+      // already ends at rest there (the look-ahead plans its window to
+      // rest), so arrive exactly; next() says Error afterwards.
       tau_ = cur().profile.duration();
       last = true;
       break;

@@ -38,7 +38,9 @@ struct PeriodSample {
 class CoarseInterpolator {
  public:
   CoarseInterpolator(const MachineConfig& machine, PlannedSource source);
-  // The next period's sample; End after the sample with end_of_program.
+  // The next period's sample; End after the sample with end_of_program —
+  // Error instead when the source failed: the motion before the failure
+  // still ends at rest, with end_of_program, where its last segment ends.
   [[nodiscard]] SourceStatus next(PeriodSample& out);
   [[nodiscard]] std::uint64_t periods() const noexcept { return periods_; }
   [[nodiscard]] std::uint32_t segments_started() const noexcept { return started_; }

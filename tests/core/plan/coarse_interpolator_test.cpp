@@ -82,6 +82,38 @@ TEST(CoarseInterpolator, LastSampleIsExactlyTheEndPose) {
   EXPECT_TRUE(r.end_flag_last);
 }
 
+// A source that fails after two good lines (the file changed since it was
+// checked): the motion before the failure ends at rest, exactly at the
+// second line's end and with end_of_program, and only then comes the Error.
+TEST(CoarseInterpolator, SourceErrorEndsAtRestWhereTheLastGoodSegmentEnds) {
+  const auto m = testing::test_machine();
+  const std::vector<Segment> segs = {line(xyz(0, 0, 0), xyz(50, 0, 0), 100.0, 1),
+                                     line(xyz(50, 0, 0), xyz(50, 30, 0), 100.0, 2)};
+  std::size_t i = 0;
+  PathBlender blender(m, [&](Segment& out) {
+    if (i == segs.size()) return SourceStatus::Error;
+    out = segs[i++];
+    return SourceStatus::Item;
+  });
+  Lookahead planner(m, [&](IndexedSegment& s) { return blender.next(s); });
+  CoarseInterpolator ci(m, [&](PlannedSegment& p) { return planner.next(p); });
+  std::vector<PeriodSample> samples;
+  PeriodSample s;
+  SourceStatus st;
+  while ((st = ci.next(s)) == SourceStatus::Item) samples.push_back(s);
+  EXPECT_EQ(st, SourceStatus::Error);
+  EXPECT_EQ(ci.next(s), SourceStatus::Error);  // and stays so
+  ASSERT_GE(samples.size(), 2u);
+  EXPECT_TRUE(samples.back().end_of_program);
+  EXPECT_EQ(samples.back().pose, xyz(50, 30, 0));
+  EXPECT_EQ(samples.back().line, 2u);
+  // at rest: the last period moved less than one period's travel at 2 % of
+  // the feed (the profile decelerates into the end)
+  const PeriodSample& a = samples[samples.size() - 2];
+  EXPECT_LT((samples.back().pose - a.pose).norm(), 0.02 * 100.0 * m.period_s());
+  for (std::size_t k = 0; k + 1 < samples.size(); ++k) EXPECT_FALSE(samples[k].end_of_program);
+}
+
 TEST(CoarseInterpolator, CycleTimeMatchesTheTrapezoid) {
   const auto m = testing::test_machine(500.0, 5000.0);
   // 100 mm at 100 mm/s, a = 5000: t = L/v + v/a = 1.0 + 0.02 s

@@ -1,0 +1,184 @@
+// The job pipeline lasercnc run and lasercncd share (app/planner_feed.h):
+// the planner thread streaming into the RT kernel on the simulated machine,
+// with real threads — random programs under random feed-override changes,
+// and a job stopped short of a soft limit.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "app/planner_feed.h"
+#include "app/run_job.h"
+#include "drivers/sim_machine.h"
+#include "rt/rt_kernel.h"
+
+namespace lcnc::app {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+
+MachineConfig machine() {
+  RunOptions o;
+  Result<MachineConfig> m = load_machine(o);
+  EXPECT_TRUE(static_cast<bool>(m));
+  return *m;
+}
+
+fs::path write(const std::string& name, const std::string& text) {
+  const fs::path dir = fs::temp_directory_path() / ("lcnc_pipeline_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const fs::path p = dir / name;
+  std::ofstream(p) << text;
+  return p;
+}
+
+// A random program within X 10–90, Y 10–90: lines and arcs, feeds, laser on
+// and off, G64 P and G61 stretches.
+std::string random_program(std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> xy(10.0, 40.0), feed(6000.0, 18000.0), bow(-0.8, 0.8);
+  std::string p = "G21 G90 G17\nG0 X25 Y25 Z5\nM3 S70\n";
+  double x = 25, y = 25;
+  char buf[160];
+  for (int i = 0; i < 25; ++i) {
+    const int kind = static_cast<int>(rng() % 10);
+    if (kind == 0) p += (rng() % 2) ? "G61\n" : "G64 P0.01\n";
+    if (kind == 1) p += (rng() % 2) ? "M5\n" : "M4 S50\n";
+    const double nx = xy(rng), ny = xy(rng);
+    if (kind < 7) {
+      std::snprintf(buf, sizeof buf, "G1 X%.3f Y%.3f F%.0f\n", nx, ny, feed(rng));
+    } else {
+      // an arc: the centre on the chord's bisector, so both radii are equal
+      const double t = bow(rng);
+      const double ccx = (x + nx) / 2 - t * (ny - y), ccy = (y + ny) / 2 + t * (nx - x);
+      std::snprintf(buf, sizeof buf, "G%d X%.4f Y%.4f I%.4f J%.4f F%.0f\n", rng() % 2 ? 2 : 3, nx,
+                    ny, ccx - x, ccy - y, feed(rng));
+    }
+    p += buf;
+    x = nx;
+    y = ny;
+  }
+  p += "M5\nM2\n";
+  return p;
+}
+
+struct Job {
+  MachineConfig m = machine();
+  std::array<std::int64_t, kAxisCount> start{};
+  std::unique_ptr<rt::PositionBuffer> buffer = std::make_unique<rt::PositionBuffer>();
+  std::unique_ptr<drivers::SimMachine> sim;
+  std::unique_ptr<rt::RtKernel> kernel;
+  std::unique_ptr<PlannerFeed> feed;
+  explicit Job(rt::TraceRing* trace = nullptr) {
+    sim = std::make_unique<drivers::SimMachine>(start);
+    kernel = std::make_unique<rt::RtKernel>(m, *buffer, *sim, trace, start);
+    feed = std::make_unique<PlannerFeed>(m, *buffer, *kernel);
+  }
+  void run(const fs::path& program) {
+    feed->start(program.string(), ReaderOptions{});
+    feed->wait_prefilled();
+    rt::RtOptions o;
+    o.try_realtime = false;
+    kernel->start(o);
+  }
+};
+
+TEST(JobPipeline, RandomProgramsUnderRandomOverrideChangesLoseNoStep) {
+  for (std::uint32_t seed = 1; seed <= 3; ++seed) {
+    const fs::path prog = write("random_" + std::to_string(seed) + ".ngc", random_program(seed));
+    ASSERT_TRUE(static_cast<bool>(check_program(prog.string(), machine()))) << seed;
+    Job job;
+    job.run(prog);
+    std::mt19937 rng(seed * 77);
+    int changes = 0;
+    while (!job.kernel->finished()) {
+      const double choices[] = {0.0, 0.2, 0.7, 1.0, 1.2, 1.5};
+      job.kernel->set_feed_override(choices[rng() % 6]);
+      ++changes;
+      std::this_thread::sleep_for(std::chrono::milliseconds(5 + rng() % 40));
+    }
+    job.kernel->join();
+    job.feed->join();
+    const PlannedJob& planned = job.feed->result();
+    ASSERT_FALSE(planned.failed) << planned.error.to_string();
+    EXPECT_GT(changes, 3) << seed;
+    for (int a = 0; a < kAxisCount; ++a)
+      EXPECT_EQ(job.sim->position_steps(a), planned.commanded[a]) << "seed " << seed << " axis " << a;
+    EXPECT_EQ(job.kernel->underruns(), 0u) << seed;
+    EXPECT_FALSE(job.kernel->fault().active) << seed;
+  }
+}
+
+// A program that cannot be read on mid-way while the machine moves (here a
+// move beyond the travel, run without the check that refuses it before
+// anything moves — as when the file changes after it was checked): the
+// motion before the bad line is planned to rest like a program's end, so the
+// machine stops gradually exactly where the last good line ends, never dead
+// and never past it, and the error names the line and the axis.
+TEST(JobPipeline, AProgramFailingMidWayStopsAtRestAtItsLastGoodLine) {
+  const fs::path prog = write("past_limit.ngc",
+                              "G21 G90\nG0 X900 Y100\nM3 S50\nG1 X990 F30000\nG1 X1200\nM2\n");
+  const Result<ProgramSummary> checked = check_program(prog.string(), machine());
+  ASSERT_FALSE(static_cast<bool>(checked));  // what lasercnc run says before running
+  EXPECT_EQ(checked.error().code, ErrorCode::GcodeBeyondTravel);
+  std::unique_ptr<rt::TraceRing> trace = std::make_unique<rt::TraceRing>();
+  Job job(trace.get());
+  job.run(prog);
+  std::vector<rt::TraceRecord> recs;
+  rt::TraceRecord rec;
+  const auto deadline = std::chrono::steady_clock::now() + 60s;  // the job takes ~2 s
+  while (!job.kernel->finished()) {
+    EXPECT_FALSE(job.feed->stopped_short());  // no stop is needed
+    while (trace->try_pop(rec)) recs.push_back(rec);
+    if (std::chrono::steady_clock::now() > deadline) {
+      job.kernel->shutdown();
+      job.kernel->join();
+      FAIL() << "the job never ended";
+    }
+    std::this_thread::sleep_for(1ms);
+  }
+  job.kernel->join();
+  while (trace->try_pop(rec)) recs.push_back(rec);
+  job.feed->join();
+  const PlannedJob& planned = job.feed->result();
+  ASSERT_TRUE(planned.failed);
+  EXPECT_EQ(planned.error.code, ErrorCode::GcodeBeyondTravel);
+  EXPECT_EQ(planned.error.line, 5u);
+  EXPECT_NE(planned.error.message.find('X'), std::string::npos) << planned.error.message;
+  EXPECT_FALSE(job.kernel->fault().active);
+  EXPECT_EQ(job.kernel->jobs_ended(), 1u);  // ended as a job ends: no stop, no e-stop
+  EXPECT_EQ(job.kernel->underruns(), 0u);
+  EXPECT_EQ(job.sim->position_steps(0), 990'000);  // the end of line 4, exactly
+  EXPECT_EQ(job.sim->position_steps(0), planned.commanded[0]);
+  ASSERT_FALSE(recs.empty());
+  EXPECT_EQ(recs.back().power_pct, 0.0f);  // the laser is off at rest
+  // it came to rest gradually: no period moved X more than the axis's
+  // acceleration allows after the one before (steps at 1 µm, T = 75 µs)
+  const double T = job.m.period_s();
+  const double amax_steps = job.m.axes[0].max_acceleration * 1000.0;
+  std::int64_t prev_pos = 0, prev_d = 0;
+  double prev_len = T;
+  for (const rt::TraceRecord& r : recs) {
+    const double len = r.held ? T : T / r.feed_override;
+    const std::int64_t d = r.pos_steps[0] - prev_pos;
+    if (prev_pos != 0) {
+      const double dv = std::abs(static_cast<double>(d) / len - static_cast<double>(prev_d) / prev_len);
+      EXPECT_LE(dv / (0.5 * (len + prev_len)), amax_steps + 2.0 / (T * T)) << r.period;
+    }
+    prev_pos = r.pos_steps[0];
+    prev_d = d;
+    prev_len = len;
+  }
+}
+
+}  // namespace
+}  // namespace lcnc::app
