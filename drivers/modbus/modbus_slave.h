@@ -1,0 +1,102 @@
+// Modbus slave (server) for one device of the register map, over RTU (a
+// serial line) or TCP (bound to 127.0.0.1 unless configured otherwise), on
+// its own thread. It is what lasercncd exposes to a PLC or an MES, and what
+// every virtual device is built on. (DESIGN §8, seed 000 §4 and fig. 15: the
+// slave checks the address, parses function code and offset, then answers
+// or reports an exception.)
+//
+// Function codes 1, 2, 3, 4 (read), 5, 6, 15, 16 (write); anything else gets
+// exception 01. Each request is checked against the register map before
+// anything changes:
+//   * an address with no register, a write to a read-only register, or a
+//     write that covers only one word of a 32-bit register → exception 02;
+//   * a value outside its register's range (or a malformed count) → 03;
+//   * the owner's write hook may refuse a valid write (e.g. 04 or 06).
+// A refused request changes nothing: a block with one bad value leaves every
+// register of the block as it was. Libmodbus frames and answers (RTU CRC,
+// TCP MBAP); requests with a bad CRC are dropped and counted.
+//
+// The owner publishes status with set()/with_bank() (input registers,
+// discrete inputs) and receives parameter writes and commands through the
+// write hook; a tick hook runs the owner's model periodically on the slave's
+// thread. Both hooks run under the bank's lock, so a hook sees the registers
+// consistent and must be quick (no blocking I/O). stop() is prompt: the
+// thread polls an eventfd next to its sockets.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "common/result.h"
+#include "drivers/modbus/modbus_types.h"
+#include "drivers/modbus/register_bank.h"
+#include "drivers/modbus/register_map.h"
+
+namespace lcnc::drivers {
+
+struct SlaveConfig {
+  Endpoint endpoint;           // TCP 127.0.0.1:0 (any free port) by default
+  int unit_id = -1;            // −1: the map's unit_id (RTU answers only it)
+  int max_clients = 8;         // TCP connections served at once
+  std::chrono::milliseconds tick_period{0};  // 0: no tick hook calls
+};
+
+struct SlaveCounters {
+  std::uint64_t requests = 0;     // well-framed requests received
+  std::uint64_t exceptions = 0;   // answered with an exception
+  std::uint64_t refused_writes = 0;  // writes refused (exceptions 02/03/hook)
+  std::uint64_t crc_errors = 0;   // RTU frames dropped for a bad CRC
+  std::uint64_t connections = 0;  // TCP connections accepted
+};
+
+// One register of a write request, decoded and range-checked.
+struct RegisterWrite {
+  const RegisterDef* reg;
+  double value;
+};
+
+// Called before a valid write is applied; return None to accept it.
+using WriteHook = std::function<ModbusException(std::span<const RegisterWrite>, RegisterBank&)>;
+// Called every tick_period with the seconds since the last call.
+using TickHook = std::function<void(double dt_s, RegisterBank&)>;
+
+class ModbusSlave {
+ public:
+  ModbusSlave(DeviceMap map, SlaveConfig config);
+  ~ModbusSlave();
+  ModbusSlave(const ModbusSlave&) = delete;
+  ModbusSlave& operator=(const ModbusSlave&) = delete;
+
+  // Hooks are set before start().
+  void set_write_hook(WriteHook hook);
+  void set_tick_hook(TickHook hook);
+
+  // Opens the serial port or binds the TCP port, then starts the thread.
+  [[nodiscard]] Status start();
+  void stop() noexcept;
+  [[nodiscard]] bool running() const noexcept;
+
+  // The endpoint as bound (TCP: the real port when 0 was asked for).
+  [[nodiscard]] Endpoint endpoint() const;
+  [[nodiscard]] std::uint16_t port() const noexcept;
+  [[nodiscard]] const DeviceMap& map() const noexcept;
+
+  // The owner's side (any thread): by name, range-checked.
+  [[nodiscard]] Result<double> get(std::string_view name) const;
+  [[nodiscard]] Status set(std::string_view name, double value);
+  // Several reads/writes under one lock (a consistent status snapshot).
+  void with_bank(const std::function<void(RegisterBank&)>& fn);
+
+  [[nodiscard]] SlaveCounters counters() const noexcept;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace lcnc::drivers
