@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "app/control_client.h"
+#include "app/decompose_cli.h"
 #include "app/run_job.h"
 #include "gcode/program_reader.h"
 
@@ -29,6 +30,8 @@ constexpr const char* kUsage =
     "  lasercnc send CMD [ARG...] [--wait] [--timeout S] [--shm NAME]\n"
     "       CMD: load PROGRAM | start | hold | resume | stop | estop | reset |\n"
     "            override PCT | jog AXIS DIST | home AXIS\n"
+    "  lasercnc decompose PART.dxf [--speed V] [--step MM] [--mode sync|seed] ...\n"
+    "                       (lasercnc decompose --help for its options)\n"
     "  lasercnc --help | --version\n"
     "\n"
     "  run     plans PROGRAM, runs it on the simulated machine with the real RT thread\n"
@@ -36,6 +39,7 @@ constexpr const char* kUsage =
     "  check   reads the whole program and reports the first error, runs nothing\n"
     "  status  the state of lasercncd (machine, job, latency)\n"
     "  send    a command to lasercncd; prints its answer (--wait: start waits for the job)\n"
+    "  decompose  splits each contour of a DXF part into main- and auxiliary-axis paths\n"
     "  --vmax/--amax   max velocity (mm/s) / acceleration (mm/s^2) of every linear axis\n"
     "  --tolerance     path tolerance (mm)\n"
     "  --feed-override feed override for the whole run, %: every move runs at PCT/100\n"
@@ -82,6 +86,7 @@ int main(int argc, char** argv) {
     std::puts("lasercnc 0.1.0");
     return 0;
   }
+  if (cmd == "decompose") return lcnc::app::decompose_main(argc - 1, argv + 1);
   if (cmd == "status" || cmd == "send") {
     lcnc::app::ClientOptions co;
     std::vector<std::string> args;

@@ -1,0 +1,254 @@
+#include "app/decompose_cli.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "decompose/decompose_svg.h"
+#include "decompose/part_decomposition.h"
+#include "dxf/dxf_reader.h"
+
+namespace lcnc::app {
+namespace {
+
+using decompose::kG_mm_s2;
+
+constexpr const char* kUsage =
+    "usage: lasercnc decompose PART.dxf [--speed V] [--step MM] [--mode sync|seed]\n"
+    "                          [--main-accel A] [--main-speed V] [--aux-speed V] [--field MM]\n"
+    "                          [--goal smooth|short] [--critical-angle DEG]\n"
+    "                          [--units auto|mm|cm|m|inch]\n"
+    "                          [--csv FILE] [--svg FILE] [--accel-svg FILE]\n"
+    "\n"
+    "  Splits every contour of the drawing into a smooth main-axis path S1 (X, Y) and\n"
+    "  an auxiliary path S2 = S - S1 (P, Q) whose sum is the contour S.\n"
+    "  --speed       contour speed (default 6m/min)\n"
+    "  --step        discretization step, mm, >= 0.001 (default 0.01)\n"
+    "  --mode        sync: S1(t) + S2(t) = S(t) at constant speed, limits guaranteed\n"
+    "                (default); seed: the seed's algorithm (seed 004 eq. 1-13), limits\n"
+    "                only reported\n"
+    "  --main-accel  main-axis acceleration limit (default 0.5g)\n"
+    "  --main-speed  main-axis speed limit (default 40m/min)\n"
+    "  --aux-speed   auxiliary speed limit (default 300m/min)\n"
+    "  --field       auxiliary field, full width of the square, mm (default 10)\n"
+    "  --goal        sync mode: smooth = the smoothest main path the field allows\n"
+    "                (default); short = the least main-axis motion before and after\n"
+    "                each contour (main acceleration up to its limit)\n"
+    "  --critical-angle  seed mode: largest turn kept at a vertex, deg (default 1)\n"
+    "  --units       drawing units (default auto: $INSUNITS, unitless read as mm)\n"
+    "  --csv         kinematics table: contour,i,x,y,p,q,t,v/a of main and aux, a_eff, S\n"
+    "  --svg         picture: S green, S1 blue, S2 red in its field\n"
+    "  --accel-svg   effective and main-axis acceleration over time\n"
+    "  Speeds take mm/s (default unit), mm/min, m/min, m/s; accelerations mm/s2\n"
+    "  (default), m/s2, g.\n";
+
+int usage_error(const std::string& msg) {
+  std::fprintf(stderr, "lasercnc decompose: %s\n%s", msg.c_str(), kUsage);
+  return 2;
+}
+
+// "6m/min" → 100 (mm/s). Units: mm/s (bare), mm/min, m/min, m/s.
+std::optional<double> parse_speed(std::string_view s) {
+  const std::string str(s);
+  char* end = nullptr;
+  const double v = std::strtod(str.c_str(), &end);
+  if (end == str.c_str()) return std::nullopt;
+  const std::string_view unit(end);
+  if (unit.empty() || unit == "mm/s") return v;
+  if (unit == "mm/min") return v / 60.0;
+  if (unit == "m/min") return v * 1000.0 / 60.0;
+  if (unit == "m/s") return v * 1000.0;
+  return std::nullopt;
+}
+
+// "0.5g" → 4903.3 (mm/s²). Units: mm/s2 (bare), m/s2, g.
+std::optional<double> parse_accel(std::string_view s) {
+  const std::string str(s);
+  char* end = nullptr;
+  const double v = std::strtod(str.c_str(), &end);
+  if (end == str.c_str()) return std::nullopt;
+  const std::string_view unit(end);
+  if (unit.empty() || unit == "mm/s2" || unit == "mm/s^2") return v;
+  if (unit == "m/s2" || unit == "m/s^2") return v * 1000.0;
+  if (unit == "g") return v * kG_mm_s2;
+  return std::nullopt;
+}
+
+std::optional<double> parse_plain(std::string_view s) {
+  const std::string str(s);
+  char* end = nullptr;
+  const double v = std::strtod(str.c_str(), &end);
+  if (end == str.c_str() || *end != '\0') return std::nullopt;
+  return v;
+}
+
+bool write_file(const std::string& path, const std::string& text) {
+  std::ofstream f(path, std::ios::binary);
+  f << text;
+  return static_cast<bool>(f);
+}
+
+}  // namespace
+
+int decompose_main(int argc, char** argv) {
+  if (argc < 2) return usage_error("missing PART.dxf");
+  std::string part;
+  double step_mm = 0.01;
+  decompose::Options opt;
+  opt.speed_mm_s = 100.0;  // 6 m/min, the seed's test case
+  dxf::ReadOptions read_opt;
+  std::string csv_path, svg_path, accel_svg_path;
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view a = argv[i];
+    if (a == "--help" || a == "-h") {
+      std::fputs(kUsage, stdout);
+      return 0;
+    }
+    if (a.substr(0, 2) != "--") {
+      if (!part.empty()) return usage_error("more than one drawing: " + std::string(a));
+      part = std::string(a);
+      continue;
+    }
+    if (i + 1 >= argc) return usage_error(std::string(a) + " needs a value");
+    const std::string_view v = argv[++i];
+    auto bad = [&](const char* expected) {
+      return usage_error(std::string(a) + " " + std::string(v) + ": expected " + expected);
+    };
+    if (a == "--speed" || a == "--main-speed" || a == "--aux-speed") {
+      const std::optional<double> s = parse_speed(v);
+      if (!s || !(*s > 0.0)) return bad("a positive speed (e.g. 6m/min, 100mm/s)");
+      (a == "--speed" ? opt.speed_mm_s : a == "--main-speed" ? opt.main_speed_mm_s
+                                                             : opt.aux_speed_mm_s) = *s;
+    } else if (a == "--main-accel") {
+      const std::optional<double> s = parse_accel(v);
+      if (!s || !(*s > 0.0)) return bad("a positive acceleration (e.g. 0.5g, 4903mm/s2)");
+      opt.main_accel_mm_s2 = *s;
+    } else if (a == "--step") {
+      const std::optional<double> s = parse_plain(v);
+      if (!s || !(*s >= 0.001)) return bad("a step in mm, at least 0.001 (1 um)");
+      step_mm = *s;
+    } else if (a == "--field") {
+      const std::optional<double> s = parse_plain(v);
+      if (!s || !(*s > 0.0)) return bad("the field's full width in mm, > 0");
+      opt.aux_half_field_mm = *s / 2.0;
+    } else if (a == "--critical-angle") {
+      const std::optional<double> s = parse_plain(v);
+      if (!s || !(*s > 0.0 && *s < 180.0)) return bad("an angle in degrees, 0 < angle < 180");
+      opt.critical_angle_deg = *s;
+    } else if (a == "--mode") {
+      if (v == "sync") opt.mode = decompose::Mode::Sync;
+      else if (v == "seed") opt.mode = decompose::Mode::Seed;
+      else return bad("sync or seed");
+    } else if (a == "--goal") {
+      if (v == "smooth") opt.goal = decompose::SyncGoal::SmoothestMain;
+      else if (v == "short") opt.goal = decompose::SyncGoal::ShortestLeadIn;
+      else return bad("smooth or short");
+    } else if (a == "--units") {
+      if (v == "auto") read_opt.unit_mm = 0.0;
+      else if (v == "mm") read_opt.unit_mm = 1.0;
+      else if (v == "cm") read_opt.unit_mm = 10.0;
+      else if (v == "m") read_opt.unit_mm = 1000.0;
+      else if (v == "inch" || v == "in") read_opt.unit_mm = 25.4;
+      else return bad("auto, mm, cm, m or inch");
+    } else if (a == "--csv") {
+      csv_path = std::string(v);
+    } else if (a == "--svg") {
+      svg_path = std::string(v);
+    } else if (a == "--accel-svg") {
+      accel_svg_path = std::string(v);
+    } else {
+      return usage_error("unknown option " + std::string(a));
+    }
+  }
+  if (part.empty()) return usage_error("missing PART.dxf");
+
+  Result<dxf::ReadResult> read = dxf::read_dxf_file(part, read_opt);
+  if (!read) {
+    std::fprintf(stderr, "%s\n", read.error().to_string().c_str());
+    return 1;
+  }
+  Result<decompose::PartResult> res = decompose::decompose_part(read->drawing, step_mm, opt);
+  if (!res) {
+    Diagnostic e = res.error();
+    if (e.file.empty()) e.file = part;
+    std::fprintf(stderr, "%s\n", e.to_string().c_str());
+    return 1;
+  }
+
+  const bool seed = opt.mode == decompose::Mode::Seed;
+  std::printf("%s: %zu contours, %zu points, step %.4f mm, mode %s\n", part.c_str(),
+              res->contours.size(), res->points, step_mm, seed ? "seed (seed 004 eq. 1-13)" : "sync");
+  for (const std::string& n : read->notes) std::printf("  %s\n", n.c_str());
+  std::printf("contour speed %.1f mm/s (%.2f m/min); main axes <= %.1f mm/s2 (%.2f g), "
+              "<= %.1f mm/s; aux <= %.1f mm/s, field +-%.3f mm\n",
+              opt.speed_mm_s, opt.speed_mm_s * 0.06, opt.main_accel_mm_s2,
+              opt.main_accel_mm_s2 / kG_mm_s2, opt.main_speed_mm_s, opt.aux_speed_mm_s,
+              opt.aux_half_field_mm);
+  std::printf("%3s %-26s %10s %9s %9s %8s %11s %9s %9s %9s %11s\n", "#", "first entity",
+              "length mm", "points", "time s", "tau s", "main a", "main v", "aux v", "aux max",
+              "a_eff");
+  double total_t = 0, a_main = 0, a_eff = 0, aux_max = 0, exact = 0;
+  int warnings = 0;
+  for (const decompose::ContourResult& c : res->contours) {
+    const decompose::Peaks& p = c.peaks;
+    const std::string first = std::string(dxf::entity_name(c.contour.first_kind)) + " line " +
+                              std::to_string(c.contour.first_line);
+    std::printf("%3u %-26s %10.3f %9zu %9.4f %8.4f %11.1f %9.1f %9.1f %9.4f %11.1f\n",
+                c.contour.index, first.c_str(), c.polyline.length_mm, c.polyline.size(),
+                p.duration_s, c.tau_s, p.a_main, p.v_main, p.v_aux, p.aux_excursion, p.a_eff);
+    total_t += p.duration_s;
+    a_main = std::max(a_main, p.a_main);
+    a_eff = std::max(a_eff, p.a_eff);
+    aux_max = std::max(aux_max, p.aux_excursion);
+    exact = std::max(exact, p.exactness);
+    for (const std::string& w : c.exceeded) {
+      std::printf("  warning: %s: %s\n", c.contour.name().c_str(), w.c_str());
+      ++warnings;
+    }
+  }
+  std::printf("total time %.4f s; peak main-axis acceleration %.1f mm/s2 (%.3f g); peak "
+              "effective acceleration %.1f mm/s2 (%.3f g) = a main-axes-only machine's, %.1fx "
+              "the main axes'; aux excursion %.4f mm; |S1 + S2 - S| <= %.1e mm\n",
+              total_t, a_main, a_main / kG_mm_s2, a_eff, a_eff / kG_mm_s2,
+              a_main > 0 ? a_eff / a_main : 0.0, aux_max, exact);
+  if (seed && warnings > 0) {
+    std::printf("the seed's algorithm does not guarantee the limits: %d exceeded "
+                "(--mode sync does)\n", warnings);
+  }
+
+  const std::string title = part + " — " + (seed ? "seed mode" : "sync mode") + ", " +
+                            std::to_string(opt.speed_mm_s * 0.06).substr(0, 5) + " m/min";
+  if (!csv_path.empty()) {
+    std::ofstream f(csv_path, std::ios::binary);
+    std::vector<const decompose::KinematicsTable*> tables;
+    for (const decompose::ContourResult& c : res->contours) tables.push_back(&c.table);
+    decompose::write_csv(f, tables);
+    if (!f) {
+      std::fprintf(stderr, "lasercnc decompose: cannot write %s\n", csv_path.c_str());
+      return 1;
+    }
+    std::printf("kinematics table: %s\n", csv_path.c_str());
+  }
+  if (!svg_path.empty()) {
+    if (!write_file(svg_path, decompose::paths_svg(*res, opt, title))) {
+      std::fprintf(stderr, "lasercnc decompose: cannot write %s\n", svg_path.c_str());
+      return 1;
+    }
+    std::printf("picture: %s\n", svg_path.c_str());
+  }
+  if (!accel_svg_path.empty()) {
+    if (!write_file(accel_svg_path, decompose::accel_svg(*res, opt, title))) {
+      std::fprintf(stderr, "lasercnc decompose: cannot write %s\n", accel_svg_path.c_str());
+      return 1;
+    }
+    std::printf("acceleration plot: %s\n", accel_svg_path.c_str());
+  }
+  return 0;
+}
+
+}  // namespace lcnc::app

@@ -1,0 +1,177 @@
+#include "decompose/decompose_svg.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace lcnc::decompose {
+namespace {
+
+// A vertex closer than this to the last one drawn is skipped (pixels).
+constexpr double kMinPixelStep = 0.75;
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3f", v);
+  return buf;
+}
+
+std::string escape(const std::string& s) {
+  std::string o;
+  for (char c : s) {
+    if (c == '<') o += "&lt;";
+    else if (c == '>') o += "&gt;";
+    else if (c == '&') o += "&amp;";
+    else o += c;
+  }
+  return o;
+}
+
+struct Box {
+  double x0 = std::numeric_limits<double>::max(), y0 = x0;
+  double x1 = -std::numeric_limits<double>::max(), y1 = x1;
+  void add(const Vec2& p) {
+    x0 = std::min(x0, p.x());
+    y0 = std::min(y0, p.y());
+    x1 = std::max(x1, p.x());
+    y1 = std::max(y1, p.y());
+  }
+};
+
+// Maps a box into a panel (px, py, size) keeping the aspect, y up.
+struct View {
+  double sx, ox, oy, py_bottom;
+  View(const Box& b, double px, double py, double w, double h) {
+    const double bw = std::max(b.x1 - b.x0, 1e-9), bh = std::max(b.y1 - b.y0, 1e-9);
+    sx = std::min(w / bw, h / bh);
+    ox = px + 0.5 * (w - bw * sx) - b.x0 * sx;
+    oy = b.y0;
+    py_bottom = py + h - 0.5 * (h - bh * sx);
+  }
+  [[nodiscard]] Vec2 px(const Vec2& p) const {
+    return Vec2(ox + p.x() * sx, py_bottom - (p.y() - oy) * sx);
+  }
+  [[nodiscard]] std::string pt(const Vec2& p) const {
+    const Vec2 q = px(p);
+    return num(q.x()) + "," + num(q.y());
+  }
+};
+
+template <typename F>
+std::string polyline(std::size_t n, F point, const View& v, const char* color, double width) {
+  std::string s = "<polyline fill=\"none\" stroke=\"" + std::string(color) +
+                  "\" stroke-width=\"" + num(width) + "\" points=\"";
+  Vec2 last(1e300, 1e300);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2 q = v.px(point(i));
+    if ((q - last).norm() < kMinPixelStep && i + 1 < n) continue;
+    s += num(q.x()) + "," + num(q.y()) + " ";
+    last = q;
+  }
+  return s + "\"/>\n";
+}
+
+}  // namespace
+
+std::string paths_svg(const PartResult& r, const Options& opt, const std::string& title) {
+  constexpr double W = 1200, H = 640, pad = 40;
+  Box part, aux;
+  for (const ContourResult& c : r.contours) {
+    for (std::size_t i = 0; i < c.table.size(); ++i) {
+      part.add(c.table.beam[i]);
+      part.add(c.table.main[i]);
+      aux.add(c.table.aux(i));
+    }
+  }
+  const double f = opt.aux_half_field_mm;
+  aux.add(Vec2(-f, -f));
+  aux.add(Vec2(f, f));
+  const double panel = (W - 3 * pad) / 2;
+  const View vp(part, pad, pad + 20, panel, H - 2 * pad - 40);
+  const View va(aux, 2 * pad + panel, pad + 20, panel, H - 2 * pad - 40);
+  std::string s = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + num(W) +
+                  "\" height=\"" + num(H) + "\" font-family=\"sans-serif\" font-size=\"13\">\n"
+                  "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  s += "<text x=\"" + num(pad) + "\" y=\"22\">" + escape(title) + "</text>\n";
+  s += "<text x=\"" + num(pad) + "\" y=\"" + num(H - 12) +
+       "\"><tspan fill=\"green\">S contour</tspan>, <tspan fill=\"blue\">S1 main axes "
+       "(X, Y)</tspan> — part coordinates, mm</text>\n";
+  s += "<text x=\"" + num(2 * pad + panel) + "\" y=\"" + num(H - 12) +
+       "\"><tspan fill=\"red\">S2 = S − S1 auxiliary axes (P, Q)</tspan> in the field ±" +
+       num(f) + " mm</text>\n";
+  // The field.
+  s += "<polygon fill=\"none\" stroke=\"#999\" stroke-dasharray=\"4 3\" points=\"" +
+       va.pt(Vec2(-f, -f)) + " " + va.pt(Vec2(f, -f)) + " " + va.pt(Vec2(f, f)) + " " +
+       va.pt(Vec2(-f, f)) + "\"/>\n";
+  for (const ContourResult& c : r.contours) {
+    const KinematicsTable& t = c.table;
+    s += polyline(t.size(), [&](std::size_t i) { return t.beam[i]; }, vp, "green", 2.0);
+    s += polyline(t.size(), [&](std::size_t i) { return t.main[i]; }, vp, "blue", 1.0);
+    s += polyline(t.size(), [&](std::size_t i) { return t.aux(i); }, va, "red", 1.0);
+  }
+  return s + "</svg>\n";
+}
+
+std::string accel_svg(const PartResult& r, const Options& opt, const std::string& title) {
+  constexpr double W = 1200, H = 480, left = 70, right = 20, top = 40, bottom = 50;
+  const double pw = W - left - right, ph = H - top - bottom;
+  double t_total = 0, a_top = opt.main_accel_mm_s2;
+  for (const ContourResult& c : r.contours) {
+    t_total += c.peaks.duration_s;
+    a_top = std::max({a_top, c.peaks.a_eff, c.peaks.a_main});
+  }
+  t_total = std::max(t_total, 1e-9);
+  a_top *= 1.1;
+  // Per pixel column: the peak of each curve (m/s²).
+  const auto cols = static_cast<std::size_t>(pw);
+  std::vector<double> eff(cols, -1.0), mainc(cols, -1.0);
+  double t0 = 0;
+  for (const ContourResult& c : r.contours) {
+    const KinematicsTable& t = c.table;
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      const auto k = std::min(cols - 1, static_cast<std::size_t>((t0 + t.t_s[i]) / t_total * pw));
+      eff[k] = std::max(eff[k], t.a_eff[i]);
+      mainc[k] = std::max(mainc[k], t.a_main[i]);
+    }
+    t0 += c.peaks.duration_s;
+  }
+  auto y = [&](double a) { return top + ph - a / a_top * ph; };
+  auto curve = [&](const std::vector<double>& v, const char* color) {
+    std::string s = "<polyline fill=\"none\" stroke=\"" + std::string(color) +
+                    "\" stroke-width=\"1\" points=\"";
+    for (std::size_t k = 0; k < cols; ++k) {
+      if (v[k] < 0) continue;
+      s += num(left + static_cast<double>(k)) + "," + num(y(v[k])) + " ";
+    }
+    return s + "\"/>\n";
+  };
+  std::string s = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + num(W) +
+                  "\" height=\"" + num(H) + "\" font-family=\"sans-serif\" font-size=\"13\">\n"
+                  "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  s += "<text x=\"" + num(left) + "\" y=\"22\">" + escape(title) + "</text>\n";
+  s += "<rect x=\"" + num(left) + "\" y=\"" + num(top) + "\" width=\"" + num(pw) +
+       "\" height=\"" + num(ph) + "\" fill=\"none\" stroke=\"black\"/>\n";
+  for (int k = 0; k <= 5; ++k) {  // axis labels
+    const double a = a_top * k / 5.0;
+    s += "<text x=\"" + num(left - 6) + "\" y=\"" + num(y(a) + 4) + "\" text-anchor=\"end\">" +
+         num(a / 1000.0).substr(0, 6) + "</text>\n";
+    const double tt = t_total * k / 5.0;
+    s += "<text x=\"" + num(left + pw * k / 5.0) + "\" y=\"" + num(top + ph + 18) +
+         "\" text-anchor=\"middle\">" + num(tt).substr(0, 7) + "</text>\n";
+  }
+  s += "<text x=\"" + num(left + pw / 2) + "\" y=\"" + num(H - 8) +
+       "\" text-anchor=\"middle\">time, s</text>\n";
+  s += "<text x=\"14\" y=\"" + num(top + ph / 2) + "\" transform=\"rotate(-90 14 " +
+       num(top + ph / 2) + ")\" text-anchor=\"middle\">acceleration, m/s²</text>\n";
+  s += curve(eff, "green") + curve(mainc, "blue");
+  const double yl = y(opt.main_accel_mm_s2);
+  s += "<line x1=\"" + num(left) + "\" y1=\"" + num(yl) + "\" x2=\"" + num(left + pw) +
+       "\" y2=\"" + num(yl) + "\" stroke=\"blue\" stroke-dasharray=\"6 4\"/>\n";
+  s += "<text x=\"" + num(left + pw - 4) + "\" y=\"" + num(top + 16) +
+       "\" text-anchor=\"end\"><tspan fill=\"green\">effective (beam)</tspan>  <tspan "
+       "fill=\"blue\">main axes; dashed: main-axis limit</tspan></text>\n";
+  return s + "</svg>\n";
+}
+
+}  // namespace lcnc::decompose

@@ -1,0 +1,43 @@
+// Limits, defaults and tolerances of the main + auxiliary axes decomposition
+// (DESIGN §5.7, seed 004 "technological limits"), in one place (STYLE §4).
+// Units: mm, s, mm/s, mm/s².
+#pragma once
+
+#include <cstddef>
+
+namespace lcnc::decompose {
+
+inline constexpr double kG_mm_s2 = 9806.65;  // standard gravity
+
+// Seed 004: main-axis acceleration at most 0.5 g; auxiliary axes up to
+// 300 m/min; main axes 10–40 m/min depending on the material.
+inline constexpr double kDefaultMainAccel_mm_s2 = 0.5 * kG_mm_s2;
+inline constexpr double kDefaultAuxSpeed_mm_s = 300.0 * 1000.0 / 60.0;
+inline constexpr double kDefaultMainSpeed_mm_s = 40.0 * 1000.0 / 60.0;
+// The auxiliary field: a small stage or a scanner, ±5 mm in P and Q.
+inline constexpr double kDefaultAuxHalfField_mm = 5.0;
+// Seed mode: a vertex is smoothed when the path turns there by more than
+// this (eq. 1 compares the cosine). With step Δ it bounds the curvature of
+// S1 to about θ/Δ: 1° at 0.01 mm is a radius of 0.57 mm.
+inline constexpr double kDefaultCriticalAngle_deg = 1.0;
+
+// S1 + S2 must equal S within this at every instant (issue 9: ≤ 1 µm).
+inline constexpr double kExactness_mm = 1e-3;
+
+// Seed mode: the smoothing gives up after this many vertex replacements per
+// contour point (a bend it cannot spread, e.g. a contour too small for the
+// critical angle).
+inline constexpr std::size_t kSeedMaxReplacementsPerPoint = 2000;
+
+// The highest feasible contour speed is searched to this relative precision.
+inline constexpr double kSpeedSearchRel = 1e-3;
+
+// The main-path filter never spans more than the contour's own time times
+// this (beyond it the main axes stand still and the aux does everything).
+inline constexpr double kMaxFilterToContourTime = 1.0;
+
+// The running window sums of the filter are recomputed from scratch this
+// often, so rounding never accumulates over millions of points.
+inline constexpr std::size_t kResumEvery = 1u << 14;
+
+}  // namespace lcnc::decompose

@@ -1,0 +1,172 @@
+#include "dxf/spline_curve.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "dxf/dxf_tolerances.h"
+
+namespace lcnc::dxf {
+namespace {
+
+double dist_to_chord(const Vec2& q, const Vec2& a, const Vec2& b) {
+  const Vec2 ab = b - a;
+  const double l2 = ab.squaredNorm();
+  if (l2 <= 0.0) return (q - a).norm();
+  const double t = std::clamp((q - a).dot(ab) / l2, 0.0, 1.0);
+  return (q - (a + t * ab)).norm();
+}
+
+// Arc length to this precision (mm): far below the 1 µm grid, so equal
+// steps stay equal to the last digit the CSV prints.
+constexpr double kArcLengthTolMm = 1e-10;
+
+}  // namespace
+
+std::shared_ptr<const SplineCurve> SplineCurve::make(const SplineData& s, std::string* why) {
+  const std::size_t n = s.control.size();
+  const auto p = static_cast<std::size_t>(std::max(s.degree, 0));
+  auto fail = [&](std::string msg) {
+    if (why) *why = std::move(msg);
+    return std::shared_ptr<const SplineCurve>();
+  };
+  if (s.degree < 1 || s.degree > kSplineMaxDegree) {
+    return fail("degree " + std::to_string(s.degree) + "; expected 1 to " +
+                std::to_string(kSplineMaxDegree));
+  }
+  if (n == 0) {
+    return fail(s.fit.empty() ? "no control points; expected control points"
+                              : "fit points only; expected control points (save the "
+                                "spline with its control points)");
+  }
+  if (n < p + 1) {
+    return fail(std::to_string(n) + " control points for degree " + std::to_string(p) +
+                "; expected at least " + std::to_string(p + 1));
+  }
+  if (s.knots.size() != n + p + 1) {
+    return fail(std::to_string(s.knots.size()) + " knots for " + std::to_string(n) +
+                " control points of degree " + std::to_string(p) + "; expected " +
+                std::to_string(n + p + 1));
+  }
+  for (std::size_t i = 1; i < s.knots.size(); ++i) {
+    if (!(s.knots[i] >= s.knots[i - 1])) {
+      return fail("knots decrease; expected a non-decreasing knot vector");
+    }
+  }
+  if (!s.weights.empty()) {
+    if (s.weights.size() != n) return fail("weights and control points differ in number");
+    for (double w : s.weights) {
+      if (!(w > 0.0)) return fail("a weight <= 0; expected positive weights");
+    }
+  }
+  if (!(s.knots[n] > s.knots[p])) return fail("empty parameter range (all knots equal)");
+  std::shared_ptr<SplineCurve> c(new SplineCurve(s));
+  if (!(c->length() > 0.0)) return fail("zero length");
+  return c;
+}
+
+SplineCurve::SplineCurve(SplineData d) : d_(std::move(d)) {
+  for (std::size_t i = 0; i < d_.control.size(); ++i) {
+    const double w = d_.weights.empty() ? 1.0 : d_.weights[i];
+    pw_.emplace_back(w * d_.control[i].x(), w * d_.control[i].y(), w);
+  }
+  const auto p = static_cast<std::size_t>(d_.degree);
+  const std::size_t n = d_.control.size();
+  for (std::size_t k = p; k < n; ++k) {
+    const double u0 = d_.knots[k], u1 = d_.knots[k + 1];
+    if (!(u1 > u0)) continue;
+    if (u_.empty()) {
+      u_.push_back(u0);
+      s_.push_back(0.0);
+    }
+    subdivide(u0, at_param(u0), u1, at_param(u1), 0);
+  }
+}
+
+void SplineCurve::subdivide(double u0, const Vec2& p0, double u1, const Vec2& p1, int depth) {
+  const double um = 0.5 * (u0 + u1);
+  const Vec2 pm = at_param(um);
+  if (depth < kSplineMaxDepth &&
+      (depth < 2 || dist_to_chord(pm, p0, p1) > kSplineFlatnessMm ||
+       dist_to_chord(at_param(0.5 * (u0 + um)), p0, p1) > kSplineFlatnessMm ||
+       dist_to_chord(at_param(0.5 * (um + u1)), p0, p1) > kSplineFlatnessMm)) {
+    subdivide(u0, p0, um, pm, depth + 1);
+    subdivide(um, pm, u1, p1, depth + 1);
+    return;
+  }
+  s_.push_back(s_.back() + arc(u0, u1));
+  u_.push_back(u1);
+}
+
+std::size_t SplineCurve::span(double u) const {
+  const auto p = static_cast<std::size_t>(d_.degree);
+  const std::size_t n = d_.control.size();
+  // The last k in [p, n−1] with U_k ≤ u (and U_k < U_k+1).
+  std::size_t k = static_cast<std::size_t>(
+                      std::upper_bound(d_.knots.begin() + static_cast<long>(p),
+                                       d_.knots.begin() + static_cast<long>(n), u) -
+                      d_.knots.begin()) -
+                  1;
+  k = std::clamp(k, p, n - 1);
+  while (k > p && !(d_.knots[k + 1] > d_.knots[k])) --k;
+  return k;
+}
+
+Vec2 SplineCurve::at_param(double u) const {
+  const auto p = static_cast<std::size_t>(d_.degree);
+  const std::size_t k = span(u);
+  const auto& U = d_.knots;
+  Eigen::Vector3d d[kSplineMaxDegree + 1];
+  const std::size_t pp = p;
+  for (std::size_t j = 0; j <= pp; ++j) d[j] = pw_[j + k - pp];
+  for (std::size_t r = 1; r <= pp; ++r) {
+    for (std::size_t j = pp; j >= r; --j) {
+      const std::size_t i = j + k - pp;
+      const double den = U[i + pp + 1 - r] - U[i];
+      const double a = den > 0.0 ? (u - U[i]) / den : 0.0;
+      d[j] = (1.0 - a) * d[j - 1] + a * d[j];
+    }
+  }
+  return d[pp].head<2>() / d[pp].z();
+}
+
+double SplineCurve::speed(double u) const {
+  const auto p = static_cast<std::size_t>(d_.degree);
+  const double u_min = d_.knots[p], u_max = d_.knots[d_.control.size()];
+  const double h = 1e-6 * (u_max - u_min);
+  const double lo = std::max(u_min, u - h), hi = std::min(u_max, u + h);
+  return (at_param(hi) - at_param(lo)).norm() / (hi - lo);
+}
+
+double SplineCurve::arc(double u0, double u1) const {
+  // 5-point Gauss–Legendre on [u0, u1].
+  static constexpr double kX[5] = {0.0, -0.5384693101056831, 0.5384693101056831,
+                                   -0.9061798459386640, 0.9061798459386640};
+  static constexpr double kW[5] = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665,
+                                   0.2369268850561891, 0.2369268850561891};
+  const double c = 0.5 * (u0 + u1), h = 0.5 * (u1 - u0);
+  double sum = 0.0;
+  for (int i = 0; i < 5; ++i) sum += kW[i] * speed(c + h * kX[i]);
+  return sum * h;
+}
+
+Vec2 SplineCurve::at_length(double s) const {
+  s = std::clamp(s, 0.0, length());
+  const std::size_t j = std::min<std::size_t>(
+      static_cast<std::size_t>(std::upper_bound(s_.begin(), s_.end(), s) - s_.begin()),
+      s_.size() - 1);
+  const std::size_t j0 = j == 0 ? 0 : j - 1;
+  const double ua = u_[j0], ub = u_[j0 + 1 < u_.size() ? j0 + 1 : j0];
+  const double sa = s_[j0], sb = s_[j0 + 1 < s_.size() ? j0 + 1 : j0];
+  if (!(sb > sa)) return at_param(ua);
+  double u = ua + (s - sa) / (sb - sa) * (ub - ua);
+  for (int it = 0; it < 8; ++it) {
+    const double f = sa + arc(ua, u) - s;
+    if (std::abs(f) <= kArcLengthTolMm) break;
+    const double v = speed(u);
+    if (!(v > 0.0)) break;
+    u = std::clamp(u - f / v, ua, ub);
+  }
+  return at_param(u);
+}
+
+}  // namespace lcnc::dxf
