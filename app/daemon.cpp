@@ -9,6 +9,7 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include "app/cnc_modbus_host.h"
 #include "app/planner_feed.h"
 #include "app/run_job.h"
 #include "drivers/sim_machine.h"
@@ -20,6 +21,7 @@ namespace lcnc::app {
 namespace {
 
 constexpr auto kTick = std::chrono::microseconds(500);  // control loop period
+constexpr auto kModbusPublish = std::chrono::milliseconds(5);  // status to the Modbus slave
 
 template <std::size_t N>
 void copy_text(char (&dst)[N], const std::string& src) {
@@ -45,6 +47,7 @@ struct Daemon::Impl {
   std::unique_ptr<drivers::SimMachine> sim;
   std::unique_ptr<rt::RtKernel> kernel;
   std::unique_ptr<PlannerFeed> feed;
+  std::unique_ptr<CncModbusHost> modbus;  // the PLC/MES slave, when asked for
   bool realtime = true;
 
   // the job
@@ -68,15 +71,19 @@ struct Daemon::Impl {
     return p;
   }
 
-  void ack(const shm::Command& c, ErrorCode code, const std::string& message, bool ok) {
+  // The answer to a command of the shm ring, where its sender waits for it.
+  void ack(const shm::Command& c, const Ack& a) {
     job.ack_seq = c.seq;
-    job.ack_code = ok ? 0 : static_cast<std::uint16_t>(code);
-    copy_text(job.message, message);
+    job.ack_code = a.ok ? 0 : static_cast<std::uint16_t>(a.code);
+    copy_text(job.message, a.message);
     shm.block().job.store(job);
-    if (ok) {
-      logger()->info("{}", message);
+    log_ack(a);
+  }
+  static void log_ack(const Ack& a) {
+    if (a.ok) {
+      logger()->info("{}", a.message);
     } else {
-      logger()->warn("{}", message);
+      logger()->warn("{}", a.message);
     }
   }
 
@@ -100,12 +107,13 @@ struct Daemon::Impl {
     return check_program(path, machine, ropt);
   }
 
-  void handle(const shm::Command& c) {
+  // Executes a command (from the shm ring or the Modbus slave) and says what
+  // came of it.
+  Ack handle(const shm::Command& c) {
     const shm::MachineState st = kernel->state();
-    const auto refuse = [&](const std::string& why) { ack(c, ErrorCode::RtRefused, why, false); };
+    const auto refuse = [](const std::string& why) { return Ack{false, ErrorCode::RtRefused, why}; };
     if (static_cast<std::uint8_t>(c.type) >= static_cast<std::uint8_t>(shm::CommandType::Count)) {
-      refuse("bad command frame: type " + std::to_string(static_cast<int>(c.type)) + " unknown");
-      return;
+      return refuse("bad command frame: type " + std::to_string(static_cast<int>(c.type)) + " unknown");
     }
     const bool axis_ok = c.axis < kAxisCount && machine.axes[c.axis].present;
     const std::string axis_text =
@@ -113,17 +121,14 @@ struct Daemon::Impl {
     switch (c.type) {
       case shm::CommandType::Load: {
         if (std::memchr(c.text, '\0', sizeof c.text) == nullptr) {
-          refuse("bad command frame: load path not terminated");
-          return;
+          return refuse("bad command frame: load path not terminated");
         }
         if (job_active) {
-          refuse("load refused: a job is running (stop it first)");
-          return;
+          return refuse("load refused: a job is running (stop it first)");
         }
         Result<ProgramSummary> s = check(c.text);
         if (!s) {
-          ack(c, s.error().code, "load: " + s.error().to_string(), false);
-          return;
+          return Ack{false, s.error().code, "load: " + s.error().to_string()};
         }
         program = c.text;
         summary = *s;
@@ -135,8 +140,7 @@ struct Daemon::Impl {
         std::snprintf(msg, sizeof msg, "loaded %s: %u lines, %llu segments, path %.3f mm",
                       program.c_str(), s->lines, static_cast<unsigned long long>(s->segments),
                       s->path_length_mm);
-        ack(c, ErrorCode::Internal, msg, true);
-        return;
+        return Ack{true, ErrorCode::Internal, msg};
       }
       case shm::CommandType::Start: {
         if (program.empty()) return refuse("start refused: no program loaded");
@@ -145,7 +149,7 @@ struct Daemon::Impl {
         // checked again: the machine may have moved (jog, home) since the
         // load, or the file changed
         Result<ProgramSummary> s = check(program);
-        if (!s) return ack(c, s.error().code, "start: " + s.error().to_string(), false);
+        if (!s) return Ack{false, s.error().code, "start: " + s.error().to_string()};
         summary = *s;
         ReaderOptions ropt;
         ropt.start = position();
@@ -157,25 +161,24 @@ struct Daemon::Impl {
         job.progress = 0.0;
         job_time_start_ns = kernel->machine_time_ns();
         job_underruns_start = kernel->underruns();
-        ack(c, ErrorCode::Internal, "started " + program, true);
-        return;
+        return Ack{true, ErrorCode::Internal, "started " + program};
       }
       case shm::CommandType::Hold:
         kernel->command({rt::RtCommandType::Hold, 0, 0.0});
-        return ack(c, ErrorCode::Internal, "hold", true);
+        return Ack{true, ErrorCode::Internal, "hold"};
       case shm::CommandType::Resume:
         kernel->command({rt::RtCommandType::Resume, 0, 0.0});
-        return ack(c, ErrorCode::Internal, "resume", true);
+        return Ack{true, ErrorCode::Internal, "resume"};
       case shm::CommandType::Stop:
         kernel->command({rt::RtCommandType::Stop, 0, 0.0});
-        return ack(c, ErrorCode::Internal, "stop", true);
+        return Ack{true, ErrorCode::Internal, "stop"};
       case shm::CommandType::EStop:
         kernel->command({rt::RtCommandType::EStop, 0, 0.0});
-        return ack(c, ErrorCode::RtEstop, "e-stop", true);
+        return Ack{true, ErrorCode::RtEstop, "e-stop"};
       case shm::CommandType::Reset:
         if (st != shm::MachineState::EStop) return refuse("reset refused: not in e-stop");
         kernel->command({rt::RtCommandType::Reset, 0, 0.0});
-        return ack(c, ErrorCode::Internal, "reset", true);
+        return Ack{true, ErrorCode::Internal, "reset"};
       case shm::CommandType::Override: {
         const double kmax = machine.max_feed_override;
         if (!std::isfinite(c.value) || c.value < 0.0 || c.value > kmax) {
@@ -187,29 +190,47 @@ struct Daemon::Impl {
         kernel->set_feed_override(c.value);
         char msg[64];
         std::snprintf(msg, sizeof msg, "override %g %%", c.value * 100.0);
-        return ack(c, ErrorCode::Internal, msg, true);
+        return Ack{true, ErrorCode::Internal, msg};
       }
       case shm::CommandType::Jog: {
         if (!axis_ok) return refuse("jog refused: no axis " + axis_text);
         if (!std::isfinite(c.value) || std::abs(c.value) > 1e5)
-          return refuse("jog refused: distance not a number of range");
+          return refuse("jog refused: distance not a number or out of range");
         if (st != shm::MachineState::Idle || job_active)
           return refuse(std::string("jog refused: the machine is ") + state_name(st));
         kernel->command({rt::RtCommandType::Jog, static_cast<std::int8_t>(c.axis), c.value});
         char msg[96];
         std::snprintf(msg, sizeof msg, "jog %s %+g", axis_text.c_str(), c.value);
-        return ack(c, ErrorCode::Internal, msg, true);
+        return Ack{true, ErrorCode::Internal, msg};
       }
       case shm::CommandType::Home: {
         if (!axis_ok) return refuse("home refused: no axis " + axis_text);
         if (st != shm::MachineState::Idle || job_active)
           return refuse(std::string("home refused: the machine is ") + state_name(st));
         kernel->command({rt::RtCommandType::Home, static_cast<std::int8_t>(c.axis), 0.0});
-        return ack(c, ErrorCode::Internal, "home " + axis_text, true);
+        return Ack{true, ErrorCode::Internal, "home " + axis_text};
       }
       case shm::CommandType::Count: break;
     }
+    return refuse("bad command frame");
   }
+
+  // The PLC/MES side: commands taken with the shm ring's rules, the status
+  // published every kModbusPublish.
+  void serve_modbus() {
+    modbus->drain([this](const shm::Command& c) {
+      Ack a = handle(c);
+      a.message = "modbus: " + a.message;
+      log_ack(a);
+      return a;
+    });
+    const auto now = std::chrono::steady_clock::now();
+    if (now < next_publish) return;
+    next_publish = now + kModbusPublish;
+    shm::Status st;
+    if (shm.block().status.load(st)) modbus->publish(st);
+  }
+  std::chrono::steady_clock::time_point next_publish{};
 
   // The kernel's log: to stderr and, as events, to the HMI.
   void drain_rt_log() {
@@ -292,6 +313,12 @@ Result<std::unique_ptr<Daemon>> Daemon::create(const DaemonOptions& options) {
   d.kernel->set_status(&d.shm.block().status);
   d.feed = std::make_unique<PlannerFeed>(d.machine, *d.buffer, *d.kernel);
   d.shm.block().job.store(d.job);
+  if (options.modbus) {
+    Result<std::unique_ptr<CncModbusHost>> host = CncModbusHost::start(*options.modbus, logger());
+    if (!host) return host.error();
+    d.modbus = std::move(host).value();
+    logger()->info("lasercncd: Modbus slave (device cnc, unit 1) on {}", d.modbus->endpoint().to_string());
+  }
   return std::unique_ptr<Daemon>(new Daemon(std::move(impl)));
 }
 
@@ -314,7 +341,8 @@ int Daemon::run(const std::atomic<bool>& quit) {
   while (!quit.load()) {
     block.header.heartbeat.fetch_add(1, std::memory_order_relaxed);
     shm::Command c;
-    while (block.commands.try_pop(c)) d.handle(c);
+    while (block.commands.try_pop(c)) d.ack(c, d.handle(c));
+    if (d.modbus) d.serve_modbus();
     d.follow_job();
     d.drain_rt_log();
     block.job.store(d.job);

@@ -7,9 +7,11 @@
 
 #include <atomic>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "common/result.h"
+#include "drivers/modbus/modbus_types.h"
 
 namespace lcnc::app {
 
@@ -17,6 +19,8 @@ struct DaemonOptions {
   std::string machine_file;  // empty: the default machine
   std::string shm_name;      // empty: shm::kDefaultName
   bool realtime = true;      // try SCHED_FIFO + mlockall
+  // The Modbus slave for a PLC or MES (app/cnc_modbus_host.h); none if unset.
+  std::optional<drivers::Endpoint> modbus;
 };
 
 class Daemon {

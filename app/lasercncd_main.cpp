@@ -9,6 +9,7 @@
 #include <string>
 #include <string_view>
 
+#include "app/cnc_modbus_host.h"
 #include "app/daemon.h"
 
 namespace {
@@ -17,10 +18,13 @@ std::atomic<bool> g_quit{false};
 extern "C" void on_signal(int) { g_quit.store(true); }
 
 constexpr const char* kUsage =
-    "usage: lasercncd [--machine FILE] [--shm NAME] [--no-realtime]\n"
+    "usage: lasercncd [--machine FILE] [--shm NAME] [--no-realtime] [--modbus ENDPOINT]\n"
     "  --machine      machine config (default: share/machines/default.toml)\n"
     "  --shm          shared-memory segment name (default /lasercnc)\n"
-    "  --no-realtime  do not ask for SCHED_FIFO / mlockall\n";
+    "  --no-realtime  do not ask for SCHED_FIFO / mlockall\n"
+    "  --modbus       serve the register map's cnc device to a PLC or MES:\n"
+    "                 tcp:HOST:PORT (port 0: any free one; bind 127.0.0.1 unless\n"
+    "                 another address is given) or rtu:DEVICE[:BAUD[:PARITY]]\n";
 
 }  // namespace
 
@@ -30,6 +34,13 @@ int main(int argc, char** argv) {
     const std::string_view a = argv[i];
     if ((a == "--machine" || a == "--shm") && i + 1 < argc) {
       (a == "--machine" ? opt.machine_file : opt.shm_name) = argv[++i];
+    } else if (a == "--modbus" && i + 1 < argc) {
+      auto ep = lcnc::app::parse_modbus_endpoint(argv[++i]);
+      if (!ep) {
+        std::fprintf(stderr, "lasercncd: %s\n%s", ep.error().message.c_str(), kUsage);
+        return 2;
+      }
+      opt.modbus = *ep;
     } else if (a == "--no-realtime") {
       opt.realtime = false;
     } else if (a == "--help" || a == "-h") {

@@ -5,14 +5,23 @@
 
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/mman.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
+#include <vector>
+
+extern char** environ;
 
 namespace e2e {
 
@@ -51,5 +60,63 @@ inline CmdResult lasercnc(const std::string& args) {
   r.err = slurp(err);
   return r;
 }
+
+// A lasercncd child process on its own segment (LASERCNCD_EXE), its stderr
+// in a log file of the test's folder; `extra` are further arguments.
+class Daemon {
+ public:
+  explicit Daemon(std::string shm, std::vector<std::string> extra = {})
+      : shm_(std::move(shm)), log_(temp_dir() / ("daemon_" + std::to_string(++count_) + ".log")) {
+    const std::string exe = LASERCNCD_EXE;
+    std::vector<std::string> args = {exe, "--shm", shm_, "--no-realtime"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, 2, log_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn(&pid_, exe.c_str(), &fa, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&fa);
+  }
+  ~Daemon() {
+    if (pid_ > 0) {
+      kill(pid_, SIGKILL);
+      waitpid(pid_, nullptr, 0);
+      shm_unlink(shm_.c_str());
+    }
+  }
+  // Waits until `lasercnc status` reaches it.
+  bool ready() const {
+    for (int i = 0; i < 500; ++i) {
+      if (lasercnc("status --shm " + shm_).exit_code == 0) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return false;
+  }
+  // Sends a signal and waits for the exit; returns the exit code (-1: killed).
+  int stop(int sig) {
+    kill(pid_, sig);
+    int status = 0;
+    waitpid(pid_, &status, 0);
+    pid_ = -1;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+  // Waits for the exit of a daemon that ends by itself.
+  int wait_exit() {
+    int status = 0;
+    waitpid(pid_, &status, 0);
+    pid_ = -1;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+  [[nodiscard]] std::string log() const { return slurp(log_); }
+
+ private:
+  static inline int count_ = 0;
+  std::string shm_;
+  fs::path log_;
+  pid_t pid_ = -1;
+};
 
 }  // namespace e2e

@@ -29,58 +29,6 @@ namespace {
 using namespace e2e;
 using namespace std::chrono_literals;
 
-// A lasercncd child process on its own segment.
-class Daemon {
- public:
-  explicit Daemon(std::string shm) : shm_(std::move(shm)), log_(temp_dir() / ("daemon_" + std::to_string(++count_) + ".log")) {
-    const std::string exe = LASERCNCD_EXE;
-    const char* argv[] = {exe.c_str(), "--shm", shm_.c_str(), "--no-realtime", nullptr};
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, 2, log_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-    posix_spawn(&pid_, exe.c_str(), &fa, nullptr, const_cast<char**>(argv), environ);
-    posix_spawn_file_actions_destroy(&fa);
-  }
-  ~Daemon() {
-    if (pid_ > 0) {
-      kill(pid_, SIGKILL);
-      waitpid(pid_, nullptr, 0);
-      shm_unlink(shm_.c_str());
-    }
-  }
-  // Waits until `lasercnc status` reaches it.
-  bool ready() const {
-    for (int i = 0; i < 500; ++i) {
-      if (lasercnc("status --shm " + shm_).exit_code == 0) return true;
-      std::this_thread::sleep_for(10ms);
-    }
-    return false;
-  }
-  // Sends a signal and waits for the exit; returns the exit code (-1: killed).
-  int stop(int sig) {
-    kill(pid_, sig);
-    int status = 0;
-    waitpid(pid_, &status, 0);
-    pid_ = -1;
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
-  // Waits for the exit of a daemon that ends by itself.
-  int wait_exit() {
-    int status = 0;
-    waitpid(pid_, &status, 0);
-    pid_ = -1;
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
-  [[nodiscard]] std::string log() const { return slurp(log_); }
-
- private:
-  static inline int count_ = 0;
-  std::string shm_;
-  fs::path log_;
-  pid_t pid_ = -1;
-};
-
 std::string shm_name() {
   return "/lcnc_e2e_" + std::to_string(getpid()) + "_" +
          ::testing::UnitTest::GetInstance()->current_test_info()->name();

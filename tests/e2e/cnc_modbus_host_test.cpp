@@ -1,0 +1,109 @@
+// The daemon's Modbus host in pieces: the --modbus endpoint, the status as
+// the map publishes it, and the hole block's whole-block check.
+#include "app/cnc_modbus_host.h"
+
+#include <gtest/gtest.h>
+
+#include "rt/rt_kernel.h"
+
+namespace lcnc::app {
+namespace {
+
+TEST(ModbusEndpoint, TcpAndRtuFormsAndTheirErrors) {
+  Result<drivers::Endpoint> e = parse_modbus_endpoint("tcp:127.0.0.1:1502");
+  ASSERT_TRUE(static_cast<bool>(e));
+  EXPECT_EQ(e->transport, drivers::Transport::Tcp);
+  EXPECT_EQ(e->host, "127.0.0.1");
+  EXPECT_EQ(e->port, 1502);
+  e = parse_modbus_endpoint("rtu:/dev/ttyUSB0:19200:E");
+  ASSERT_TRUE(static_cast<bool>(e));
+  EXPECT_EQ(e->transport, drivers::Transport::Rtu);
+  EXPECT_EQ(e->device, "/dev/ttyUSB0");
+  EXPECT_EQ(e->baud, 19200);
+  EXPECT_EQ(e->parity, 'E');
+  e = parse_modbus_endpoint("rtu:/dev/pts/3");
+  ASSERT_TRUE(static_cast<bool>(e));
+  EXPECT_EQ(e->baud, 115200);
+  EXPECT_EQ(e->parity, 'N');
+  for (const char* bad : {"tcp:1502", "tcp:127.0.0.1:70000", "tcp:host:x", "rtu:", "rtu:/dev/x:0",
+                          "rtu:/dev/x:9600:Q", "udp:1:2", ""}) {
+    const Result<drivers::Endpoint> r = parse_modbus_endpoint(bad);
+    ASSERT_FALSE(static_cast<bool>(r)) << bad;
+    EXPECT_EQ(r.error().code, ErrorCode::Usage) << bad;
+    EXPECT_NE(r.error().message.find("expected tcp:HOST:PORT"), std::string::npos) << bad;
+  }
+}
+
+TEST(ModbusSnapshot, MapsTheKernelStatus) {
+  shm::Status st;
+  st.state = shm::MachineState::FeedHold;
+  st.pos = {100.5, 20.25, 3, -45, 7, 359.5};
+  st.axes_mask = 0b101111;
+  st.homed_mask = 0b001111;  // C not homed
+  st.feed_override = 1.2;
+  st.line = 42;
+  st.buffer_fill = static_cast<std::uint32_t>(rt::kPositionBufferCapacity / 4);
+  st.power_pct = 0.0f;
+  drivers::CncStatusSnapshot s = to_snapshot(st, st.axes_mask);
+  EXPECT_EQ(s.state, 2);
+  EXPECT_EQ(s.position[0], 100.5);
+  EXPECT_EQ(s.position[3], -45.0);  // A
+  EXPECT_EQ(s.position[4], 359.5);  // C, not B
+  EXPECT_DOUBLE_EQ(s.feed_override_pct, 120.0);
+  EXPECT_EQ(s.job_line, 42u);
+  EXPECT_DOUBLE_EQ(s.buffer_fill_pct, 25.0);
+  EXPECT_FALSE(s.homed);
+  EXPECT_FALSE(s.laser_on);
+  EXPECT_FALSE(s.estop);
+  st.homed_mask = 0b111111;  // B's bit does not matter: the machine has no B
+  st.power_pct = 40.0f;
+  st.state = shm::MachineState::EStop;
+  st.fault = 402;
+  s = to_snapshot(st, st.axes_mask);
+  EXPECT_TRUE(s.homed);
+  EXPECT_TRUE(s.laser_on);
+  EXPECT_TRUE(s.estop);
+  EXPECT_TRUE(s.fault);
+  EXPECT_EQ(s.fault_code, 402);
+}
+
+drivers::HoleParameters good_block() {
+  drivers::HoleParameters p;
+  p.hole_number = 3;
+  p.x_mm = 100;
+  p.y_mm = 50;
+  p.z_mm = 20;
+  p.feed_mm_min = 600;
+  p.layer_feed_mm = 0.1;
+  p.layer_count = 5;
+  p.total_depth_mm = 0.5;
+  p.laser_power_pct = 60;
+  p.scan_start_radius_mm = 0.4;
+  p.scan_end_radius_mm = 0.4;
+  p.scan_radius_turns = 2;
+  p.scan_speed_mm_s = 100;
+  p.wedge_speed_rpm = 3000;
+  return p;
+}
+
+TEST(HoleBlock, CheckedAsTheHoleProcessesNeedIt) {
+  drivers::HoleParameters p = good_block();
+  EXPECT_TRUE(check_hole_block(p).ok());
+  const HoleProcessParams h = to_process_params(p);
+  EXPECT_EQ(h.position[0], 100.0);
+  EXPECT_EQ(h.layer_count, 5u);
+  EXPECT_EQ(h.head.radius_turns, 2u);
+  p.total_depth_mm = 0.6;
+  const Status s = check_hole_block(p);
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.error().message.find("hole 3: field 10"), std::string::npos) << s.error().message;
+  // a free shape's polygon comes from the process DB: the rest is checked
+  p = good_block();
+  p.process_id = 2;
+  EXPECT_TRUE(check_hole_block(p).ok());
+  p.layer_feed_mm = 0.0;
+  EXPECT_FALSE(check_hole_block(p).ok());
+}
+
+}  // namespace
+}  // namespace lcnc::app
