@@ -10,7 +10,7 @@ namespace lcnc::app {
 
 Result<drivers::Endpoint> parse_modbus_endpoint(std::string_view spec) {
   const auto bad = [&](const std::string& why) {
-    return make_error(ErrorCode::Usage, "--modbus " + std::string(spec) + ": " + why +
+    return make_error(ErrorCode::Usage, "'" + std::string(spec) + "': " + why +
                                             "; expected tcp:HOST:PORT or rtu:DEVICE[:BAUD[:PARITY]]");
   };
   const auto number = [](std::string_view t, int& out) {

@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "app/cnc_modbus_host.h"
 #include "app/control_client.h"
 #include "app/decompose_cli.h"
 #include "app/run_job.h"
@@ -25,6 +26,7 @@ constexpr const char* kUsage =
     "  lasercnc run PROGRAM [--machine FILE] [--vmax V] [--amax A] [--tolerance E]\n"
     "                       [--feed-override PCT] [--trace FILE.csv] [--json]\n"
     "                       [--[no-]progress] [--no-realtime]\n"
+    "                       [--devices | --laser ENDPOINT [--power-meter ENDPOINT]]\n"
     "  lasercnc check PROGRAM [--machine FILE]\n"
     "  lasercnc status [--json] [--shm NAME]\n"
     "  lasercnc send CMD [ARG...] [--wait] [--timeout S] [--shm NAME]\n"
@@ -48,7 +50,11 @@ constexpr const char* kUsage =
     "  --trace         commanded position and laser power every RT period as CSV\n"
     "                  t,x,y,z,a,b,c,power (s of machine time, mm, deg, % of rated)\n"
     "  --progress      progress bar on stderr (default: only when stderr is a terminal)\n"
-    "  --no-realtime   do not ask for SCHED_FIFO / mlockall\n";
+    "  --no-realtime   do not ask for SCHED_FIFO / mlockall\n"
+    "  --devices       a simulated laser source and power meter over Modbus (loopback):\n"
+    "                  enabled before motion, the setpoint follows the commanded power\n"
+    "  --laser, --power-meter  the real devices instead: tcp:HOST:PORT or\n"
+    "                  rtu:DEVICE[:BAUD[:PARITY]]\n";
 
 int usage_error(const std::string& msg) {
   std::fprintf(stderr, "lasercnc: %s\n%s", msg.c_str(), kUsage);
@@ -155,6 +161,14 @@ int main(int argc, char** argv) {
       show_progress = false;
     } else if (a == "--progress") {
       show_progress = true;
+    } else if (a == "--devices") {
+      opt.devices = true;
+    } else if (a == "--laser" || a == "--power-meter") {
+      auto v = value();
+      if (!v) return usage_error(std::string(a) + " needs an endpoint");
+      auto ep = lcnc::app::parse_modbus_endpoint(*v);
+      if (!ep) return usage_error(std::string(a) + " " + ep.error().message);
+      (a == "--laser" ? opt.laser : opt.power_meter) = *ep;
     } else if (a == "--no-realtime") {
       opt.realtime = false;
     } else if (!a.empty() && a[0] == '-') {

@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
     } else if (a == "--modbus" && i + 1 < argc) {
       auto ep = lcnc::app::parse_modbus_endpoint(argv[++i]);
       if (!ep) {
-        std::fprintf(stderr, "lasercncd: %s\n%s", ep.error().message.c_str(), kUsage);
+        std::fprintf(stderr, "lasercncd: --modbus %s\n%s", ep.error().message.c_str(), kUsage);
         return 2;
       }
       opt.modbus = *ep;

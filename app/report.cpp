@@ -57,6 +57,22 @@ std::string format_report(const RunReport& r) {
   s += printf_string("  RT latency       p50 %.0f us, p99 %.0f us, max %.1f us (%s)\n",
                      r.latency_p50_us, r.latency_p99_us, r.latency_max_us, r.schedule.c_str());
   if (!r.rt_warning.empty()) s += "  warning          " + r.rt_warning + "\n";
+  const PeripheralReport& p = r.peripherals;
+  if (p.used) {
+    s += "  laser source     " + p.laser + (p.simulated ? " (simulator)" : "") + "\n";
+    s += printf_string("                   rated %.1f W, %llu setpoint updates, peak pump %.1f C, alarm %s\n",
+                       p.rated_power_w, static_cast<unsigned long long>(p.setpoint_writes),
+                       p.peak_temperature_c, p.alarm.empty() ? "none" : p.alarm.c_str());
+    if (!p.meter.empty()) {
+      s += "  power meter      " + p.meter + (p.simulated ? " (simulator)" : "") + "\n";
+      s += printf_string("                   %llu readings; while lasing mean %.2f W measured, %.2f W commanded; peak %.2f W\n",
+                         static_cast<unsigned long long>(p.meter_samples), p.meter_mean_lasing_w,
+                         p.commanded_mean_lasing_w, p.meter_peak_w);
+    }
+    s += printf_string("  Modbus           %llu requests, %llu failed%s%s\n",
+                       static_cast<unsigned long long>(p.requests), static_cast<unsigned long long>(p.failed),
+                       p.error.empty() ? "" : ": ", p.error.c_str());
+  }
   return s;
 }
 
@@ -96,6 +112,24 @@ std::string report_json(const RunReport& r) {
   j["latency_us"] = {{"p50", r.latency_p50_us}, {"p99", r.latency_p99_us}, {"max", r.latency_max_us}};
   j["schedule"] = r.schedule;
   j["rt_warning"] = r.rt_warning;
+  if (const PeripheralReport& p = r.peripherals; p.used) {
+    j["peripherals"] = {
+        {"laser", p.laser},
+        {"power_meter", p.meter},
+        {"simulated", p.simulated},
+        {"rated_power_w", p.rated_power_w},
+        {"setpoint_writes", p.setpoint_writes},
+        {"peak_temperature_c", p.peak_temperature_c},
+        {"alarm", p.alarm},
+        {"meter_samples", p.meter_samples},
+        {"meter_mean_lasing_w", p.meter_mean_lasing_w},
+        {"commanded_mean_lasing_w", p.commanded_mean_lasing_w},
+        {"meter_peak_w", p.meter_peak_w},
+        {"modbus_requests", p.requests},
+        {"modbus_failed", p.failed},
+        {"error", p.error},
+    };
+  }
   return j.dump(2);
 }
 

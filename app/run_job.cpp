@@ -244,6 +244,19 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   rt::RtKernel kernel(machine, *buffer, sim, trace.get(), start_steps);
   kernel.set_log(rt_log.get());
 
+  // The laser source over Modbus: enabled and ready, or nothing moves.
+  std::unique_ptr<LaserLink> laser;
+  if (options.devices || options.laser) {
+    Result<std::unique_ptr<LaserLink>> link =
+        options.devices ? LaserLink::simulated() : LaserLink::connect(*options.laser, options.power_meter);
+    if (!link) return link.error();
+    laser = std::move(link).value();
+    if (Status s = laser->enable(); !s) {
+      (void)laser->finish();
+      return s.error();
+    }
+  }
+
   // Planner thread: plan, coarse-interpolate, quantize, keep the buffer
   // full; the RT thread starts once half the buffer (or the whole job) is in.
   PlannerFeed feed(machine, *buffer, kernel);
@@ -261,6 +274,7 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
     feed.abort();
     kernel.shutdown();
     kernel.join();
+    if (laser) (void)laser->finish();
     return ref_reader.error();
   }
   DeviationMeter deviation(reader_source(**ref_reader));
@@ -268,6 +282,7 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   auto last_progress = std::chrono::steady_clock::now();
   rt::TraceRecord rec;
   bool stop_sent = false;
+  float power_now = 0.0f;  // the commanded laser power of the latest period, %
   for (;;) {
     bool got = false;
     drain_rt_log(*rt_log, machine);
@@ -277,7 +292,9 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
       for (int i = 0; i < kAxisCount; ++i) p[i] = static_cast<double>(rec.pos_steps[i]) / spu[i];
       trace_out.write(static_cast<double>(rec.t_ns) * 1e-9, p, rec.power_pct);
       deviation.add(p.head<3>(), rec.segment);
+      power_now = rec.power_pct;
     }
+    if (laser) laser->follow(power_now);
     if (progress) {
       const auto now = std::chrono::steady_clock::now();
       if (now - last_progress > std::chrono::milliseconds(100)) {
@@ -297,6 +314,7 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   kernel.join();
   drain_rt_log(*rt_log, machine);
   feed.abort();
+  if (laser) report.peripherals = laser->finish();
   if (progress) progress(1.0);
   const PlannedJob& planned = feed.result();
   if (planned.failed) return planned.error;

@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 
+#include "app/laser_link.h"
 #include "common/result.h"
 #include "geom/pose.h"
 #include "machine/machine_config.h"
@@ -30,6 +31,10 @@ struct RunOptions {
   // (machine.max_feed_override), else a Usage error. Set before the RT
   // thread starts, so the run begins at it with no ramp.
   double feed_override_pct = 100.0;
+  // The laser source and power meter over Modbus (app/laser_link.h):
+  // in-process simulators (devices), or devices at these endpoints.
+  bool devices = false;
+  std::optional<drivers::Endpoint> laser, power_meter;
 };
 
 struct AxisReport {
@@ -66,6 +71,7 @@ struct RunReport {
   std::string fault;       // what stopped the job early (soft/hard limit, e-stop); empty if none
   std::string schedule;    // "SCHED_FIFO" or "normal"
   std::string rt_warning;  // why real-time scheduling was not had
+  PeripheralReport peripherals;  // used: the laser source was linked
 };
 
 // Fraction of the job done (0 … 1), called from the caller's thread.

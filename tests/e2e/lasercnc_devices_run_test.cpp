@@ -1,0 +1,91 @@
+// End to end: `lasercnc run` with the laser source and power meter on
+// Modbus — the in-process simulators (--devices), and a device at an
+// endpoint (--laser) that is in alarm or not there: the run is refused
+// before anything moves.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "drivers/devices/laser_source_sim.h"
+#include "drivers/modbus/register_map.h"
+#include "e2e_support.h"
+
+namespace {
+
+using namespace e2e;
+
+fs::path job(const std::string& text) {
+  const fs::path p = temp_dir() / "job.ngc";
+  std::ofstream(p) << text;
+  return p;
+}
+
+// 1.5 s of cutting at 60 % (30 W of the simulator's 50 W): long enough for
+// the thermopile (τ 0.3 s) to settle.
+const char* kCut =
+    "G21 G90\nG0 X10 Y10\nM3 S60\nG1 X160 F6000\nG1 Y20\nG1 X10\nM5\nG0 X0 Y0\nM2\n";
+
+TEST(LasercncRunDevices, SetpointFollowsTheJobAndTheMeterSeesTheBeam) {
+  const CmdResult r = lasercnc("run " + job(kCut).string() + " --devices --json --no-realtime");
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const nlohmann::json j = nlohmann::json::parse(r.out, nullptr, false);
+  ASSERT_TRUE(j.is_object()) << r.out;
+  ASSERT_TRUE(j.contains("peripherals")) << r.out;
+  const nlohmann::json& p = j["peripherals"];
+  EXPECT_TRUE(p["simulated"].get<bool>());
+  EXPECT_NE(p["laser"].get<std::string>().find("laser_source (unit 2, tcp 127.0.0.1:"), std::string::npos);
+  EXPECT_EQ(p["rated_power_w"].get<double>(), 50.0);
+  EXPECT_GE(p["setpoint_writes"].get<int>(), 2);  // on at 60 %, off at M5
+  EXPECT_EQ(p["modbus_failed"].get<int>(), 0) << p["error"];
+  EXPECT_EQ(p["alarm"], "");
+  EXPECT_NEAR(p["commanded_mean_lasing_w"].get<double>(), 30.0, 1e-9);
+  // the beam reached the meter: after the lag, near the commanded 30 W
+  EXPECT_GT(p["meter_samples"].get<int>(), 10);
+  EXPECT_NEAR(p["meter_peak_w"].get<double>(), 30.0, 1.5);
+  EXPECT_GT(p["meter_mean_lasing_w"].get<double>(), 15.0);
+  EXPECT_LE(p["meter_mean_lasing_w"].get<double>(), 31.0);
+  EXPECT_TRUE(j["steps_match"].get<bool>());
+}
+
+TEST(LasercncRunDevices, TextReportNamesTheDevices) {
+  const CmdResult r = lasercnc("run " + job(kCut).string() + " --devices --no-realtime --no-progress");
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("laser source     laser_source (unit 2"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("(simulator)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("power meter      power_meter (unit 3"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("0 failed"), std::string::npos) << r.out;
+}
+
+TEST(LasercncRunDevices, ALaserInAlarmRefusesTheRunBeforeAnythingMoves) {
+  auto map = lcnc::drivers::shipped_device("laser_source");
+  ASSERT_TRUE(static_cast<bool>(map));
+  lcnc::drivers::LaserSourceParams hot;
+  hot.alarm_c = 20.0;  // below the ambient 25 °C: the over-temperature alarm latches at once
+  hot.reset_below_c = 15.0;
+  auto laser = lcnc::drivers::LaserSourceSim::create(*map, {}, hot);
+  ASSERT_TRUE(static_cast<bool>(laser)) << laser.error().to_string();
+  ASSERT_TRUE((*laser)->start().ok());
+  const auto ep = (*laser)->endpoint();
+  const fs::path trace = temp_dir() / "trace.csv";
+  const CmdResult r = lasercnc("run " + job(kCut).string() + " --laser tcp:127.0.0.1:" +
+                               std::to_string(ep.port) + " --trace " + trace.string() + " --no-realtime");
+  EXPECT_EQ(r.exit_code, 1) << r.out;
+  EXPECT_NE(r.err.find("laser_source (unit 2, tcp 127.0.0.1:"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("exception 04"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "");  // no report: nothing ran
+  EXPECT_TRUE(!fs::exists(trace) || fs::file_size(trace) < 64);  // at most the CSV header
+  (*laser)->stop();
+}
+
+TEST(LasercncRunDevices, NoDeviceAtTheEndpointIsAClearErrorWithinTheTimeouts) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const CmdResult r = lasercnc("run " + job(kCut).string() + " --laser tcp:127.0.0.1:1 --no-realtime");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("laser_source"), std::string::npos) << r.err;
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(10));
+  EXPECT_EQ(lasercnc("run " + job(kCut).string() + " --laser udp:1").exit_code, 2);
+}
+
+}  // namespace
