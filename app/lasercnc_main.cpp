@@ -16,6 +16,7 @@
 #include "app/cnc_modbus_host.h"
 #include "app/control_client.h"
 #include "app/decompose_cli.h"
+#include "app/drill_cli.h"
 #include "app/run_job.h"
 #include "gcode/program_reader.h"
 
@@ -32,6 +33,8 @@ constexpr const char* kUsage =
     "  lasercnc send CMD [ARG...] [--wait] [--timeout S] [--shm NAME]\n"
     "       CMD: load PROGRAM | start | hold | resume | stop | estop | reset |\n"
     "            override PCT | jog AXIS DIST | home AXIS\n"
+    "  lasercnc drill HOLES.csv [--devices] [--clearance MM] [--settle S] [--json] ...\n"
+    "                       (lasercnc drill --help for its options)\n"
     "  lasercnc decompose PART.dxf [--speed V] [--step MM] [--mode sync|seed] ...\n"
     "                       (lasercnc decompose --help for its options)\n"
     "  lasercnc --help | --version\n"
@@ -41,6 +44,7 @@ constexpr const char* kUsage =
     "  check   reads the whole program and reports the first error, runs nothing\n"
     "  status  the state of lasercncd (machine, job, latency)\n"
     "  send    a command to lasercncd; prints its answer (--wait: start waits for the job)\n"
+    "  drill   runs the holes of a process-database table (CSV) as one drilling job\n"
     "  decompose  splits each contour of a DXF part into main- and auxiliary-axis paths\n"
     "  --vmax/--amax   max velocity (mm/s) / acceleration (mm/s^2) of every linear axis\n"
     "  --tolerance     path tolerance (mm)\n"
@@ -93,6 +97,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (cmd == "decompose") return lcnc::app::decompose_main(argc - 1, argv + 1);
+  if (cmd == "drill") return lcnc::app::drill_main(argc - 1, argv + 1);
   if (cmd == "status" || cmd == "send") {
     lcnc::app::ClientOptions co;
     std::vector<std::string> args;

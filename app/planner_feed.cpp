@@ -36,13 +36,45 @@ PlannerFeed::PlannerFeed(const MachineConfig& machine, rt::PositionBuffer& buffe
 PlannerFeed::~PlannerFeed() { abort(); }
 
 void PlannerFeed::start(const std::string& program, const ReaderOptions& options) {
+  launch(program, options.start, [this, program, options](SegmentSource& source, Diagnostic& error) {
+    Result<std::unique_ptr<ProgramReader>> reader = ProgramReader::open(program, machine_, options);
+    if (!reader) {
+      error = reader.error();
+      return false;
+    }
+    ProgramReader* r = reader->get();
+    reader_ = std::move(reader).value();
+    source = [this, r, read = reader_source(*r)](Segment& out) {
+      const SourceStatus st = read(out);
+      if (st == SourceStatus::Error) source_error_ = r->error();
+      return st;
+    };
+    return true;
+  });
+}
+
+void PlannerFeed::start(std::shared_ptr<const std::vector<Segment>> segments, const Pose& start,
+                        const std::string& name) {
+  launch(name, start, [segments](SegmentSource& source, Diagnostic&) {
+    source = [segments, i = std::size_t{0}](Segment& out) mutable {
+      if (i == segments->size()) return SourceStatus::End;
+      out = (*segments)[i++];
+      return SourceStatus::Item;
+    };
+    return true;
+  });
+}
+
+void PlannerFeed::launch(std::string name, Pose start, OpenSource open) {
   abort();
   abort_ = false;
   done_ = false;
   stopped_short_ = false;
   result_ = PlannedJob{};
   kernel_.stream_begin();
-  thread_ = std::thread([this, program, options] { run(program, options); });
+  thread_ = std::thread([this, name = std::move(name), start, open = std::move(open)] {
+    run(name, start, open);
+  });
 }
 
 bool PlannerFeed::prefilled() const noexcept {
@@ -90,18 +122,17 @@ bool PlannerFeed::push(const PeriodIncrement& inc) {
   return true;
 }
 
-void PlannerFeed::run(std::string program, ReaderOptions options) {
-  StepQuantizer quant(machine_, options.start);
+void PlannerFeed::run(const std::string& name, const Pose& start, const OpenSource& open) {
+  StepQuantizer quant(machine_, start);
   for (int i = 0; i < kAxisCount; ++i) result_.start_steps[i] = at_[i] = quant.commanded(i);
-  program_ = program;
-  MotionStats stats(machine_.period_s(), options.start);
-  Result<std::unique_ptr<ProgramReader>> reader = ProgramReader::open(program, machine_, options);
+  program_ = name;
+  MotionStats stats(machine_.period_s(), start);
+  SegmentSource source;
   bool any = false;
-  if (!reader) {
+  if (!open(source, result_.error)) {
     result_.failed = true;
-    result_.error = reader.error();
   } else {
-    Planner planner(machine_, reader_source(**reader));
+    Planner planner(machine_, std::move(source));
     PeriodSample sample;
     PeriodSample last;
     SourceStatus st;
@@ -114,7 +145,7 @@ void PlannerFeed::run(std::string program, ReaderOptions options) {
     }
     if (pushed && st == SourceStatus::Error) {
       result_.failed = true;
-      result_.error = (*reader)->error();
+      result_.error = source_error_;
     }
     // A read error mid-way (the file changed since it was checked) ends the
     // motion like the end does: at rest where the last good segment ends.

@@ -7,8 +7,11 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "common/result.h"
 #include "gcode/program_reader.h"
@@ -47,6 +50,10 @@ class PlannerFeed {
   // Starts the planner thread on a (checked) program from options.start; it
   // tells the kernel it streams (RtKernel::stream_begin) until its last push.
   void start(const std::string& program, const ReaderOptions& options);
+  // The same on segments built in code (a drilling job, holes/drill_job.h),
+  // from `start`; `name` stands for the program in messages.
+  void start(std::shared_ptr<const std::vector<Segment>> segments, const Pose& start,
+             const std::string& name);
   // True once half the buffer is filled, or the whole job is in it, or the
   // planner stopped short: the moment to start the kernel on the job.
   [[nodiscard]] bool prefilled() const noexcept;
@@ -72,7 +79,11 @@ class PlannerFeed {
   [[nodiscard]] const PlannedJob& result() const noexcept { return result_; }
 
  private:
-  void run(std::string program, ReaderOptions options);
+  // Opens the job's segment source on the planner thread; false (and the
+  // error set) if it cannot.
+  using OpenSource = std::function<bool(SegmentSource& source, Diagnostic& error)>;
+  void launch(std::string name, Pose start, OpenSource open);
+  void run(const std::string& name, const Pose& start, const OpenSource& open);
   bool push(const PeriodIncrement& inc);
   // Checks inc against the soft limits from the position so far; false (and
   // the fault recorded) if it would cross one.
@@ -86,6 +97,8 @@ class PlannerFeed {
   std::atomic<bool> done_{false};
   std::atomic<bool> stopped_short_{false};
   std::string program_;
+  std::unique_ptr<ProgramReader> reader_;  // a program job's reader (planner thread)
+  Diagnostic source_error_;                // why the source failed
   std::array<std::int64_t, kAxisCount> at_{};       // position after the queued entries, steps
   std::array<std::int64_t, kAxisCount> min_steps_{}, max_steps_{};
   std::thread thread_;

@@ -210,7 +210,11 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
 
   // The whole program is checked before anything moves.
   ReaderOptions ropt;
-  Result<ProgramSummary> summary = check_program(options.program, machine, ropt);
+  Result<ProgramSummary> summary =
+      options.segments ? (options.summary ? Result<ProgramSummary>(*options.summary)
+                                          : Result<ProgramSummary>(make_error(
+                                                ErrorCode::Internal, "a segment job needs its summary")))
+                       : check_program(options.program, machine, ropt);
   if (!summary) return summary.error();
 
   RunReport report;
@@ -260,7 +264,11 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   // Planner thread: plan, coarse-interpolate, quantize, keep the buffer
   // full; the RT thread starts once half the buffer (or the whole job) is in.
   PlannerFeed feed(machine, *buffer, kernel);
-  feed.start(options.program, ropt);
+  if (options.segments) {
+    feed.start(options.segments, ropt.start, options.program);
+  } else {
+    feed.start(options.program, ropt);
+  }
   feed.wait_prefilled();
   rt::RtOptions rt_options;
   rt_options.try_realtime = options.realtime;
@@ -269,7 +277,8 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
 
   // Drain the trace while the job runs: CSV, deviation, progress.
   Result<std::unique_ptr<ProgramReader>> ref_reader =
-      ProgramReader::open(options.program, machine, ropt);
+      options.segments ? Result<std::unique_ptr<ProgramReader>>(std::unique_ptr<ProgramReader>())
+                       : ProgramReader::open(options.program, machine, ropt);
   if (!ref_reader) {
     feed.abort();
     kernel.shutdown();
@@ -277,7 +286,15 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
     if (laser) (void)laser->finish();
     return ref_reader.error();
   }
-  DeviationMeter deviation(reader_source(**ref_reader));
+  std::size_t ref_index = 0;
+  DeviationMeter deviation(options.segments
+                               ? SegmentSource([&](Segment& out) {
+                                   if (ref_index == options.segments->size()) return SourceStatus::End;
+                                   out = (*options.segments)[ref_index++];
+                                   return SourceStatus::Item;
+                                 })
+                               : reader_source(**ref_reader));
+  std::uint32_t segment_seen = UINT32_MAX;
   const double total_segments = std::max<double>(1.0, static_cast<double>(summary->segments));
   auto last_progress = std::chrono::steady_clock::now();
   rt::TraceRecord rec;
@@ -295,6 +312,10 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
       power_now = rec.power_pct;
     }
     if (laser) laser->follow(power_now);
+    if (options.on_segment && kernel.current_segment() != segment_seen) {
+      segment_seen = kernel.current_segment();
+      options.on_segment(segment_seen, static_cast<double>(kernel.machine_time_ns()) * 1e-9);
+    }
     if (progress) {
       const auto now = std::chrono::steady_clock::now();
       if (now - last_progress > std::chrono::milliseconds(100)) {

@@ -8,11 +8,14 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "app/laser_link.h"
 #include "common/result.h"
+#include "gcode/program_reader.h"
 #include "geom/pose.h"
 #include "machine/machine_config.h"
 #include "rt/rt_kernel.h"
@@ -35,6 +38,13 @@ struct RunOptions {
   // in-process simulators (devices), or devices at these endpoints.
   bool devices = false;
   std::optional<drivers::Endpoint> laser, power_meter;
+  // A job built in code instead of the program file (a drilling job,
+  // holes/drill_job.h), checked by the caller; `program` names it.
+  std::shared_ptr<const std::vector<Segment>> segments;
+  std::optional<ProgramSummary> summary;  // what the caller's check found (segments only)
+  // Called from the job's drain loop (never from the RT thread) each time
+  // the segment being executed changes, with the machine time then (s).
+  std::function<void(std::uint32_t segment, double machine_time_s)> on_segment;
 };
 
 struct AxisReport {

@@ -462,9 +462,15 @@ std::future<Result<std::vector<double>>> ModbusMaster::read_block(std::vector<st
 std::future<Status> ModbusMaster::write_block(std::vector<std::pair<std::string, double>> values) {
   auto p = std::make_shared<std::promise<Status>>();
   auto f = p->get_future();
+  write_block_async(std::move(values), [p](Status s) { p->set_value(std::move(s)); });
+  return f;
+}
+
+void ModbusMaster::write_block_async(std::vector<std::pair<std::string, double>> values,
+                                     std::function<void(Status)> done) {
   auto refuse = [&](ErrorCode c, const std::string& why) {
     impl_->n.refused.fetch_add(1, std::memory_order_relaxed);
-    p->set_value(make_error(c, who() + ": write block: " + why));
+    done(make_error(c, who() + ": write block: " + why));
   };
   struct Item {
     const RegisterDef* reg;
@@ -475,20 +481,20 @@ std::future<Status> ModbusMaster::write_block(std::vector<std::pair<std::string,
     auto r = impl_->map.lookup(nm);
     if (!r) {
       refuse(r.error().code, r.error().message);
-      return f;
+      return;
     }
     items.push_back({r.value(), v});
   }
   if (items.empty()) {
     refuse(ErrorCode::PeripheralBadRequest, "no registers named");
-    return f;
+    return;
   }
   std::sort(items.begin(), items.end(),
             [](const Item& a, const Item& b) { return a.reg->address < b.reg->address; });
   const Table t = items[0].reg->table;
   if (t != Table::Holding && t != Table::Coil) {
     refuse(ErrorCode::PeripheralReadOnly, items[0].reg->describe(impl_->map.name) + " is read-only");
-    return f;
+    return;
   }
   RawRequest req;
   req.function = t == Table::Holding ? Function::WriteMultipleRegisters : Function::WriteMultipleCoils;
@@ -499,26 +505,27 @@ std::future<Status> ModbusMaster::write_block(std::vector<std::pair<std::string,
     if (r.table != t || !r.writable()) {
       refuse(ErrorCode::PeripheralReadOnly,
              r.describe(impl_->map.name) + (r.table != t ? " is in another table" : " is read-only"));
-      return f;
+      return;
     }
     if (r.address != next) {
       refuse(ErrorCode::PeripheralBadRequest,
              "not contiguous: " + r.name + " at " + std::to_string(r.address) + ", expected " +
                  std::to_string(next) + "; a block is written with one FC" +
                  std::to_string(static_cast<int>(req.function)));
-      return f;
+      return;
     }
     std::uint16_t raw[2];
     if (Status s = r.encode(it.value, std::span<std::uint16_t>(raw, r.words())); !s) {
       refuse(s.error().code, s.error().message + "; nothing sent");
-      return f;
+      return;
     }
     req.data.insert(req.data.end(), raw, raw + r.words());
     next += r.words();
   }
   req.what = "write block " + items.front().reg->name + " … " + items.back().reg->name;
-  submit(std::move(req), [p](Result<RawReply> res) { p->set_value(res ? Status{} : Status{res.error()}); });
-  return f;
+  submit(std::move(req), [done = std::move(done)](Result<RawReply> res) {
+    done(res ? Status{} : Status{res.error()});
+  });
 }
 
 MasterCounters ModbusMaster::counters() const noexcept {

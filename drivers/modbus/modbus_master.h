@@ -106,6 +106,8 @@ class ModbusMaster {
   // once sorted by address, written with one FC16 (holding) or FC15 (coils).
   // All values are range-checked first; one bad value sends nothing.
   [[nodiscard]] std::future<Status> write_block(std::vector<std::pair<std::string, double>> values);
+  void write_block_async(std::vector<std::pair<std::string, double>> values,
+                         std::function<void(Status)> done);
 
   [[nodiscard]] MasterCounters counters() const noexcept;
   [[nodiscard]] bool connected() const noexcept;
