@@ -182,7 +182,7 @@ int drill_main(int argc, char** argv) {
     std::fprintf(stderr, "%s\n", rows.error().to_string().c_str());
     return 1;
   }
-  const FiveAxisKinematics kin(FiveAxisGeometry{}, rotary_limits_from(*machine));
+  const FiveAxisKinematics kin = kinematics_from(*machine);
   Result<DrillJob> job = build_drill_job(*rows, kin, ReaderOptions{}.start, dopt);
   if (!job) {
     Diagnostic d = job.error();

@@ -46,6 +46,10 @@ RotaryLimits rotary_limits_from(const MachineConfig& config) {
   return l;
 }
 
+FiveAxisKinematics kinematics_from(const MachineConfig& config) {
+  return FiveAxisKinematics(config.kinematics, rotary_limits_from(config));
+}
+
 Vec3 tool_axis(double a_deg, double c_deg) noexcept {
   const double sa = std::sin(a_deg * kDeg), ca = std::cos(a_deg * kDeg);
   const double sc = std::sin(c_deg * kDeg), cc = std::cos(c_deg * kDeg);

@@ -41,31 +41,10 @@
 
 #include "common/result.h"
 #include "geom/pose.h"
+#include "kinematics/five_axis_geometry.h"
 #include "machine/machine_config.h"
 
 namespace lcnc {
-
-enum class MachineVariant : std::uint8_t {
-  HeadHead,    // A and C turn the head; the workpiece stands still
-  TableTable,  // A and C turn the workpiece on a trunnion table; the tool is fixed
-};
-
-// Offsets and pivot lengths (mm). The defaults describe a mid-size machine of
-// the default travel (DESIGN §4); config keys come with the planner
-// integration.
-struct FiveAxisGeometry {
-  MachineVariant variant = MachineVariant::HeadHead;
-  // Head-head: from the head reference point P (on the C axis) to the A
-  // pivot, in the C-turned frame. Default: A pivot 80 mm below P, on the axis.
-  Vec3 head_c_to_a_mm = Vec3(0.0, 0.0, -80.0);
-  // Head-head: from the A pivot to the tool tip (focus) along −k, > 0.
-  double head_pivot_length_mm = 120.0;
-  // Table-table: a point of the A trunnion axis, machine frame.
-  Vec3 table_a_pivot_mm = Vec3(500.0, 225.0, 100.0);
-  // Table-table: from that point to the C table's centre (the workpiece
-  // origin), in the trunnion frame (equal to the machine frame at A = 0).
-  Vec3 table_c_offset_mm = Vec3(0.0, 0.0, 50.0);
-};
 
 // Range and dynamics of A and C (deg, deg/s, deg/s²). C is continuous.
 struct RotaryLimits {
@@ -144,6 +123,9 @@ class FiveAxisKinematics {
   FiveAxisGeometry geometry_;
   RotaryLimits limits_;
 };
+
+// The machine's kinematics: its [kinematics] geometry, its A and C limits.
+[[nodiscard]] FiveAxisKinematics kinematics_from(const MachineConfig& config);
 
 [[nodiscard]] inline RotaryJoints rotary_of(const Pose& joints) noexcept {
   return {joints[index(Axis::A)], joints[index(Axis::C)]};

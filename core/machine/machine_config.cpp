@@ -243,6 +243,45 @@ Status validate_home_and_pitch(const MachineConfig& m, const AxisConfig& a,
   return {};
 }
 
+// [kinematics]: the variant and the offsets of kinematics/five_axis_geometry.h.
+bool load_kinematics(Loader& L, const toml::table& t, FiveAxisGeometry& g) {
+  constexpr std::string_view kPre = "kinematics.";
+  if (!L.only_keys(t, kPre, {"variant", "head_c_to_a_mm", "head_pivot_length_mm", "table_a_pivot_mm",
+                             "table_c_offset_mm"}))
+    return false;
+  std::string variant;
+  if (!L.string(t, kPre, "variant", variant)) return false;
+  if (const toml::node* n = t.get("variant")) {
+    if (variant == "head_head") g.variant = MachineVariant::HeadHead;
+    else if (variant == "table_table") g.variant = MachineVariant::TableTable;
+    else
+      return L.fail(ErrorCode::ConfigBadValue, n->source(),
+                    "kinematics.variant = \"" + variant + "\"; allowed \"head_head\" or \"table_table\"");
+  }
+  const auto vec3 = [&](std::string_view key, Vec3& out) {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) return true;
+    std::vector<double> v;
+    if (!L.numbers(t, kPre, key, v)) return false;
+    bool ok = v.size() == 3;
+    for (double x : v) ok = ok && std::isfinite(x) && std::abs(x) <= 10000.0;
+    if (!ok)
+      return L.fail(ErrorCode::ConfigBadValue, n->source(),
+                    "kinematics." + std::string(key) + " must be [x, y, z] in mm, each within ±10000");
+    out = Vec3(v[0], v[1], v[2]);
+    return true;
+  };
+  if (!vec3("head_c_to_a_mm", g.head_c_to_a_mm) || !vec3("table_a_pivot_mm", g.table_a_pivot_mm) ||
+      !vec3("table_c_offset_mm", g.table_c_offset_mm))
+    return false;
+  if (!L.number(t, kPre, "head_pivot_length_mm", g.head_pivot_length_mm, false)) return false;
+  if (!(g.head_pivot_length_mm > 0.0 && g.head_pivot_length_mm <= 10000.0))
+    return L.fail(ErrorCode::ConfigBadValue, t.get("head_pivot_length_mm")->source(),
+                  "kinematics.head_pivot_length_mm = " + fmt(g.head_pivot_length_mm) +
+                      "; allowed > 0 … 10000 mm");
+  return true;
+}
+
 bool load_axis(Loader& L, const toml::table& t, Axis axis, AxisConfig& a) {
   const std::string p = std::string("axes.") + letter(axis) + ".";
   if (!L.only_keys(t, p, {"type", "min", "max", "max_velocity", "max_acceleration",
@@ -346,7 +385,7 @@ Result<MachineConfig> parse_machine_config(std::string_view text, const std::str
   MachineConfig m;
   m.axes = {};
   m.work_offsets.fill(Pose::Zero());
-  if (!L.only_keys(root, "", {"machine", "dda", "laser", "axes", "work_offsets"})) return L.err;
+  if (!L.only_keys(root, "", {"machine", "dda", "laser", "axes", "kinematics", "work_offsets"})) return L.err;
 
   if (const toml::table* t = L.subtable(root, "machine")) {
     double period_us = m.period_ns / 1000.0;
@@ -407,6 +446,10 @@ Result<MachineConfig> parse_machine_config(std::string_view text, const std::str
       }
       if (L.failed) return L.err;
     }
+  }
+  if (L.failed) return L.err;
+  if (const toml::table* t = L.subtable(root, "kinematics")) {
+    if (!load_kinematics(L, *t, m.kinematics)) return L.err;
   }
   if (L.failed) return L.err;
   if (const toml::table* t = L.subtable(root, "work_offsets")) {

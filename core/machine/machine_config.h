@@ -12,6 +12,7 @@
 
 #include "common/result.h"
 #include "geom/pose.h"
+#include "kinematics/five_axis_geometry.h"
 
 namespace lcnc {
 
@@ -127,6 +128,8 @@ struct MachineConfig {
   double max_jerk = 0.0;
   DdaConfig dda{};
   LaserConfig laser{};
+  // [kinematics]: head-head or table-table, and the offsets (mm).
+  FiveAxisGeometry kinematics{};
   std::array<AxisConfig, kAxisCount> axes{};
   // G54..G59, machine coords of work zero. Zeroed explicitly: `{}` leaves an
   // Eigen matrix uninitialised.

@@ -103,6 +103,28 @@ TEST(DrillJob, CheckSumsTheJobAndNamesAHoleBeyondTheTravel) {
   EXPECT_NE(refused.error().message.find("hole 3: axis Z"), std::string::npos) << refused.error().message;
 }
 
+// The machine's [kinematics] decide the joints: on a table-table machine a
+// tilted hole's axis becomes machine Z and its helix stays one G17 helix; on
+// the head-head default it does not.
+TEST(DrillJob, TheMachinesKinematicsPlaceTheHoles) {
+  MachineConfig m = testing::test_machine();
+  m.kinematics.variant = MachineVariant::TableTable;
+  const std::vector<HoleProcessParams> rows = {hole(1, 100, -20, 90)};
+  Result<DrillJob> table = build_drill_job(rows, kinematics_from(m), Pose::Zero());
+  ASSERT_TRUE(static_cast<bool>(table)) << table.error().to_string();
+  int xy_arcs = 0;
+  for (const Segment& s : table->segments) {
+    if (s.kind != MotionKind::Arc) continue;
+    EXPECT_EQ(s.plane, Plane::XY);
+    ++xy_arcs;
+  }
+  EXPECT_EQ(xy_arcs, 1);  // one helix of layer_count turns
+  m.kinematics.variant = MachineVariant::HeadHead;
+  Result<DrillJob> head = build_drill_job(rows, kinematics_from(m), Pose::Zero());
+  ASSERT_TRUE(static_cast<bool>(head));
+  for (const Segment& s : head->segments) EXPECT_FALSE(s.kind == MotionKind::Arc && s.plane == Plane::XY);
+}
+
 TEST(DrillJob, BadRowIsAnErrorNamingTheHole) {
   HoleProcessParams p = hole(5, 100, 0, 0);
   p.total_depth_mm = 2.0;
