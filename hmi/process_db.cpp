@@ -1,0 +1,340 @@
+#include "hmi/process_db.h"
+
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <QSqlDatabase>
+#include <QSqlError>
+#include <QSqlQuery>
+#include <QString>
+#include <QVariant>
+
+#include "holes/hole_table.h"
+
+namespace lcnc::hmi {
+namespace {
+
+// Schema version 1. The CHECKs repeat DESIGN §6's ranges (and what the
+// hole processes need) so that no path, not even raw SQL, stores a value
+// out of range; validate() gives the operator the message first.
+constexpr const char* kSchema = R"(
+CREATE TABLE IF NOT EXISTS holes (
+  hole            INTEGER PRIMARY KEY CHECK (hole BETWEEN 1 AND 10000),
+  x_mm            REAL NOT NULL CHECK (x_mm BETWEEN 0 AND 1000),
+  y_mm            REAL NOT NULL CHECK (y_mm BETWEEN 0 AND 450),
+  z_mm            REAL NOT NULL CHECK (z_mm BETWEEN 0 AND 500),
+  a_deg           REAL NOT NULL CHECK (a_deg BETWEEN -95 AND 95),
+  c_deg           REAL NOT NULL CHECK (c_deg >= 0 AND c_deg <= 359.999),
+  feed_mm_min     REAL NOT NULL CHECK (feed_mm_min > 0 AND feed_mm_min <= 2000),
+  layer_feed_mm   REAL NOT NULL CHECK (layer_feed_mm > 0 AND layer_feed_mm <= 1),
+  layer_count     INTEGER NOT NULL CHECK (layer_count BETWEEN 1 AND 10000),
+  total_depth_mm  REAL NOT NULL CHECK (abs(total_depth_mm - layer_count * layer_feed_mm) <= 0.001),
+  power_pct       REAL NOT NULL CHECK (power_pct BETWEEN 0 AND 100),
+  start_radius_mm REAL NOT NULL CHECK (start_radius_mm BETWEEN 0 AND 50),
+  end_radius_mm   REAL NOT NULL CHECK (end_radius_mm BETWEEN 0 AND 50),
+  radius_turns    INTEGER NOT NULL CHECK (radius_turns BETWEEN 1 AND 1000),
+  scan_speed_mm_s REAL NOT NULL CHECK (scan_speed_mm_s >= 0),
+  wedge_speed_rpm REAL NOT NULL CHECK (wedge_speed_rpm >= 0),
+  beam_offset_mm  REAL NOT NULL,
+  process         INTEGER NOT NULL CHECK (process IN (0, 1, 2)),
+  shape           TEXT NOT NULL DEFAULT '',
+  focus_offset_mm REAL CHECK (focus_offset_mm IS NULL OR abs(focus_offset_mm) <= 50)
+))";
+constexpr int kSchemaVersion = 1;
+
+constexpr const char* kColumns =
+    "hole, x_mm, y_mm, z_mm, a_deg, c_deg, feed_mm_min, layer_feed_mm, layer_count, total_depth_mm, "
+    "power_pct, start_radius_mm, end_radius_mm, radius_turns, scan_speed_mm_s, wedge_speed_rpm, "
+    "beam_offset_mm, process, shape, focus_offset_mm";
+
+std::atomic<int> g_connections{0};
+
+Diagnostic sql_error(const std::string& what, const QSqlError& e, const std::string& path) {
+  return make_error(ErrorCode::ProcessDbError, what + ": " + e.text().toStdString(), path);
+}
+
+std::string shape_text(const std::vector<PolarVertex>& shape) {
+  std::string s;
+  char b[64];
+  for (std::size_t i = 0; i < shape.size(); ++i) {
+    std::snprintf(b, sizeof b, "%s%.17g@%.17g", i ? ";" : "", shape[i].radius_mm, shape[i].angle_deg);
+    s += b;
+  }
+  return s;
+}
+
+std::vector<PolarVertex> parse_shape(const std::string& s) {
+  std::vector<PolarVertex> out;
+  std::size_t pos = 0;
+  while (pos < s.size()) {
+    const std::size_t semi = s.find(';', pos);
+    const std::string v = s.substr(pos, semi == std::string::npos ? std::string::npos : semi - pos);
+    PolarVertex p;
+    if (std::sscanf(v.c_str(), "%lf@%lf", &p.radius_mm, &p.angle_deg) == 2) out.push_back(p);
+    if (semi == std::string::npos) break;
+    pos = semi + 1;
+  }
+  return out;
+}
+
+HoleRecord record_of(const QSqlQuery& q) {
+  HoleRecord r;
+  HoleProcessParams& p = r.params;
+  p.hole_number = q.value(0).toUInt();
+  p.position = Pose::Zero();
+  p.position[0] = q.value(1).toDouble();
+  p.position[1] = q.value(2).toDouble();
+  p.position[2] = q.value(3).toDouble();
+  p.position[3] = q.value(4).toDouble();
+  p.position[5] = q.value(5).toDouble();
+  p.feed_mm_min = q.value(6).toDouble();
+  p.layer_feed_mm = q.value(7).toDouble();
+  p.layer_count = q.value(8).toUInt();
+  p.total_depth_mm = q.value(9).toDouble();
+  p.power_pct = q.value(10).toDouble();
+  p.head.start_radius_mm = q.value(11).toDouble();
+  p.head.end_radius_mm = q.value(12).toDouble();
+  p.head.radius_turns = q.value(13).toUInt();
+  p.head.scan_speed_mm_s = q.value(14).toDouble();
+  p.head.wedge_speed_rpm = q.value(15).toDouble();
+  p.head.beam_offset_mm = q.value(16).toDouble();
+  p.process = static_cast<HoleProcessId>(q.value(17).toInt());
+  p.shape = parse_shape(q.value(18).toString().toStdString());
+  if (!q.value(19).isNull()) r.focus_offset_mm = q.value(19).toDouble();
+  return r;
+}
+
+// Runs `body` in one transaction: committed when it succeeds, rolled back
+// (nothing changed) when it fails.
+template <typename F>
+Status in_transaction(QSqlDatabase& db, const std::string& path, F body) {
+  if (!db.transaction()) return sql_error("begin", db.lastError(), path);
+  Status s = body();
+  if (!s) {
+    db.rollback();
+    return s;
+  }
+  if (!db.commit()) {
+    const Diagnostic d = sql_error("commit", db.lastError(), path);
+    db.rollback();
+    return d;
+  }
+  return {};
+}
+
+Status insert(QSqlDatabase& db, const HoleRecord& r, const std::string& path) {
+  const HoleProcessParams& p = r.params;
+  QSqlQuery q(db);
+  q.prepare(QString("INSERT OR REPLACE INTO holes (%1) VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)")
+                .arg(kColumns));
+  q.addBindValue(p.hole_number);
+  for (int i : {0, 1, 2, 3, 5}) q.addBindValue(p.position[i]);
+  q.addBindValue(p.feed_mm_min);
+  q.addBindValue(p.layer_feed_mm);
+  q.addBindValue(p.layer_count);
+  q.addBindValue(p.total_depth_mm);
+  q.addBindValue(p.power_pct);
+  q.addBindValue(p.head.start_radius_mm);
+  q.addBindValue(p.head.end_radius_mm);
+  q.addBindValue(p.head.radius_turns);
+  q.addBindValue(p.head.scan_speed_mm_s);
+  q.addBindValue(p.head.wedge_speed_rpm);
+  q.addBindValue(p.head.beam_offset_mm);
+  q.addBindValue(static_cast<int>(p.process));
+  q.addBindValue(QString::fromStdString(shape_text(p.shape)));
+  q.addBindValue(r.focus_offset_mm ? QVariant(*r.focus_offset_mm) : QVariant(QVariant::Double));
+  if (!q.exec())
+    return sql_error("hole " + std::to_string(p.hole_number) + ": store", q.lastError(), path);
+  return {};
+}
+
+Status check_focus(std::uint32_t hole, double mm) {
+  if (std::isfinite(mm) && std::abs(mm) <= kMaxFocusOffsetMm) return {};
+  char b[160];
+  std::snprintf(b, sizeof b, "hole %u: focus offset = %g mm; allowed -%g … %g mm", hole, mm,
+                kMaxFocusOffsetMm, kMaxFocusOffsetMm);
+  return make_error(ErrorCode::HoleTableBadValue, b);
+}
+
+Status check_record(const HoleRecord& r) {
+  if (Status s = validate(r.params); !s) return make_error(ErrorCode::HoleTableBadValue, s.error().message);
+  if (r.focus_offset_mm) return check_focus(r.params.hole_number, *r.focus_offset_mm);
+  return {};
+}
+
+}  // namespace
+
+ProcessDatabase::ProcessDatabase(std::string path, std::string connection)
+    : path_(std::move(path)), connection_(std::move(connection)) {}
+
+ProcessDatabase::~ProcessDatabase() {
+  {
+    QSqlDatabase db = QSqlDatabase::database(QString::fromStdString(connection_), false);
+    if (db.isOpen()) db.close();
+  }
+  QSqlDatabase::removeDatabase(QString::fromStdString(connection_));
+}
+
+Result<std::unique_ptr<ProcessDatabase>> ProcessDatabase::open(const std::string& path) {
+  const std::string conn = "lcnc_process_db_" + std::to_string(++g_connections);
+  std::unique_ptr<ProcessDatabase> pdb(new ProcessDatabase(path, conn));
+  QSqlDatabase db = QSqlDatabase::addDatabase("QSQLITE", QString::fromStdString(conn));
+  if (!db.isValid())
+    return make_error(ErrorCode::ProcessDbError, "the SQLite driver of QtSql (libqt5sql5-sqlite) is missing", path);
+  db.setDatabaseName(QString::fromStdString(path));
+  db.setConnectOptions("QSQLITE_BUSY_TIMEOUT=5000");
+  if (!db.open()) return sql_error("open", db.lastError(), path);
+  QSqlQuery q(db);
+  for (const char* pragma : {"PRAGMA journal_mode = WAL", "PRAGMA synchronous = FULL"})
+    if (!q.exec(pragma)) return sql_error(pragma, q.lastError(), path);
+  if (!q.exec("PRAGMA user_version") || !q.next()) return sql_error("read the schema version", q.lastError(), path);
+  const int version = q.value(0).toInt();
+  if (version > kSchemaVersion)
+    return make_error(ErrorCode::ProcessDbError,
+                      "schema version " + std::to_string(version) + " is newer than this program's (" +
+                          std::to_string(kSchemaVersion) + ")",
+                      path);
+  if (Status s = in_transaction(db, path,
+                                [&]() -> Status {
+                                  QSqlQuery t(db);
+                                  if (!t.exec(kSchema)) return sql_error("create the holes table", t.lastError(), path);
+                                  if (!t.exec(QString("PRAGMA user_version = %1").arg(kSchemaVersion)))
+                                    return sql_error("set the schema version", t.lastError(), path);
+                                  return {};
+                                });
+      !s)
+    return s.error();
+  return pdb;
+}
+
+Result<std::vector<HoleRecord>> ProcessDatabase::holes() const {
+  QSqlDatabase db = QSqlDatabase::database(QString::fromStdString(connection_));
+  QSqlQuery q(db);
+  if (!q.exec(QString("SELECT %1 FROM holes ORDER BY hole").arg(kColumns)))
+    return sql_error("read the holes", q.lastError(), path_);
+  std::vector<HoleRecord> out;
+  while (q.next()) out.push_back(record_of(q));
+  return out;
+}
+
+Result<std::optional<HoleRecord>> ProcessDatabase::hole(std::uint32_t number) const {
+  QSqlDatabase db = QSqlDatabase::database(QString::fromStdString(connection_));
+  QSqlQuery q(db);
+  q.prepare(QString("SELECT %1 FROM holes WHERE hole = ?").arg(kColumns));
+  q.addBindValue(number);
+  if (!q.exec()) return sql_error("read hole " + std::to_string(number), q.lastError(), path_);
+  if (!q.next()) return std::optional<HoleRecord>();
+  return std::optional<HoleRecord>(record_of(q));
+}
+
+Status ProcessDatabase::put(const HoleRecord& record) {
+  if (Status s = check_record(record); !s) return s;
+  QSqlDatabase db = QSqlDatabase::database(QString::fromStdString(connection_));
+  return in_transaction(db, path_, [&]() -> Status {
+    HoleRecord r = record;
+    if (!r.focus_offset_mm) {
+      Result<std::optional<HoleRecord>> old = hole(r.params.hole_number);
+      if (!old) return old.error();
+      if (*old) r.focus_offset_mm = (*old)->focus_offset_mm;
+    }
+    return insert(db, r, path_);
+  });
+}
+
+Status ProcessDatabase::remove(std::uint32_t number) {
+  QSqlDatabase db = QSqlDatabase::database(QString::fromStdString(connection_));
+  return in_transaction(db, path_, [&]() -> Status {
+    QSqlQuery q(db);
+    q.prepare("DELETE FROM holes WHERE hole = ?");
+    q.addBindValue(number);
+    if (!q.exec()) return sql_error("remove hole " + std::to_string(number), q.lastError(), path_);
+    if (q.numRowsAffected() != 1)
+      return make_error(ErrorCode::ProcessDbError, "no hole " + std::to_string(number), path_);
+    return {};
+  });
+}
+
+Status ProcessDatabase::set_positions(const std::vector<std::pair<std::uint32_t, Pose>>& positions) {
+  QSqlDatabase db = QSqlDatabase::database(QString::fromStdString(connection_));
+  return in_transaction(db, path_, [&]() -> Status {
+    for (const auto& [number, pose] : positions) {
+      Result<std::optional<HoleRecord>> old = hole(number);
+      if (!old) return old.error();
+      if (!*old) return make_error(ErrorCode::ProcessDbError, "no hole " + std::to_string(number), path_);
+      HoleRecord r = **old;
+      for (int i : {0, 1, 2, 3, 5}) r.params.position[i] = pose[i];
+      if (Status s = check_record(r); !s) return s;
+      if (Status s = insert(db, r, path_); !s) return s;
+    }
+    return {};
+  });
+}
+
+Status ProcessDatabase::set_focus_offset(std::uint32_t number, double offset_mm) {
+  if (Status s = check_focus(number, offset_mm); !s) return s;
+  QSqlDatabase db = QSqlDatabase::database(QString::fromStdString(connection_));
+  return in_transaction(db, path_, [&]() -> Status {
+    QSqlQuery q(db);
+    q.prepare("UPDATE holes SET focus_offset_mm = ? WHERE hole = ?");
+    q.addBindValue(offset_mm);
+    q.addBindValue(number);
+    if (!q.exec()) return sql_error("hole " + std::to_string(number) + ": focus offset", q.lastError(), path_);
+    if (q.numRowsAffected() != 1)
+      return make_error(ErrorCode::ProcessDbError, "no hole " + std::to_string(number), path_);
+    return {};
+  });
+}
+
+Status ProcessDatabase::import_csv(const std::string& path, ImportMode mode) {
+  Result<std::vector<HoleProcessParams>> rows = read_hole_table(path);  // every row checked, line:col
+  if (!rows) return rows.error();
+  QSqlDatabase db = QSqlDatabase::database(QString::fromStdString(connection_));
+  return in_transaction(db, path_, [&]() -> Status {
+    if (mode == ImportMode::Replace) {
+      QSqlQuery q(db);
+      if (!q.exec("DELETE FROM holes")) return sql_error("empty the table", q.lastError(), path_);
+    }
+    for (const HoleProcessParams& p : *rows) {
+      HoleRecord r{p, std::nullopt};
+      if (mode == ImportMode::Merge) {
+        Result<std::optional<HoleRecord>> old = hole(p.hole_number);
+        if (!old) return old.error();
+        if (*old) r.focus_offset_mm = (*old)->focus_offset_mm;
+      }
+      if (Status s = insert(db, r, path_); !s) return s;
+    }
+    return {};
+  });
+}
+
+Status ProcessDatabase::export_csv(const std::string& path) const {
+  Result<std::vector<HoleRecord>> all = holes();
+  if (!all) return all.error();
+  std::vector<HoleProcessParams> rows;
+  for (const HoleRecord& r : *all) rows.push_back(r.params);
+  const std::string tmp = path + ".part";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out << write_hole_table(rows);
+    out.flush();
+    if (!out) return make_error(ErrorCode::FileNotFound, "cannot write '" + tmp + "'", path);
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) return make_error(ErrorCode::FileNotFound, "cannot replace '" + path + "': " + ec.message(), path);
+  return {};
+}
+
+Result<std::string> ProcessDatabase::integrity_check() const {
+  QSqlDatabase db = QSqlDatabase::database(QString::fromStdString(connection_));
+  QSqlQuery q(db);
+  if (!q.exec("PRAGMA integrity_check")) return sql_error("integrity check", q.lastError(), path_);
+  std::string out;
+  while (q.next()) out += (out.empty() ? "" : "; ") + q.value(0).toString().toStdString();
+  return out;
+}
+
+}  // namespace lcnc::hmi
