@@ -14,6 +14,7 @@
 #include "app/run_job.h"
 #include "drivers/sim_machine.h"
 #include "gcode/program_reader.h"
+#include "plan/program_source.h"
 #include "rt/rt_kernel.h"
 #include "rt/shm_interface.h"
 
@@ -104,7 +105,7 @@ struct Daemon::Impl {
   Result<ProgramSummary> check(const std::string& path) {
     ReaderOptions ropt;
     ropt.start = position();
-    return check_program(path, machine, ropt);
+    return check_job_program(path, machine, ropt);
   }
 
   // Executes a command (from the shm ring or the Modbus slave) and says what

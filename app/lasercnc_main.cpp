@@ -19,6 +19,7 @@
 #include "app/drill_cli.h"
 #include "app/run_job.h"
 #include "gcode/program_reader.h"
+#include "plan/program_source.h"
 
 namespace {
 
@@ -192,7 +193,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "%s\n", machine.error().to_string().c_str());
       return 1;
     }
-    auto summary = lcnc::check_program(opt.program, *machine);
+    auto summary = lcnc::check_job_program(opt.program, *machine);
     if (!summary) {
       std::fprintf(stderr, "%s\n", summary.error().to_string().c_str());
       return 1;

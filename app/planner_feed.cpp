@@ -8,6 +8,7 @@
 
 #include "plan/motion_stats.h"
 #include "plan/planner.h"
+#include "plan/program_source.h"
 
 namespace lcnc::app {
 
@@ -37,16 +38,16 @@ PlannerFeed::~PlannerFeed() { abort(); }
 
 void PlannerFeed::start(const std::string& program, const ReaderOptions& options) {
   launch(program, options.start, [this, program, options](SegmentSource& source, Diagnostic& error) {
-    Result<std::unique_ptr<ProgramReader>> reader = ProgramReader::open(program, machine_, options);
-    if (!reader) {
-      error = reader.error();
+    Result<std::unique_ptr<ProgramSource>> src = ProgramSource::open(program, machine_, options);
+    if (!src) {
+      error = src.error();
       return false;
     }
-    ProgramReader* r = reader->get();
-    reader_ = std::move(reader).value();
-    source = [this, r, read = reader_source(*r)](Segment& out) {
-      const SourceStatus st = read(out);
-      if (st == SourceStatus::Error) source_error_ = r->error();
+    program_source_ = std::move(src).value();
+    ProgramSource* ps = program_source_.get();
+    source = [this, ps](Segment& out) {
+      const SourceStatus st = ps->next(out);
+      if (st == SourceStatus::Error) source_error_ = ps->error();
       return st;
     };
     return true;

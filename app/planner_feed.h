@@ -17,6 +17,7 @@
 #include "gcode/program_reader.h"
 #include "machine/machine_config.h"
 #include "plan/planner.h"
+#include "plan/program_source.h"
 #include "rt/rt_kernel.h"
 
 namespace lcnc::app {
@@ -97,7 +98,7 @@ class PlannerFeed {
   std::atomic<bool> done_{false};
   std::atomic<bool> stopped_short_{false};
   std::string program_;
-  std::unique_ptr<ProgramReader> reader_;  // a program job's reader (planner thread)
+  std::unique_ptr<ProgramSource> program_source_;  // a program job's source (planner thread)
   Diagnostic source_error_;                // why the source failed
   std::array<std::int64_t, kAxisCount> at_{};       // position after the queued entries, steps
   std::array<std::int64_t, kAxisCount> min_steps_{}, max_steps_{};

@@ -12,6 +12,7 @@
 #include "drivers/sim_machine.h"
 #include "gcode/program_reader.h"
 #include "path/deviation_meter.h"
+#include "plan/program_source.h"
 #include "app/planner_feed.h"
 #include "rt/rt_kernel.h"
 #include "rt/rt_log.h"
@@ -214,7 +215,7 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
       options.segments ? (options.summary ? Result<ProgramSummary>(*options.summary)
                                           : Result<ProgramSummary>(make_error(
                                                 ErrorCode::Internal, "a segment job needs its summary")))
-                       : check_program(options.program, machine, ropt);
+                       : check_job_program(options.program, machine, ropt);
   if (!summary) return summary.error();
 
   RunReport report;
@@ -276,9 +277,9 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   kernel.start(rt_options);
 
   // Drain the trace while the job runs: CSV, deviation, progress.
-  Result<std::unique_ptr<ProgramReader>> ref_reader =
-      options.segments ? Result<std::unique_ptr<ProgramReader>>(std::unique_ptr<ProgramReader>())
-                       : ProgramReader::open(options.program, machine, ropt);
+  Result<std::unique_ptr<ProgramSource>> ref_reader =
+      options.segments ? Result<std::unique_ptr<ProgramSource>>(std::unique_ptr<ProgramSource>())
+                       : ProgramSource::open(options.program, machine, ropt);
   if (!ref_reader) {
     feed.abort();
     kernel.shutdown();
@@ -293,7 +294,7 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
                                    out = (*options.segments)[ref_index++];
                                    return SourceStatus::Item;
                                  })
-                               : reader_source(**ref_reader));
+                               : (*ref_reader)->source());
   std::uint32_t segment_seen = UINT32_MAX;
   const double total_segments = std::max<double>(1.0, static_cast<double>(summary->segments));
   auto last_progress = std::chrono::steady_clock::now();

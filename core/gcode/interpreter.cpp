@@ -355,10 +355,13 @@ void Interpreter::set_segment_feed(Segment& s, double linear_mm, double rotary_d
 }
 
 // Every present axis without wrap must stay in [min, max] over [lo, hi].
+// Under tool-centre-point control X Y Z are the tool tip, not the joints:
+// their travel is checked on the joints the program becomes
+// (plan/program_source.h: check_job_program).
 bool Interpreter::check_travel(const Pose& lo, const Pose& hi, const Pose& end) {
   for (int a = 0; a < kAxisCount; ++a) {
     const AxisConfig& ax = machine_.axes[a];
-    if (!ax.present || ax.wrap) continue;
+    if (!ax.present || ax.wrap || (machine_.tcp.enabled && a < 3)) continue;
     double bad = 0.0;
     if (lo[a] < ax.min - kTravelTolMm) {
       bad = lo[a];

@@ -1,11 +1,9 @@
 #include "holes/drill_job.h"
 
-#include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "holes/hole_placement.h"
-#include "path/segment_geometry.h"
+#include "path/travel_check.h"
 
 namespace lcnc {
 namespace {
@@ -69,49 +67,11 @@ Result<DrillJob> build_drill_job(const std::vector<HoleProcessParams>& rows, con
 
 Result<ProgramSummary> check_drill_job(const DrillJob& job, const MachineConfig& machine,
                                        const std::string& name) {
-  ProgramSummary sum;
+  TravelCheck check(machine, name, "hole");
+  for (const Segment& s : job.segments)
+    if (Status st = check.add(s); !st) return st.error();
+  ProgramSummary sum = check.summary();
   sum.lines = static_cast<std::uint32_t>(job.holes.size());
-  sum.segments = job.segments.size();
-  bool first = true;
-  const auto reach = [&](const Pose& p, std::uint32_t hole) -> Status {
-    for (int i = 0; i < kAxisCount; ++i) {
-      const AxisConfig& ax = machine.axes[i];
-      if (!ax.present) {
-        if (std::abs(p[i]) > 1e-9) {
-          return make_error(ErrorCode::GcodeNoSuchAxis,
-                            "hole " + std::to_string(hole) + " needs axis " + kAxisLetters[i] +
-                                ", which the machine lacks",
-                            name, hole);
-        }
-        continue;
-      }
-      if (!ax.wrap && (p[i] < ax.min - 1e-9 || p[i] > ax.max + 1e-9)) {
-        char msg[200];
-        std::snprintf(msg, sizeof msg, "hole %u: axis %c would reach %.4f, outside its travel %g … %g",
-                      hole, kAxisLetters[i], p[i], ax.min, ax.max);
-        return make_error(ErrorCode::GcodeBeyondTravel, msg, name, hole);
-      }
-    }
-    sum.min = first ? p : sum.min.cwiseMin(p);
-    sum.max = first ? p : sum.max.cwiseMax(p);
-    first = false;
-    return {};
-  };
-  for (const Segment& s : job.segments) {
-    if (Status st = reach(s.start, s.line); !st) return st.error();
-    if (s.kind == MotionKind::Dwell) continue;
-    const SegmentGeometry geo(s);
-    const double len = geo.length();
-    sum.path_length_mm += len;
-    if (s.kind != MotionKind::Rapid) sum.feed_length_mm += len;
-    if (s.kind == MotionKind::Arc) {
-      // a scan circle is small: 64 samples per turn find its extremes
-      const int n = 64 * static_cast<int>(1 + s.extra_turns);
-      for (int k = 1; k < n; ++k)
-        if (Status st = reach(geo.at(len * k / n), s.line); !st) return st.error();
-    }
-    if (Status st = reach(s.end, s.line); !st) return st.error();
-  }
   return sum;
 }
 

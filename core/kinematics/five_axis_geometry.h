@@ -31,4 +31,22 @@ struct FiveAxisGeometry {
   Vec3 table_c_offset_mm = Vec3(0.0, 0.0, 50.0);
 };
 
+enum class OrientationMethod : std::uint8_t {
+  JointLinear,   // A, C linear in u
+  Vector,        // great circle, joints on the start's branch
+  PoleSmoothed,  // great circle, snapped through the pole within tolerance
+};
+
+// Tool-centre-point control of G-code programs (kinematics/tcp_program.h),
+// the machine config's [kinematics] tcp keys: with it on, a program's X Y Z
+// are the tool tip in the workpiece frame and A C the rotary joints; every
+// move is turned into joint moves whose tip follows the programmed line
+// while the tool axis follows `orientation`.
+struct TcpConfig {
+  bool enabled = false;
+  OrientationMethod orientation = OrientationMethod::PoleSmoothed;
+  double orientation_tolerance_deg = 0.01;  // PoleSmoothed's ε, and the joint pieces' axis error
+  double tip_tolerance_mm = 0.001;          // the tip's distance from the programmed path
+};
+
 }  // namespace lcnc

@@ -52,15 +52,11 @@
 
 #include "common/result.h"
 #include "kinematics/five_axis.h"
+#include "kinematics/five_axis_geometry.h"
 #include "kinematics/kinematics_tolerances.h"
 
 namespace lcnc {
 
-enum class OrientationMethod : std::uint8_t {
-  JointLinear,   // A, C linear in u
-  Vector,        // great circle, joints on the start's branch
-  PoleSmoothed,  // great circle, snapped through the pole within tolerance
-};
 
 [[nodiscard]] const char* method_name(OrientationMethod method) noexcept;
 

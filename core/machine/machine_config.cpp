@@ -244,10 +244,32 @@ Status validate_home_and_pitch(const MachineConfig& m, const AxisConfig& a,
 }
 
 // [kinematics]: the variant and the offsets of kinematics/five_axis_geometry.h.
-bool load_kinematics(Loader& L, const toml::table& t, FiveAxisGeometry& g) {
+bool load_kinematics(Loader& L, const toml::table& t, FiveAxisGeometry& g, TcpConfig& tcp) {
   constexpr std::string_view kPre = "kinematics.";
   if (!L.only_keys(t, kPre, {"variant", "head_c_to_a_mm", "head_pivot_length_mm", "table_a_pivot_mm",
-                             "table_c_offset_mm"}))
+                             "table_c_offset_mm", "tcp", "orientation", "orientation_tolerance_deg",
+                             "tip_tolerance_mm"}))
+    return false;
+  if (!L.boolean(t, kPre, "tcp", tcp.enabled)) return false;
+  std::string method;
+  if (!L.string(t, kPre, "orientation", method)) return false;
+  if (const toml::node* n = t.get("orientation")) {
+    if (method == "joint_linear") tcp.orientation = OrientationMethod::JointLinear;
+    else if (method == "vector") tcp.orientation = OrientationMethod::Vector;
+    else if (method == "pole_smoothed") tcp.orientation = OrientationMethod::PoleSmoothed;
+    else
+      return L.fail(ErrorCode::ConfigBadValue, n->source(),
+                    "kinematics.orientation = \"" + method +
+                        "\"; allowed \"joint_linear\", \"vector\" or \"pole_smoothed\"");
+  }
+  const auto bounded = [&](std::string_view key, double& out, double hi, const char* unit) {
+    if (!L.number(t, kPre, key, out, false)) return false;
+    if (out > 0.0 && out <= hi) return true;
+    return L.fail(ErrorCode::ConfigBadValue, t.get(key)->source(),
+                  "kinematics." + std::string(key) + " = " + fmt(out) + "; allowed > 0 … " + fmt(hi) + " " + unit);
+  };
+  if (!bounded("orientation_tolerance_deg", tcp.orientation_tolerance_deg, 1.0, "deg") ||
+      !bounded("tip_tolerance_mm", tcp.tip_tolerance_mm, 0.1, "mm"))
     return false;
   std::string variant;
   if (!L.string(t, kPre, "variant", variant)) return false;
@@ -449,7 +471,7 @@ Result<MachineConfig> parse_machine_config(std::string_view text, const std::str
   }
   if (L.failed) return L.err;
   if (const toml::table* t = L.subtable(root, "kinematics")) {
-    if (!load_kinematics(L, *t, m.kinematics)) return L.err;
+    if (!load_kinematics(L, *t, m.kinematics, m.tcp)) return L.err;
   }
   if (L.failed) return L.err;
   if (const toml::table* t = L.subtable(root, "work_offsets")) {

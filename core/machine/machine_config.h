@@ -128,8 +128,10 @@ struct MachineConfig {
   double max_jerk = 0.0;
   DdaConfig dda{};
   LaserConfig laser{};
-  // [kinematics]: head-head or table-table, and the offsets (mm).
+  // [kinematics]: head-head or table-table, and the offsets (mm); the
+  // tool-centre-point control of programs.
   FiveAxisGeometry kinematics{};
+  TcpConfig tcp{};
   std::array<AxisConfig, kAxisCount> axes{};
   // G54..G59, machine coords of work zero. Zeroed explicitly: `{}` leaves an
   // Eigen matrix uninitialised.

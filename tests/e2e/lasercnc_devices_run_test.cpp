@@ -4,11 +4,14 @@
 // before anything moves.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <string>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
 #include "drivers/devices/laser_source_sim.h"
+#include "drivers/modbus/modbus_master.h"
 #include "drivers/modbus/register_map.h"
 #include "e2e_support.h"
 
@@ -68,6 +71,19 @@ TEST(LasercncRunDevices, ALaserInAlarmRefusesTheRunBeforeAnythingMoves) {
   ASSERT_TRUE(static_cast<bool>(laser)) << laser.error().to_string();
   ASSERT_TRUE((*laser)->start().ok());
   const auto ep = (*laser)->endpoint();
+  {  // the alarm latches at the simulator's first tick: wait for it
+    lcnc::drivers::MasterConfig mc;
+    mc.endpoint = ep;
+    lcnc::drivers::ModbusMaster m(*map, mc);
+    ASSERT_TRUE(m.start().ok());
+    bool alarmed = false;
+    for (int i = 0; i < 200 && !alarmed; ++i) {
+      auto a = m.read("alarm").get();
+      alarmed = a.ok() && *a == 1.0;
+      if (!alarmed) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    ASSERT_TRUE(alarmed);
+  }
   const fs::path trace = temp_dir() / "trace.csv";
   const CmdResult r = lasercnc("run " + job(kCut).string() + " --laser tcp:127.0.0.1:" +
                                std::to_string(ep.port) + " --trace " + trace.string() + " --no-realtime");

@@ -1,0 +1,122 @@
+#include "kinematics/tcp_program.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "kinematics/orientation_interpolation.h"
+#include "kinematics/tcp_path.h"
+#include "path/segment_geometry.h"
+
+namespace lcnc {
+namespace {
+
+// A rotation this close to the identity is a translation (rounding only).
+constexpr double kIdentity = 1e-12;
+
+Pose moved(const Eigen::Isometry3d& t, const Pose& p) {
+  Pose q = p;
+  q.head<3>() = t * Vec3(p.head<3>());
+  return q;
+}
+
+bool rotary_moves(const Segment& s) {
+  return s.start[index(Axis::A)] != s.end[index(Axis::A)] || s.start[index(Axis::C)] != s.end[index(Axis::C)];
+}
+
+}  // namespace
+
+TcpExpander::TcpExpander(const FiveAxisKinematics& kin, const TcpConfig& config, SegmentSource source,
+                         const Pose& start_joints)
+    : kin_(kin), config_(config), source_(std::move(source)), at_(start_joints) {}
+
+Pose TcpExpander::tip_start(const FiveAxisKinematics& kin, const Pose& joints) {
+  Pose p = joints;
+  p.head<3>() = kin.forward(joints).tip_mm;
+  return p;
+}
+
+void TcpExpander::emit(Segment q) {
+  q.start = at_;
+  at_ = q.end;
+  queue_.push_back(q);
+}
+
+Status TcpExpander::expand(const Segment& s) {
+  const auto fail = [&](const std::string& why) {
+    return Status(make_error(ErrorCode::GcodeUnsupported, "line " + std::to_string(s.line) + ": " + why, {}, s.line));
+  };
+  if (s.kind == MotionKind::Dwell) {
+    Segment q = s;
+    q.end = at_;
+    emit(q);
+    return {};
+  }
+  if (!rotary_moves(s)) {
+    const Eigen::Isometry3d t = kin_.tip_to_joints(rotary_of(s.start));
+    const bool translation = (t.linear() - Eigen::Matrix3d::Identity()).norm() <= kIdentity;
+    if (s.kind != MotionKind::Arc || translation) {
+      Segment q = s;
+      q.end = moved(t, s.end);
+      if (s.kind == MotionKind::Arc) q.center = t * s.center;
+      emit(q);
+      return {};
+    }
+    // a rotated arc: chords whose sag r·(1 − cos(Δφ/2)) stays within the tolerance
+    const SegmentGeometry g(s);
+    const double r = std::max(g.radius(), 1e-9);
+    const double dphi = 2.0 * std::acos(std::max(-1.0, 1.0 - config_.tip_tolerance_mm / r));
+    const auto n = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(g.sweep_rad() / dphi)));
+    for (std::size_t k = 1; k <= n; ++k) {
+      Segment q = s;
+      q.kind = MotionKind::Linear;
+      q.extra_turns = 0;
+      q.end = moved(t, k == n ? s.end : g.at(g.length() * static_cast<double>(k) / static_cast<double>(n)));
+      emit(q);
+    }
+    return {};
+  }
+  if (s.kind == MotionKind::Arc)
+    return fail("an arc along which A or C moves cannot be run under tool-centre-point control; "
+                "split it into lines");
+  Result<OrientationMove> move = OrientationMove::between_joints(
+      config_.orientation, rotary_of(s.start), rotary_of(s.end), kin_.limits(), config_.orientation_tolerance_deg);
+  if (!move) return fail(move.error().message);
+  Result<std::vector<Segment>> pieces =
+      tcp_line_segments(kin_, s.start.head<3>(), s.end.head<3>(), *move, s, config_.tip_tolerance_mm,
+                        config_.orientation_tolerance_deg);
+  if (!pieces) return fail(pieces.error().message);
+  // The orientation path may start at another C than the machine's (a move
+  // leaving the pole): turn C there first — the orientation does not change.
+  if (!pieces->empty() && (pieces->front().start - at_).norm() > 1e-9) {
+    Segment turn = pieces->front();
+    turn.kind = MotionKind::Rapid;
+    turn.laser = LaserMode::Off;
+    turn.end = pieces->front().start;
+    emit(turn);
+  }
+  for (const Segment& q : *pieces) emit(q);
+  return {};
+}
+
+SourceStatus TcpExpander::next(Segment& out) {
+  while (queue_.empty()) {
+    if (done_) return end_status_;
+    Segment s;
+    const SourceStatus st = source_(s);
+    if (st != SourceStatus::Item) {
+      done_ = true;
+      end_status_ = st;
+      continue;
+    }
+    if (Status e = expand(s); !e) {
+      error_ = e.error();
+      done_ = true;
+      end_status_ = SourceStatus::Error;
+    }
+  }
+  out = queue_.front();
+  queue_.pop_front();
+  return SourceStatus::Item;
+}
+
+}  // namespace lcnc

@@ -1,0 +1,77 @@
+#include "plan/program_source.h"
+
+#include "path/travel_check.h"
+
+namespace lcnc {
+
+Result<std::unique_ptr<ProgramSource>> ProgramSource::open(const std::string& path,
+                                                           const MachineConfig& machine,
+                                                           ReaderOptions options) {
+  std::unique_ptr<ProgramSource> ps(new ProgramSource());
+  ps->path_ = path;
+  const Pose joints = options.start;
+  std::optional<FiveAxisKinematics> kin;
+  if (machine.tcp.enabled) {
+    kin = kinematics_from(machine);
+    options.start = TcpExpander::tip_start(*kin, joints);
+  }
+  Result<std::unique_ptr<ProgramReader>> reader = ProgramReader::open(path, machine, options);
+  if (!reader) return reader.error();
+  ps->reader_ = std::move(reader).value();
+  if (kin) {
+    ProgramReader* r = ps->reader_.get();
+    ps->tcp_.emplace(*kin, machine.tcp,
+                     [r](Segment& out) {
+                       switch (r->next(out)) {
+                         case ProgramReader::Next::Segment: return SourceStatus::Item;
+                         case ProgramReader::Next::End: return SourceStatus::End;
+                         case ProgramReader::Next::Error: return SourceStatus::Error;
+                       }
+                       return SourceStatus::Error;
+                     },
+                     joints);
+  }
+  return ps;
+}
+
+SourceStatus ProgramSource::next(Segment& out) {
+  if (tcp_) return tcp_->next(out);
+  switch (reader_->next(out)) {
+    case ProgramReader::Next::Segment: return SourceStatus::Item;
+    case ProgramReader::Next::End: return SourceStatus::End;
+    case ProgramReader::Next::Error: return SourceStatus::Error;
+  }
+  return SourceStatus::Error;
+}
+
+Diagnostic ProgramSource::error() const {
+  if (tcp_ && tcp_->error()) {
+    Diagnostic d = *tcp_->error();
+    d.file = path_;
+    return d;
+  }
+  return reader_->error();
+}
+
+Result<ProgramSummary> check_job_program(const std::string& path, const MachineConfig& machine,
+                                         ReaderOptions options) {
+  if (!machine.tcp.enabled) return check_program(path, machine, options);
+  ReaderOptions tip = options;
+  tip.start = TcpExpander::tip_start(kinematics_from(machine), options.start);
+  Result<ProgramSummary> read = check_program(path, machine, tip);
+  if (!read) return read;
+  Result<std::unique_ptr<ProgramSource>> src = ProgramSource::open(path, machine, options);
+  if (!src) return src.error();
+  TravelCheck check(machine, path, "line");
+  Segment s;
+  SourceStatus st;
+  while ((st = (*src)->next(s)) == SourceStatus::Item)
+    if (Status e = check.add(s); !e) return e.error();
+  if (st == SourceStatus::Error) return (*src)->error();
+  ProgramSummary sum = check.summary();
+  sum.lines = read->lines;
+  sum.warnings = read->warnings;
+  return sum;
+}
+
+}  // namespace lcnc

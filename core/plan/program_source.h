@@ -1,0 +1,50 @@
+// A G-code program as the planner reads it (DESIGN §2): the ProgramReader's
+// segments, through the tool-centre-point expander when the machine config
+// has [kinematics] tcp = true (kinematics/tcp_program.h). `start` is always
+// in joints (where the machine stands); under TCP the program starts at the
+// tip there. The planner thread, the pre-run check and the report's
+// reference reading all open the program this way, so they see the same
+// motion.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "common/result.h"
+#include "gcode/program_reader.h"
+#include "kinematics/tcp_program.h"
+#include "machine/machine_config.h"
+#include "plan/planned_segment.h"
+
+namespace lcnc {
+
+class ProgramSource {
+ public:
+  [[nodiscard]] static Result<std::unique_ptr<ProgramSource>> open(const std::string& path,
+                                                                  const MachineConfig& machine,
+                                                                  ReaderOptions options);
+  [[nodiscard]] SourceStatus next(Segment& out);
+  // After Error: the reader's or the expander's diagnostic, with the file.
+  [[nodiscard]] Diagnostic error() const;
+  // A pull source over this object (which must outlive it).
+  [[nodiscard]] SegmentSource source() {
+    return [this](Segment& out) { return next(out); };
+  }
+
+ private:
+  ProgramSource() = default;
+  std::string path_;
+  std::unique_ptr<ProgramReader> reader_;
+  std::optional<TcpExpander> tcp_;
+};
+
+// check_program, and under TCP the joint motion too: every position the
+// joints reach within the travel (the reader checks the tip's coordinates,
+// which under TCP are not the joints'); the summary's lengths are then the
+// joints'.
+[[nodiscard]] Result<ProgramSummary> check_job_program(const std::string& path,
+                                                       const MachineConfig& machine,
+                                                       ReaderOptions options = {});
+
+}  // namespace lcnc
