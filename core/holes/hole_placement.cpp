@@ -15,12 +15,6 @@ namespace {
 // T·ẑ this close to ẑ keeps G17 arcs (a rounding allowance, not a tolerance).
 constexpr double kAxisParallel = 1e-12;
 
-Pose moved(const Eigen::Isometry3d& t, const Pose& p) {
-  Pose q = p;
-  q.head<3>() = t * Vec3(p.head<3>());
-  return q;
-}
-
 }  // namespace
 
 Result<HoleProgram> place_hole(const HoleProgram& program, const FiveAxisKinematics& kin,
@@ -37,8 +31,8 @@ Result<HoleProgram> place_hole(const HoleProgram& program, const FiveAxisKinemat
     const Vec3 axis = t.linear() * Vec3::UnitZ();
     if (s.kind != MotionKind::Arc) {
       Segment q = s;
-      q.start = moved(t, s.start);
-      q.end = moved(t, s.end);
+      q.start = transformed(t, s.start);
+      q.end = transformed(t, s.end);
       out.segments.push_back(q);
       continue;
     }
@@ -46,32 +40,27 @@ Result<HoleProgram> place_hole(const HoleProgram& program, const FiveAxisKinemat
       return make_error(ErrorCode::Internal, "hole placement: only G17 arcs are generated");
     if ((axis - Vec3::UnitZ()).norm() <= kAxisParallel) {
       Segment q = s;
-      q.start = moved(t, s.start);
-      q.end = moved(t, s.end);
+      q.start = transformed(t, s.start);
+      q.end = transformed(t, s.end);
       q.center = t * s.center;
       out.segments.push_back(q);
     } else if (s.start[2] == s.end[2]) {
       Segment q = s;
-      q.start = moved(t, s.start);
-      q.end = moved(t, s.end);
+      q.start = transformed(t, s.start);
+      q.end = transformed(t, s.end);
       q.center = t * Vec3(s.center.x(), s.center.y(), s.start[2]);
       q.plane = Plane::Free;
       q.normal = s.clockwise ? Vec3(-axis) : axis;  // Free: counter-clockwise about normal
       out.segments.push_back(q);
     } else {
       // Tilted helix: chords with sag r·(1 − cos(Δφ/2)) ≤ tol.
-      const SegmentGeometry g(s);
-      const double r = g.radius();
-      const double dphi = 2.0 * std::acos(std::max(-1.0, 1.0 - chord_tol / r));
-      const auto n = static_cast<std::size_t>(std::ceil(g.sweep_rad() / dphi));
       Pose prev = s.start;
-      for (std::size_t k = 1; k <= n; ++k) {
-        const Pose p = k == n ? s.end : g.at(g.length() * static_cast<double>(k) / n);
+      for (const Pose& p : arc_chord_ends(s, chord_tol)) {
         Segment q = s;
         q.kind = MotionKind::Linear;
         q.extra_turns = 0;
-        q.start = moved(t, prev);
-        q.end = moved(t, p);
+        q.start = transformed(t, prev);
+        q.end = transformed(t, p);
         out.segments.push_back(q);
         prev = p;
       }

@@ -127,6 +127,13 @@ class FiveAxisKinematics {
 // The machine's kinematics: its [kinematics] geometry, its A and C limits.
 [[nodiscard]] FiveAxisKinematics kinematics_from(const MachineConfig& config);
 
+// A pose's X Y Z under a rigid map (tip_to_joints), its rotary axes as they are.
+[[nodiscard]] inline Pose transformed(const Eigen::Isometry3d& t, const Pose& p) {
+  Pose q = p;
+  q.head<3>() = t * Vec3(p.head<3>());
+  return q;
+}
+
 [[nodiscard]] inline RotaryJoints rotary_of(const Pose& joints) noexcept {
   return {joints[index(Axis::A)], joints[index(Axis::C)]};
 }

@@ -13,12 +13,6 @@ namespace {
 // A rotation this close to the identity is a translation (rounding only).
 constexpr double kIdentity = 1e-12;
 
-Pose moved(const Eigen::Isometry3d& t, const Pose& p) {
-  Pose q = p;
-  q.head<3>() = t * Vec3(p.head<3>());
-  return q;
-}
-
 bool rotary_moves(const Segment& s) {
   return s.start[index(Axis::A)] != s.end[index(Axis::A)] || s.start[index(Axis::C)] != s.end[index(Axis::C)];
 }
@@ -56,21 +50,17 @@ Status TcpExpander::expand(const Segment& s) {
     const bool translation = (t.linear() - Eigen::Matrix3d::Identity()).norm() <= kIdentity;
     if (s.kind != MotionKind::Arc || translation) {
       Segment q = s;
-      q.end = moved(t, s.end);
+      q.end = transformed(t, s.end);
       if (s.kind == MotionKind::Arc) q.center = t * s.center;
       emit(q);
       return {};
     }
-    // a rotated arc: chords whose sag r·(1 − cos(Δφ/2)) stays within the tolerance
-    const SegmentGeometry g(s);
-    const double r = std::max(g.radius(), 1e-9);
-    const double dphi = 2.0 * std::acos(std::max(-1.0, 1.0 - config_.tip_tolerance_mm / r));
-    const auto n = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(g.sweep_rad() / dphi)));
-    for (std::size_t k = 1; k <= n; ++k) {
+    // a rotated arc: chords within the tip tolerance
+    for (const Pose& p : arc_chord_ends(s, config_.tip_tolerance_mm)) {
       Segment q = s;
       q.kind = MotionKind::Linear;
       q.extra_turns = 0;
-      q.end = moved(t, k == n ? s.end : g.at(g.length() * static_cast<double>(k) / static_cast<double>(n)));
+      q.end = transformed(t, p);
       emit(q);
     }
     return {};

@@ -148,4 +148,16 @@ double SegmentGeometry::distance_xyz(const Vec3& p) const {
   return best;
 }
 
+std::vector<Pose> arc_chord_ends(const Segment& arc, double sag_mm) {
+  const SegmentGeometry g(arc);
+  const double r = std::max(g.radius(), 1e-9);
+  const double dphi = 2.0 * std::acos(std::max(-1.0, 1.0 - sag_mm / r));
+  const auto n = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(g.sweep_rad() / dphi)));
+  std::vector<Pose> out;
+  out.reserve(n);
+  for (std::size_t k = 1; k < n; ++k) out.push_back(g.at(g.length() * static_cast<double>(k) / static_cast<double>(n)));
+  out.push_back(arc.end);
+  return out;
+}
+
 }  // namespace lcnc

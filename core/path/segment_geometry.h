@@ -11,6 +11,8 @@
 // move linearly with s.
 #pragma once
 
+#include <vector>
+
 #include "geom/pose.h"
 #include "path/segment.h"
 
@@ -73,5 +75,10 @@ class SegmentGeometry {
   double radius_ = 0.0, sweep_ = 0.0, length_ = 0.0, plane_ratio_ = 0.0;
   double sin_sweep_ = 0.0, cos_sweep_ = 1.0;  // of sweep_ (arcs): the end tangent, the limits
 };
+
+// The chord end points of an arc (its end included, its start not) whose
+// sag r·(1 − cos(Δφ/2)) is at most sag_mm (> 0): where an arc is replaced by
+// lines (a helix on a tilted head, an arc under a rotating map).
+[[nodiscard]] std::vector<Pose> arc_chord_ends(const Segment& arc, double sag_mm);
 
 }  // namespace lcnc
