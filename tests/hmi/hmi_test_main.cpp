@@ -1,11 +1,12 @@
-// GoogleTest main for the HMI suites: a QCoreApplication first (QtSql loads
-// its drivers through it; widgets get a QApplication of their own).
+// GoogleTest main for the HMI suites: a QApplication first (QtSql loads its
+// drivers through it, the widgets need it), offscreen unless told otherwise.
 #include <gtest/gtest.h>
 
-#include <QCoreApplication>
+#include <QApplication>
 
 int main(int argc, char** argv) {
-  QCoreApplication app(argc, argv);
+  if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) qputenv("QT_QPA_PLATFORM", "offscreen");
+  QApplication app(argc, argv);
   ::testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
 }

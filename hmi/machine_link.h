@@ -1,0 +1,49 @@
+// The HMI's link to lasercncd, through the shared-memory interface alone
+// (rt/shm_interface.h, DESIGN §2): the kernel's status read under its
+// seqlock, the daemon's answers, commands into the command ring. Qt-free.
+// The link is lost when the daemon's heartbeat stops or its process is gone
+// (a daemon killed with SIGKILL shows within kLostAfter), and is taken up
+// again when a daemon publishes the segment anew.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "rt/shm_interface.h"
+
+namespace lcnc::hmi {
+
+class MachineLink {
+ public:
+  static constexpr std::chrono::milliseconds kLostAfter{500};
+
+  explicit MachineLink(std::string shm_name = shm::kDefaultName);
+
+  // Call periodically (the screens' timer): (re)connects, watches the
+  // heartbeat. True while linked.
+  bool poll();
+  [[nodiscard]] bool linked() const noexcept { return client_.has_value() && alive_; }
+  // The latest status and job status (empty while not linked).
+  [[nodiscard]] std::optional<shm::Status> status() const;
+  [[nodiscard]] std::optional<shm::JobStatus> job() const;
+  // Sends a command; its sequence number, or 0 when not linked or the ring
+  // is full.
+  std::uint32_t send(shm::CommandType type, double value = 0.0, std::uint8_t axis = 0,
+                     const std::string& text = {});
+  // Why not linked, for the operator.
+  [[nodiscard]] const std::string& why() const noexcept { return why_; }
+
+ private:
+  std::string name_;
+  std::optional<shm::ShmClient> client_;
+  std::uint64_t last_beat_ = 0;
+  std::chrono::steady_clock::time_point beat_seen_{};
+  bool alive_ = false;
+  std::uint32_t seq_ = 0;
+  std::string why_ = "not connected";
+  std::chrono::steady_clock::time_point next_try_{};
+};
+
+}  // namespace lcnc::hmi

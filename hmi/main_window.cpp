@@ -1,0 +1,42 @@
+#include "hmi/main_window.h"
+
+#include <QDir>
+#include <QPixmap>
+#include <QTabWidget>
+
+#include "hmi/machine_page.h"
+#include "hmi/process_db_page.h"
+
+namespace lcnc::hmi {
+
+MainWindow::MainWindow(ProcessDatabase& db, const std::string& shm_name, QWidget* parent)
+    : QMainWindow(parent), tabs_(new QTabWidget(this)) {
+  setObjectName("mainWindow");
+  setWindowTitle(tr("LaserCNC"));
+  tabs_->setObjectName("screens");
+  db_page_ = new ProcessDbPage(db, tabs_);
+  db_page_->setObjectName("processDbPage");
+  machine_page_ = new MachinePage(shm_name, tabs_);
+  machine_page_->setObjectName("machinePage");
+  tabs_->addTab(machine_page_, tr("Machine"));
+  tabs_->addTab(db_page_, tr("Process database"));
+  setCentralWidget(tabs_);
+  resize(1200, 640);
+}
+
+MainWindow::~MainWindow() = default;
+
+QStringList MainWindow::screenshot_all(const QString& dir) {
+  QDir().mkpath(dir);
+  QStringList written;
+  for (int i = 0; i < tabs_->count(); ++i) {
+    tabs_->setCurrentIndex(i);
+    QWidget* page = tabs_->widget(i);
+    const QString path = QDir(dir).filePath(page->objectName() + ".png");
+    if (grab().save(path, "PNG")) written << path;
+  }
+  tabs_->setCurrentIndex(0);
+  return written;
+}
+
+}  // namespace lcnc::hmi

@@ -1,0 +1,45 @@
+// The process-database screen (seed 000 Fig. 9, DESIGN §6): the holes as a
+// table to edit in place (every edit validated and stored at once, a refusal
+// shown with the field and range), add and remove holes, import and export
+// the CSV hole table. Layout and object names in process_db_page.ui.
+#pragma once
+
+#include <QWidget>
+
+#include <memory>
+
+#include "hmi/hole_table_model.h"
+#include "hmi/process_db.h"
+
+namespace Ui {
+class ProcessDbPage;
+}
+
+namespace lcnc::hmi {
+
+class ProcessDbPage : public QWidget {
+  Q_OBJECT
+
+ public:
+  explicit ProcessDbPage(ProcessDatabase& db, QWidget* parent = nullptr);
+  ~ProcessDbPage() override;
+
+  [[nodiscard]] HoleTableModel& model() noexcept { return *model_; }
+  // Test seams of the file dialogs: import/export this path.
+  bool import_file(const QString& path, ProcessDatabase::ImportMode mode);
+  bool export_file(const QString& path);
+  // A new hole (the next free number, a valid helix at the table's centre).
+  bool add_hole();
+  // The message line (a refusal, or what an import did).
+  [[nodiscard]] QString message() const;
+
+ private:
+  void show_message(const QString& text, bool error);
+  void update_count();
+
+  std::unique_ptr<Ui::ProcessDbPage> ui_;
+  ProcessDatabase& db_;
+  std::unique_ptr<HoleTableModel> model_;
+};
+
+}  // namespace lcnc::hmi

@@ -1,0 +1,184 @@
+// The HMI's screens offscreen, found by object name: the hole table model
+// (QAbstractItemModelTester), edits validated in the table, the process
+// database screen's import, every screen rendered to PNG, and the machine
+// screen against a real lasercncd over shared memory.
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/mman.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <QAbstractItemModelTester>
+#include <QApplication>
+#include <QElapsedTimer>
+#include <QImage>
+#include <QLabel>
+#include <QPushButton>
+#include <QSignalSpy>
+#include <QTableView>
+#include <QTabWidget>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "holes/hole_table.h"
+#include "hmi/hole_table_model.h"
+#include "hmi/machine_page.h"
+#include "hmi/main_window.h"
+#include "hmi/process_db_page.h"
+
+extern char** environ;
+
+namespace lcnc::hmi {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path temp_dir() {
+  const fs::path d = fs::temp_directory_path() /
+                     ("lcnc_hmi_" + std::to_string(getpid()) + "_" +
+                      ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+std::unique_ptr<ProcessDatabase> db_with_holes(const fs::path& dir, int n) {
+  auto db = ProcessDatabase::open((dir / "p.db").string());
+  EXPECT_TRUE(static_cast<bool>(db));
+  for (int i = 1; i <= n; ++i) {
+    HoleRecord r;
+    r.params.hole_number = static_cast<std::uint32_t>(i);
+    r.params.position << 100.0 + i, 50.0, 20.0, 0.0, 0.0, 0.0;
+    EXPECT_TRUE((*db)->put(r).ok());
+  }
+  return std::move(db).value();
+}
+
+// Processes events until `done` or the time is up.
+template <typename F>
+bool wait_until(F done, int ms = 5000) {
+  QElapsedTimer t;
+  t.start();
+  while (!done() && t.elapsed() < ms) {
+    QApplication::processEvents(QEventLoop::AllEvents, 20);
+    usleep(5000);
+  }
+  return done();
+}
+
+TEST(HoleTableModel, PassesTheModelTesterAndRefusesOutOfRangeEdits) {
+  const fs::path dir = temp_dir();
+  auto db = db_with_holes(dir, 3);
+  HoleTableModel model(*db);
+  QAbstractItemModelTester tester(&model, QAbstractItemModelTester::FailureReportingMode::Fatal);
+  EXPECT_EQ(model.rowCount(), 3);
+  EXPECT_EQ(model.columnCount(), HoleTableModel::kColumnCount);
+  EXPECT_EQ(model.headerData(HoleTableModel::kA, Qt::Horizontal).toString(), "A (deg)");
+  QSignalSpy refused(&model, &HoleTableModel::refused);
+  const QModelIndex a = model.index(1, HoleTableModel::kA);
+  EXPECT_FALSE(model.setData(a, 120.0));
+  ASSERT_EQ(refused.count(), 1);
+  EXPECT_TRUE(refused.at(0).at(0).toString().contains("hole 2: field 5 A = 120")) << refused.at(0).at(0).toString().toStdString();
+  EXPECT_EQ((*db->hole(2))->params.position[3], 0.0);  // nothing stored
+  EXPECT_EQ(model.data(a).toDouble(), 0.0);
+  EXPECT_TRUE(model.setData(a, -30.0));
+  EXPECT_EQ((*db->hole(2))->params.position[3], -30.0);  // stored at once
+  EXPECT_FALSE(model.setData(model.index(0, HoleTableModel::kLayers), "many"));
+  EXPECT_FALSE(model.flags(model.index(0, HoleTableModel::kHole)) & Qt::ItemIsEditable);
+}
+
+TEST(ProcessDbScreen, ImportShowsWhereTheFileIsWrongAndAddsHoles) {
+  const fs::path dir = temp_dir();
+  auto db = db_with_holes(dir, 2);
+  ProcessDbPage page(*db);
+  auto* table = page.findChild<QTableView*>("holeTable");
+  ASSERT_NE(table, nullptr);
+  EXPECT_EQ(table->model()->rowCount(), 2);
+  std::ofstream(dir / "bad.csv") << "hole,x_mm\n";
+  EXPECT_FALSE(page.import_file(QString::fromStdString((dir / "bad.csv").string()), ProcessDatabase::ImportMode::Merge));
+  auto* message = page.findChild<QLabel*>("messageLabel");
+  ASSERT_NE(message, nullptr);
+  EXPECT_TRUE(message->text().contains("bad.csv:1:1")) << message->text().toStdString();
+  EXPECT_EQ(table->model()->rowCount(), 2);
+  auto* add = page.findChild<QPushButton*>("addButton");
+  ASSERT_NE(add, nullptr);
+  add->click();
+  EXPECT_EQ(table->model()->rowCount(), 3);
+  EXPECT_EQ(page.model().record(2).params.hole_number, 3u);
+  EXPECT_TRUE(page.export_file(QString::fromStdString((dir / "out.csv").string())));
+  EXPECT_TRUE(page.import_file(QString::fromStdString((dir / "out.csv").string()), ProcessDatabase::ImportMode::Replace));
+  EXPECT_EQ(table->model()->rowCount(), 3);
+}
+
+TEST(MainWindow, EveryScreenRendersToPng) {
+  const fs::path dir = temp_dir();
+  auto db = db_with_holes(dir, 5);
+  MainWindow w(*db, "/lcnc_hmi_no_daemon_" + std::to_string(getpid()));
+  const QStringList files = w.screenshot_all(QString::fromStdString((dir / "shots").string()));
+  ASSERT_EQ(files.size(), w.screens()->count());
+  for (const QString& f : files) {
+    const QImage img(f);
+    EXPECT_FALSE(img.isNull()) << f.toStdString();
+    EXPECT_GE(img.width(), 800) << f.toStdString();
+  }
+  EXPECT_TRUE(fs::exists(dir / "shots" / "machinePage.png"));
+  EXPECT_TRUE(fs::exists(dir / "shots" / "processDbPage.png"));
+}
+
+TEST(MainWindow, ScreenshotCommandWritesEachScreen) {
+  const fs::path dir = temp_dir();
+  const std::string cmd = std::string("QT_QPA_PLATFORM=offscreen ") + LASERCNC_HMI_EXE + " --db " +
+                          (dir / "p.db").string() + " --shm /lcnc_hmi_none --screenshot " +
+                          (dir / "shots").string() + " > " + (dir / "out.txt").string() + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  EXPECT_GT(fs::file_size(dir / "shots" / "machinePage.png"), 1000u);
+  EXPECT_GT(fs::file_size(dir / "shots" / "processDbPage.png"), 1000u);
+}
+
+// The machine screen and a real lasercncd on its own segment.
+TEST(MachineScreen, ShowsTheDaemonSendsEStopAndSeesTheLinkLost) {
+  const std::string shm = "/lcnc_hmi_e2e_" + std::to_string(getpid());
+  MachinePage page(shm);
+  auto* link = page.findChild<QLabel*>("linkLabel");
+  auto* state = page.findChild<QLabel*>("stateLabel");
+  auto* dro_x = page.findChild<QLabel*>("droX");
+  auto* estop = page.findChild<QPushButton*>("estopButton");
+  ASSERT_TRUE(link && state && dro_x && estop);
+  page.refresh();
+  EXPECT_TRUE(link->text().contains("link lost")) << link->text().toStdString();
+
+  const std::string exe = LASERCNCD_EXE;
+  std::vector<std::string> args = {exe, "--shm", shm, "--no-realtime"};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
+  pid_t pid = -1;
+  ASSERT_EQ(posix_spawn(&pid, exe.c_str(), &fa, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&fa);
+
+  EXPECT_TRUE(wait_until([&] { return link->text().contains("connected"); })) << link->text().toStdString();
+  EXPECT_TRUE(wait_until([&] { return state->text().contains("idle"); })) << state->text().toStdString();
+  EXPECT_EQ(dro_x->text(), "0.000");
+  estop->click();
+  EXPECT_TRUE(wait_until([&] { return state->text().contains("e-stop"); })) << state->text().toStdString();
+  // the daemon killed outright: the screen says so within a second
+  kill(pid, SIGKILL);
+  waitpid(pid, nullptr, 0);
+  QElapsedTimer t;
+  t.start();
+  EXPECT_TRUE(wait_until([&] { return link->text().contains("link lost"); }, 3000));
+  EXPECT_LT(t.elapsed(), 1000);
+  EXPECT_EQ(dro_x->text(), "—");
+  shm_unlink(shm.c_str());
+}
+
+}  // namespace
+}  // namespace lcnc::hmi
