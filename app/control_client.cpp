@@ -191,11 +191,9 @@ int client_send(const std::vector<std::string>& args, const ClientOptions& optio
   shm::Status st;
   shm::JobStatus job;
   if (!read_both(b, st, job)) return 1;
-  // a number the daemon has not answered lately
-  c.seq = (static_cast<std::uint32_t>(getpid()) << 12) ^ (job.ack_seq + 1);
-  if (c.seq == job.ack_seq) ++c.seq;
   const std::uint32_t ended_before = job.jobs_ended;
-  if (!b.commands.try_push(c)) {
+  c.seq = client->send(c);  // a number unique among all senders
+  if (c.seq == 0) {
     std::fprintf(stderr, "lasercnc send: the daemon's command queue is full\n");
     return 1;
   }

@@ -59,9 +59,8 @@ std::uint32_t MachineLink::send(shm::CommandType type, double value, std::uint8_
   c.type = type;
   c.axis = axis;
   c.value = value;
-  c.seq = ++seq_ == 0 ? ++seq_ : seq_;
   std::snprintf(c.text, sizeof c.text, "%s", text.c_str());
-  return client_->block().commands.try_push(c) ? c.seq : 0;
+  return client_->send(c);
 }
 
 }  // namespace lcnc::hmi

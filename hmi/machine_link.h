@@ -41,7 +41,6 @@ class MachineLink {
   std::uint64_t last_beat_ = 0;
   std::chrono::steady_clock::time_point beat_seen_{};
   bool alive_ = false;
-  std::uint32_t seq_ = 0;
   std::string why_ = "not connected";
   std::chrono::steady_clock::time_point next_try_{};
 };

@@ -69,6 +69,17 @@ Result<ShmOwner> ShmOwner::create(const std::string& name) {
     return shm_error(name, "cannot map");
   }
   new (block) ShmBlock();  // a fresh segment is zero-filled; construct in place
+  pthread_mutexattr_t attr;
+  pthread_mutexattr_init(&attr);
+  pthread_mutexattr_setpshared(&attr, PTHREAD_PROCESS_SHARED);
+  pthread_mutexattr_setrobust(&attr, PTHREAD_MUTEX_ROBUST);
+  const int init = pthread_mutex_init(&block->senders.lock, &attr);
+  pthread_mutexattr_destroy(&attr);
+  if (init != 0) {
+    munmap(block, sizeof(ShmBlock));
+    shm_unlink(name.c_str());
+    return shm_error(name, std::string("cannot make the senders' lock: ") + std::strerror(init));
+  }
   block->header.version = kVersion;
   block->header.size = sizeof(ShmBlock);
   block->header.owner_pid = getpid();
@@ -115,6 +126,17 @@ ShmClient::ShmClient(ShmClient&& o) noexcept : block_(o.block_) { o.block_ = nul
 
 ShmClient::~ShmClient() {
   if (block_ != nullptr) munmap(block_, sizeof(ShmBlock));
+}
+
+std::uint32_t ShmClient::send(Command c) {
+  CommandSenders& s = block_->senders;
+  const int r = pthread_mutex_lock(&s.lock);
+  if (r == EOWNERDEAD) pthread_mutex_consistent(&s.lock);  // its push was whole or not begun
+  else if (r != 0) return 0;
+  c.seq = ++s.next_seq == 0 ? ++s.next_seq : s.next_seq;
+  const bool pushed = block_->commands.try_push(c);
+  pthread_mutex_unlock(&s.lock);
+  return pushed ? c.seq : 0;
 }
 
 bool ShmClient::owner_alive() const noexcept { return process_alive(block_->header.owner_pid); }

@@ -6,10 +6,14 @@
 //   status      Seqlock<Status>: written by the RT kernel every few periods,
 //               read by any number of HMIs without blocking the kernel
 //   job         Seqlock<JobStatus>: the daemon's answers to commands, jobs
-//   commands    SpscRing<Command>: HMI → kernel (one HMI writes)
+//   commands    SpscRing<Command>: HMIs and `lasercnc send` → the daemon;
+//               its senders take turns under a process-shared robust mutex
+//               (ShmClient::send), which also hands out unique sequence
+//               numbers — the daemon's control thread pops without it
 //   events      SpscRing<Event>:   kernel → HMI (faults, state changes)
 #pragma once
 
+#include <pthread.h>
 #include <sys/types.h>
 
 #include <array>
@@ -24,7 +28,7 @@
 namespace lcnc::shm {
 
 inline constexpr std::uint32_t kMagic = 0x434E434Cu;  // "LCNC" in memory
-inline constexpr std::uint32_t kVersion = 3;
+inline constexpr std::uint32_t kVersion = 4;
 inline constexpr const char* kDefaultName = "/lasercnc";
 
 enum class MachineState : std::uint8_t { Idle, Running, FeedHold, Stopping, EStop, Jog, Homing };
@@ -106,10 +110,17 @@ struct ShmHeader {
   std::atomic<std::uint64_t> heartbeat{0};  // bumped by the kernel; stale when it stops
 };
 
+// The command ring's senders: any number of processes, one at a time.
+struct CommandSenders {
+  pthread_mutex_t lock;         // PTHREAD_PROCESS_SHARED, PTHREAD_MUTEX_ROBUST
+  std::uint32_t next_seq = 0;   // guarded by lock
+};
+
 struct ShmBlock {
   ShmHeader header;
   rt::Seqlock<Status> status;
   rt::Seqlock<JobStatus> job;
+  CommandSenders senders;
   rt::SpscRing<Command, 64> commands;
   rt::SpscRing<Event, 256> events;
 };
@@ -143,6 +154,11 @@ class ShmClient {
   ShmClient& operator=(ShmClient&&) = delete;
   ~ShmClient();
   [[nodiscard]] ShmBlock& block() noexcept { return *block_; }
+  // Puts `c` into the command ring with the next sequence number of the
+  // segment (unique among all senders); the number, or 0 when the ring is
+  // full. Takes the senders' lock: never from an RT thread. A sender that
+  // died holding it does not block the others (robust mutex).
+  std::uint32_t send(Command c);
   // The owner process still exists.
   [[nodiscard]] bool owner_alive() const noexcept;
 

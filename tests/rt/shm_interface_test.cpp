@@ -8,7 +8,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <array>
 #include <chrono>
+#include <set>
+#include <vector>
 #include <string>
 #include <thread>
 
@@ -53,6 +56,70 @@ TEST(ShmInterface, ClientInAnotherProcessSeesStatusAndSendsCommands) {
   EXPECT_EQ(got.type, CommandType::Override);
   EXPECT_DOUBLE_EQ(got.value, 1.25);
   EXPECT_EQ(got.seq, 7u);
+}
+
+// Several sender processes (HMIs, `lasercnc send`) at once: every command
+// arrives whole, each with its own sequence number; a sender that dies
+// holding the senders' lock blocks nobody.
+TEST(ShmInterface, ManySendersInManyProcessesTakeTurnsWithUniqueNumbers) {
+  constexpr int kSenders = 4, kEach = 300;
+  const std::string name = unique_name("senders");
+  auto owner = ShmOwner::create(name);
+  ASSERT_TRUE(owner) << owner.error().to_string();
+  std::vector<pid_t> kids;
+  for (int k = 0; k < kSenders; ++k) {
+    const pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+      auto client = ShmClient::open(name);
+      if (!client) _exit(10);
+      for (int i = 0; i < kEach; ++i) {
+        Command c;
+        c.type = CommandType::Jog;
+        c.axis = static_cast<std::uint8_t>(k);
+        c.value = i;
+        while (client->send(c) == 0) std::this_thread::sleep_for(std::chrono::microseconds(50));  // full
+      }
+      _exit(0);
+    }
+    kids.push_back(pid);
+  }
+  std::set<std::uint32_t> seqs;
+  std::array<int, kSenders> next{};  // each sender's commands arrive in its order
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (seqs.size() < static_cast<std::size_t>(kSenders * kEach) && std::chrono::steady_clock::now() < until) {
+    Command c;
+    if (!owner->block().commands.try_pop(c)) {
+      std::this_thread::sleep_for(std::chrono::microseconds(20));
+      continue;
+    }
+    EXPECT_TRUE(seqs.insert(c.seq).second) << "seq " << c.seq << " twice";
+    ASSERT_LT(c.axis, kSenders);
+    EXPECT_EQ(c.value, next[c.axis]++);
+  }
+  for (pid_t p : kids) {
+    int st = 0;
+    waitpid(p, &st, 0);
+    EXPECT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 0);
+  }
+  EXPECT_EQ(seqs.size(), static_cast<std::size_t>(kSenders * kEach));
+  EXPECT_EQ(seqs.count(0u), 0u);
+  // a sender killed while it holds the lock
+  const pid_t dead = fork();
+  ASSERT_GE(dead, 0);
+  if (dead == 0) {
+    auto client = ShmClient::open(name);
+    if (!client) _exit(10);
+    pthread_mutex_lock(&client->block().senders.lock);
+    _exit(0);  // dies holding it
+  }
+  waitpid(dead, nullptr, 0);
+  auto client = ShmClient::open(name);
+  ASSERT_TRUE(client);
+  Command c;
+  c.type = CommandType::Stop;
+  EXPECT_NE(client->send(c), 0u);  // recovered, not blocked
+  EXPECT_NE(client->send(c), 0u);
 }
 
 TEST(ShmInterface, SegmentIsMode0660AndVersioned) {
