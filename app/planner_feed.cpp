@@ -12,17 +12,6 @@
 
 namespace lcnc::app {
 
-SegmentSource reader_source(ProgramReader& reader) {
-  return [&reader](Segment& out) {
-    switch (reader.next(out)) {
-      case ProgramReader::Next::Segment: return SourceStatus::Item;
-      case ProgramReader::Next::End: return SourceStatus::End;
-      case ProgramReader::Next::Error: return SourceStatus::Error;
-    }
-    return SourceStatus::Error;
-  };
-}
-
 PlannerFeed::PlannerFeed(const MachineConfig& machine, rt::PositionBuffer& buffer,
                          rt::RtKernel& kernel)
     : machine_(machine), buffer_(buffer), kernel_(kernel) {

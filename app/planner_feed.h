@@ -22,9 +22,6 @@
 
 namespace lcnc::app {
 
-// A ProgramReader as the planner's pull source.
-[[nodiscard]] SegmentSource reader_source(ProgramReader& reader);
-
 // What the planner thread hands back when it is done.
 struct PlannedJob {
   bool failed = false;

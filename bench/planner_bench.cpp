@@ -30,6 +30,7 @@
 #include "gcode/program_reader.h"
 #include "path/deviation_meter.h"
 #include "plan/planner.h"
+#include "plan/program_source.h"
 
 using namespace lcnc;
 
@@ -131,14 +132,6 @@ struct PlannerRun {
   std::vector<PlannedSegment> planned;  // the blended path, for the reference
   std::uint64_t segments = 0;
 };
-
-SegmentSource reader_source(ProgramReader& r) {
-  return [&r](Segment& s) {
-    const auto n = r.next(s);
-    return n == ProgramReader::Next::Segment ? SourceStatus::Item
-                                             : (n == ProgramReader::Next::End ? SourceStatus::End : SourceStatus::Error);
-  };
-}
 
 PlannerRun run_planner(const std::string& program, const Pose& start, const MachineConfig& m) {
   PlannerRun out;

@@ -4,6 +4,17 @@
 
 namespace lcnc {
 
+SegmentSource reader_source(ProgramReader& reader) {
+  return [&reader](Segment& out) {
+    switch (reader.next(out)) {
+      case ProgramReader::Next::Segment: return SourceStatus::Item;
+      case ProgramReader::Next::End: return SourceStatus::End;
+      case ProgramReader::Next::Error: return SourceStatus::Error;
+    }
+    return SourceStatus::Error;
+  };
+}
+
 Result<std::unique_ptr<ProgramSource>> ProgramSource::open(const std::string& path,
                                                            const MachineConfig& machine,
                                                            ReaderOptions options) {
@@ -19,17 +30,7 @@ Result<std::unique_ptr<ProgramSource>> ProgramSource::open(const std::string& pa
   if (!reader) return reader.error();
   ps->reader_ = std::move(reader).value();
   if (kin) {
-    ProgramReader* r = ps->reader_.get();
-    ps->tcp_.emplace(*kin, machine.tcp,
-                     [r](Segment& out) {
-                       switch (r->next(out)) {
-                         case ProgramReader::Next::Segment: return SourceStatus::Item;
-                         case ProgramReader::Next::End: return SourceStatus::End;
-                         case ProgramReader::Next::Error: return SourceStatus::Error;
-                       }
-                       return SourceStatus::Error;
-                     },
-                     joints);
+    ps->tcp_.emplace(*kin, machine.tcp, reader_source(*ps->reader_), joints);
   }
   return ps;
 }

@@ -19,6 +19,9 @@
 
 namespace lcnc {
 
+// A ProgramReader as a pull source (the reader must outlive it).
+[[nodiscard]] SegmentSource reader_source(ProgramReader& reader);
+
 class ProgramSource {
  public:
   [[nodiscard]] static Result<std::unique_ptr<ProgramSource>> open(const std::string& path,
