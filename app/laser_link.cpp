@@ -58,6 +58,12 @@ Status LaserLink::open(const drivers::Endpoint& laser, const std::optional<drive
 }
 
 LaserLink::~LaserLink() {
+  // Not finished (an error path): emission off all the same, bounded by the
+  // master's timeouts — a link is never left with the laser enabled.
+  if (laser_ && enabled_ && !finished_) {
+    (void)laser_->write("power_setpoint_pct", 0).get();
+    (void)laser_->write("enable", 0).get();
+  }
   // the masters first: their callbacks refer to this object
   if (laser_) laser_->stop();
   if (meter_) meter_->stop();
@@ -74,6 +80,7 @@ void LaserLink::note_failure(const Status& s) {
 Status LaserLink::enable() {
   if (Status s = laser_->write("power_setpoint_pct", 0).get(); !s.ok()) return s;
   if (Status s = laser_->write("enable", 1).get(); !s.ok()) return s;
+  enabled_ = true;
   Result<double> ready = laser_->read("ready").get();
   if (!ready) return ready.error();
   if (*ready != 1.0)
@@ -128,6 +135,7 @@ void LaserLink::follow(double commanded_pct) {
 }
 
 PeripheralReport LaserLink::finish() {
+  finished_ = true;
   note_failure(laser_->write("power_setpoint_pct", 0).get());
   note_failure(laser_->write("enable", 0).get());
   if (Result<double> alarm = laser_->read("alarm_code").get(); !alarm) {

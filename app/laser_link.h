@@ -64,7 +64,8 @@ class LaserLink {
   // From the job's drain loop, with the commanded power now (% of rated).
   // Never blocks.
   void follow(double commanded_pct);
-  // Setpoint 0, emission off, the last status read; the report.
+  // Setpoint 0, emission off, the last status read; the report. (Without
+  // it, the destructor still switches emission off.)
   [[nodiscard]] PeripheralReport finish();
 
  private:
@@ -80,6 +81,8 @@ class LaserLink {
   double sent_pct_ = 0.0;
   double commanded_pct_ = 0.0;
   std::chrono::steady_clock::time_point next_setpoint_{}, next_meter_{}, next_temp_{};
+  bool enabled_ = false;   // enable() wrote enable = 1
+  bool finished_ = false;  // finish() has switched it off
   bool meter_busy_ = false;  // one read outstanding at a time (guarded by mutex_)
   std::mutex mutex_;         // the callbacks (master's worker) ↔ the drain loop
   double meter_sum_w_ = 0.0, commanded_sum_w_ = 0.0;

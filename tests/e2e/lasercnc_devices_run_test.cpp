@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/laser_link.h"
 #include "drivers/devices/laser_source_sim.h"
 #include "drivers/modbus/modbus_master.h"
 #include "drivers/modbus/register_map.h"
@@ -102,6 +103,36 @@ TEST(LasercncRunDevices, NoDeviceAtTheEndpointIsAClearErrorWithinTheTimeouts) {
   EXPECT_NE(r.err.find("laser_source"), std::string::npos) << r.err;
   EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(10));
   EXPECT_EQ(lasercnc("run " + job(kCut).string() + " --laser udp:1").exit_code, 2);
+}
+
+}  // namespace
+
+namespace {
+
+// A link dropped on an error path, without finish(): emission is off all the
+// same (the laser is never left enabled).
+TEST(LaserLink, DroppedWithoutFinishStillSwitchesEmissionOff) {
+  auto map = lcnc::drivers::shipped_device("laser_source");
+  ASSERT_TRUE(static_cast<bool>(map));
+  auto laser = lcnc::drivers::LaserSourceSim::create(*map);
+  ASSERT_TRUE(static_cast<bool>(laser));
+  ASSERT_TRUE((*laser)->start().ok());
+  lcnc::drivers::MasterConfig mc;
+  mc.endpoint = (*laser)->endpoint();
+  lcnc::drivers::ModbusMaster watch(*map, mc);
+  ASSERT_TRUE(watch.start().ok());
+  {
+    auto link = lcnc::app::LaserLink::connect((*laser)->endpoint(), std::nullopt);
+    ASSERT_TRUE(static_cast<bool>(link)) << link.error().to_string();
+    ASSERT_TRUE((*link)->enable().ok());
+    EXPECT_EQ(*watch.read("enable").get(), 1.0);
+    (*link)->follow(70.0);  // the setpoint follows a cut …
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }  // … and the link goes away without finish()
+  EXPECT_EQ(*watch.read("enable").get(), 0.0);
+  EXPECT_EQ(*watch.read("power_setpoint_pct").get(), 0.0);
+  watch.stop();
+  (*laser)->stop();
 }
 
 }  // namespace
