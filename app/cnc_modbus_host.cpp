@@ -174,12 +174,17 @@ Status CncModbusHost::on_parameters(const drivers::HoleParameters& p) {
   return {};
 }
 
-void CncModbusHost::publish(const shm::Status& st) {
-  const Status s = slave_->publish(to_snapshot(st, st.axes_mask));
+bool CncModbusHost::publish(const shm::Status& st) {
+  // Never wait for the bank: a master's command may hold it while its
+  // handler waits for this thread to take the command (drain()).
+  const std::optional<Status> published = slave_->try_publish(to_snapshot(st, st.axes_mask));
+  if (!published) return false;
+  const Status& s = *published;
   std::lock_guard lock(mutex_);
   const std::string err = s.ok() ? std::string() : s.error().message;
   if (err != last_publish_error_ && !err.empty()) log_->warn("modbus: status not published: {}", err);
   last_publish_error_ = err;
+  return true;
 }
 
 void CncModbusHost::drain(const CommandExecutor& execute) {

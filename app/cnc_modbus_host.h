@@ -71,8 +71,9 @@ class CncModbusHost {
   ~CncModbusHost();
 
   [[nodiscard]] drivers::Endpoint endpoint() const { return slave_->endpoint(); }
-  // From the control thread: publish the status; execute the queued commands.
-  void publish(const shm::Status& st);
+  // From the control thread: publish the status (false: a request is being
+  // served, nothing published — try again); execute the queued commands.
+  bool publish(const shm::Status& st);
   void drain(const CommandExecutor& execute);
   // The last hole parameter block accepted, and how many were.
   [[nodiscard]] drivers::HoleParameters parameters() const;

@@ -227,9 +227,8 @@ struct Daemon::Impl {
     });
     const auto now = std::chrono::steady_clock::now();
     if (now < next_publish) return;
-    next_publish = now + kModbusPublish;
     shm::Status st;
-    if (shm.block().status.load(st)) modbus->publish(st);
+    if (shm.block().status.load(st) && modbus->publish(st)) next_publish = now + kModbusPublish;
   }
   std::chrono::steady_clock::time_point next_publish{};
 

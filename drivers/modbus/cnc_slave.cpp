@@ -120,9 +120,11 @@ ModbusException CncSlave::on_write(std::span<const RegisterWrite> writes, Regist
   return ModbusException::None;
 }
 
-Status CncSlave::publish(const CncStatusSnapshot& s) {
+namespace {
+
+Status write_status(const CncStatusSnapshot& s, RegisterBank& b) {
   Status result;
-  slave_->with_bank([&](RegisterBank& b) {
+  [&] {
     const std::pair<std::string_view, double> values[] = {
         {"state", s.state},
         {"fault_code", s.fault_code},
@@ -148,9 +150,24 @@ Status CncSlave::publish(const CncStatusSnapshot& s) {
         return;
       }
     for (const auto& [name, v] : values) (void)b.set(b.def(name), v);
-  });
+  }();
   return result;
 }
+
+}  // namespace
+
+Status CncSlave::publish(const CncStatusSnapshot& s) {
+  Status result;
+  slave_->with_bank([&](RegisterBank& b) { result = write_status(s, b); });
+  return result;
+}
+
+std::optional<Status> CncSlave::try_publish(const CncStatusSnapshot& s) {
+  Status result;
+  if (!slave_->try_with_bank([&](RegisterBank& b) { result = write_status(s, b); })) return std::nullopt;
+  return result;
+}
+
 
 HoleParameters CncSlave::parameters() const {
   HoleParameters p;

@@ -24,6 +24,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 
 #include "common/result.h"
 #include "drivers/modbus/modbus_slave.h"
@@ -81,6 +82,11 @@ class CncSlave {
 
   // Out-of-range values are not published; the error names the register.
   [[nodiscard]] Status publish(const CncStatusSnapshot& status);
+  // The same unless a request is being served right now (nullopt: nothing
+  // published, try again). The write hook runs while a request is served,
+  // and an owner whose command handler waits for its own thread must
+  // publish with this, or the two would wait for each other.
+  [[nodiscard]] std::optional<Status> try_publish(const CncStatusSnapshot& status);
   // The block as stored now (what a master reads back with FC3).
   [[nodiscard]] HoleParameters parameters() const;
 

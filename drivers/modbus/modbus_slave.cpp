@@ -360,6 +360,13 @@ void ModbusSlave::with_bank(const std::function<void(RegisterBank&)>& fn) {
   fn(impl_->bank);
 }
 
+bool ModbusSlave::try_with_bank(const std::function<void(RegisterBank&)>& fn) {
+  std::unique_lock lock(impl_->mutex, std::try_to_lock);
+  if (!lock.owns_lock()) return false;
+  fn(impl_->bank);
+  return true;
+}
+
 SlaveCounters ModbusSlave::counters() const noexcept {
   return {impl_->requests.load(), impl_->exceptions.load(), impl_->refused.load(),
           impl_->crc_errors.load(), impl_->connections.load()};

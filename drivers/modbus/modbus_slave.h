@@ -91,6 +91,10 @@ class ModbusSlave {
   [[nodiscard]] Status set(std::string_view name, double value);
   // Several reads/writes under one lock (a consistent status snapshot).
   void with_bank(const std::function<void(RegisterBank&)>& fn);
+  // The same when no request is being served now; false (fn not called)
+  // otherwise. For an owner that the write hook may be waiting for: it must
+  // not wait for the bank in turn.
+  bool try_with_bank(const std::function<void(RegisterBank&)>& fn);
 
   [[nodiscard]] SlaveCounters counters() const noexcept;
 

@@ -6,6 +6,15 @@
 
 #include "rt/rt_kernel.h"
 
+#include <chrono>
+#include <future>
+#include <thread>
+
+#include <spdlog/spdlog.h>
+
+#include "drivers/modbus/modbus_master.h"
+#include "drivers/modbus/register_map.h"
+
 namespace lcnc::app {
 namespace {
 
@@ -103,6 +112,45 @@ TEST(HoleBlock, CheckedAsTheHoleProcessesNeedIt) {
   EXPECT_TRUE(check_hole_block(p).ok());
   p.layer_feed_mm = 0.0;
   EXPECT_FALSE(check_hole_block(p).ok());
+}
+
+}  // namespace
+}  // namespace lcnc::app
+
+namespace lcnc::app {
+namespace {
+
+// A master's command waits in the slave's write hook for the control thread
+// (drain()); the control thread's publish must not wait for the slave in
+// turn — or both wait until the hook gives up and the command is refused.
+TEST(CncModbusHost, PublishingNeverWaitsForACommandInFlight) {
+  drivers::Endpoint ep;  // TCP 127.0.0.1, a free port
+  Result<std::unique_ptr<CncModbusHost>> host = CncModbusHost::start(ep, spdlog::default_logger());
+  ASSERT_TRUE(static_cast<bool>(host)) << host.error().to_string();
+  auto map = drivers::shipped_device("cnc");
+  ASSERT_TRUE(static_cast<bool>(map));
+  drivers::MasterConfig mc;
+  mc.endpoint = (*host)->endpoint();
+  mc.response_timeout = std::chrono::milliseconds(3000);
+  drivers::ModbusMaster plc(*map, mc);
+  ASSERT_TRUE(plc.start().ok());
+  std::future<Status> hold = plc.write("cmd_hold", 1);
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));  // the command now waits in the hook
+  shm::Status st;
+  const auto t0 = std::chrono::steady_clock::now();
+  const bool published = (*host)->publish(st);
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::milliseconds(50));
+  EXPECT_FALSE(published);  // busy: try again later
+  int taken = 0;
+  (*host)->drain([&](const shm::Command& c) {
+    EXPECT_EQ(c.type, shm::CommandType::Hold);
+    ++taken;
+    return Ack{true, ErrorCode::Internal, "hold"};
+  });
+  EXPECT_EQ(taken, 1);
+  EXPECT_TRUE(hold.get().ok());
+  EXPECT_TRUE((*host)->publish(st));
+  plc.stop();
 }
 
 }  // namespace
