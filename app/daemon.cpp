@@ -111,6 +111,7 @@ struct Daemon::Impl {
   // Executes a command (from the shm ring or the Modbus slave) and says what
   // came of it.
   Ack handle(const shm::Command& c) {
+    follow_job();  // a job the kernel has just ended is over for this command too
     const shm::MachineState st = kernel->state();
     const auto refuse = [](const std::string& why) { return Ack{false, ErrorCode::RtRefused, why}; };
     if (static_cast<std::uint8_t>(c.type) >= static_cast<std::uint8_t>(shm::CommandType::Count)) {

@@ -103,7 +103,9 @@ bool PlannerFeed::within_limits(const PeriodIncrement& inc) {
 }
 
 bool PlannerFeed::push(const PeriodIncrement& inc) {
-  if (!within_limits(inc)) return false;
+  // An aborted job plans no further: the kernel discards what it is sent
+  // after a stop faster than it can be planned, so the buffer never fills.
+  if (abort_.load(std::memory_order_relaxed) || !within_limits(inc)) return false;
   while (!buffer_.try_push(inc)) {
     if (abort_.load(std::memory_order_relaxed)) return false;
     std::this_thread::sleep_for(std::chrono::nanoseconds(machine_.period_ns * 16));

@@ -4,6 +4,7 @@
 // and a job stopped short of a soft limit.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -178,6 +179,33 @@ TEST(JobPipeline, AProgramFailingMidWayStopsAtRestAtItsLastGoodLine) {
     prev_d = d;
     prev_len = len;
   }
+}
+
+// A stop mid-way ends the planning too. The kernel discards a stopped job's
+// entries as fast as they come, so the buffer never fills: the planner must
+// see the abort itself, not only when it waits for room — else it plans on to
+// the program's end (here 90 s of motion) before the job counts as over.
+TEST(JobPipeline, AnAbortedFeedPlansNoFurtherWhileItsEntriesAreDiscarded) {
+  const fs::path prog = write("long_line.ngc", "G21 G90\nM3 S50\nG1 X900 F600\nM5\nM2\n");
+  Job job;  // the kernel not started: this thread discards, as its flush does
+  job.feed->start(prog.string(), ReaderOptions{});
+  std::uint64_t discarded = 0;
+  PeriodIncrement inc;
+  const auto deadline = std::chrono::steady_clock::now() + 30s;
+  while (discarded < 20'000 && std::chrono::steady_clock::now() < deadline)
+    if (job.buffer->try_pop(inc)) ++discarded;
+  ASSERT_EQ(discarded, 20'000u);
+  std::atomic<bool> draining{true};
+  std::thread flush([&] {
+    while (draining.load()) (void)job.buffer->try_pop(inc);
+  });
+  job.feed->abort();
+  draining = false;
+  flush.join();
+  const double total_periods = 90.0 / job.m.period_s();  // 1.2 million
+  EXPECT_LT(static_cast<double>(job.feed->result().increments),
+            20'000.0 + 2.0 * static_cast<double>(rt::kPositionBufferCapacity));
+  EXPECT_GT(total_periods, 1e6);
 }
 
 }  // namespace
