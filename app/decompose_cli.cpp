@@ -9,6 +9,8 @@
 #include <string_view>
 #include <vector>
 
+#include "app/decompose_run.h"
+#include "app/run_job.h"
 #include "decompose/decompose_svg.h"
 #include "decompose/part_decomposition.h"
 #include "dxf/dxf_reader.h"
@@ -24,6 +26,8 @@ constexpr const char* kUsage =
     "                          [--goal smooth|short] [--critical-angle DEG]\n"
     "                          [--units auto|mm|cm|m|inch]\n"
     "                          [--csv FILE] [--svg FILE] [--accel-svg FILE]\n"
+    "                          [--run [--machine FILE] [--aux-machine FILE] [--origin X,Y]\n"
+    "                           [--run-svg FILE] [--no-realtime]]\n"
     "\n"
     "  Splits every contour of the drawing into a smooth main-axis path S1 (X, Y) and\n"
     "  an auxiliary path S2 = S - S1 (P, Q) whose sum is the contour S.\n"
@@ -44,6 +48,12 @@ constexpr const char* kUsage =
     "  --csv         kinematics table: contour,i,x,y,p,q,t,v/a of main and aux, a_eff, S\n"
     "  --svg         picture: S green, S1 blue, S2 red in its field\n"
     "  --accel-svg   effective and main-axis acceleration over time\n"
+    "  --run         cut the part on the simulated machine: main axes X, Y (--machine,\n"
+    "                default share/machines/default.toml) and auxiliary P, Q (--aux-machine,\n"
+    "                default share/machines/aux_stage.toml) as two axis groups on one\n"
+    "                period; the limits and field come from the groups' configs unless\n"
+    "                given; --origin: where the part's 0,0 is on X, Y (default 0,0)\n"
+    "  --run-svg     the run's axis curves X, Y, P, Q over time\n"
     "  Speeds take mm/s (default unit), mm/min, m/min, m/s; accelerations mm/s2\n"
     "  (default), m/s2, g.\n";
 
@@ -93,6 +103,55 @@ bool write_file(const std::string& path, const std::string& text) {
   return static_cast<bool>(f);
 }
 
+void print_group(const GroupReport& g) {
+  const bool exact = g.steps_sent == g.steps_commanded;
+  std::printf("  %-4s %c %lld / %lld, %c %lld / %lld steps sent / commanded%s; %llu underruns%s\n"
+              "       peak %.1f mm/s (limit %.1f, +-%.1f quantization), %.1f mm/s2 (%.3f g; limit "
+              "%.1f, +-%.1f quantization); RT wake-up p99.9 %.0f us, max %.0f us\n",
+              g.name.c_str(), g.letters[0], static_cast<long long>(g.steps_sent[0]),
+              static_cast<long long>(g.steps_commanded[0]), g.letters[1],
+              static_cast<long long>(g.steps_sent[1]), static_cast<long long>(g.steps_commanded[1]),
+              exact ? " (exact)" : " (NOT EXACT)", static_cast<unsigned long long>(g.underruns),
+              g.fault ? ", FAULT" : "", g.peak_speed, g.speed_limit, g.speed_resolution,
+              g.peak_accel, g.peak_accel / kG_mm_s2, g.accel_limit, g.accel_resolution,
+              g.latency_p999_us, g.latency_max_us);
+}
+
+int run_part(const decompose::PartResult& res, const MachineConfig& main_m,
+             const MachineConfig& aux_m, const DecomposeRunOptions& run_opt, const std::string& part,
+             const std::string& svg_path) {
+  std::printf("running on the simulated machine: main X, Y ('%s'), auxiliary P, Q ('%s'), "
+              "period %u us, origin %.3f, %.3f mm\n",
+              main_m.name.c_str(), aux_m.name.c_str(), main_m.period_ns / 1000, run_opt.origin_x_mm,
+              run_opt.origin_y_mm);
+  std::fflush(stdout);
+  Result<DecomposeRunReport> r = run_decomposition(res, main_m, aux_m, run_opt);
+  if (!r) {
+    Diagnostic e = r.error();
+    if (e.file.empty()) e.file = part;
+    std::fprintf(stderr, "%s\n", e.to_string().c_str());
+    return 1;
+  }
+  if (!r->warning.empty()) std::printf("  warning: %s\n", r->warning.c_str());
+  std::printf("  %llu periods, cycle %.4f s, cutting %.4f s; beam X+P, Y+Q vs the contour at "
+              "the same instant: max %.4f mm\n",
+              static_cast<unsigned long long>(r->periods), r->cycle_time_s, r->cutting_time_s,
+              r->beam_deviation_mm);
+  print_group(r->main);
+  print_group(r->aux);
+  if (!svg_path.empty()) {
+    if (!write_file(svg_path, decompose::axes_svg(r->curves, part + " — run on the simulated machine"))) {
+      std::fprintf(stderr, "lasercnc decompose: cannot write %s\n", svg_path.c_str());
+      return 1;
+    }
+    std::printf("axis curves: %s\n", svg_path.c_str());
+  }
+  const bool ok = r->main.steps_sent == r->main.steps_commanded &&
+                  r->aux.steps_sent == r->aux.steps_commanded && !r->main.fault && !r->aux.fault &&
+                  r->main.underruns == 0 && r->aux.underruns == 0;
+  return ok ? 0 : 1;
+}
+
 }  // namespace
 
 int decompose_main(int argc, char** argv) {
@@ -102,12 +161,25 @@ int decompose_main(int argc, char** argv) {
   decompose::Options opt;
   opt.speed_mm_s = 100.0;  // 6 m/min, the seed's test case
   dxf::ReadOptions read_opt;
-  std::string csv_path, svg_path, accel_svg_path;
+  std::string csv_path, svg_path, accel_svg_path, run_svg_path;
+  bool run = false;
+  DecomposeRunOptions run_opt;
+  std::string main_file, aux_file;
+  bool main_speed_given = false, main_accel_given = false, aux_speed_given = false,
+       field_given = false;
   for (int i = 1; i < argc; ++i) {
     const std::string_view a = argv[i];
     if (a == "--help" || a == "-h") {
       std::fputs(kUsage, stdout);
       return 0;
+    }
+    if (a == "--run") {
+      run = true;
+      continue;
+    }
+    if (a == "--no-realtime") {
+      run_opt.realtime = false;
+      continue;
     }
     if (a.substr(0, 2) != "--") {
       if (!part.empty()) return usage_error("more than one drawing: " + std::string(a));
@@ -124,10 +196,13 @@ int decompose_main(int argc, char** argv) {
       if (!s || !(*s > 0.0)) return bad("a positive speed (e.g. 6m/min, 100mm/s)");
       (a == "--speed" ? opt.speed_mm_s : a == "--main-speed" ? opt.main_speed_mm_s
                                                              : opt.aux_speed_mm_s) = *s;
+      main_speed_given |= a == "--main-speed";
+      aux_speed_given |= a == "--aux-speed";
     } else if (a == "--main-accel") {
       const std::optional<double> s = parse_accel(v);
       if (!s || !(*s > 0.0)) return bad("a positive acceleration (e.g. 0.5g, 4903mm/s2)");
       opt.main_accel_mm_s2 = *s;
+      main_accel_given = true;
     } else if (a == "--step") {
       const std::optional<double> s = parse_plain(v);
       if (!s || !(*s >= 0.001)) return bad("a step in mm, at least 0.001 (1 um)");
@@ -136,6 +211,7 @@ int decompose_main(int argc, char** argv) {
       const std::optional<double> s = parse_plain(v);
       if (!s || !(*s > 0.0)) return bad("the field's full width in mm, > 0");
       opt.aux_half_field_mm = *s / 2.0;
+      field_given = true;
     } else if (a == "--critical-angle") {
       const std::optional<double> s = parse_plain(v);
       if (!s || !(*s > 0.0 && *s < 180.0)) return bad("an angle in degrees, 0 < angle < 180");
@@ -161,11 +237,55 @@ int decompose_main(int argc, char** argv) {
       svg_path = std::string(v);
     } else if (a == "--accel-svg") {
       accel_svg_path = std::string(v);
+    } else if (a == "--run-svg") {
+      run_svg_path = std::string(v);
+    } else if (a == "--machine") {
+      main_file = std::string(v);
+    } else if (a == "--aux-machine") {
+      aux_file = std::string(v);
+    } else if (a == "--origin") {
+      const std::string str(v);
+      char* end = nullptr;
+      const double x = std::strtod(str.c_str(), &end);
+      if (end == str.c_str() || *end != ',') return bad("X,Y in mm (e.g. 100,50)");
+      const char* ys = end + 1;
+      const double y = std::strtod(ys, &end);
+      if (end == ys || *end != '\0' || !std::isfinite(x) || !std::isfinite(y))
+        return bad("X,Y in mm (e.g. 100,50)");
+      run_opt.origin_x_mm = x;
+      run_opt.origin_y_mm = y;
     } else {
       return usage_error("unknown option " + std::string(a));
     }
   }
   if (part.empty()) return usage_error("missing PART.dxf");
+  if (!run && (!run_svg_path.empty() || !main_file.empty() || !aux_file.empty()))
+    return usage_error("--machine, --aux-machine and --run-svg go with --run");
+
+  // --run: the groups' configs give the limits the user did not.
+  MachineConfig main_m, aux_m;
+  if (run) {
+    for (auto [file, m] : {std::pair{&main_file, &main_m}, std::pair{&aux_file, &aux_m}}) {
+      const std::string path = file->empty()
+                                   ? shipped_machine_file(m == &main_m ? "default" : "aux_stage")
+                                   : *file;
+      Result<MachineConfig> loaded = load_machine_config(path);
+      if (!loaded) {
+        std::fprintf(stderr, "%s\n", loaded.error().to_string().c_str());
+        return 1;
+      }
+      *m = std::move(loaded).value();
+    }
+    Result<decompose::Options> lim = group_limits(main_m, aux_m, opt);
+    if (!lim) {
+      std::fprintf(stderr, "lasercnc decompose: %s\n", lim.error().to_string().c_str());
+      return 1;
+    }
+    if (!main_speed_given) opt.main_speed_mm_s = lim->main_speed_mm_s;
+    if (!main_accel_given) opt.main_accel_mm_s2 = lim->main_accel_mm_s2;
+    if (!aux_speed_given) opt.aux_speed_mm_s = lim->aux_speed_mm_s;
+    if (!field_given) opt.aux_half_field_mm = lim->aux_half_field_mm;
+  }
 
   Result<dxf::ReadResult> read = dxf::read_dxf_file(part, read_opt);
   if (!read) {
@@ -248,6 +368,7 @@ int decompose_main(int argc, char** argv) {
     }
     std::printf("acceleration plot: %s\n", accel_svg_path.c_str());
   }
+  if (run) return run_part(*res, main_m, aux_m, run_opt, part, run_svg_path);
   return 0;
 }
 

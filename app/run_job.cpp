@@ -166,12 +166,12 @@ const char* rt_command_name(rt::RtCommandType t) {
   return "?";
 }
 
-std::string default_machine_file() {
-  if (const char* share = std::getenv("LASERCNC_SHARE")) {
-    return std::string(share) + "/machines/default.toml";
-  }
-  return std::string(LCNC_SHARE_DIR) + "/machines/default.toml";
+std::string shipped_machine_file(const std::string& name) {
+  const char* share = std::getenv("LASERCNC_SHARE");
+  return std::string(share != nullptr ? share : LCNC_SHARE_DIR) + "/machines/" + name + ".toml";
 }
+
+std::string default_machine_file() { return shipped_machine_file("default"); }
 
 Result<MachineConfig> load_machine(const RunOptions& options) {
   const std::string file =

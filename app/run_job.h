@@ -108,7 +108,9 @@ struct RtLogLine {
 [[nodiscard]] std::string format_report(const RunReport& report);
 [[nodiscard]] std::string report_json(const RunReport& report);
 
-// The default machine config file (share/machines/default.toml).
+// A machine config shipped in share/machines (NAME.toml; $LASERCNC_SHARE
+// overrides where share/ is), and the default one (default.toml).
+[[nodiscard]] std::string shipped_machine_file(const std::string& name);
 [[nodiscard]] std::string default_machine_file();
 
 }  // namespace lcnc::app

@@ -136,9 +136,10 @@ void RtKernel::run(const RtOptions& options) noexcept {
   if (options.on_loop_enter) options.on_loop_enter();
   timespec now{};
   clock_gettime(CLOCK_MONOTONIC, &now);
-  // The first period starts one nominal period from now; after that each
-  // deadline is t0 + machine time so far, rounded once (no drift).
-  const std::int64_t t0 = to_ns(now) + period_ns_;
+  // The first period starts one nominal period from now (or at the epoch
+  // given); after that each deadline is t0 + machine time so far, rounded
+  // once (no drift).
+  const std::int64_t t0 = options.epoch_ns > 0 ? options.epoch_ns : to_ns(now) + period_ns_;
   double machine_ns = 0.0;  // Σ lengths of the periods before this one
   publish_status(true);
   while (!shutdown_requested_.load(std::memory_order_relaxed)) {

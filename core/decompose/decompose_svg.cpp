@@ -174,4 +174,78 @@ std::string accel_svg(const PartResult& r, const Options& opt, const std::string
   return s + "</svg>\n";
 }
 
+std::string axes_svg(const AxisCurves& c, const std::string& title) {
+  constexpr double W = 1200, H = 520, left = 70, right = 70, top = 40, bottom = 50;
+  const double pw = W - left - right, ph = H - top - bottom;
+  const std::size_t n = c.t_s.size();
+  const double t_end = n > 0 ? std::max(c.t_s.back(), 1e-9) : 1.0;
+  // value ranges of each group, both coordinates on one scale
+  double m0 = std::numeric_limits<double>::max(), m1 = -m0, a0 = m0, a1 = -m0;
+  for (std::size_t i = 0; i < n; ++i) {
+    m0 = std::min({m0, c.main[i].x(), c.main[i].y()});
+    m1 = std::max({m1, c.main[i].x(), c.main[i].y()});
+    a0 = std::min({a0, c.aux[i].x(), c.aux[i].y()});
+    a1 = std::max({a1, c.aux[i].x(), c.aux[i].y()});
+  }
+  for (double* r : {&m0, &a0}) {
+    double& lo = r[0];
+    double& hi = r == &m0 ? m1 : a1;
+    if (!(hi - lo >= 1e-6)) {
+      const double mid = n > 0 ? 0.5 * (lo + hi) : 0.0;
+      lo = mid - 0.5;
+      hi = mid + 0.5;
+    }
+  }
+  const auto px = [&](double t) { return left + t / t_end * pw; };
+  const auto ym = [&](double v) { return top + ph - (v - m0) / (m1 - m0) * ph; };
+  const auto ya = [&](double v) { return top + ph - (v - a0) / (a1 - a0) * ph; };
+  std::string s = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + num(W) +
+                  "\" height=\"" + num(H) + "\" font-family=\"sans-serif\" font-size=\"13\">\n"
+                  "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  s += "<text x=\"" + num(left) + "\" y=\"22\">" + escape(title) + "</text>\n";
+  // laser-on spans
+  for (std::size_t i = 0; i < n;) {
+    if (!c.laser[i]) { ++i; continue; }
+    std::size_t j = i;
+    while (j + 1 < n && c.laser[j + 1]) ++j;
+    const double x0 = px(i > 0 ? c.t_s[i - 1] : c.t_s[i]), x1 = px(c.t_s[j]);
+    s += "<rect x=\"" + num(x0) + "\" y=\"" + num(top) + "\" width=\"" + num(std::max(x1 - x0, 0.5)) +
+         "\" height=\"" + num(ph) + "\" fill=\"#fff2cc\"/>\n";
+    i = j + 1;
+  }
+  s += "<rect x=\"" + num(left) + "\" y=\"" + num(top) + "\" width=\"" + num(pw) +
+       "\" height=\"" + num(ph) + "\" fill=\"none\" stroke=\"black\"/>\n";
+  for (int k = 0; k <= 5; ++k) {
+    const double f = k / 5.0;
+    s += "<text x=\"" + num(left - 6) + "\" y=\"" + num(top + ph - f * ph + 4) +
+         "\" text-anchor=\"end\" fill=\"#1f4e9c\">" + num(m0 + f * (m1 - m0)).substr(0, 7) + "</text>\n";
+    s += "<text x=\"" + num(left + pw + 6) + "\" y=\"" + num(top + ph - f * ph + 4) +
+         "\" fill=\"#b22222\">" + num(a0 + f * (a1 - a0)).substr(0, 7) + "</text>\n";
+    s += "<text x=\"" + num(left + pw * f) + "\" y=\"" + num(top + ph + 18) +
+         "\" text-anchor=\"middle\">" + num(t_end * f).substr(0, 7) + "</text>\n";
+  }
+  s += "<text x=\"" + num(left + pw / 2) + "\" y=\"" + num(H - 8) +
+       "\" text-anchor=\"middle\">time, s (shaded: laser on)</text>\n";
+  const auto curve = [&](auto value, auto y, const char* color, const char* dash) {
+    std::string o = "<polyline fill=\"none\" stroke=\"" + std::string(color) +
+                    "\" stroke-width=\"1.2\"" + dash + " points=\"";
+    double last_x = -1e9;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double x = px(c.t_s[i]);
+      if (x - last_x < kMinPixelStep && i + 1 < n) continue;
+      o += num(x) + "," + num(y(value(i))) + " ";
+      last_x = x;
+    }
+    return o + "\"/>\n";
+  };
+  s += curve([&](std::size_t i) { return c.main[i].x(); }, ym, "#1f4e9c", "");
+  s += curve([&](std::size_t i) { return c.main[i].y(); }, ym, "#1f4e9c", " stroke-dasharray=\"6 3\"");
+  s += curve([&](std::size_t i) { return c.aux[i].x(); }, ya, "#b22222", "");
+  s += curve([&](std::size_t i) { return c.aux[i].y(); }, ya, "#b22222", " stroke-dasharray=\"6 3\"");
+  s += "<text x=\"" + num(left + pw) + "\" y=\"22\" text-anchor=\"end\"><tspan fill=\"#1f4e9c\">main X "
+       "(solid), Y (dashed), mm, left scale</tspan>  <tspan fill=\"#b22222\">auxiliary P (solid), Q "
+       "(dashed), mm, right scale</tspan></text>\n";
+  return s + "</svg>\n";
+}
+
 }  // namespace lcnc::decompose

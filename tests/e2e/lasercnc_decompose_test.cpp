@@ -75,6 +75,39 @@ TEST(LasercncDecompose, BadOptionsAreUsageErrors) {
   EXPECT_EQ(lasercnc("decompose " + kSample + " --step 0.0001").exit_code, 2);
   EXPECT_EQ(lasercnc("decompose " + kSample + " --speed fast").exit_code, 2);
   EXPECT_EQ(lasercnc("decompose " + kSample + " --mode other").exit_code, 2);
+  EXPECT_EQ(lasercnc("decompose " + kSample + " --run-svg x.svg").exit_code, 2);  // needs --run
+  EXPECT_EQ(lasercnc("decompose " + kSample + " --run --origin 10").exit_code, 2);
+}
+
+const std::string kStar = std::string(LCNC_SOURCE_DIR) + "/share/examples/star_decompose.dxf";
+
+TEST(LasercncDecompose, RunCutsThePartWithTwoAxisGroupsAndDrawsTheAxisCurves) {
+  const fs::path svg = e2e::temp_dir() / "axes.svg";
+  const e2e::CmdResult r = lasercnc("decompose " + kStar + " --step 0.05 --run --no-realtime " +
+                                    "--origin 200,100 --run-svg " + svg.string());
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("main X, Y ('default'), auxiliary P, Q ('aux_stage')"), std::string::npos)
+      << r.out;
+  // both groups exact
+  const std::size_t first = r.out.find("(exact)");
+  ASSERT_NE(first, std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("(exact)", first + 1), std::string::npos) << r.out;
+  // the beam on the contour at the same instant, to the steps' resolution
+  const std::size_t at = r.out.find("at the same instant: max ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  EXPECT_LE(std::stod(r.out.substr(at + 25)), 0.0015) << r.out;
+  const std::string pic = e2e::slurp(svg);
+  EXPECT_NE(pic.find("<polyline"), std::string::npos);
+  EXPECT_NE(pic.find("auxiliary P"), std::string::npos);
+}
+
+TEST(LasercncDecompose, RunBeyondTheTravelIsRefusedNamingTheContour) {
+  const e2e::CmdResult r =
+      lasercnc("decompose " + kStar + " --step 0.05 --run --no-realtime --origin 995,0");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("E612"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("contour"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out.find("periods"), std::string::npos) << r.out;  // nothing ran
 }
 
 }  // namespace
