@@ -156,6 +156,39 @@ TEST(RtKernel, ExecutesEveryEntryAndSumOfPulsesEqualsCommandedSteps) {
   EXPECT_EQ(expect, r.kernel.periods());
 }
 
+// Two kernels given one epoch (two axis groups on one time base): neither
+// runs a period before it, and though started 60 ms apart they run their
+// periods together and end together.
+TEST(RtKernel, KernelsGivenOneEpochStartOnItTogether) {
+  Rig a, b;
+  (void)fill(*a.buffer, 2000, 1);
+  (void)fill(*b.buffer, 2000, 1);
+  const auto mono_ns = [] {
+    timespec ts{};
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+  };
+  RtOptions o{false, 0, {}, {}};
+  o.epoch_ns = mono_ns() + 200'000'000;  // 200 ms from now
+  a.kernel.start(o);
+  std::this_thread::sleep_for(std::chrono::milliseconds(60));
+  b.kernel.start(o);
+  std::this_thread::sleep_for(std::chrono::milliseconds(60));
+  EXPECT_EQ(a.kernel.periods(), 0u);  // not before the epoch
+  EXPECT_EQ(b.kernel.periods(), 0u);
+  std::int64_t a_end = 0, b_end = 0;
+  while (a_end == 0 || b_end == 0) {
+    if (a_end == 0 && a.kernel.finished()) a_end = mono_ns();
+    if (b_end == 0 && b.kernel.finished()) b_end = mono_ns();
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  a.kernel.join();
+  b.kernel.join();
+  // 2000 periods of 75 µs from the epoch: neither ends before that
+  EXPECT_GE(std::min(a_end, b_end) - o.epoch_ns, 2000 * 75'000);
+  EXPECT_LT(std::abs(a_end - b_end), 30'000'000);  // not 60 ms apart
+}
+
 TEST(RtKernel, EmptyBufferWhileRunningIsAnUnderrunThatHoldsPosition) {
   Rig r;
   PeriodIncrement inc;
