@@ -107,14 +107,16 @@ void print_group(const GroupReport& g) {
   const bool exact = g.steps_sent == g.steps_commanded;
   std::printf("  %-4s %c %lld / %lld, %c %lld / %lld steps sent / commanded%s; %llu underruns%s\n"
               "       peak %.1f mm/s (limit %.1f, +-%.1f quantization), %.1f mm/s2 (%.3f g; limit "
-              "%.1f, +-%.1f quantization); RT wake-up p99.9 %.0f us, max %.0f us\n",
+              "%.1f, +-%.1f quantization); while cutting %.1f mm/s, %.1f mm/s2 (%.3f g)\n"
+              "       RT wake-up p99.9 %.0f us, max %.0f us\n",
               g.name.c_str(), g.letters[0], static_cast<long long>(g.steps_sent[0]),
               static_cast<long long>(g.steps_commanded[0]), g.letters[1],
               static_cast<long long>(g.steps_sent[1]), static_cast<long long>(g.steps_commanded[1]),
               exact ? " (exact)" : " (NOT EXACT)", static_cast<unsigned long long>(g.underruns),
               g.fault ? ", FAULT" : "", g.peak_speed, g.speed_limit, g.speed_resolution,
               g.peak_accel, g.peak_accel / kG_mm_s2, g.accel_limit, g.accel_resolution,
-              g.latency_p999_us, g.latency_max_us);
+              g.cutting_speed, g.cutting_accel, g.cutting_accel / kG_mm_s2, g.latency_p999_us,
+              g.latency_max_us);
 }
 
 int run_part(const decompose::PartResult& res, const MachineConfig& main_m,

@@ -189,18 +189,24 @@ struct Group {
 // over windows (see the header).
 struct PeakMeter {
   double T;
-  std::deque<Vec2> hist;
-  double v = 0, a = 0;
+  std::deque<std::pair<Vec2, bool>> hist;  // position, laser on
+  double v = 0, a = 0, v_cut = 0, a_cut = 0;
   explicit PeakMeter(double period_s) : T(period_s) {}
-  void add(const Vec2& p) {
-    hist.push_back(p);
+  void add(const Vec2& p, bool cutting) {
+    hist.emplace_back(p, cutting);
     if (hist.size() > 2 * kAccelWindow + 1) hist.pop_front();
     const std::size_t n = hist.size();
-    if (n > kSpeedWindow)
-      v = std::max(v, (hist[n - 1] - hist[n - 1 - kSpeedWindow]).norm() / (kSpeedWindow * T));
+    if (n > kSpeedWindow) {
+      const double vn = (hist[n - 1].first - hist[n - 1 - kSpeedWindow].first).norm() / (kSpeedWindow * T);
+      v = std::max(v, vn);
+      if (hist[n - 1].second && hist[n - 1 - kSpeedWindow].second) v_cut = std::max(v_cut, vn);
+    }
     if (n == 2 * kAccelWindow + 1) {
       const double w = kAccelWindow * T;
-      a = std::max(a, (hist[n - 1] - 2.0 * hist[kAccelWindow] + hist[0]).norm() / (w * w));
+      const double an =
+          (hist[n - 1].first - 2.0 * hist[kAccelWindow].first + hist[0].first).norm() / (w * w);
+      a = std::max(a, an);
+      if (hist[0].second && hist[n - 1].second) a_cut = std::max(a_cut, an);
     }
   }
 };
@@ -299,10 +305,10 @@ Result<DecomposeRunReport> run_decomposition(const decompose::PartResult& part,
       ga.records.pop_front();
       ++rep.traced_periods;
       const Vec2 xm = gm.mm(rm), xa = ga.mm(ra);
-      pm.add(xm);
-      pa.add(xa);
-      const std::size_t k = rm.segment;  // the entry the period executed
       const bool on = rm.power_pct > 0.0f;
+      pm.add(xm, on);
+      pa.add(xa, on);
+      const std::size_t k = rm.segment;  // the entry the period executed
       if (k < targets.size() && on) {
         rep.beam_deviation_mm = std::max(rep.beam_deviation_mm, (xm + xa - targets[k].beam).norm());
         rep.cutting_time_s += T;
@@ -340,8 +346,12 @@ Result<DecomposeRunReport> run_decomposition(const decompose::PartResult& part,
   }
   rep.main.peak_speed = pm.v;
   rep.main.peak_accel = pm.a;
+  rep.main.cutting_speed = pm.v_cut;
+  rep.main.cutting_accel = pm.a_cut;
   rep.aux.peak_speed = pa.v;
   rep.aux.peak_accel = pa.a;
+  rep.aux.cutting_speed = pa.v_cut;
+  rep.aux.cutting_accel = pa.a_cut;
   rep.main.underruns = gm.kernel->underruns();
   rep.aux.underruns = ga.kernel->underruns();
   rep.main.latency_p999_us = gm.kernel->latency().quantile_us(0.999);

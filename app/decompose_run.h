@@ -41,6 +41,9 @@ struct GroupReport {
   std::array<std::int64_t, 2> steps_sent{}, steps_commanded{};
   double peak_speed = 0.0;               // mm/s, vector
   double peak_accel = 0.0;               // mm/s², vector, over kAccelWindow
+  // The same while cutting (the window wholly within laser-on periods): what
+  // the decomposition promised, without the traverses between contours.
+  double cutting_speed = 0.0, cutting_accel = 0.0;
   double speed_limit = 0.0, accel_limit = 0.0;
   // What one step of quantization reads as over the windows: a peak within
   // limit + resolution keeps the limit.

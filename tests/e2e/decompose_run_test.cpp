@@ -5,6 +5,7 @@
 // the main group stays within its limits.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 
 #include "app/decompose_run.h"
@@ -64,6 +65,15 @@ TEST(DecomposeRun, TwoAxisGroupsCutThePartExactlyOnOneTimeBase) {
   EXPECT_LT(r->main.accel_resolution, 2.9e-3 / (w * w));
   EXPECT_LE(r->main.peak_speed, s.main.axis(Axis::X).max_velocity + r->main.speed_resolution);
   EXPECT_GT(r->main.peak_accel, 0.1 * s.opt.main_accel_mm_s2);  // it moved, measured
+  // while cutting: what the decomposition planned, to the windows' resolution
+  double planned_a = 0, planned_v_aux = 0;
+  for (const decompose::ContourResult& c : s.part.contours) {
+    planned_a = std::max(planned_a, c.peaks.a_main);
+    planned_v_aux = std::max(planned_v_aux, c.peaks.v_aux);
+  }
+  EXPECT_LE(r->main.cutting_accel, planned_a + r->main.accel_resolution);
+  EXPECT_GT(r->main.cutting_accel, 0.5 * planned_a);
+  EXPECT_LE(r->aux.cutting_speed, planned_v_aux + r->aux.speed_resolution);
   // the auxiliary group moved within its field and speed
   EXPECT_GT(r->aux.peak_speed, 0.5 * s.opt.speed_mm_s);
   EXPECT_LE(r->aux.peak_speed, s.aux.axis(Axis::X).max_velocity + 1e-3 / (kSpeedWindow * T));
