@@ -4,6 +4,7 @@
 #include <QPixmap>
 #include <QTabWidget>
 
+#include "hmi/decomposition_page.h"
 #include "hmi/machine_page.h"
 #include "hmi/process_db_page.h"
 
@@ -20,6 +21,9 @@ MainWindow::MainWindow(ProcessDatabase& db, const std::string& shm_name, QWidget
   machine_page_->setObjectName("machinePage");
   tabs_->addTab(machine_page_, tr("Machine"));
   tabs_->addTab(db_page_, tr("Process database"));
+  decomposition_page_ = new DecompositionPage(tabs_);
+  decomposition_page_->setObjectName("decompositionPage");
+  tabs_->addTab(decomposition_page_, tr("Main + auxiliary axes"));
   setCentralWidget(tabs_);
   resize(1200, 640);
 }

@@ -15,6 +15,7 @@ class QTabWidget;
 
 namespace lcnc::hmi {
 
+class DecompositionPage;
 class MachinePage;
 class ProcessDbPage;
 
@@ -28,11 +29,13 @@ class MainWindow : public QMainWindow {
   // Renders each screen to DIR/<objectName>.png; the files written.
   QStringList screenshot_all(const QString& dir);
   [[nodiscard]] QTabWidget* screens() const noexcept { return tabs_; }
+  [[nodiscard]] DecompositionPage* decomposition() const noexcept { return decomposition_page_; }
 
  private:
   QTabWidget* tabs_;
   ProcessDbPage* db_page_;
   MachinePage* machine_page_;
+  DecompositionPage* decomposition_page_;
 };
 
 }  // namespace lcnc::hmi

@@ -128,6 +128,7 @@ TEST(MainWindow, EveryScreenRendersToPng) {
   }
   EXPECT_TRUE(fs::exists(dir / "shots" / "machinePage.png"));
   EXPECT_TRUE(fs::exists(dir / "shots" / "processDbPage.png"));
+  EXPECT_TRUE(fs::exists(dir / "shots" / "decompositionPage.png"));
 }
 
 TEST(MainWindow, ScreenshotCommandWritesEachScreen) {
