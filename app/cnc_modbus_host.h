@@ -46,10 +46,6 @@ struct Ack {
 // A Modbus command as the daemon executes it: the shm command it stands for.
 using CommandExecutor = std::function<Ack(const shm::Command&)>;
 
-// `tcp:HOST:PORT` (port 0: any free one) or `rtu:DEVICE[:BAUD[:PARITY]]`
-// (115200 and N by default); a Usage error otherwise.
-[[nodiscard]] Result<drivers::Endpoint> parse_modbus_endpoint(std::string_view spec);
-
 // The hole parameter block (DESIGN §6 fields 1–18) as the hole processes
 // take it. A free shape's polygon is not part of the block (it stays empty).
 [[nodiscard]] HoleProcessParams to_process_params(const drivers::HoleParameters& p);

@@ -18,6 +18,7 @@
 #include "app/decompose_cli.h"
 #include "app/drill_cli.h"
 #include "app/run_job.h"
+#include "drivers/modbus/endpoint_spec.h"
 #include "gcode/program_reader.h"
 #include "plan/program_source.h"
 
@@ -172,7 +173,7 @@ int main(int argc, char** argv) {
     } else if (a == "--laser" || a == "--power-meter") {
       auto v = value();
       if (!v) return usage_error(std::string(a) + " needs an endpoint");
-      auto ep = lcnc::app::parse_modbus_endpoint(*v);
+      auto ep = lcnc::drivers::parse_endpoint(*v);
       if (!ep) return usage_error(std::string(a) + " " + ep.error().message);
       (a == "--laser" ? opt.laser : opt.power_meter) = *ep;
     } else if (a == "--no-realtime") {

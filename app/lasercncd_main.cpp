@@ -11,6 +11,7 @@
 
 #include "app/cnc_modbus_host.h"
 #include "app/daemon.h"
+#include "drivers/modbus/endpoint_spec.h"
 
 namespace {
 
@@ -35,7 +36,7 @@ int main(int argc, char** argv) {
     if ((a == "--machine" || a == "--shm") && i + 1 < argc) {
       (a == "--machine" ? opt.machine_file : opt.shm_name) = argv[++i];
     } else if (a == "--modbus" && i + 1 < argc) {
-      auto ep = lcnc::app::parse_modbus_endpoint(argv[++i]);
+      auto ep = lcnc::drivers::parse_endpoint(argv[++i]);
       if (!ep) {
         std::fprintf(stderr, "lasercncd: --modbus %s\n%s", ep.error().message.c_str(), kUsage);
         return 2;

@@ -274,16 +274,23 @@ Status ProcessDatabase::set_positions(const std::vector<std::pair<std::uint32_t,
 }
 
 Status ProcessDatabase::set_focus_offset(std::uint32_t number, double offset_mm) {
-  if (Status s = check_focus(number, offset_mm); !s) return s;
+  return set_focus_offsets({{number, offset_mm}});
+}
+
+Status ProcessDatabase::set_focus_offsets(const std::vector<std::pair<std::uint32_t, double>>& offsets) {
+  for (const auto& [number, offset] : offsets)
+    if (Status s = check_focus(number, offset); !s) return s;
   QSqlDatabase db = QSqlDatabase::database(QString::fromStdString(connection_));
   return in_transaction(db, path_, [&]() -> Status {
-    QSqlQuery q(db);
-    q.prepare("UPDATE holes SET focus_offset_mm = ? WHERE hole = ?");
-    q.addBindValue(offset_mm);
-    q.addBindValue(number);
-    if (!q.exec()) return sql_error("hole " + std::to_string(number) + ": focus offset", q.lastError(), path_);
-    if (q.numRowsAffected() != 1)
-      return make_error(ErrorCode::ProcessDbError, "no hole " + std::to_string(number), path_);
+    for (const auto& [number, offset] : offsets) {
+      QSqlQuery q(db);
+      q.prepare("UPDATE holes SET focus_offset_mm = ? WHERE hole = ?");
+      q.addBindValue(offset);
+      q.addBindValue(number);
+      if (!q.exec()) return sql_error("hole " + std::to_string(number) + ": focus offset", q.lastError(), path_);
+      if (q.numRowsAffected() != 1)
+        return make_error(ErrorCode::ProcessDbError, "no hole " + std::to_string(number), path_);
+    }
     return {};
   });
 }

@@ -54,8 +54,10 @@ class ProcessDatabase {
   [[nodiscard]] Status remove(std::uint32_t number);
   // The 3D-measurement workflow: X Y Z A C of many holes at once, all or none.
   [[nodiscard]] Status set_positions(const std::vector<std::pair<std::uint32_t, Pose>>& positions);
-  // The focal-length workflow: the measured focus offset of a hole.
+  // The focal-length workflow: the measured focus offset of a hole, or of
+  // many at once (all or none).
   [[nodiscard]] Status set_focus_offset(std::uint32_t number, double offset_mm);
+  [[nodiscard]] Status set_focus_offsets(const std::vector<std::pair<std::uint32_t, double>>& offsets);
 
   enum class ImportMode : std::uint8_t { Replace, Merge };
   // A hole table (holes/hole_table.h): Replace empties the table first,

@@ -4,39 +4,39 @@
 
 #include <gtest/gtest.h>
 
-#include "rt/rt_kernel.h"
-
 #include <chrono>
 #include <future>
 #include <thread>
 
 #include <spdlog/spdlog.h>
 
+#include "drivers/modbus/endpoint_spec.h"
 #include "drivers/modbus/modbus_master.h"
 #include "drivers/modbus/register_map.h"
+#include "rt/rt_kernel.h"
 
 namespace lcnc::app {
 namespace {
 
 TEST(ModbusEndpoint, TcpAndRtuFormsAndTheirErrors) {
-  Result<drivers::Endpoint> e = parse_modbus_endpoint("tcp:127.0.0.1:1502");
+  Result<drivers::Endpoint> e = drivers::parse_endpoint("tcp:127.0.0.1:1502");
   ASSERT_TRUE(static_cast<bool>(e));
   EXPECT_EQ(e->transport, drivers::Transport::Tcp);
   EXPECT_EQ(e->host, "127.0.0.1");
   EXPECT_EQ(e->port, 1502);
-  e = parse_modbus_endpoint("rtu:/dev/ttyUSB0:19200:E");
+  e = drivers::parse_endpoint("rtu:/dev/ttyUSB0:19200:E");
   ASSERT_TRUE(static_cast<bool>(e));
   EXPECT_EQ(e->transport, drivers::Transport::Rtu);
   EXPECT_EQ(e->device, "/dev/ttyUSB0");
   EXPECT_EQ(e->baud, 19200);
   EXPECT_EQ(e->parity, 'E');
-  e = parse_modbus_endpoint("rtu:/dev/pts/3");
+  e = drivers::parse_endpoint("rtu:/dev/pts/3");
   ASSERT_TRUE(static_cast<bool>(e));
   EXPECT_EQ(e->baud, 115200);
   EXPECT_EQ(e->parity, 'N');
   for (const char* bad : {"tcp:1502", "tcp:127.0.0.1:70000", "tcp:host:x", "rtu:", "rtu:/dev/x:0",
                           "rtu:/dev/x:9600:Q", "udp:1:2", ""}) {
-    const Result<drivers::Endpoint> r = parse_modbus_endpoint(bad);
+    const Result<drivers::Endpoint> r = drivers::parse_endpoint(bad);
     ASSERT_FALSE(static_cast<bool>(r)) << bad;
     EXPECT_EQ(r.error().code, ErrorCode::Usage) << bad;
     EXPECT_NE(r.error().message.find("expected tcp:HOST:PORT"), std::string::npos) << bad;

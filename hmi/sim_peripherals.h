@@ -1,0 +1,47 @@
+// The HMI's peripherals when no real ones are given (the default): the
+// register map's virtual devices (drivers/devices/, simulators named as
+// such) started in-process as real Modbus TCP slaves on loopback, the HMI
+// talking to them over the wire as to the hardware. The displacement sensor
+// and the 3D probe ride on the Z carriage, so their position is the
+// machine's: a thread follows the daemon's DRO over the shared memory (its
+// own MachineLink) and moves them with it, as the carriage would.
+#pragma once
+
+#include <atomic>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "common/result.h"
+#include "drivers/devices/displacement_sensor_sim.h"
+#include "drivers/devices/probe_3d_sim.h"
+
+namespace lcnc::hmi {
+
+class SimPeripherals {
+ public:
+  // Starts the sensor and the probe; they follow the machine on `shm_name`.
+  [[nodiscard]] static Result<std::unique_ptr<SimPeripherals>> start(const std::string& shm_name);
+  ~SimPeripherals();
+  SimPeripherals(const SimPeripherals&) = delete;
+  SimPeripherals& operator=(const SimPeripherals&) = delete;
+
+  [[nodiscard]] drivers::Endpoint sensor_endpoint() const { return sensor_->endpoint(); }
+  [[nodiscard]] drivers::Endpoint probe_endpoint() const { return probe_->endpoint(); }
+  [[nodiscard]] const std::string& probe_serial_path() const { return probe_->serial_path(); }
+  [[nodiscard]] const drivers::SurfaceModel& surface() const noexcept { return sensor_->surface(); }
+  // Times the carriage-mounted devices were moved to a new DRO reading.
+  [[nodiscard]] std::uint64_t follows() const noexcept { return follows_.load(); }
+
+ private:
+  SimPeripherals() = default;
+  void follow(const std::string& shm_name) noexcept;
+
+  std::unique_ptr<drivers::DisplacementSensorSim> sensor_;
+  std::unique_ptr<drivers::Probe3dSim> probe_;
+  std::atomic<bool> running_{true};
+  std::atomic<std::uint64_t> follows_{0};
+  std::thread follower_;
+};
+
+}  // namespace lcnc::hmi
