@@ -2,8 +2,10 @@
 // shared memory only; keeps the process database in SQLite.
 //
 //   lasercnc-hmi [--db FILE] [--shm NAME] [--import HOLES.csv] [--dxf PART.dxf]
-//                [--screenshot DIR]
+//                [--sensor tcp:HOST:PORT|rtu:DEV[:BAUD[:PARITY]]] [--screenshot DIR]
 //
+// Without --sensor the peripherals are the simulators (hmi/sim_peripherals.h),
+// started in-process and riding on the machine of --shm.
 // --import merges a hole table (holes/hole_table.h) into the database first.
 // --dxf opens a part on the main + auxiliary axes screen and decomposes it.
 // --screenshot renders every screen to DIR/<screen>.png and exits (works
@@ -13,10 +15,13 @@
 #include <QStringList>
 
 #include <cstdio>
+#include <memory>
 #include <string>
 
+#include "drivers/modbus/endpoint_spec.h"
 #include "hmi/decomposition_page.h"
 #include "hmi/main_window.h"
+#include "hmi/sim_peripherals.h"
 #include "hmi/process_db.h"
 #include "rt/shm_interface.h"
 
@@ -27,20 +32,23 @@ int main(int argc, char** argv) {
   QString screenshot_dir;
   std::string import_path;
   QString dxf_path;
+  std::string sensor_spec;
   const QStringList args = app.arguments();
   for (int i = 1; i < args.size(); ++i) {
     const QString& a = args[i];
-    if ((a == "--db" || a == "--shm" || a == "--screenshot" || a == "--import" || a == "--dxf") &&
+    if ((a == "--db" || a == "--shm" || a == "--screenshot" || a == "--import" || a == "--dxf" ||
+         a == "--sensor") &&
         i + 1 < args.size()) {
       const QString v = args[++i];
       if (a == "--db") db_path = v.toStdString();
       else if (a == "--shm") shm_name = v.toStdString();
       else if (a == "--import") import_path = v.toStdString();
       else if (a == "--dxf") dxf_path = v;
+      else if (a == "--sensor") sensor_spec = v.toStdString();
       else screenshot_dir = v;
     } else {
       std::fprintf(stderr, "usage: lasercnc-hmi [--db FILE] [--shm NAME] [--import HOLES.csv] "
-                           "[--dxf PART.dxf] [--screenshot DIR]\n");
+                           "[--dxf PART.dxf] [--sensor ENDPOINT] [--screenshot DIR]\n");
       return 2;
     }
   }
@@ -55,7 +63,25 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
-  lcnc::hmi::MainWindow window(**db, shm_name);
+  lcnc::hmi::PeripheralEndpoints peripherals;
+  std::unique_ptr<lcnc::hmi::SimPeripherals> sims;
+  if (!sensor_spec.empty()) {
+    auto ep = lcnc::drivers::parse_endpoint(sensor_spec);
+    if (!ep) {
+      std::fprintf(stderr, "lasercnc-hmi: --sensor %s\n", ep.error().message.c_str());
+      return 2;
+    }
+    peripherals.sensor = *ep;
+  } else {
+    auto started = lcnc::hmi::SimPeripherals::start(shm_name);
+    if (!started) {
+      std::fprintf(stderr, "lasercnc-hmi: the simulated peripherals: %s\n", started.error().to_string().c_str());
+      return 1;
+    }
+    sims = std::move(started).value();
+    peripherals.sensor = sims->sensor_endpoint();
+  }
+  lcnc::hmi::MainWindow window(**db, shm_name, peripherals);
   if (!dxf_path.isEmpty()) {
     window.decomposition()->open_file(dxf_path);
     window.decomposition()->decompose();

@@ -5,12 +5,14 @@
 #include <QTabWidget>
 
 #include "hmi/decomposition_page.h"
+#include "hmi/focal_page.h"
 #include "hmi/machine_page.h"
 #include "hmi/process_db_page.h"
 
 namespace lcnc::hmi {
 
-MainWindow::MainWindow(ProcessDatabase& db, const std::string& shm_name, QWidget* parent)
+MainWindow::MainWindow(ProcessDatabase& db, const std::string& shm_name,
+                       const PeripheralEndpoints& peripherals, QWidget* parent)
     : QMainWindow(parent), tabs_(new QTabWidget(this)) {
   setObjectName("mainWindow");
   setWindowTitle(tr("LaserCNC"));
@@ -21,6 +23,9 @@ MainWindow::MainWindow(ProcessDatabase& db, const std::string& shm_name, QWidget
   machine_page_->setObjectName("machinePage");
   tabs_->addTab(machine_page_, tr("Machine"));
   tabs_->addTab(db_page_, tr("Process database"));
+  focal_page_ = new FocalPage(db, shm_name, peripherals.sensor, tabs_);
+  focal_page_->setObjectName("focalPage");
+  tabs_->addTab(focal_page_, tr("Focal length"));
   decomposition_page_ = new DecompositionPage(tabs_);
   decomposition_page_->setObjectName("decompositionPage");
   tabs_->addTab(decomposition_page_, tr("Main + auxiliary axes"));

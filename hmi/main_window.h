@@ -1,13 +1,17 @@
-// lasercnc-hmi's main window: one tab per screen (process database,
-// machine; the measurement, focal-length, adjustment and monitoring screens
-// join them), and rendering every screen to PNG for --screenshot.
+// lasercnc-hmi's main window: one tab per screen (machine, process
+// database, focal length, main + auxiliary axes; the measurement, adjustment
+// and monitoring screens join them), and rendering every screen to PNG for
+// --screenshot.
 #pragma once
 
 #include <QMainWindow>
 #include <QStringList>
 
 #include <memory>
+#include <optional>
 #include <string>
+
+#include "drivers/modbus/modbus_types.h"
 
 #include "hmi/process_db.h"
 
@@ -16,26 +20,35 @@ class QTabWidget;
 namespace lcnc::hmi {
 
 class DecompositionPage;
+class FocalPage;
 class MachinePage;
 class ProcessDbPage;
+
+// Where the peripherals the screens use are (empty: none).
+struct PeripheralEndpoints {
+  std::optional<drivers::Endpoint> sensor;  // displacement sensor
+};
 
 class MainWindow : public QMainWindow {
   Q_OBJECT
 
  public:
-  MainWindow(ProcessDatabase& db, const std::string& shm_name, QWidget* parent = nullptr);
+  MainWindow(ProcessDatabase& db, const std::string& shm_name, const PeripheralEndpoints& peripherals = {},
+             QWidget* parent = nullptr);
   ~MainWindow() override;
 
   // Renders each screen to DIR/<objectName>.png; the files written.
   QStringList screenshot_all(const QString& dir);
   [[nodiscard]] QTabWidget* screens() const noexcept { return tabs_; }
   [[nodiscard]] DecompositionPage* decomposition() const noexcept { return decomposition_page_; }
+  [[nodiscard]] FocalPage* focal() const noexcept { return focal_page_; }
 
  private:
   QTabWidget* tabs_;
   ProcessDbPage* db_page_;
   MachinePage* machine_page_;
   DecompositionPage* decomposition_page_;
+  FocalPage* focal_page_;
 };
 
 }  // namespace lcnc::hmi

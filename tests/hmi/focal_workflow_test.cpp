@@ -9,6 +9,10 @@
 #include <cmath>
 #include <string>
 
+#include <QPushButton>
+#include <QTableWidget>
+
+#include "hmi/focal_page.h"
 #include "hmi/focal_workflow.h"
 #include "hmi/machine_mover.h"
 #include "hmi/process_db.h"
@@ -107,6 +111,41 @@ TEST(FocalWorkflow, ALostLinkEndsTheRunAndSaysSo) {
   EXPECT_NE(r[0].error.find("no link to lasercncd"), std::string::npos) << r[0].error;
   EXPECT_NE(r[1].error.find("not measured"), std::string::npos) << r[1].error;
   EXPECT_FALSE(r[0].offset_mm || r[1].offset_mm);
+}
+
+// The screen: tick, measure (progress, a worker thread), see, save.
+TEST(FocalScreen, MeasuresTheTickedHolesShowsEachAndSavesTheOffsets) {
+  const std::string shm = shm_name();
+  e2e::Daemon daemon(shm);
+  ASSERT_TRUE(daemon.ready()) << daemon.log();
+  auto sims = SimPeripherals::start(shm);
+  ASSERT_TRUE(static_cast<bool>(sims));
+  auto db = ProcessDatabase::open((e2e::temp_dir() / "p.db").string());
+  ASSERT_TRUE(static_cast<bool>(db));
+  for (const HoleRecord& h : {hole(1, 100, 50, 20), hole(2, 400, 300, 20), hole(3, 600, 100, 460)})
+    ASSERT_TRUE((*db)->put(h).ok());
+  FocalPage page(**db, shm, (*sims)->sensor_endpoint());
+  QTableWidget* t = page.table();
+  ASSERT_EQ(t->rowCount(), 3);
+  page.measure();  // nothing ticked
+  EXPECT_TRUE(page.message().contains("Tick the holes")) << page.message().toStdString();
+  page.select({1, 3});
+  page.findChild<QPushButton*>("measureButton")->click();
+  EXPECT_FALSE(page.findChild<QPushButton*>("measureButton")->isEnabled());
+  EXPECT_TRUE(page.findChild<QPushButton*>("cancelButton")->isEnabled());
+  ASSERT_TRUE(page.wait_done());
+  ASSERT_EQ(page.readings().size(), 2u);
+  const double truth = (*sims)->surface().z_at(100, 50) - 20.0;
+  EXPECT_NEAR(t->item(0, 6)->text().toDouble(), truth, 0.005) << t->item(0, 7)->text().toStdString();
+  EXPECT_EQ(t->item(0, 7)->text(), "measured");
+  EXPECT_TRUE(t->item(1, 6)->text().isEmpty());                 // not ticked
+  EXPECT_TRUE(t->item(2, 7)->text().contains("travel")) << t->item(2, 7)->text().toStdString();
+  EXPECT_TRUE(page.message().contains("1 measured, 1 not")) << page.message().toStdString();
+  ASSERT_TRUE(page.findChild<QPushButton*>("saveButton")->isEnabled());
+  ASSERT_TRUE(page.save());
+  EXPECT_NEAR(*(*(*db)->hole(1))->focus_offset_mm, truth, 0.005);
+  EXPECT_FALSE((*(*db)->hole(3))->focus_offset_mm.has_value());
+  EXPECT_NEAR(t->item(0, 4)->text().toDouble(), truth, 0.005);  // the stored column, reloaded
 }
 
 }  // namespace
