@@ -1,14 +1,26 @@
 #include "hmi/sim_peripherals.h"
 
 #include <chrono>
+#include <cmath>
 
 #include "drivers/modbus/register_map.h"
 #include "hmi/machine_link.h"
 
 namespace lcnc::hmi {
 
-Result<std::unique_ptr<SimPeripherals>> SimPeripherals::start(const std::string& shm_name) {
+drivers::WorkpieceBlock default_sim_block() {
+  drivers::WorkpieceBlock b;
+  b.size_mm = Vec3(200.0, 100.0, 40.0);
+  b.work_to_machine = Eigen::Translation3d(400.0, 150.0, 60.0) *
+                      Eigen::AngleAxisd(1.5 * M_PI / 180.0, Vec3::UnitZ()) *
+                      Eigen::AngleAxisd(0.3 * M_PI / 180.0, Vec3::UnitX());
+  return b;
+}
+
+Result<std::unique_ptr<SimPeripherals>> SimPeripherals::start(const std::string& shm_name,
+                                                              const drivers::WorkpieceBlock& block) {
   std::unique_ptr<SimPeripherals> p(new SimPeripherals());
+  p->block_ = block;
   drivers::SurfaceModel surface;
   Result<drivers::DeviceMap> sensor_map = drivers::shipped_device("displacement_sensor");
   Result<drivers::DeviceMap> probe_map = drivers::shipped_device("probe_3d");
@@ -21,6 +33,7 @@ Result<std::unique_ptr<SimPeripherals>> SimPeripherals::start(const std::string&
   p->sensor_ = std::move(sensor).value();
   drivers::Probe3dParams pp;
   pp.surface = surface;
+  pp.block = block;
   auto probe = drivers::Probe3dSim::create(*probe_map, {}, pp);
   if (!probe) return probe.error();
   p->probe_ = std::move(probe).value();
@@ -39,14 +52,14 @@ SimPeripherals::~SimPeripherals() {
 
 void SimPeripherals::follow(const std::string& shm_name) noexcept {
   MachineLink link(shm_name);
-  std::array<double, 3> last{1e300, 1e300, 1e300};
+  std::array<double, 5> last{1e300, 1e300, 1e300, 1e300, 1e300};
   while (running_.load()) {
     if (link.poll()) {
       if (const std::optional<shm::Status> st = link.status()) {
-        const std::array<double, 3> at{st->pos[0], st->pos[1], st->pos[2]};
+        const std::array<double, 5> at{st->pos[0], st->pos[1], st->pos[2], st->pos[3], st->pos[5]};
         if (at != last) {
           sensor_->set_position(at[0], at[1], at[2]);
-          probe_->set_position(at[0], at[1], at[2]);
+          probe_->set_pose(at[0], at[1], at[2], at[3], at[4]);
           last = at;
           follows_.fetch_add(1);
         }

@@ -18,10 +18,16 @@
 
 namespace lcnc::hmi {
 
+// The simulated workpiece the probe finds: a 200 × 100 × 40 mm block
+// clamped with its datum corner near X 400 Y 150 Z 60, turned 1.5° about Z
+// and 0.3° about X — what the 3D measurement is to find out.
+[[nodiscard]] drivers::WorkpieceBlock default_sim_block();
+
 class SimPeripherals {
  public:
   // Starts the sensor and the probe; they follow the machine on `shm_name`.
-  [[nodiscard]] static Result<std::unique_ptr<SimPeripherals>> start(const std::string& shm_name);
+  [[nodiscard]] static Result<std::unique_ptr<SimPeripherals>> start(
+      const std::string& shm_name, const drivers::WorkpieceBlock& block = default_sim_block());
   ~SimPeripherals();
   SimPeripherals(const SimPeripherals&) = delete;
   SimPeripherals& operator=(const SimPeripherals&) = delete;
@@ -30,6 +36,7 @@ class SimPeripherals {
   [[nodiscard]] drivers::Endpoint probe_endpoint() const { return probe_->endpoint(); }
   [[nodiscard]] const std::string& probe_serial_path() const { return probe_->serial_path(); }
   [[nodiscard]] const drivers::SurfaceModel& surface() const noexcept { return sensor_->surface(); }
+  [[nodiscard]] const drivers::WorkpieceBlock& block() const noexcept { return block_; }
   // Times the carriage-mounted devices were moved to a new DRO reading.
   [[nodiscard]] std::uint64_t follows() const noexcept { return follows_.load(); }
 
@@ -39,6 +46,7 @@ class SimPeripherals {
 
   std::unique_ptr<drivers::DisplacementSensorSim> sensor_;
   std::unique_ptr<drivers::Probe3dSim> probe_;
+  drivers::WorkpieceBlock block_;
   std::atomic<bool> running_{true};
   std::atomic<std::uint64_t> follows_{0};
   std::thread follower_;

@@ -4,9 +4,13 @@
 #include <sys/eventfd.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <variant>
+
+#include "kinematics/five_axis.h"
 
 namespace lcnc::drivers {
 
@@ -28,14 +32,53 @@ Probe3dSim::Probe3dSim(DeviceMap map, SlaveConfig config, Probe3dParams params)
 Probe3dSim::~Probe3dSim() { stop(); }
 
 void Probe3dSim::set_position(double x_mm, double y_mm, double z_mm) {
+  set_pose(x_mm, y_mm, z_mm, 0.0, 0.0);
+}
+
+void Probe3dSim::set_pose(double x_mm, double y_mm, double z_mm, double a_deg, double c_deg) {
   std::lock_guard lock(mutex_);
   x_mm_ = x_mm;
   y_mm_ = y_mm;
   z_mm_ = z_mm;
+  a_deg_ = a_deg;
+  c_deg_ = c_deg;
 }
+
+namespace {
+
+// Where the ray o + t·d (t ≥ 0) enters the box [0, s.x]×[0, s.y]×[−s.z, 0]
+// (slabs); empty when it misses or starts inside.
+std::optional<double> enter_box(const Vec3& o, const Vec3& d, const Vec3& s) {
+  double t0 = 0.0, t1 = 1e300;
+  const Vec3 lo(0.0, 0.0, -s.z()), hi(s.x(), s.y(), 0.0);
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(d[i]) < 1e-12) {
+      if (o[i] < lo[i] || o[i] > hi[i]) return std::nullopt;
+      continue;
+    }
+    double a = (lo[i] - o[i]) / d[i], b = (hi[i] - o[i]) / d[i];
+    if (a > b) std::swap(a, b);
+    t0 = std::max(t0, a);
+    t1 = std::min(t1, b);
+    if (t0 > t1) return std::nullopt;
+  }
+  if (t0 <= 0.0) return std::nullopt;  // the tip is inside the block
+  return t0;
+}
+
+}  // namespace
 
 std::optional<probe::PointReply> Probe3dSim::measure(std::uint16_t id) {
   std::lock_guard lock(mutex_);
+  const Vec3 tip(x_mm_, y_mm_, z_mm_);
+  const Vec3 ray = -tool_axis(a_deg_, c_deg_);
+  if (p_.block) {
+    const Eigen::Isometry3d to_work = p_.block->work_to_machine.inverse();
+    const std::optional<double> t = enter_box(to_work * tip, to_work.linear() * ray, p_.block->size_mm);
+    if (!t || *t > p_.reach_mm) return std::nullopt;
+    const Vec3 hit = tip + ray * (*t + noise_(p_.noise_mm));
+    return probe::PointReply{id, hit.x(), hit.y(), hit.z()};
+  }
   const double surface_z = p_.surface.z_at(x_mm_, y_mm_);
   const double below = z_mm_ - surface_z;
   if (below < 0.0 || below > p_.reach_mm) return std::nullopt;
