@@ -2,10 +2,12 @@
 // shared memory only; keeps the process database in SQLite.
 //
 //   lasercnc-hmi [--db FILE] [--shm NAME] [--import HOLES.csv] [--dxf PART.dxf]
-//                [--sensor tcp:HOST:PORT|rtu:DEV[:BAUD[:PARITY]]] [--screenshot DIR]
+//                [--sensor tcp:HOST:PORT|rtu:DEV[:BAUD[:PARITY]] --probe SERIAL]
+//                [--screenshot DIR]
 //
 // Without --sensor the peripherals are the simulators (hmi/sim_peripherals.h),
-// started in-process and riding on the machine of --shm.
+// started in-process and riding on the machine of --shm; --probe is the 3D
+// probe's serial device (its RS-232 line protocol).
 // --import merges a hole table (holes/hole_table.h) into the database first.
 // --dxf opens a part on the main + auxiliary axes screen and decomposes it.
 // --screenshot renders every screen to DIR/<screen>.png and exits (works
@@ -32,12 +34,12 @@ int main(int argc, char** argv) {
   QString screenshot_dir;
   std::string import_path;
   QString dxf_path;
-  std::string sensor_spec;
+  std::string sensor_spec, probe_device;
   const QStringList args = app.arguments();
   for (int i = 1; i < args.size(); ++i) {
     const QString& a = args[i];
     if ((a == "--db" || a == "--shm" || a == "--screenshot" || a == "--import" || a == "--dxf" ||
-         a == "--sensor") &&
+         a == "--sensor" || a == "--probe") &&
         i + 1 < args.size()) {
       const QString v = args[++i];
       if (a == "--db") db_path = v.toStdString();
@@ -45,10 +47,11 @@ int main(int argc, char** argv) {
       else if (a == "--import") import_path = v.toStdString();
       else if (a == "--dxf") dxf_path = v;
       else if (a == "--sensor") sensor_spec = v.toStdString();
+      else if (a == "--probe") probe_device = v.toStdString();
       else screenshot_dir = v;
     } else {
       std::fprintf(stderr, "usage: lasercnc-hmi [--db FILE] [--shm NAME] [--import HOLES.csv] "
-                           "[--dxf PART.dxf] [--sensor ENDPOINT] [--screenshot DIR]\n");
+                           "[--dxf PART.dxf] [--sensor ENDPOINT --probe SERIAL] [--screenshot DIR]\n");
       return 2;
     }
   }
@@ -65,6 +68,7 @@ int main(int argc, char** argv) {
   }
   lcnc::hmi::PeripheralEndpoints peripherals;
   std::unique_ptr<lcnc::hmi::SimPeripherals> sims;
+  peripherals.probe_serial = probe_device;
   if (!sensor_spec.empty()) {
     auto ep = lcnc::drivers::parse_endpoint(sensor_spec);
     if (!ep) {
@@ -80,6 +84,7 @@ int main(int argc, char** argv) {
     }
     sims = std::move(started).value();
     peripherals.sensor = sims->sensor_endpoint();
+    if (probe_device.empty()) peripherals.probe_serial = sims->probe_serial_path();
   }
   lcnc::hmi::MainWindow window(**db, shm_name, peripherals);
   if (!dxf_path.isEmpty()) {

@@ -6,6 +6,7 @@
 
 #include "hmi/decomposition_page.h"
 #include "hmi/focal_page.h"
+#include "hmi/measure_page.h"
 #include "hmi/machine_page.h"
 #include "hmi/process_db_page.h"
 
@@ -23,6 +24,9 @@ MainWindow::MainWindow(ProcessDatabase& db, const std::string& shm_name,
   machine_page_->setObjectName("machinePage");
   tabs_->addTab(machine_page_, tr("Machine"));
   tabs_->addTab(db_page_, tr("Process database"));
+  measure_page_ = new MeasurePage(db, shm_name, peripherals.probe_serial, tabs_);
+  measure_page_->setObjectName("measurePage");
+  tabs_->addTab(measure_page_, tr("3D measurement"));
   focal_page_ = new FocalPage(db, shm_name, peripherals.sensor, tabs_);
   focal_page_->setObjectName("focalPage");
   tabs_->addTab(focal_page_, tr("Focal length"));

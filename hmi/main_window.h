@@ -1,5 +1,5 @@
 // lasercnc-hmi's main window: one tab per screen (machine, process
-// database, focal length, main + auxiliary axes; the measurement, adjustment
+// database, 3D measurement, focal length, main + auxiliary axes; the adjustment
 // and monitoring screens join them), and rendering every screen to PNG for
 // --screenshot.
 #pragma once
@@ -21,12 +21,14 @@ namespace lcnc::hmi {
 
 class DecompositionPage;
 class FocalPage;
+class MeasurePage;
 class MachinePage;
 class ProcessDbPage;
 
 // Where the peripherals the screens use are (empty: none).
 struct PeripheralEndpoints {
   std::optional<drivers::Endpoint> sensor;  // displacement sensor
+  std::string probe_serial;                 // the 3D probe's serial device
 };
 
 class MainWindow : public QMainWindow {
@@ -42,6 +44,7 @@ class MainWindow : public QMainWindow {
   [[nodiscard]] QTabWidget* screens() const noexcept { return tabs_; }
   [[nodiscard]] DecompositionPage* decomposition() const noexcept { return decomposition_page_; }
   [[nodiscard]] FocalPage* focal() const noexcept { return focal_page_; }
+  [[nodiscard]] MeasurePage* measure() const noexcept { return measure_page_; }
 
  private:
   QTabWidget* tabs_;
@@ -49,6 +52,7 @@ class MainWindow : public QMainWindow {
   MachinePage* machine_page_;
   DecompositionPage* decomposition_page_;
   FocalPage* focal_page_;
+  MeasurePage* measure_page_;
 };
 
 }  // namespace lcnc::hmi

@@ -9,7 +9,12 @@
 #include <cmath>
 #include <string>
 
+#include <QPushButton>
+#include <QRegularExpression>
+#include <QTableWidget>
+
 #include "hmi/machine_mover.h"
+#include "hmi/measure_page.h"
 #include "hmi/measure_workflow.h"
 #include "hmi/process_db.h"
 #include "hmi/sim_peripherals.h"
@@ -119,6 +124,47 @@ TEST(MeasureWorkflow, APointThatFindsNoFaceEndsTheRunAndSaysWhich) {
   EXPECT_FALSE(o.fit.has_value());
   EXPECT_NE(o.error.find("primary 1"), std::string::npos) << o.error;
   EXPECT_NE(o.error.find("no surface"), std::string::npos) << o.error;
+}
+
+// The screen: measure (a worker thread, progress), see the points and the
+// placement, apply it to the database's holes once.
+TEST(MeasureScreen, MeasuresShowsThePlacementAndMovesTheHoles) {
+  const std::string shm = shm_name();
+  e2e::Daemon daemon(shm);
+  ASSERT_TRUE(daemon.ready()) << daemon.log();
+  auto sims = SimPeripherals::start(shm);
+  ASSERT_TRUE(static_cast<bool>(sims));
+  auto db = ProcessDatabase::open((e2e::temp_dir() / "p.db").string());
+  ASSERT_TRUE(static_cast<bool>(db));
+  HoleRecord h;
+  h.params.hole_number = 1;
+  h.params.position << 100.0, 50.0, 0.0, 0.0, 0.0, 0.0;
+  ASSERT_TRUE((*db)->put(h).ok());
+  MeasurePage none(**db, shm, "");
+  none.measure();
+  EXPECT_TRUE(none.message().contains("No 3D probe")) << none.message().toStdString();
+  EXPECT_FALSE(none.apply());
+
+  MeasurePage page(**db, shm, (*sims)->probe_serial_path());
+  EXPECT_EQ(page.table()->rowCount(), 6);  // the plan, before anything moves
+  page.findChild<QPushButton*>("measureButton")->click();
+  EXPECT_TRUE(page.findChild<QPushButton*>("cancelButton")->isEnabled());
+  ASSERT_TRUE(page.wait_done());
+  ASSERT_TRUE(page.outcome() && page.outcome()->fit) << page.message().toStdString();
+  const QRegularExpressionMatch m =
+      QRegularExpression("corner at X ([0-9.]+) Y ([0-9.]+) Z ([0-9.]+) mm, turned ([-0-9.]+)")
+          .match(page.result_text());
+  ASSERT_TRUE(m.hasMatch()) << page.result_text().toStdString();
+  EXPECT_NEAR(m.captured(1).toDouble(), 400.0, 0.01);
+  EXPECT_NEAR(m.captured(2).toDouble(), 150.0, 0.01);
+  EXPECT_NEAR(m.captured(3).toDouble(), 60.0, 0.01);
+  EXPECT_NEAR(m.captured(4).toDouble(), 1.5, 0.01);
+  EXPECT_FALSE(page.table()->item(5, 2)->text().isEmpty());
+  ASSERT_TRUE(page.findChild<QPushButton*>("applyButton")->isEnabled());
+  ASSERT_TRUE(page.apply());
+  EXPECT_FALSE(page.findChild<QPushButton*>("applyButton")->isEnabled());  // once
+  const Vec3 truth = (*sims)->block().work_to_machine * Vec3(100.0, 50.0, 0.0);
+  EXPECT_LT(((*(*db)->hole(1))->params.position.head<3>() - truth).norm(), 0.01);
 }
 
 }  // namespace

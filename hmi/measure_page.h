@@ -1,0 +1,71 @@
+// The 3D-measurement screen (six-point positioning, DESIGN §7): the drawing's
+// block and where it nominally stands; "Measure six points" runs the
+// workflow (hmi/measure_workflow.h) on a worker thread with progress and a
+// cancel, each point's approach, measured point and residual shown; the
+// fitted placement (corner, turn and tilt, residuals); "Apply to the
+// holes…" asks, then moves every hole of the process database with it (all
+// or none). Layout and object names in measure_page.ui.
+#pragma once
+
+#include <QFutureWatcher>
+#include <QTimer>
+#include <QWidget>
+
+#include <atomic>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "hmi/measure_workflow.h"
+#include "hmi/process_db.h"
+
+class QTableWidget;
+
+namespace Ui {
+class MeasurePage;
+}
+
+namespace lcnc::hmi {
+
+class MeasurePage : public QWidget {
+  Q_OBJECT
+
+ public:
+  // `probe_serial`: the 3D probe's serial device (empty: none).
+  MeasurePage(ProcessDatabase& db, std::string shm_name, std::string probe_serial,
+              QWidget* parent = nullptr);
+  ~MeasurePage() override;
+
+  // Test seams: the workflow started and waited for; the fit applied
+  // without the question (the button asks first).
+  [[nodiscard]] MeasurePlan plan() const;
+  void measure();
+  bool wait_done(int timeout_ms = 120000);
+  bool apply();
+  [[nodiscard]] const std::optional<MeasureOutcome>& outcome() const noexcept { return outcome_; }
+  [[nodiscard]] QString message() const;
+  [[nodiscard]] QString result_text() const;
+  [[nodiscard]] QTableWidget* table() const;
+
+ signals:
+  void finished(bool ok);
+
+ private:
+  struct Progress {
+    std::atomic<int> done{0};
+    std::atomic<bool> cancel{false};
+  };
+  void present(const MeasureOutcome& o);
+  void show_message(const QString& text, bool error);
+
+  std::unique_ptr<Ui::MeasurePage> ui_;
+  ProcessDatabase& db_;
+  std::string shm_name_, probe_serial_;
+  std::optional<MeasureOutcome> outcome_;
+  bool running_ = false;
+  std::shared_ptr<Progress> progress_;
+  QFutureWatcher<MeasureOutcome> watcher_;
+  QTimer progress_timer_;
+};
+
+}  // namespace lcnc::hmi
