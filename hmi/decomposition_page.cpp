@@ -16,6 +16,7 @@
 #include "decompose/kinematics_table.h"
 #include "dxf/dxf_reader.h"
 #include "hmi/decomposition_view.h"
+#include "hmi/page_support.h"
 #include "ui_decomposition_page.h"
 
 namespace lcnc::hmi {
@@ -198,7 +199,7 @@ void DecompositionPage::fill_table() {
       if (col >= 2) item->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);
       if (!tip.isEmpty()) {
         item->setToolTip(tip.trimmed());
-        item->setForeground(QColor("#b00020"));
+        item->setForeground(QColor(kErrorColor));
       }
       t->setItem(row, col, item);
     }
@@ -234,19 +235,9 @@ bool DecompositionPage::export_table(const QString& path) {
   return true;
 }
 
-bool DecompositionPage::wait_done(int timeout_ms) {
-  QElapsedTimer timer;
-  timer.start();
-  while (running_ && timer.elapsed() < timeout_ms) {
-    QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
-  }
-  return !running_;
-}
+bool DecompositionPage::wait_done(int timeout_ms) { return wait_while(running_, timeout_ms); }
 
-void DecompositionPage::show_message(const QString& text, bool error) {
-  ui_->messageLabel->setText(text);
-  ui_->messageLabel->setStyleSheet(error ? "color: #b00020;" : "");
-}
+void DecompositionPage::show_message(const QString& text, bool error) { set_message(ui_->messageLabel, text, error); }
 
 QString DecompositionPage::message() const { return ui_->messageLabel->text(); }
 QString DecompositionPage::summary() const { return ui_->summaryLabel->text(); }

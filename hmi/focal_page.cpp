@@ -9,6 +9,7 @@
 
 #include <filesystem>
 
+#include "hmi/page_support.h"
 #include "ui_focal_page.h"
 
 namespace lcnc::hmi {
@@ -160,7 +161,7 @@ void FocalPage::present(const std::vector<FocalReading>& readings) {
       t->item(row, kDistance)->setText(r.distance_mm ? QString::number(*r.distance_mm, 'f', 4) : QString());
       t->item(row, kOffset)->setText(r.offset_mm ? QString::number(*r.offset_mm, 'f', 4) : QString());
       t->item(row, kStatus)->setText(r.offset_mm ? tr("measured") : QString::fromStdString(r.error));
-      t->item(row, kStatus)->setForeground(r.offset_mm ? palette().text().color() : QColor("#b00020"));
+      t->item(row, kStatus)->setForeground(r.offset_mm ? palette().text().color() : QColor(kErrorColor));
     }
     measured += r.offset_mm ? 1 : 0;
   }
@@ -189,17 +190,9 @@ bool FocalPage::save() {
   return true;
 }
 
-bool FocalPage::wait_done(int timeout_ms) {
-  QElapsedTimer timer;
-  timer.start();
-  while (running_ && timer.elapsed() < timeout_ms) QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
-  return !running_;
-}
+bool FocalPage::wait_done(int timeout_ms) { return wait_while(running_, timeout_ms); }
 
-void FocalPage::show_message(const QString& text, bool error) {
-  ui_->messageLabel->setText(text);
-  ui_->messageLabel->setStyleSheet(error ? "color: #b00020;" : "");
-}
+void FocalPage::show_message(const QString& text, bool error) { set_message(ui_->messageLabel, text, error); }
 
 QString FocalPage::message() const { return ui_->messageLabel->text(); }
 QTableWidget* FocalPage::table() const { return ui_->holeTable; }

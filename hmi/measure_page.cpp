@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "hmi/page_support.h"
 #include "ui_measure_page.h"
 
 namespace lcnc::hmi {
@@ -130,7 +131,7 @@ void MeasurePage::present(const MeasureOutcome& o) {
         p.residual_mm ? QString::number(*p.residual_mm, 'f', 4) : QString()};
     for (int c = 0; c < kColumns; ++c) {
       auto* item = new QTableWidgetItem(cells[c]);
-      if (c == kMeasured && !p.measured && !p.error.empty()) item->setForeground(QColor("#b00020"));
+      if (c == kMeasured && !p.measured && !p.error.empty()) item->setForeground(QColor(kErrorColor));
       t->setItem(r, c, item);
     }
   }
@@ -185,17 +186,9 @@ bool MeasurePage::apply() {
   return true;
 }
 
-bool MeasurePage::wait_done(int timeout_ms) {
-  QElapsedTimer timer;
-  timer.start();
-  while (running_ && timer.elapsed() < timeout_ms) QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
-  return !running_;
-}
+bool MeasurePage::wait_done(int timeout_ms) { return wait_while(running_, timeout_ms); }
 
-void MeasurePage::show_message(const QString& text, bool error) {
-  ui_->messageLabel->setText(text);
-  ui_->messageLabel->setStyleSheet(error ? "color: #b00020;" : "");
-}
+void MeasurePage::show_message(const QString& text, bool error) { set_message(ui_->messageLabel, text, error); }
 
 QString MeasurePage::message() const { return ui_->messageLabel->text(); }
 QString MeasurePage::result_text() const { return ui_->resultLabel->text(); }

@@ -4,6 +4,7 @@
 #include <QHeaderView>
 #include <QItemSelectionModel>
 
+#include "hmi/page_support.h"
 #include "ui_process_db_page.h"
 
 namespace lcnc::hmi {
@@ -40,10 +41,7 @@ ProcessDbPage::ProcessDbPage(ProcessDatabase& db, QWidget* parent)
 
 ProcessDbPage::~ProcessDbPage() = default;
 
-void ProcessDbPage::show_message(const QString& text, bool error) {
-  ui_->messageLabel->setText(text);
-  ui_->messageLabel->setStyleSheet(error ? "color: #b00020;" : "");
-}
+void ProcessDbPage::show_message(const QString& text, bool error) { set_message(ui_->messageLabel, text, error); }
 
 QString ProcessDbPage::message() const { return ui_->messageLabel->text(); }
 
