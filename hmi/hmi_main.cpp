@@ -2,12 +2,13 @@
 // shared memory only; keeps the process database in SQLite.
 //
 //   lasercnc-hmi [--db FILE] [--shm NAME] [--import HOLES.csv] [--dxf PART.dxf]
-//                [--sensor tcp:HOST:PORT|rtu:DEV[:BAUD[:PARITY]] --probe SERIAL]
-//                [--screenshot DIR]
+//                [--sensor|--laser|--meter|--head tcp:HOST:PORT|rtu:DEV[:BAUD[:PARITY]]]
+//                [--probe SERIAL] [--screenshot DIR]
 //
-// Without --sensor the peripherals are the simulators (hmi/sim_peripherals.h),
-// started in-process and riding on the machine of --shm; --probe is the 3D
-// probe's serial device (its RS-232 line protocol).
+// Without any of --sensor, --laser, --meter, --head the peripherals are the
+// simulators (hmi/sim_peripherals.h), started in-process and riding on the
+// machine of --shm; --probe is the 3D probe's serial device (its RS-232 line
+// protocol).
 // --import merges a hole table (holes/hole_table.h) into the database first.
 // --dxf opens a part on the main + auxiliary axes screen and decomposes it.
 // --screenshot renders every screen to DIR/<screen>.png and exits (works
@@ -18,9 +19,11 @@
 
 #include <cstdio>
 #include <memory>
+#include <tuple>
 #include <string>
 
 #include "drivers/modbus/endpoint_spec.h"
+#include "hmi/adjust_page.h"
 #include "hmi/decomposition_page.h"
 #include "hmi/main_window.h"
 #include "hmi/sim_peripherals.h"
@@ -34,12 +37,12 @@ int main(int argc, char** argv) {
   QString screenshot_dir;
   std::string import_path;
   QString dxf_path;
-  std::string sensor_spec, probe_device;
+  std::string sensor_spec, probe_device, laser_spec, meter_spec, head_spec;
   const QStringList args = app.arguments();
   for (int i = 1; i < args.size(); ++i) {
     const QString& a = args[i];
     if ((a == "--db" || a == "--shm" || a == "--screenshot" || a == "--import" || a == "--dxf" ||
-         a == "--sensor" || a == "--probe") &&
+         a == "--sensor" || a == "--probe" || a == "--laser" || a == "--meter" || a == "--head") &&
         i + 1 < args.size()) {
       const QString v = args[++i];
       if (a == "--db") db_path = v.toStdString();
@@ -48,10 +51,14 @@ int main(int argc, char** argv) {
       else if (a == "--dxf") dxf_path = v;
       else if (a == "--sensor") sensor_spec = v.toStdString();
       else if (a == "--probe") probe_device = v.toStdString();
+      else if (a == "--laser") laser_spec = v.toStdString();
+      else if (a == "--meter") meter_spec = v.toStdString();
+      else if (a == "--head") head_spec = v.toStdString();
       else screenshot_dir = v;
     } else {
       std::fprintf(stderr, "usage: lasercnc-hmi [--db FILE] [--shm NAME] [--import HOLES.csv] "
-                           "[--dxf PART.dxf] [--sensor ENDPOINT --probe SERIAL] [--screenshot DIR]\n");
+                           "[--dxf PART.dxf] [--sensor|--laser|--meter|--head ENDPOINT] [--probe SERIAL]\n"
+                           "                    [--screenshot DIR]\n");
       return 2;
     }
   }
@@ -69,13 +76,20 @@ int main(int argc, char** argv) {
   lcnc::hmi::PeripheralEndpoints peripherals;
   std::unique_ptr<lcnc::hmi::SimPeripherals> sims;
   peripherals.probe_serial = probe_device;
-  if (!sensor_spec.empty()) {
-    auto ep = lcnc::drivers::parse_endpoint(sensor_spec);
-    if (!ep) {
-      std::fprintf(stderr, "lasercnc-hmi: --sensor %s\n", ep.error().message.c_str());
-      return 2;
+  const bool real = !(sensor_spec.empty() && laser_spec.empty() && meter_spec.empty() && head_spec.empty());
+  if (real) {
+    for (auto [flag, spec, out] : {std::tuple{"--sensor", &sensor_spec, &peripherals.sensor},
+                                   std::tuple{"--laser", &laser_spec, &peripherals.laser},
+                                   std::tuple{"--meter", &meter_spec, &peripherals.meter},
+                                   std::tuple{"--head", &head_spec, &peripherals.head}}) {
+      if (spec->empty()) continue;
+      auto ep = lcnc::drivers::parse_endpoint(*spec);
+      if (!ep) {
+        std::fprintf(stderr, "lasercnc-hmi: %s %s\n", flag, ep.error().message.c_str());
+        return 2;
+      }
+      *out = *ep;
     }
-    peripherals.sensor = *ep;
   } else {
     auto started = lcnc::hmi::SimPeripherals::start(shm_name);
     if (!started) {
@@ -85,6 +99,9 @@ int main(int argc, char** argv) {
     sims = std::move(started).value();
     peripherals.sensor = sims->sensor_endpoint();
     if (probe_device.empty()) peripherals.probe_serial = sims->probe_serial_path();
+    peripherals.laser = sims->laser_endpoint();
+    peripherals.meter = sims->meter_endpoint();
+    peripherals.head = sims->head_endpoint();
   }
   lcnc::hmi::MainWindow window(**db, shm_name, peripherals);
   if (!dxf_path.isEmpty()) {
@@ -93,6 +110,7 @@ int main(int argc, char** argv) {
     if (!screenshot_dir.isEmpty()) window.decomposition()->wait_done();
   }
   if (!screenshot_dir.isEmpty()) {
+    window.adjust()->wait_polled();
     for (const QString& f : window.screenshot_all(screenshot_dir)) std::printf("%s\n", f.toUtf8().constData());
     return 0;
   }

@@ -4,6 +4,7 @@
 #include <QPixmap>
 #include <QTabWidget>
 
+#include "hmi/adjust_page.h"
 #include "hmi/decomposition_page.h"
 #include "hmi/focal_page.h"
 #include "hmi/measure_page.h"
@@ -30,6 +31,9 @@ MainWindow::MainWindow(ProcessDatabase& db, const std::string& shm_name,
   focal_page_ = new FocalPage(db, shm_name, peripherals.sensor, tabs_);
   focal_page_->setObjectName("focalPage");
   tabs_->addTab(focal_page_, tr("Focal length"));
+  adjust_page_ = new AdjustPage({peripherals.laser, peripherals.meter, peripherals.head}, tabs_);
+  adjust_page_->setObjectName("adjustPage");
+  tabs_->addTab(adjust_page_, tr("Laser and head"));
   decomposition_page_ = new DecompositionPage(tabs_);
   decomposition_page_->setObjectName("decompositionPage");
   tabs_->addTab(decomposition_page_, tr("Main + auxiliary axes"));

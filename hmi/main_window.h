@@ -1,6 +1,6 @@
 // lasercnc-hmi's main window: one tab per screen (machine, process
-// database, 3D measurement, focal length, main + auxiliary axes; the adjustment
-// and monitoring screens join them), and rendering every screen to PNG for
+// database, 3D measurement, focal length, laser and head adjustment and
+// monitoring, main + auxiliary axes), and rendering every screen to PNG for
 // --screenshot.
 #pragma once
 
@@ -20,6 +20,7 @@ class QTabWidget;
 namespace lcnc::hmi {
 
 class DecompositionPage;
+class AdjustPage;
 class FocalPage;
 class MeasurePage;
 class MachinePage;
@@ -29,6 +30,7 @@ class ProcessDbPage;
 struct PeripheralEndpoints {
   std::optional<drivers::Endpoint> sensor;  // displacement sensor
   std::string probe_serial;                 // the 3D probe's serial device
+  std::optional<drivers::Endpoint> laser, meter, head;  // laser source, power meter, scan head
 };
 
 class MainWindow : public QMainWindow {
@@ -45,6 +47,7 @@ class MainWindow : public QMainWindow {
   [[nodiscard]] DecompositionPage* decomposition() const noexcept { return decomposition_page_; }
   [[nodiscard]] FocalPage* focal() const noexcept { return focal_page_; }
   [[nodiscard]] MeasurePage* measure() const noexcept { return measure_page_; }
+  [[nodiscard]] AdjustPage* adjust() const noexcept { return adjust_page_; }
 
  private:
   QTabWidget* tabs_;
@@ -53,6 +56,7 @@ class MainWindow : public QMainWindow {
   DecompositionPage* decomposition_page_;
   FocalPage* focal_page_;
   MeasurePage* measure_page_;
+  AdjustPage* adjust_page_;
 };
 
 }  // namespace lcnc::hmi

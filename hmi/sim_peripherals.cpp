@@ -22,23 +22,34 @@ Result<std::unique_ptr<SimPeripherals>> SimPeripherals::start(const std::string&
   std::unique_ptr<SimPeripherals> p(new SimPeripherals());
   p->block_ = block;
   drivers::SurfaceModel surface;
-  Result<drivers::DeviceMap> sensor_map = drivers::shipped_device("displacement_sensor");
-  Result<drivers::DeviceMap> probe_map = drivers::shipped_device("probe_3d");
-  if (!sensor_map) return sensor_map.error();
-  if (!probe_map) return probe_map.error();
+  const auto map = [](const char* name) { return drivers::shipped_device(name); };
+  for (const char* name : {"laser_source", "power_meter", "scan_head", "displacement_sensor", "probe_3d"})
+    if (Result<drivers::DeviceMap> m = map(name); !m) return m.error();
+  auto laser = drivers::LaserSourceSim::create(*map("laser_source"), {});
+  if (!laser) return laser.error();
+  p->laser_ = std::move(laser).value();
+  drivers::PowerMeterParams mp;
+  mp.source = [l = p->laser_.get()] { return l->output_power_w(); };
+  auto meter = drivers::PowerMeterSim::create(*map("power_meter"), {}, mp);
+  if (!meter) return meter.error();
+  p->meter_ = std::move(meter).value();
+  auto head = drivers::ScanHeadSim::create(*map("scan_head"), {});
+  if (!head) return head.error();
+  p->head_ = std::move(head).value();
   drivers::DisplacementSensorParams sp;
   sp.surface = surface;
-  auto sensor = drivers::DisplacementSensorSim::create(*sensor_map, {}, sp);
+  auto sensor = drivers::DisplacementSensorSim::create(*map("displacement_sensor"), {}, sp);
   if (!sensor) return sensor.error();
   p->sensor_ = std::move(sensor).value();
   drivers::Probe3dParams pp;
   pp.surface = surface;
   pp.block = block;
-  auto probe = drivers::Probe3dSim::create(*probe_map, {}, pp);
+  auto probe = drivers::Probe3dSim::create(*map("probe_3d"), {}, pp);
   if (!probe) return probe.error();
   p->probe_ = std::move(probe).value();
-  if (Status s = p->sensor_->start(); !s) return s.error();
-  if (Status s = p->probe_->start(); !s) return s.error();
+  for (drivers::VirtualDevice* d : std::initializer_list<drivers::VirtualDevice*>{
+           p->laser_.get(), p->meter_.get(), p->head_.get(), p->sensor_.get(), p->probe_.get()})
+    if (Status s = d->start(); !s) return s.error();
   p->follower_ = std::thread([raw = p.get(), shm_name] { raw->follow(shm_name); });
   return p;
 }
@@ -46,8 +57,9 @@ Result<std::unique_ptr<SimPeripherals>> SimPeripherals::start(const std::string&
 SimPeripherals::~SimPeripherals() {
   running_ = false;
   if (follower_.joinable()) follower_.join();
-  if (probe_) probe_->stop();
-  if (sensor_) sensor_->stop();
+  for (drivers::VirtualDevice* d : std::initializer_list<drivers::VirtualDevice*>{
+           probe_.get(), sensor_.get(), head_.get(), meter_.get(), laser_.get()})
+    if (d != nullptr) d->stop();
 }
 
 void SimPeripherals::follow(const std::string& shm_name) noexcept {

@@ -1,5 +1,5 @@
 // The HMI's peripherals when no real ones are given (the default): the
-// register map's virtual devices (drivers/devices/, simulators named as
+// register map's five virtual devices (drivers/devices/, simulators named as
 // such) started in-process as real Modbus TCP slaves on loopback, the HMI
 // talking to them over the wire as to the hardware. The displacement sensor
 // and the 3D probe ride on the Z carriage, so their position is the
@@ -14,7 +14,10 @@
 
 #include "common/result.h"
 #include "drivers/devices/displacement_sensor_sim.h"
+#include "drivers/devices/laser_source_sim.h"
+#include "drivers/devices/power_meter_sim.h"
 #include "drivers/devices/probe_3d_sim.h"
+#include "drivers/devices/scan_head_sim.h"
 
 namespace lcnc::hmi {
 
@@ -25,7 +28,8 @@ namespace lcnc::hmi {
 
 class SimPeripherals {
  public:
-  // Starts the sensor and the probe; they follow the machine on `shm_name`.
+  // Starts the five devices; the sensor and the probe follow the machine on
+  // `shm_name`; the power meter sits in the laser's beam.
   [[nodiscard]] static Result<std::unique_ptr<SimPeripherals>> start(
       const std::string& shm_name, const drivers::WorkpieceBlock& block = default_sim_block());
   ~SimPeripherals();
@@ -33,6 +37,9 @@ class SimPeripherals {
   SimPeripherals& operator=(const SimPeripherals&) = delete;
 
   [[nodiscard]] drivers::Endpoint sensor_endpoint() const { return sensor_->endpoint(); }
+  [[nodiscard]] drivers::Endpoint laser_endpoint() const { return laser_->endpoint(); }
+  [[nodiscard]] drivers::Endpoint meter_endpoint() const { return meter_->endpoint(); }
+  [[nodiscard]] drivers::Endpoint head_endpoint() const { return head_->endpoint(); }
   [[nodiscard]] drivers::Endpoint probe_endpoint() const { return probe_->endpoint(); }
   [[nodiscard]] const std::string& probe_serial_path() const { return probe_->serial_path(); }
   [[nodiscard]] const drivers::SurfaceModel& surface() const noexcept { return sensor_->surface(); }
@@ -44,6 +51,9 @@ class SimPeripherals {
   SimPeripherals() = default;
   void follow(const std::string& shm_name) noexcept;
 
+  std::unique_ptr<drivers::LaserSourceSim> laser_;
+  std::unique_ptr<drivers::PowerMeterSim> meter_;
+  std::unique_ptr<drivers::ScanHeadSim> head_;
   std::unique_ptr<drivers::DisplacementSensorSim> sensor_;
   std::unique_ptr<drivers::Probe3dSim> probe_;
   drivers::WorkpieceBlock block_;

@@ -124,9 +124,9 @@ struct RtOptions {
   bool exit_at_end = true;
   // Begin Running (the buffer holds a job); otherwise Idle until StartJob.
   bool start_running = true;
-  // Where the first period starts, CLOCK_MONOTONIC ns; 0: one period from
-  // the thread's start. Kernels given the same epoch and period share their
-  // period boundaries — two axis groups on one time base.
+  // The first period's deadline (its work runs then), CLOCK_MONOTONIC ns;
+  // 0: one period after the thread starts. Kernels given the same epoch and
+  // period share their period boundaries — two axis groups on one time base.
   std::int64_t epoch_ns = 0;
 };
 
