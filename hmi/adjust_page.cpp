@@ -51,7 +51,7 @@ class PowerPlot : public QWidget {
     small.setPointSizeF(small.pointSizeF() * 0.8);
     g.setFont(small);
     g.drawText(QRectF(area.left() - 40, area.bottom() + 4, area.width() + 50, 18), Qt::AlignCenter,
-               tr("W, 60 s: setpoint grey, output blue, measured green"));
+               AdjustPage::tr("W, 60 s: setpoint grey, output blue, measured green"));
     const auto curve = [&](auto value, const QColor& color) {
       QPainterPath p;
       bool first = true;

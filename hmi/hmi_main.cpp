@@ -3,12 +3,13 @@
 //
 //   lasercnc-hmi [--db FILE] [--shm NAME] [--import HOLES.csv] [--dxf PART.dxf]
 //                [--sensor|--laser|--meter|--head tcp:HOST:PORT|rtu:DEV[:BAUD[:PARITY]]]
-//                [--probe SERIAL] [--screenshot DIR]
+//                [--probe SERIAL] [--lang en|zh_CN|ru] [--screenshot DIR]
 //
 // Without any of --sensor, --laser, --meter, --head the peripherals are the
 // simulators (hmi/sim_peripherals.h), started in-process and riding on the
 // machine of --shm; --probe is the 3D probe's serial device (its RS-232 line
-// protocol).
+// protocol). --lang: the operator's language (default: the system's, English
+// when there is no translation for it).
 // --import merges a hole table (holes/hole_table.h) into the database first.
 // --dxf opens a part on the main + auxiliary axes screen and decomposes it.
 // --screenshot renders every screen to DIR/<screen>.png and exits (works
@@ -27,6 +28,7 @@
 #include "hmi/decomposition_page.h"
 #include "hmi/main_window.h"
 #include "hmi/sim_peripherals.h"
+#include "hmi/translations.h"
 #include "hmi/process_db.h"
 #include "rt/shm_interface.h"
 
@@ -38,11 +40,13 @@ int main(int argc, char** argv) {
   std::string import_path;
   QString dxf_path;
   std::string sensor_spec, probe_device, laser_spec, meter_spec, head_spec;
+  QString language = "system";
   const QStringList args = app.arguments();
   for (int i = 1; i < args.size(); ++i) {
     const QString& a = args[i];
     if ((a == "--db" || a == "--shm" || a == "--screenshot" || a == "--import" || a == "--dxf" ||
-         a == "--sensor" || a == "--probe" || a == "--laser" || a == "--meter" || a == "--head") &&
+         a == "--sensor" || a == "--probe" || a == "--laser" || a == "--meter" || a == "--head" ||
+         a == "--lang") &&
         i + 1 < args.size()) {
       const QString v = args[++i];
       if (a == "--db") db_path = v.toStdString();
@@ -54,13 +58,19 @@ int main(int argc, char** argv) {
       else if (a == "--laser") laser_spec = v.toStdString();
       else if (a == "--meter") meter_spec = v.toStdString();
       else if (a == "--head") head_spec = v.toStdString();
+      else if (a == "--lang") language = v;
       else screenshot_dir = v;
     } else {
       std::fprintf(stderr, "usage: lasercnc-hmi [--db FILE] [--shm NAME] [--import HOLES.csv] "
                            "[--dxf PART.dxf] [--sensor|--laser|--meter|--head ENDPOINT] [--probe SERIAL]\n"
-                           "                    [--screenshot DIR]\n");
+                           "                    [--lang en|zh_CN|ru] [--screenshot DIR]\n");
       return 2;
     }
+  }
+  QString why;
+  if (!lcnc::hmi::install_language(language, &why)) {
+    std::fprintf(stderr, "lasercnc-hmi: --lang: %s\n", why.toUtf8().constData());
+    return 2;
   }
   auto db = lcnc::hmi::ProcessDatabase::open(db_path);
   if (!db) {

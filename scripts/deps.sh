@@ -13,6 +13,8 @@ packages=(
   libdxflib-dev            # DXF input
   libmodbus-dev            # peripherals
   qtbase5-dev libqt5sql5-sqlite  # HMI, process DB
+  qttools5-dev qttools5-dev-tools  # the HMI's translations (Qt Linguist: lupdate, lrelease)
+  fonts-wqy-microhei       # the HMI's Chinese text
   ghdl                     # hdl/: VHDL-2008 simulation of the interpolator
   rt-tests                 # cyclictest: the RT latency reference (bench/rt_latency_vs_cyclictest.sh)
 )

@@ -1,0 +1,852 @@
+<?xml version="1.0" encoding="utf-8"?>
+<!DOCTYPE TS>
+<TS version="2.1" language="ru_RU">
+<context>
+    <name>AdjustPage</name>
+    <message>
+        <source>Adjustment and monitoring</source>
+        <translation>Настройка и контроль</translation>
+    </message>
+    <message>
+        <source>Laser source</source>
+        <translation>Лазерный источник</translation>
+    </message>
+    <message>
+        <source>Power setpoint, %</source>
+        <translation>Уставка мощности, %</translation>
+    </message>
+    <message>
+        <source>Set power</source>
+        <translation>Задать мощность</translation>
+    </message>
+    <message>
+        <source>Emission</source>
+        <translation>Излучение</translation>
+    </message>
+    <message>
+        <source>Reset alarm</source>
+        <translation>Сбросить аварию</translation>
+    </message>
+    <message>
+        <source>State</source>
+        <translation>Состояние</translation>
+    </message>
+    <message>
+        <source>Output (monitor diode), W</source>
+        <translation>Выход (контрольный диод), Вт</translation>
+    </message>
+    <message>
+        <source>Pump diode, °C</source>
+        <translation>Диод накачки, °C</translation>
+    </message>
+    <message>
+        <source>Alarms</source>
+        <translation>Аварии</translation>
+    </message>
+    <message>
+        <source>Power monitoring</source>
+        <translation>Контроль мощности</translation>
+    </message>
+    <message>
+        <source>Measured power, W</source>
+        <translation>Измеренная мощность, Вт</translation>
+    </message>
+    <message>
+        <source>Zero the meter</source>
+        <translation>Обнулить измеритель</translation>
+    </message>
+    <message>
+        <source>Four-beam scanning head</source>
+        <translation>Четырёхлучевая сканирующая головка</translation>
+    </message>
+    <message>
+        <source>Start radius, mm</source>
+        <translation>Начальный радиус, мм</translation>
+    </message>
+    <message>
+        <source>End radius, mm</source>
+        <translation>Конечный радиус, мм</translation>
+    </message>
+    <message>
+        <source>Radius turns</source>
+        <translation>Витков по радиусу</translation>
+    </message>
+    <message>
+        <source>Scan speed, mm/s</source>
+        <translation>Скорость сканирования, мм/с</translation>
+    </message>
+    <message>
+        <source>Wedge speed, rpm</source>
+        <translation>Скорость клиньев, об/мин</translation>
+    </message>
+    <message>
+        <source>Beam offset, mm</source>
+        <translation>Смещение луча, мм</translation>
+    </message>
+    <message>
+        <source>Write parameters</source>
+        <translation>Записать параметры</translation>
+    </message>
+    <message>
+        <source>Run pattern</source>
+        <translation>Запустить узор</translation>
+    </message>
+    <message>
+        <source>Wedge speed now, rpm</source>
+        <translation>Текущая скорость клиньев, об/мин</translation>
+    </message>
+    <message>
+        <source>Radius now, mm</source>
+        <translation>Текущий радиус, мм</translation>
+    </message>
+    <message>
+        <source>Turns done</source>
+        <translation>Выполнено витков</translation>
+    </message>
+</context>
+<context>
+    <name>DecompositionPage</name>
+    <message>
+        <source>Main + auxiliary axes</source>
+        <translation>Основные + вспомогательные оси</translation>
+    </message>
+    <message>
+        <source>Open DXF…</source>
+        <translation>Открыть DXF…</translation>
+    </message>
+    <message>
+        <source>no drawing</source>
+        <translation>нет чертежа</translation>
+    </message>
+    <message>
+        <source>Contour speed, m/min</source>
+        <translation>Контурная скорость, м/мин</translation>
+    </message>
+    <message>
+        <source>Step, mm</source>
+        <translation>Шаг, мм</translation>
+    </message>
+    <message>
+        <source>Aux field, mm</source>
+        <translation>Поле вспом. осей, мм</translation>
+    </message>
+    <message>
+        <source>Main accel, g</source>
+        <translation>Ускорение осн. осей, g</translation>
+    </message>
+    <message>
+        <source>synchronous</source>
+        <translation>синхронный</translation>
+    </message>
+    <message>
+        <source>seed 004</source>
+        <translation>исходный алгоритм</translation>
+    </message>
+    <message>
+        <source>Decompose</source>
+        <translation>Разложить</translation>
+    </message>
+    <message>
+        <source>Export table…</source>
+        <translation>Экспорт таблицы…</translation>
+    </message>
+</context>
+<context>
+    <name>FocalPage</name>
+    <message>
+        <source>Focal length</source>
+        <translation>Фокусное расстояние</translation>
+    </message>
+    <message>
+        <source>Reload holes</source>
+        <translation>Обновить отверстия</translation>
+    </message>
+    <message>
+        <source>Select all</source>
+        <translation>Выбрать все</translation>
+    </message>
+    <message>
+        <source>Stand-off, mm</source>
+        <translation>Расстояние до поверхности, мм</translation>
+    </message>
+    <message>
+        <source>Measure selected</source>
+        <translation>Измерить выбранные</translation>
+    </message>
+    <message>
+        <source>Cancel</source>
+        <translation>Отмена</translation>
+    </message>
+    <message>
+        <source>Save offsets</source>
+        <translation>Сохранить смещения</translation>
+    </message>
+</context>
+<context>
+    <name>HoleTableModel</name>
+    <message>
+        <source>Hole</source>
+        <translation>Отверстие</translation>
+    </message>
+    <message>
+        <source>X</source>
+        <translation>X</translation>
+    </message>
+    <message>
+        <source>Y</source>
+        <translation>Y</translation>
+    </message>
+    <message>
+        <source>Z</source>
+        <translation>Z</translation>
+    </message>
+    <message>
+        <source>A</source>
+        <translation>A</translation>
+    </message>
+    <message>
+        <source>C</source>
+        <translation>C</translation>
+    </message>
+    <message>
+        <source>Feed</source>
+        <translation>Подача</translation>
+    </message>
+    <message>
+        <source>Layer feed</source>
+        <translation>Подача на слой</translation>
+    </message>
+    <message>
+        <source>Layers</source>
+        <translation>Слои</translation>
+    </message>
+    <message>
+        <source>Depth</source>
+        <translation>Глубина</translation>
+    </message>
+    <message>
+        <source>Power</source>
+        <translation>Мощность</translation>
+    </message>
+    <message>
+        <source>Start radius</source>
+        <translation>Начальный радиус</translation>
+    </message>
+    <message>
+        <source>End radius</source>
+        <translation>Конечный радиус</translation>
+    </message>
+    <message>
+        <source>Radius turns</source>
+        <translation>Витков по радиусу</translation>
+    </message>
+    <message>
+        <source>Scan speed</source>
+        <translation>Скорость сканирования</translation>
+    </message>
+    <message>
+        <source>Wedge speed</source>
+        <translation>Скорость клиньев</translation>
+    </message>
+    <message>
+        <source>Beam offset</source>
+        <translation>Смещение луча</translation>
+    </message>
+    <message>
+        <source>Process</source>
+        <translation>Процесс</translation>
+    </message>
+    <message>
+        <source>Focus offset</source>
+        <translation>Смещение фокуса</translation>
+    </message>
+</context>
+<context>
+    <name>MachinePage</name>
+    <message>
+        <source>Machine</source>
+        <translation>Станок</translation>
+    </message>
+    <message>
+        <source>Position</source>
+        <translation>Положение</translation>
+    </message>
+    <message>
+        <source>X</source>
+        <translation>X</translation>
+    </message>
+    <message>
+        <source>Y</source>
+        <translation>Y</translation>
+    </message>
+    <message>
+        <source>Z</source>
+        <translation>Z</translation>
+    </message>
+    <message>
+        <source>A</source>
+        <translation>A</translation>
+    </message>
+    <message>
+        <source>C</source>
+        <translation>C</translation>
+    </message>
+    <message>
+        <source>Cycle start</source>
+        <translation>Пуск цикла</translation>
+    </message>
+    <message>
+        <source>Feed hold</source>
+        <translation>Останов подачи</translation>
+    </message>
+    <message>
+        <source>Resume</source>
+        <translation>Продолжить</translation>
+    </message>
+    <message>
+        <source>Stop</source>
+        <translation>Стоп</translation>
+    </message>
+    <message>
+        <source>Feed override</source>
+        <translation>Коррекция подачи</translation>
+    </message>
+    <message>
+        <source>100 %</source>
+        <translation>100 %</translation>
+    </message>
+    <message>
+        <source>E-STOP</source>
+        <translation>АВАР. СТОП</translation>
+    </message>
+    <message>
+        <source>Reset</source>
+        <translation>Сброс</translation>
+    </message>
+    <message>
+        <source>idle</source>
+        <translation>простой</translation>
+    </message>
+    <message>
+        <source>running</source>
+        <translation>работа</translation>
+    </message>
+    <message>
+        <source>feed hold</source>
+        <translation>останов подачи</translation>
+    </message>
+    <message>
+        <source>stopping</source>
+        <translation>остановка</translation>
+    </message>
+    <message>
+        <source>e-stop</source>
+        <translation>аварийный стоп</translation>
+    </message>
+    <message>
+        <source>jog</source>
+        <translation>толчок</translation>
+    </message>
+    <message>
+        <source>homing</source>
+        <translation>выход в ноль</translation>
+    </message>
+</context>
+<context>
+    <name>MeasurePage</name>
+    <message>
+        <source>3D measurement</source>
+        <translation>3D-измерение</translation>
+    </message>
+    <message>
+        <source>Block L, mm</source>
+        <translation>Заготовка Д, мм</translation>
+    </message>
+    <message>
+        <source>W</source>
+        <translation>Ш</translation>
+    </message>
+    <message>
+        <source>H</source>
+        <translation>В</translation>
+    </message>
+    <message>
+        <source>Nominal corner X</source>
+        <translation>Номинальный угол X</translation>
+    </message>
+    <message>
+        <source>Y</source>
+        <translation>Y</translation>
+    </message>
+    <message>
+        <source>Z</source>
+        <translation>Z</translation>
+    </message>
+    <message>
+        <source>turned, °</source>
+        <translation>поворот, °</translation>
+    </message>
+    <message>
+        <source>Measure six points</source>
+        <translation>Измерить шесть точек</translation>
+    </message>
+    <message>
+        <source>Cancel</source>
+        <translation>Отмена</translation>
+    </message>
+    <message>
+        <source>Apply to the holes…</source>
+        <translation>Применить к отверстиям…</translation>
+    </message>
+</context>
+<context>
+    <name>ProcessDbPage</name>
+    <message>
+        <source>Process database</source>
+        <translation>База технологических данных</translation>
+    </message>
+    <message>
+        <source>Add hole</source>
+        <translation>Добавить отверстие</translation>
+    </message>
+    <message>
+        <source>Remove hole</source>
+        <translation>Удалить отверстие</translation>
+    </message>
+    <message>
+        <source>Import CSV…</source>
+        <translation>Импорт CSV…</translation>
+    </message>
+    <message>
+        <source>Export CSV…</source>
+        <translation>Экспорт CSV…</translation>
+    </message>
+</context>
+<context>
+    <name>lcnc::hmi::AdjustPage</name>
+    <message>
+        <source>W, 60 s: setpoint grey, output blue, measured green</source>
+        <translation>Вт, 60 с: уставка — серый, выход — синий, измерено — зелёный</translation>
+    </message>
+    <message>
+        <source>standby</source>
+        <translation>ожидание</translation>
+    </message>
+    <message>
+        <source>ready</source>
+        <translation>готов</translation>
+    </message>
+    <message>
+        <source>emitting</source>
+        <translation>излучает</translation>
+    </message>
+    <message>
+        <source>ALARM</source>
+        <translation>АВАРИЯ</translation>
+    </message>
+    <message>
+        <source>idle</source>
+        <translation>простой</translation>
+    </message>
+    <message>
+        <source>spinning up</source>
+        <translation>разгон</translation>
+    </message>
+    <message>
+        <source>scanning</source>
+        <translation>сканирование</translation>
+    </message>
+    <message>
+        <source>Device</source>
+        <translation>Устройство</translation>
+    </message>
+    <message>
+        <source>Link</source>
+        <translation>Связь</translation>
+    </message>
+    <message>
+        <source>Requests</source>
+        <translation>Запросы</translation>
+    </message>
+    <message>
+        <source>Failed</source>
+        <translation>Ошибки</translation>
+    </message>
+    <message>
+        <source>Retries</source>
+        <translation>Повторы</translation>
+    </message>
+    <message>
+        <source>Last error</source>
+        <translation>Последняя ошибка</translation>
+    </message>
+    <message>
+        <source>no link</source>
+        <translation>нет связи</translation>
+    </message>
+    <message>
+        <source>none</source>
+        <translation>нет</translation>
+    </message>
+    <message>
+        <source>over-temperature</source>
+        <translation>перегрев</translation>
+    </message>
+    <message>
+        <source>laser: %1</source>
+        <translation>лазер: %1</translation>
+    </message>
+    <message>
+        <source> (over range)</source>
+        <translation> (вне диапазона)</translation>
+    </message>
+    <message>
+        <source>FAULT</source>
+        <translation>НЕИСПРАВНОСТЬ</translation>
+    </message>
+    <message>
+        <source>head: %1</source>
+        <translation>головка: %1</translation>
+    </message>
+    <message>
+        <source>not configured</source>
+        <translation>не настроено</translation>
+    </message>
+    <message>
+        <source>connecting…</source>
+        <translation>подключение…</translation>
+    </message>
+    <message>
+        <source>up</source>
+        <translation>есть</translation>
+    </message>
+    <message>
+        <source>down</source>
+        <translation>нет</translation>
+    </message>
+    <message>
+        <source>Refused: %1</source>
+        <translation>Отклонено: %1</translation>
+    </message>
+</context>
+<context>
+    <name>lcnc::hmi::DecompositionPage</name>
+    <message>
+        <source>Open drawing</source>
+        <translation>Открыть чертёж</translation>
+    </message>
+    <message>
+        <source>DXF (*.dxf)</source>
+        <translation>DXF (*.dxf)</translation>
+    </message>
+    <message>
+        <source>Export kinematics table</source>
+        <translation>Экспорт кинематической таблицы</translation>
+    </message>
+    <message>
+        <source>CSV (*.csv)</source>
+        <translation>CSV (*.csv)</translation>
+    </message>
+    <message>
+        <source>Drawing %1: set the options and decompose.</source>
+        <translation>Чертёж %1: задайте параметры и разложите.</translation>
+    </message>
+    <message>
+        <source>Decomposing…</source>
+        <translation>Разложение…</translation>
+    </message>
+    <message>
+        <source>%1 contours, %2 points at %3 mm; time %4 s; peak main-axis acceleration %5 mm/s² (%6 g), effective %7 mm/s² — %8× lower on the main axes; aux excursion %9 mm; |S1 + S2 − S| ≤ %10 mm</source>
+        <translation>контуров: %1, точек: %2 с шагом %3 мм; время %4 с; пиковое ускорение основных осей %5 мм/с² (%6 g), эффективное %7 мм/с² — на основных осях в %8 раз меньше; отклонение вспом. осей %9 мм; |S1 + S2 − S| ≤ %10 мм</translation>
+    </message>
+    <message>
+        <source>Decomposed.</source>
+        <translation>Разложено.</translation>
+    </message>
+    <message numerus="yes">
+        <source>The seed&apos;s algorithm breaks %n limit(s) (see the table&apos;s tooltips); the synchronous mode guarantees them.</source>
+        <translation>
+            <numerusform>Исходный алгоритм нарушает %n ограничение (см. подсказки таблицы); синхронный режим их гарантирует.</numerusform>
+            <numerusform>Исходный алгоритм нарушает %n ограничения (см. подсказки таблицы); синхронный режим их гарантирует.</numerusform>
+            <numerusform>Исходный алгоритм нарушает %n ограничений (см. подсказки таблицы); синхронный режим их гарантирует.</numerusform>
+        </translation>
+    </message>
+    <message>
+        <source> line %1</source>
+        <translation>, строка %1</translation>
+    </message>
+    <message>
+        <source>Nothing to export: decompose a drawing first.</source>
+        <translation>Нечего экспортировать: сначала разложите чертёж.</translation>
+    </message>
+    <message>
+        <source>Cannot write %1.</source>
+        <translation>Не удаётся записать %1.</translation>
+    </message>
+    <message>
+        <source>Exported %1.</source>
+        <translation>Экспортировано: %1.</translation>
+    </message>
+</context>
+<context>
+    <name>lcnc::hmi::DecompositionView</name>
+    <message>
+        <source>Open a DXF drawing and decompose it.</source>
+        <translation>Откройте чертёж DXF и разложите его.</translation>
+    </message>
+    <message>
+        <source>S contour (green), S1 main axes X, Y (blue) — mm</source>
+        <translation>S контур (зелёный), S1 основные оси X, Y (синий) — мм</translation>
+    </message>
+    <message>
+        <source>S2 = S − S1 auxiliary axes P, Q (red) in the field ±%1 mm</source>
+        <translation>S2 = S − S1 вспомогательные оси P, Q (красный) в поле ±%1 мм</translation>
+    </message>
+</context>
+<context>
+    <name>lcnc::hmi::FocalPage</name>
+    <message>
+        <source>Hole</source>
+        <translation>Отверстие</translation>
+    </message>
+    <message>
+        <source>X mm</source>
+        <translation>X мм</translation>
+    </message>
+    <message>
+        <source>Y mm</source>
+        <translation>Y мм</translation>
+    </message>
+    <message>
+        <source>Z mm</source>
+        <translation>Z мм</translation>
+    </message>
+    <message>
+        <source>Stored offset mm</source>
+        <translation>Сохранённое смещение, мм</translation>
+    </message>
+    <message>
+        <source>Distance mm</source>
+        <translation>Расстояние, мм</translation>
+    </message>
+    <message>
+        <source>New offset mm</source>
+        <translation>Новое смещение, мм</translation>
+    </message>
+    <message>
+        <source>Status</source>
+        <translation>Статус</translation>
+    </message>
+    <message>
+        <source>Tick the holes to measure first.</source>
+        <translation>Сначала отметьте отверстия для измерения.</translation>
+    </message>
+    <message>
+        <source>No displacement sensor configured.</source>
+        <translation>Датчик перемещения не настроен.</translation>
+    </message>
+    <message numerus="yes">
+        <source>Measuring %n hole(s)…</source>
+        <translation>
+            <numerusform>Измеряется %n отверстие…</numerusform>
+            <numerusform>Измеряются %n отверстия…</numerusform>
+            <numerusform>Измеряются %n отверстий…</numerusform>
+        </translation>
+    </message>
+    <message>
+        <source>measured</source>
+        <translation>измерено</translation>
+    </message>
+    <message numerus="yes">
+        <source>%n hole(s) measured; save to store the offsets.</source>
+        <translation>
+            <numerusform>Измерено %n отверстие; сохраните, чтобы записать смещения.</numerusform>
+            <numerusform>Измерено %n отверстия; сохраните, чтобы записать смещения.</numerusform>
+            <numerusform>Измерено %n отверстий; сохраните, чтобы записать смещения.</numerusform>
+        </translation>
+    </message>
+    <message>
+        <source>%1 measured, %2 not (see Status); save stores the measured ones.</source>
+        <translation>Измерено: %1, не измерено: %2 (см. «Статус»); сохраняются измеренные.</translation>
+    </message>
+    <message>
+        <source>Nothing measured to save.</source>
+        <translation>Нет измерений для сохранения.</translation>
+    </message>
+    <message numerus="yes">
+        <source>Stored the focus offsets of %n hole(s).</source>
+        <translation>
+            <numerusform>Сохранено смещение фокуса %n отверстия.</numerusform>
+            <numerusform>Сохранены смещения фокуса %n отверстий.</numerusform>
+            <numerusform>Сохранены смещения фокуса %n отверстий.</numerusform>
+        </translation>
+    </message>
+</context>
+<context>
+    <name>lcnc::hmi::HoleTableModel</name>
+    <message>
+        <source>hole %1: field 18 process = %2; allowed 0 helix, 1 circle, 2 free shape</source>
+        <translation>отверстие %1: поле 18 процесс = %2; допустимо 0 спираль, 1 окружность, 2 произвольная форма</translation>
+    </message>
+    <message>
+        <source>hole %1: %2 must be a whole number</source>
+        <translation>отверстие %1: %2 должно быть целым числом</translation>
+    </message>
+    <message>
+        <source>hole %1: %2 must be a number</source>
+        <translation>отверстие %1: %2 должно быть числом</translation>
+    </message>
+</context>
+<context>
+    <name>lcnc::hmi::MachinePage</name>
+    <message>
+        <source>Not sent: no link to the controller.</source>
+        <translation>Не отправлено: нет связи с контроллером.</translation>
+    </message>
+    <message>
+        <source>Controller: link lost — %1</source>
+        <translation>Контроллер: связь потеряна — %1</translation>
+    </message>
+    <message>
+        <source>State: unknown</source>
+        <translation>Состояние: неизвестно</translation>
+    </message>
+    <message>
+        <source>Controller: connected</source>
+        <translation>Контроллер: подключён</translation>
+    </message>
+    <message>
+        <source>State: %1</source>
+        <translation>Состояние: %1</translation>
+    </message>
+</context>
+<context>
+    <name>lcnc::hmi::MainWindow</name>
+    <message>
+        <source>LaserCNC</source>
+        <translation>LaserCNC</translation>
+    </message>
+    <message>
+        <source>Machine</source>
+        <translation>Станок</translation>
+    </message>
+    <message>
+        <source>Process database</source>
+        <translation>База технологических данных</translation>
+    </message>
+    <message>
+        <source>3D measurement</source>
+        <translation>3D-измерение</translation>
+    </message>
+    <message>
+        <source>Focal length</source>
+        <translation>Фокусное расстояние</translation>
+    </message>
+    <message>
+        <source>Laser and head</source>
+        <translation>Лазер и головка</translation>
+    </message>
+    <message>
+        <source>Main + auxiliary axes</source>
+        <translation>Основные + вспомогательные оси</translation>
+    </message>
+</context>
+<context>
+    <name>lcnc::hmi::MeasurePage</name>
+    <message>
+        <source>Point</source>
+        <translation>Точка</translation>
+    </message>
+    <message>
+        <source>Approach X, Y, Z mm; A, C °</source>
+        <translation>Подход X, Y, Z мм; A, C °</translation>
+    </message>
+    <message>
+        <source>Measured X, Y, Z mm</source>
+        <translation>Измерено X, Y, Z мм</translation>
+    </message>
+    <message>
+        <source>Residual mm</source>
+        <translation>Невязка, мм</translation>
+    </message>
+    <message>
+        <source>Apply the measured placement</source>
+        <translation>Применить измеренное положение</translation>
+    </message>
+    <message>
+        <source>Move every hole of the process database onto the measured placement? Their X, Y, Z, A and C are read as drawing coordinates.</source>
+        <translation>Перенести все отверстия базы на измеренное положение? Их X, Y, Z, A и C считаются координатами чертежа.</translation>
+    </message>
+    <message>
+        <source>No 3D probe configured.</source>
+        <translation>3D-щуп не настроен.</translation>
+    </message>
+    <message>
+        <source>Measuring: the machine moves to each point…</source>
+        <translation>Измерение: станок перемещается к каждой точке…</translation>
+    </message>
+    <message>
+        <source>Not measured: %1</source>
+        <translation>Не измерено: %1</translation>
+    </message>
+    <message>
+        <source>The block&apos;s datum corner at X %1 Y %2 Z %3 mm, turned %4° about Z, its top tilted %5°; residuals max %6 mm, rms %7 mm.</source>
+        <translation>Базовый угол заготовки: X %1 Y %2 Z %3 мм, поворот %4° вокруг Z, наклон верхней грани %5°; невязка макс. %6 мм, СКО %7 мм.</translation>
+    </message>
+    <message>
+        <source>Measured. Apply the placement to the holes when it looks right.</source>
+        <translation>Измерено. Если всё верно, примените положение к отверстиям.</translation>
+    </message>
+    <message>
+        <source>Nothing measured to apply.</source>
+        <translation>Нет измерения для применения.</translation>
+    </message>
+    <message numerus="yes">
+        <source>Moved %n hole(s) onto the measured placement.</source>
+        <translation>
+            <numerusform>Перенесено %n отверстие на измеренное положение.</numerusform>
+            <numerusform>Перенесено %n отверстия на измеренное положение.</numerusform>
+            <numerusform>Перенесено %n отверстий на измеренное положение.</numerusform>
+        </translation>
+    </message>
+</context>
+<context>
+    <name>lcnc::hmi::ProcessDbPage</name>
+    <message>
+        <source>Stored.</source>
+        <translation>Сохранено.</translation>
+    </message>
+    <message>
+        <source>Import hole table</source>
+        <translation>Импорт таблицы отверстий</translation>
+    </message>
+    <message>
+        <source>CSV (*.csv)</source>
+        <translation>CSV (*.csv)</translation>
+    </message>
+    <message>
+        <source>Export hole table</source>
+        <translation>Экспорт таблицы отверстий</translation>
+    </message>
+    <message numerus="yes">
+        <source>%n hole(s)</source>
+        <translation>
+            <numerusform>%n отверстие</numerusform>
+            <numerusform>%n отверстия</numerusform>
+            <numerusform>%n отверстий</numerusform>
+        </translation>
+    </message>
+    <message>
+        <source>Imported %1.</source>
+        <translation>Импортировано: %1.</translation>
+    </message>
+    <message>
+        <source>Exported %1.</source>
+        <translation>Экспортировано: %1.</translation>
+    </message>
+    <message>
+        <source>Hole %1 added.</source>
+        <translation>Отверстие %1 добавлено.</translation>
+    </message>
+</context>
+</TS>
