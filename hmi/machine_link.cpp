@@ -53,6 +53,10 @@ std::optional<shm::JobStatus> MachineLink::job() const {
   return j;
 }
 
+bool MachineLink::next_event(shm::Event& out) {
+  return linked() && client_->block().events.try_pop(out);
+}
+
 std::uint32_t MachineLink::send(shm::CommandType type, double value, std::uint8_t axis, const std::string& text) {
   if (!linked()) return 0;
   shm::Command c;

@@ -32,6 +32,11 @@ class MachineLink {
   // is full.
   std::uint32_t send(shm::CommandType type, double value = 0.0, std::uint8_t axis = 0,
                      const std::string& text = {});
+  // The next of the kernel's events (faults, state changes, the daemon's
+  // news), oldest first; false when there is none. The event ring has one
+  // consumer: the machine screen's link (a workflow's link must not take
+  // them).
+  bool next_event(shm::Event& out);
   // Why not linked, for the operator.
   [[nodiscard]] const std::string& why() const noexcept { return why_; }
 

@@ -351,6 +351,34 @@
         <source>homing</source>
         <translation>выход в ноль</translation>
     </message>
+    <message>
+        <source>Jog</source>
+        <translation>Толчок</translation>
+    </message>
+    <message>
+        <source> mm/°</source>
+        <translation> мм/°</translation>
+    </message>
+    <message>
+        <source>Jog −</source>
+        <translation>Толчок −</translation>
+    </message>
+    <message>
+        <source>Jog +</source>
+        <translation>Толчок +</translation>
+    </message>
+    <message>
+        <source>Home axis</source>
+        <translation>Ось в ноль</translation>
+    </message>
+    <message>
+        <source>Alarms and events</source>
+        <translation>Аварии и события</translation>
+    </message>
+    <message>
+        <source>Clear the list</source>
+        <translation>Очистить список</translation>
+    </message>
 </context>
 <context>
     <name>MeasurePage</name>
@@ -718,6 +746,22 @@
     <message>
         <source>State: %1</source>
         <translation>Состояние: %1</translation>
+    </message>
+    <message>
+        <source>Time, s</source>
+        <translation>Время, с</translation>
+    </message>
+    <message>
+        <source>Code</source>
+        <translation>Код</translation>
+    </message>
+    <message>
+        <source>Line</source>
+        <translation>Строка</translation>
+    </message>
+    <message>
+        <source>What</source>
+        <translation>Что</translation>
     </message>
 </context>
 <context>

@@ -351,6 +351,34 @@
         <source>homing</source>
         <translation>回零</translation>
     </message>
+    <message>
+        <source>Jog</source>
+        <translation>点动</translation>
+    </message>
+    <message>
+        <source> mm/°</source>
+        <translation> mm/°</translation>
+    </message>
+    <message>
+        <source>Jog −</source>
+        <translation>点动 −</translation>
+    </message>
+    <message>
+        <source>Jog +</source>
+        <translation>点动 +</translation>
+    </message>
+    <message>
+        <source>Home axis</source>
+        <translation>轴回零</translation>
+    </message>
+    <message>
+        <source>Alarms and events</source>
+        <translation>报警与事件</translation>
+    </message>
+    <message>
+        <source>Clear the list</source>
+        <translation>清空列表</translation>
+    </message>
 </context>
 <context>
     <name>MeasurePage</name>
@@ -710,6 +738,22 @@
     <message>
         <source>State: %1</source>
         <translation>状态：%1</translation>
+    </message>
+    <message>
+        <source>Time, s</source>
+        <translation>时间，s</translation>
+    </message>
+    <message>
+        <source>Code</source>
+        <translation>代码</translation>
+    </message>
+    <message>
+        <source>Line</source>
+        <translation>行</translation>
+    </message>
+    <message>
+        <source>What</source>
+        <translation>内容</translation>
     </message>
 </context>
 <context>

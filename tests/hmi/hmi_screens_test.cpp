@@ -12,6 +12,8 @@
 #include <unistd.h>
 
 #include <QAbstractItemModelTester>
+#include <QDoubleSpinBox>
+#include <QTableWidget>
 #include <QApplication>
 #include <QElapsedTimer>
 #include <QImage>
@@ -180,6 +182,68 @@ TEST(MachineScreen, ShowsTheDaemonSendsEStopAndSeesTheLinkLost) {
   EXPECT_TRUE(wait_until([&] { return link->text().contains("link lost"); }, 3000));
   EXPECT_LT(t.elapsed(), 1000);
   EXPECT_EQ(dro_x->text(), "—");
+  shm_unlink(shm.c_str());
+}
+
+// Jog and home an axis from the screen, and the alarm list fills with the
+// kernel's events — a fault in the alarm colour, newest first.
+TEST(MachineScreen, JogsHomesAndListsTheAlarms) {
+  const std::string shm = "/lcnc_hmi_jog_" + std::to_string(getpid());
+  shm_unlink(shm.c_str());
+  const std::string exe = LASERCNCD_EXE;
+  std::vector<std::string> args = {exe, "--shm", shm, "--no-realtime"};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
+  pid_t pid = -1;
+  ASSERT_EQ(posix_spawn(&pid, exe.c_str(), &fa, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&fa);
+  MachinePage page(shm);
+  auto* state = page.findChild<QLabel*>("stateLabel");
+  auto* dro_x = page.findChild<QLabel*>("droX");
+  auto* step = page.findChild<QDoubleSpinBox*>("jogStepSpin");
+  auto* alarms = page.findChild<QTableWidget*>("alarmTable");
+  ASSERT_TRUE(state && dro_x && step && alarms);
+  EXPECT_TRUE(wait_until([&] { page.refresh(); return state->text().contains("idle"); }));
+  step->setValue(2.5);
+  page.findChild<QPushButton*>("jogPlusButton")->click();
+  EXPECT_TRUE(wait_until([&] { page.refresh(); return dro_x->text() == "2.500"; })) << dro_x->text().toStdString();
+  EXPECT_TRUE(wait_until([&] { page.refresh(); return state->text().contains("idle"); }));
+  page.findChild<QPushButton*>("jogMinusButton")->click();
+  EXPECT_TRUE(wait_until([&] { page.refresh(); return dro_x->text() == "0.000"; })) << dro_x->text().toStdString();
+  EXPECT_TRUE(wait_until([&] { page.refresh(); return state->text().contains("idle"); }));
+  const auto row_with = [&](const QString& what) {
+    for (int r = 0; r < alarms->rowCount(); ++r)
+      if (alarms->item(r, 3)->text().contains(what, Qt::CaseInsensitive) || alarms->item(r, 1)->text() == what)
+        return r;
+    return -1;
+  };
+  step->setValue(5.0);
+  page.findChild<QPushButton*>("jogPlusButton")->click();
+  EXPECT_TRUE(wait_until([&] { page.refresh(); return dro_x->text() == "5.000"; })) << dro_x->text().toStdString();
+  EXPECT_TRUE(wait_until([&] { page.refresh(); return state->text().contains("idle"); }));
+  page.findChild<QPushButton*>("homeButton")->click();  // X: search, back off, latch
+  EXPECT_TRUE(wait_until([&] { page.refresh(); return row_with("homed") >= 0; }, 30000))
+      << page.findChild<QLabel*>("jobLabel")->text().toStdString();
+  // an e-stop: a fault row, in the alarm colour
+  page.findChild<QPushButton*>("estopButton")->click();
+  int fault = -1;
+  EXPECT_TRUE(wait_until([&] {
+    page.refresh();
+    for (int r = 0; r < alarms->rowCount(); ++r)
+      if (alarms->item(r, 1)->text().startsWith("E")) fault = r;
+    return fault >= 0;
+  }));
+  ASSERT_GE(fault, 0);
+  EXPECT_EQ(alarms->item(fault, 1)->foreground().color(), QColor("#b00020"));
+  EXPECT_GT(alarms->rowCount(), 2);  // the jogs and the homing were news too
+  page.findChild<QPushButton*>("clearAlarmsButton")->click();
+  EXPECT_EQ(alarms->rowCount(), 0);
+  kill(pid, SIGTERM);
+  waitpid(pid, nullptr, 0);
   shm_unlink(shm.c_str());
 }
 
