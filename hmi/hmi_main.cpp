@@ -1,9 +1,10 @@
 // lasercnc-hmi — the operator HMI (Qt5 Widgets). Talks to lasercncd through
 // shared memory only; keeps the process database in SQLite.
 //
-//   lasercnc-hmi [--db FILE] [--shm NAME] [--import HOLES.csv] [--dxf PART.dxf]
+//   lasercnc-hmi [--db FILE] [--shm NAME] [--import HOLES.csv] [--program FILE] [--dxf PART.dxf]
 //                [--sensor|--laser|--meter|--head tcp:HOST:PORT|rtu:DEV[:BAUD[:PARITY]]]
-//                [--probe SERIAL] [--lang en|zh_CN|ru] [--screenshot DIR]
+//                [--probe SERIAL] [--machine FILE] [--lang en|zh_CN|ru]
+//                [--screenshot DIR]
 //
 // Without any of --sensor, --laser, --meter, --head the peripherals are the
 // simulators (hmi/sim_peripherals.h), started in-process and riding on the
@@ -11,7 +12,8 @@
 // protocol). --lang: the operator's language (default: the system's, English
 // when there is no translation for it).
 // --import merges a hole table (holes/hole_table.h) into the database first.
-// --dxf opens a part on the main + auxiliary axes screen and decomposes it.
+// --program opens and plans a program on the program screen; --dxf opens a
+// part on the main + auxiliary axes screen and decomposes it.
 // --screenshot renders every screen to DIR/<screen>.png and exits (works
 // offscreen: QT_QPA_PLATFORM=offscreen). Exit codes: 0, 1 the database
 // cannot be opened, 2 bad command line.
@@ -27,6 +29,7 @@
 #include "hmi/adjust_page.h"
 #include "hmi/decomposition_page.h"
 #include "hmi/main_window.h"
+#include "hmi/program_page.h"
 #include "hmi/sim_peripherals.h"
 #include "hmi/translations.h"
 #include "hmi/process_db.h"
@@ -38,32 +41,36 @@ int main(int argc, char** argv) {
   std::string shm_name = lcnc::shm::kDefaultName;
   QString screenshot_dir;
   std::string import_path;
-  QString dxf_path;
+  QString dxf_path, program_path;
   std::string sensor_spec, probe_device, laser_spec, meter_spec, head_spec;
   QString language = "system";
+  std::string machine_file;
   const QStringList args = app.arguments();
   for (int i = 1; i < args.size(); ++i) {
     const QString& a = args[i];
     if ((a == "--db" || a == "--shm" || a == "--screenshot" || a == "--import" || a == "--dxf" ||
          a == "--sensor" || a == "--probe" || a == "--laser" || a == "--meter" || a == "--head" ||
-         a == "--lang") &&
+         a == "--lang" || a == "--machine" || a == "--program") &&
         i + 1 < args.size()) {
       const QString v = args[++i];
       if (a == "--db") db_path = v.toStdString();
       else if (a == "--shm") shm_name = v.toStdString();
       else if (a == "--import") import_path = v.toStdString();
       else if (a == "--dxf") dxf_path = v;
+      else if (a == "--program") program_path = v;
       else if (a == "--sensor") sensor_spec = v.toStdString();
       else if (a == "--probe") probe_device = v.toStdString();
       else if (a == "--laser") laser_spec = v.toStdString();
       else if (a == "--meter") meter_spec = v.toStdString();
       else if (a == "--head") head_spec = v.toStdString();
       else if (a == "--lang") language = v;
+      else if (a == "--machine") machine_file = v.toStdString();
       else screenshot_dir = v;
     } else {
       std::fprintf(stderr, "usage: lasercnc-hmi [--db FILE] [--shm NAME] [--import HOLES.csv] "
-                           "[--dxf PART.dxf] [--sensor|--laser|--meter|--head ENDPOINT] [--probe SERIAL]\n"
-                           "                    [--lang en|zh_CN|ru] [--screenshot DIR]\n");
+                           "[--program FILE] [--dxf PART.dxf] [--sensor|--laser|--meter|--head ENDPOINT]\n"
+                           "                    [--probe SERIAL]"
+                           "                    [--machine FILE] [--lang en|zh_CN|ru] [--screenshot DIR]\n");
       return 2;
     }
   }
@@ -113,7 +120,17 @@ int main(int argc, char** argv) {
     peripherals.meter = sims->meter_endpoint();
     peripherals.head = sims->head_endpoint();
   }
-  lcnc::hmi::MainWindow window(**db, shm_name, peripherals);
+  lcnc::Result<lcnc::MachineConfig> machine =
+      machine_file.empty() ? lcnc::hmi::shipped_machine() : lcnc::load_machine_config(machine_file);
+  if (!machine) {
+    std::fprintf(stderr, "lasercnc-hmi: %s\n", machine.error().to_string().c_str());
+    return 1;
+  }
+  lcnc::hmi::MainWindow window(**db, shm_name, peripherals, &*machine);
+  if (!program_path.isEmpty()) {
+    window.program()->open_file(program_path);
+    if (!screenshot_dir.isEmpty()) window.program()->wait_done();
+  }
   if (!dxf_path.isEmpty()) {
     window.decomposition()->open_file(dxf_path);
     window.decomposition()->decompose();

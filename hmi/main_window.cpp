@@ -1,6 +1,9 @@
 #include "hmi/main_window.h"
 
 #include <QDir>
+
+#include <cstdlib>
+#include <string>
 #include <QPixmap>
 #include <QTabWidget>
 
@@ -10,11 +13,17 @@
 #include "hmi/measure_page.h"
 #include "hmi/machine_page.h"
 #include "hmi/process_db_page.h"
+#include "hmi/program_page.h"
 
 namespace lcnc::hmi {
 
+Result<MachineConfig> shipped_machine() {
+  const char* share = std::getenv("LASERCNC_SHARE");
+  return load_machine_config(std::string(share != nullptr ? share : LCNC_SHARE_DIR) + "/machines/default.toml");
+}
+
 MainWindow::MainWindow(ProcessDatabase& db, const std::string& shm_name,
-                       const PeripheralEndpoints& peripherals, QWidget* parent)
+                       const PeripheralEndpoints& peripherals, const MachineConfig* machine, QWidget* parent)
     : QMainWindow(parent), tabs_(new QTabWidget(this)) {
   setObjectName("mainWindow");
   setWindowTitle(tr("LaserCNC"));
@@ -24,6 +33,15 @@ MainWindow::MainWindow(ProcessDatabase& db, const std::string& shm_name,
   machine_page_ = new MachinePage(shm_name, tabs_);
   machine_page_->setObjectName("machinePage");
   tabs_->addTab(machine_page_, tr("Machine"));
+  MachineConfig m;
+  if (machine != nullptr) {
+    m = *machine;
+  } else if (Result<MachineConfig> d = shipped_machine()) {
+    m = *d;
+  }
+  program_page_ = new ProgramPage(m, shm_name, tabs_);
+  program_page_->setObjectName("programPage");
+  tabs_->addTab(program_page_, tr("Program"));
   tabs_->addTab(db_page_, tr("Process database"));
   measure_page_ = new MeasurePage(db, shm_name, peripherals.probe_serial, tabs_);
   measure_page_->setObjectName("measurePage");

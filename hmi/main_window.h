@@ -1,5 +1,5 @@
-// lasercnc-hmi's main window: one tab per screen (machine, process
-// database, 3D measurement, focal length, laser and head adjustment and
+// lasercnc-hmi's main window: one tab per screen (machine, program and
+// toolpath, process database, 3D measurement, focal length, laser and head adjustment and
 // monitoring, main + auxiliary axes), and rendering every screen to PNG for
 // --screenshot.
 #pragma once
@@ -14,6 +14,7 @@
 #include "drivers/modbus/modbus_types.h"
 
 #include "hmi/process_db.h"
+#include "machine/machine_config.h"
 
 class QTabWidget;
 
@@ -23,6 +24,7 @@ class DecompositionPage;
 class AdjustPage;
 class FocalPage;
 class MeasurePage;
+class ProgramPage;
 class MachinePage;
 class ProcessDbPage;
 
@@ -33,12 +35,18 @@ struct PeripheralEndpoints {
   std::optional<drivers::Endpoint> laser, meter, head;  // laser source, power meter, scan head
 };
 
+// The shipped default machine config ($LASERCNC_SHARE, else the source
+// tree's share/).
+[[nodiscard]] Result<MachineConfig> shipped_machine();
+
 class MainWindow : public QMainWindow {
   Q_OBJECT
 
  public:
+  // `machine`: the machine config the program screen plans with (null: the
+  // shipped default, share/machines/default.toml).
   MainWindow(ProcessDatabase& db, const std::string& shm_name, const PeripheralEndpoints& peripherals = {},
-             QWidget* parent = nullptr);
+             const MachineConfig* machine = nullptr, QWidget* parent = nullptr);
   ~MainWindow() override;
 
   // Renders each screen to DIR/<objectName>.png; the files written.
@@ -48,6 +56,7 @@ class MainWindow : public QMainWindow {
   [[nodiscard]] FocalPage* focal() const noexcept { return focal_page_; }
   [[nodiscard]] MeasurePage* measure() const noexcept { return measure_page_; }
   [[nodiscard]] AdjustPage* adjust() const noexcept { return adjust_page_; }
+  [[nodiscard]] ProgramPage* program() const noexcept { return program_page_; }
 
  private:
   QTabWidget* tabs_;
@@ -57,6 +66,7 @@ class MainWindow : public QMainWindow {
   FocalPage* focal_page_;
   MeasurePage* measure_page_;
   AdjustPage* adjust_page_;
+  ProgramPage* program_page_;
 };
 
 }  // namespace lcnc::hmi

@@ -451,6 +451,25 @@
     </message>
 </context>
 <context>
+    <name>ProgramPage</name>
+    <message>
+        <source>Program</source>
+        <translation>Программа</translation>
+    </message>
+    <message>
+        <source>Open program…</source>
+        <translation>Открыть программу…</translation>
+    </message>
+    <message>
+        <source>no program</source>
+        <translation>нет программы</translation>
+    </message>
+    <message>
+        <source>Load into the controller</source>
+        <translation>Загрузить в контроллер</translation>
+    </message>
+</context>
+<context>
     <name>lcnc::hmi::AdjustPage</name>
     <message>
         <source>W, 60 s: setpoint grey, output blue, measured green</source>
@@ -794,6 +813,10 @@
         <source>Main + auxiliary axes</source>
         <translation>Основные + вспомогательные оси</translation>
     </message>
+    <message>
+        <source>Program</source>
+        <translation>Программа</translation>
+    </message>
 </context>
 <context>
     <name>lcnc::hmi::MeasurePage</name>
@@ -891,6 +914,48 @@
     <message>
         <source>Hole %1 added.</source>
         <translation>Отверстие %1 добавлено.</translation>
+    </message>
+</context>
+<context>
+    <name>lcnc::hmi::ProgramPage</name>
+    <message>
+        <source>Open program</source>
+        <translation>Открыть программу</translation>
+    </message>
+    <message>
+        <source>G-code (*.ngc *.nc *.gcode);;All (*)</source>
+        <translation>G-код (*.ngc *.nc *.gcode);;Все (*)</translation>
+    </message>
+    <message>
+        <source>Checking and planning %1…</source>
+        <translation>Проверка и планирование %1…</translation>
+    </message>
+    <message>
+        <source>%1 lines; path %2 mm; planned time %3 s; peak speed %4 mm/s; %5 points drawn</source>
+        <translation>строк: %1; путь %2 мм; плановое время %3 с; пиковая скорость %4 мм/с; точек на рисунке: %5</translation>
+    </message>
+    <message>
+        <source>Planned. Load it into the controller to run it.</source>
+        <translation>Спланировано. Загрузите в контроллер, чтобы выполнить.</translation>
+    </message>
+    <message>
+        <source>Not sent: no link to the controller.</source>
+        <translation>Не отправлено: нет связи с контроллером.</translation>
+    </message>
+    <message>
+        <source>Sent to the controller; its answer shows on the machine screen.</source>
+        <translation>Отправлено в контроллер; его ответ — на экране станка.</translation>
+    </message>
+</context>
+<context>
+    <name>lcnc::hmi::ToolpathView</name>
+    <message>
+        <source>Open a program to see its toolpath as planned.</source>
+        <translation>Откройте программу, чтобы увидеть спланированную траекторию.</translation>
+    </message>
+    <message>
+        <source>mm/s</source>
+        <translation>мм/с</translation>
     </message>
 </context>
 </TS>

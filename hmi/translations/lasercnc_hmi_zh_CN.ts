@@ -451,6 +451,25 @@
     </message>
 </context>
 <context>
+    <name>ProgramPage</name>
+    <message>
+        <source>Program</source>
+        <translation>程序</translation>
+    </message>
+    <message>
+        <source>Open program…</source>
+        <translation>打开程序…</translation>
+    </message>
+    <message>
+        <source>no program</source>
+        <translation>无程序</translation>
+    </message>
+    <message>
+        <source>Load into the controller</source>
+        <translation>载入控制器</translation>
+    </message>
+</context>
+<context>
     <name>lcnc::hmi::AdjustPage</name>
     <message>
         <source>W, 60 s: setpoint grey, output blue, measured green</source>
@@ -786,6 +805,10 @@
         <source>Main + auxiliary axes</source>
         <translation>主轴 + 辅助轴</translation>
     </message>
+    <message>
+        <source>Program</source>
+        <translation>程序</translation>
+    </message>
 </context>
 <context>
     <name>lcnc::hmi::MeasurePage</name>
@@ -879,6 +902,48 @@
     <message>
         <source>Hole %1 added.</source>
         <translation>已添加孔 %1。</translation>
+    </message>
+</context>
+<context>
+    <name>lcnc::hmi::ProgramPage</name>
+    <message>
+        <source>Open program</source>
+        <translation>打开程序</translation>
+    </message>
+    <message>
+        <source>G-code (*.ngc *.nc *.gcode);;All (*)</source>
+        <translation>G 代码 (*.ngc *.nc *.gcode);;全部 (*)</translation>
+    </message>
+    <message>
+        <source>Checking and planning %1…</source>
+        <translation>正在检查并规划 %1…</translation>
+    </message>
+    <message>
+        <source>%1 lines; path %2 mm; planned time %3 s; peak speed %4 mm/s; %5 points drawn</source>
+        <translation>%1 行；路径 %2 mm；规划时间 %3 s；峰值速度 %4 mm/s；绘制 %5 个点</translation>
+    </message>
+    <message>
+        <source>Planned. Load it into the controller to run it.</source>
+        <translation>规划完成。载入控制器即可运行。</translation>
+    </message>
+    <message>
+        <source>Not sent: no link to the controller.</source>
+        <translation>未发送：与控制器无连接。</translation>
+    </message>
+    <message>
+        <source>Sent to the controller; its answer shows on the machine screen.</source>
+        <translation>已发送到控制器；其应答显示在机床画面上。</translation>
+    </message>
+</context>
+<context>
+    <name>lcnc::hmi::ToolpathView</name>
+    <message>
+        <source>Open a program to see its toolpath as planned.</source>
+        <translation>打开程序以查看规划后的刀具路径。</translation>
+    </message>
+    <message>
+        <source>mm/s</source>
+        <translation>mm/s</translation>
     </message>
 </context>
 </TS>
