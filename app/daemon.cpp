@@ -14,6 +14,7 @@
 #include "app/run_job.h"
 #include "drivers/sim_machine.h"
 #include "gcode/program_reader.h"
+#include "holes/drill_job.h"
 #include "plan/program_source.h"
 #include "rt/rt_kernel.h"
 #include "rt/shm_interface.h"
@@ -101,11 +102,26 @@ struct Daemon::Impl {
     (void)shm.block().events.try_push(e);
   }
 
-  // Checks the program from where the machine stands now.
+  // A hole table (.csv: the process database's rows, holes/hole_table.h)
+  // is a drilling job; anything else a G-code program.
+  static bool is_hole_table(const std::string& path) {
+    return path.size() > 4 && path.compare(path.size() - 4, 4, ".csv") == 0;
+  }
+  std::shared_ptr<const std::vector<Segment>> drill_segments;  // the drilling job, when one is loaded
+
+  // Checks the program (or builds and checks the drilling job) from where
+  // the machine stands now.
   Result<ProgramSummary> check(const std::string& path) {
     ReaderOptions ropt;
     ropt.start = position();
-    return check_job_program(path, machine, ropt);
+    if (!is_hole_table(path)) {
+      drill_segments.reset();
+      return check_job_program(path, machine, ropt);
+    }
+    Result<PreparedDrill> d = prepare_drill_job(path, machine, ropt.start);
+    if (!d) return d.error();
+    drill_segments = std::make_shared<const std::vector<Segment>>(std::move(d->job.segments));
+    return d->summary;
   }
 
   // Executes a command (from the shm ring or the Modbus slave) and says what
@@ -155,7 +171,11 @@ struct Daemon::Impl {
         summary = *s;
         ReaderOptions ropt;
         ropt.start = position();
-        feed->start(program, ropt);
+        if (drill_segments) {
+          feed->start(drill_segments, ropt.start, program);
+        } else {
+          feed->start(program, ropt);
+        }
         job_active = true;
         start_pending = true;
         stop_sent = false;

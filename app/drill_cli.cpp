@@ -176,34 +176,14 @@ int drill_main(int argc, char** argv) {
     std::fprintf(stderr, "%s\n", machine.error().to_string().c_str());
     return 1;
   }
-  std::vector<std::uint32_t> row_lines;
-  Result<std::vector<HoleProcessParams>> rows = read_hole_table(table, &row_lines);
-  if (!rows) {
-    std::fprintf(stderr, "%s\n", rows.error().to_string().c_str());
-    return 1;
+  Result<PreparedDrill> prepared = prepare_drill_job(table, *machine, ReaderOptions{}.start, dopt);
+  if (!prepared) {
+    std::fprintf(stderr, "%s\n", prepared.error().to_string().c_str());
+    return prepared.error().code == ErrorCode::Usage ? 2 : 1;
   }
-  const FiveAxisKinematics kin = kinematics_from(*machine);
-  Result<DrillJob> job = build_drill_job(*rows, kin, ReaderOptions{}.start, dopt);
-  if (!job) {
-    Diagnostic d = job.error();
-    if (d.file.empty()) d.file = table;
-    std::fprintf(stderr, "%s\n", d.to_string().c_str());
-    return d.code == ErrorCode::Usage ? 2 : 1;
-  }
-  Result<ProgramSummary> summary = check_drill_job(*job, *machine, table);
-  if (!summary) {
-    // the job names the hole (its number as the line): point at its row
-    Diagnostic d = summary.error();
-    for (std::size_t k = 0; k < rows->size(); ++k)
-      if ((*rows)[k].hole_number == d.line) {
-        d.line = row_lines[k];
-        d.col = 1;
-        break;
-      }
-    std::fprintf(stderr, "%s\n", d.to_string().c_str());
-    return 1;
-  }
-
+  const std::vector<HoleProcessParams>* rows = &prepared->rows;
+  DrillJob* job = &prepared->job;
+  const ProgramSummary* summary = &prepared->summary;
   std::vector<HoleRecord> records(job->holes.size());
   for (std::size_t k = 0; k < job->holes.size(); ++k) {
     records[k].hole = job->holes[k].hole_number;

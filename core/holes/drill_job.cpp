@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "holes/hole_placement.h"
+#include "holes/hole_table.h"
 #include "path/travel_check.h"
 
 namespace lcnc {
@@ -73,6 +74,35 @@ Result<ProgramSummary> check_drill_job(const DrillJob& job, const MachineConfig&
   ProgramSummary sum = check.summary();
   sum.lines = static_cast<std::uint32_t>(job.holes.size());
   return sum;
+}
+
+Result<PreparedDrill> prepare_drill_job(const std::string& table, const MachineConfig& machine,
+                                        const Pose& start, const DrillOptions& options) {
+  PreparedDrill p;
+  Result<std::vector<HoleProcessParams>> rows = read_hole_table(table, &p.row_lines);
+  if (!rows) return rows.error();
+  p.rows = std::move(rows).value();
+  Result<DrillJob> job = build_drill_job(p.rows, kinematics_from(machine), start, options);
+  if (!job) {
+    Diagnostic d = job.error();
+    if (d.file.empty()) d.file = table;
+    return d;
+  }
+  p.job = std::move(job).value();
+  Result<ProgramSummary> summary = check_drill_job(p.job, machine, table);
+  if (!summary) {
+    // the job names the hole (its number as the line): point at its row
+    Diagnostic d = summary.error();
+    for (std::size_t k = 0; k < p.rows.size(); ++k)
+      if (p.rows[k].hole_number == d.line) {
+        d.line = p.row_lines[k];
+        d.col = 1;
+        break;
+      }
+    return d;
+  }
+  p.summary = *summary;
+  return p;
 }
 
 }  // namespace lcnc

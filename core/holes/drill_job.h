@@ -20,11 +20,13 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "common/result.h"
 #include "gcode/program_reader.h"
 #include "holes/hole_processes.h"
+#include "machine/machine_config.h"
 #include "kinematics/five_axis.h"
 
 namespace lcnc {
@@ -60,5 +62,18 @@ struct DrillJob {
 // hole and the axis. Nothing runs before this passes.
 [[nodiscard]] Result<ProgramSummary> check_drill_job(const DrillJob& job, const MachineConfig& machine,
                                                      const std::string& name);
+
+// A hole table file made into a checked drilling job from `start`: read
+// (hole_table.h: file:line:col), built, checked against the travel — an
+// error about a hole points at its row (file:line). What `lasercnc drill`
+// and the daemon's load of a .csv do.
+struct PreparedDrill {
+  std::vector<HoleProcessParams> rows;
+  std::vector<std::uint32_t> row_lines;  // the file line of each row
+  DrillJob job;
+  ProgramSummary summary;
+};
+[[nodiscard]] Result<PreparedDrill> prepare_drill_job(const std::string& table, const MachineConfig& machine,
+                                                      const Pose& start, const DrillOptions& options = {});
 
 }  // namespace lcnc

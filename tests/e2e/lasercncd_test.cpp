@@ -105,6 +105,38 @@ TEST(Lasercncd, RunsAJobSentByTheCliAndReportsIt) {
   EXPECT_FALSE(fs::exists("/dev/shm" + shm));  // removed on a clean shutdown
 }
 
+// A hole table loaded like a program (the HMI sends the process database's
+// holes so): built into the drilling job, checked, run; a bad row is
+// refused with its line.
+TEST(Lasercncd, RunsAHoleTableAsADrillingJob) {
+  const std::string shm = shm_name();
+  Daemon d(shm);
+  ASSERT_TRUE(d.ready()) << d.log();
+  const std::string header =
+      "hole,x_mm,y_mm,z_mm,a_deg,c_deg,feed_mm_min,layer_feed_mm,layer_count,total_depth_mm,power_pct,"
+      "start_radius_mm,end_radius_mm,radius_turns,scan_speed_mm_s,wedge_speed_rpm,beam_offset_mm,process,shape\n";
+  const fs::path table = write_program("holes.csv", header +
+      "1,100,100,20,0,0,600,0.1,2,0.2,80,0.5,0.5,1,200,3000,0,helix,\n"
+      "2,130,100,20,30,45,600,0.05,2,0.1,70,0.2,0.8,2,150,6000,0,circle,\n");
+  CmdResult r = lasercnc("send load " + table.string() + " --shm " + shm);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("2 lines"), std::string::npos) << r.out;  // a line per hole
+  r = lasercnc("send start --wait --shm " + shm);
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("job done"), std::string::npos) << r.out;
+  EXPECT_EQ(status(shm)["jobs_ended"], 1);
+  // a row out of the travel: refused naming its line, the good table stays loaded
+  // hole 7 at X 999.9: its pattern leaves the travel
+  const fs::path bad = write_program("bad_holes.csv", header +
+      "1,100,100,20,0,0,600,0.1,2,0.2,80,0.5,0.5,1,200,3000,0,helix,\n"
+      "7,999.9,100,20,0,0,600,0.1,2,0.2,80,0.5,0.5,1,200,3000,0,helix,\n");
+  r = lasercnc("send load " + bad.string() + " --shm " + shm);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("bad_holes.csv:3"), std::string::npos) << r.err;
+  EXPECT_NE(status(shm)["program"].get<std::string>().find("holes.csv"), std::string::npos);
+  EXPECT_EQ(d.stop(SIGTERM), 0) << d.log();
+}
+
 TEST(Lasercncd, HoldResumeEStopResetAndJog) {
   const std::string shm = shm_name();
   Daemon d(shm);
