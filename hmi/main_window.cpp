@@ -28,7 +28,7 @@ MainWindow::MainWindow(ProcessDatabase& db, const std::string& shm_name,
   setObjectName("mainWindow");
   setWindowTitle(tr("LaserCNC"));
   tabs_->setObjectName("screens");
-  db_page_ = new ProcessDbPage(db, tabs_);
+  db_page_ = new ProcessDbPage(db, shm_name, tabs_);
   db_page_->setObjectName("processDbPage");
   machine_page_ = new MachinePage(shm_name, tabs_);
   machine_page_->setObjectName("machinePage");

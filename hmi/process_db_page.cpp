@@ -1,17 +1,22 @@
 #include "hmi/process_db_page.h"
 
+#include <QCoreApplication>
 #include <QFileDialog>
 #include <QHeaderView>
 #include <QItemSelectionModel>
 
+#include <filesystem>
+#include <fstream>
+
 #include "hmi/page_support.h"
+#include "holes/hole_table.h"
 #include "ui_process_db_page.h"
 
 namespace lcnc::hmi {
 
-ProcessDbPage::ProcessDbPage(ProcessDatabase& db, QWidget* parent)
+ProcessDbPage::ProcessDbPage(ProcessDatabase& db, std::string shm_name, QWidget* parent)
     : QWidget(parent), ui_(std::make_unique<Ui::ProcessDbPage>()), db_(db),
-      model_(std::make_unique<HoleTableModel>(db)) {
+      model_(std::make_unique<HoleTableModel>(db)), link_(std::move(shm_name)) {
   ui_->setupUi(this);
   ui_->holeTable->setModel(model_.get());
   ui_->holeTable->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
@@ -36,10 +41,56 @@ ProcessDbPage::ProcessDbPage(ProcessDatabase& db, QWidget* parent)
     const QString path = QFileDialog::getSaveFileName(this, tr("Export hole table"), {}, tr("CSV (*.csv)"));
     if (!path.isEmpty()) export_file(path);
   });
+  connect(ui_->sendButton, &QPushButton::clicked, this, [this] { send_to_controller(); });
   update_count();
 }
 
 ProcessDbPage::~ProcessDbPage() = default;
+
+std::string ProcessDbPage::send_to_controller() {
+  Result<std::vector<HoleRecord>> holes = db_.holes();
+  if (!holes) {
+    show_message(QString::fromStdString(holes.error().to_string()), true);
+    return {};
+  }
+  if (holes->empty()) {
+    show_message(tr("No holes to send."), true);
+    return {};
+  }
+  std::vector<HoleProcessParams> rows;
+  int with_offset = 0;
+  for (const HoleRecord& h : *holes) {
+    HoleProcessParams p = h.params;
+    if (h.focus_offset_mm) {
+      p.position[2] += *h.focus_offset_mm;
+      ++with_offset;
+    }
+    rows.push_back(p);
+  }
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                    ("lasercnc_hmi_" + std::to_string(QCoreApplication::applicationPid()));
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  const std::string path = (dir / "holes_run.csv").string();
+  {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out << write_hole_table(rows);
+    if (!out) {
+      show_message(tr("Cannot write %1.").arg(QString::fromStdString(path)), true);
+      return {};
+    }
+  }
+  if (!link_.poll() || link_.send(shm::CommandType::Load, 0.0, 0, path) == 0) {
+    show_message(tr("Not sent: no link to the controller."), true);
+    return {};
+  }
+  show_message(tr("Sent %1 holes (%2 with a measured focus offset) to the controller; start the cycle on the "
+                  "machine screen.")
+                   .arg(rows.size())
+                   .arg(with_offset),
+               false);
+  return path;
+}
 
 void ProcessDbPage::show_message(const QString& text, bool error) { set_message(ui_->messageLabel, text, error); }
 

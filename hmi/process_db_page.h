@@ -1,14 +1,19 @@
 // The process-database screen (seed 000 Fig. 9, DESIGN §6): the holes as a
 // table to edit in place (every edit validated and stored at once, a refusal
 // shown with the field and range), add and remove holes, import and export
-// the CSV hole table. Layout and object names in process_db_page.ui.
+// the CSV hole table; send the holes to lasercncd as a drilling job, each
+// hole's Z raised by its measured focus offset (the focal-length workflow's)
+// — the run takes the database as it is. Layout and object names in
+// process_db_page.ui.
 #pragma once
 
 #include <QWidget>
 
 #include <memory>
+#include <string>
 
 #include "hmi/hole_table_model.h"
+#include "hmi/machine_link.h"
 #include "hmi/process_db.h"
 
 namespace Ui {
@@ -21,13 +26,16 @@ class ProcessDbPage : public QWidget {
   Q_OBJECT
 
  public:
-  explicit ProcessDbPage(ProcessDatabase& db, QWidget* parent = nullptr);
+  ProcessDbPage(ProcessDatabase& db, std::string shm_name = {}, QWidget* parent = nullptr);
   ~ProcessDbPage() override;
 
   [[nodiscard]] HoleTableModel& model() noexcept { return *model_; }
   // Test seams of the file dialogs: import/export this path.
   bool import_file(const QString& path, ProcessDatabase::ImportMode mode);
   bool export_file(const QString& path);
+  // The holes as the run takes them (Z + focus offset), written as a hole
+  // table and loaded into lasercncd; the file sent, or empty when not.
+  std::string send_to_controller();
   // A new hole (the next free number, a valid helix at the table's centre).
   bool add_hole();
   // The message line (a refusal, or what an import did).
@@ -40,6 +48,7 @@ class ProcessDbPage : public QWidget {
   std::unique_ptr<Ui::ProcessDbPage> ui_;
   ProcessDatabase& db_;
   std::unique_ptr<HoleTableModel> model_;
+  MachineLink link_;
 };
 
 }  // namespace lcnc::hmi

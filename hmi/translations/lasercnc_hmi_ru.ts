@@ -449,6 +449,10 @@
         <source>Export CSV…</source>
         <translation>Экспорт CSV…</translation>
     </message>
+    <message>
+        <source>Send the holes to the controller</source>
+        <translation>Отправить отверстия в контроллер</translation>
+    </message>
 </context>
 <context>
     <name>ProgramPage</name>
@@ -914,6 +918,22 @@
     <message>
         <source>Hole %1 added.</source>
         <translation>Отверстие %1 добавлено.</translation>
+    </message>
+    <message>
+        <source>No holes to send.</source>
+        <translation>Нет отверстий для отправки.</translation>
+    </message>
+    <message>
+        <source>Cannot write %1.</source>
+        <translation>Не удаётся записать %1.</translation>
+    </message>
+    <message>
+        <source>Not sent: no link to the controller.</source>
+        <translation>Не отправлено: нет связи с контроллером.</translation>
+    </message>
+    <message>
+        <source>Sent %1 holes (%2 with a measured focus offset) to the controller; start the cycle on the machine screen.</source>
+        <translation>Отправлено отверстий: %1 (с измеренным смещением фокуса: %2); запустите цикл на экране станка.</translation>
     </message>
 </context>
 <context>

@@ -449,6 +449,10 @@
         <source>Export CSV…</source>
         <translation>导出 CSV…</translation>
     </message>
+    <message>
+        <source>Send the holes to the controller</source>
+        <translation>将孔发送到控制器</translation>
+    </message>
 </context>
 <context>
     <name>ProgramPage</name>
@@ -902,6 +906,22 @@
     <message>
         <source>Hole %1 added.</source>
         <translation>已添加孔 %1。</translation>
+    </message>
+    <message>
+        <source>No holes to send.</source>
+        <translation>没有可发送的孔。</translation>
+    </message>
+    <message>
+        <source>Cannot write %1.</source>
+        <translation>无法写入 %1。</translation>
+    </message>
+    <message>
+        <source>Not sent: no link to the controller.</source>
+        <translation>未发送：与控制器无连接。</translation>
+    </message>
+    <message>
+        <source>Sent %1 holes (%2 with a measured focus offset) to the controller; start the cycle on the machine screen.</source>
+        <translation>已将 %1 个孔（其中 %2 个带测得的焦点偏移）发送到控制器；请在机床画面启动循环。</translation>
     </message>
 </context>
 <context>

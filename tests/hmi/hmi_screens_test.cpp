@@ -28,6 +28,7 @@
 #include <string>
 
 #include "holes/hole_table.h"
+#include "hmi/machine_link.h"
 #include "hmi/hole_table_model.h"
 #include "hmi/machine_page.h"
 #include "hmi/main_window.h"
@@ -117,6 +118,32 @@ TEST(ProcessDbScreen, ImportShowsWhereTheFileIsWrongAndAddsHoles) {
   EXPECT_EQ(table->model()->rowCount(), 3);
 }
 
+// lasercncd on its own segment, killed at the end.
+struct DaemonProcess {
+  std::string shm;
+  pid_t pid = -1;
+  explicit DaemonProcess(std::string name) : shm(std::move(name)) {
+    shm_unlink(shm.c_str());
+    const std::string exe = LASERCNCD_EXE;
+    std::vector<std::string> args = {exe, "--shm", shm, "--no-realtime"};
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
+    posix_spawn(&pid, exe.c_str(), &fa, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&fa);
+  }
+  ~DaemonProcess() {
+    if (pid > 0) {
+      kill(pid, SIGKILL);
+      waitpid(pid, nullptr, 0);
+    }
+    shm_unlink(shm.c_str());
+  }
+};
+
 TEST(MainWindow, EveryScreenRendersToPng) {
   const fs::path dir = temp_dir();
   auto db = db_with_holes(dir, 5);
@@ -185,22 +212,42 @@ TEST(MachineScreen, ShowsTheDaemonSendsEStopAndSeesTheLinkLost) {
   shm_unlink(shm.c_str());
 }
 
+// The process database's holes sent to a real lasercncd as a drilling job,
+// each Z raised by its measured focus offset.
+TEST(ProcessDbScreen, SendsTheHolesWithTheirFocusOffsetsToTheController) {
+  const std::string shm = "/lcnc_hmi_send_" + std::to_string(getpid());
+  DaemonProcess daemon(shm);
+  const fs::path dir = temp_dir();
+  auto db = db_with_holes(dir, 2);  // Z 20
+  ASSERT_TRUE(db->set_focus_offset(1, 0.4).ok());
+  ProcessDbPage page(*db, shm);
+  std::string sent;
+  EXPECT_TRUE(wait_until([&] { return !(sent = page.send_to_controller()).empty(); })) << page.message().toStdString();
+  EXPECT_TRUE(page.message().contains("2 holes (1 with a measured focus offset)")) << page.message().toStdString();
+  Result<std::vector<HoleProcessParams>> rows = read_hole_table(sent);
+  ASSERT_TRUE(static_cast<bool>(rows)) << rows.error().to_string();
+  ASSERT_EQ(rows->size(), 2u);
+  EXPECT_NEAR((*rows)[0].position[2], 20.4, 1e-9);
+  EXPECT_NEAR((*rows)[1].position[2], 20.0, 1e-9);
+  MachineLink link(shm);
+  std::string loaded;
+  std::uint32_t lines = 0;
+  EXPECT_TRUE(wait_until([&] {
+    if (link.poll())
+      if (auto j = link.job()) {
+        loaded = j->program;
+        lines = j->lines;
+      }
+    return loaded == sent;
+  })) << loaded;
+  EXPECT_EQ(lines, 2u);  // the daemon built and checked the drilling job
+}
+
 // Jog and home an axis from the screen, and the alarm list fills with the
 // kernel's events — a fault in the alarm colour, newest first.
 TEST(MachineScreen, JogsHomesAndListsTheAlarms) {
   const std::string shm = "/lcnc_hmi_jog_" + std::to_string(getpid());
-  shm_unlink(shm.c_str());
-  const std::string exe = LASERCNCD_EXE;
-  std::vector<std::string> args = {exe, "--shm", shm, "--no-realtime"};
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
-  pid_t pid = -1;
-  ASSERT_EQ(posix_spawn(&pid, exe.c_str(), &fa, nullptr, argv.data(), environ), 0);
-  posix_spawn_file_actions_destroy(&fa);
+  DaemonProcess daemon(shm);
   MachinePage page(shm);
   auto* state = page.findChild<QLabel*>("stateLabel");
   auto* dro_x = page.findChild<QLabel*>("droX");
@@ -242,9 +289,6 @@ TEST(MachineScreen, JogsHomesAndListsTheAlarms) {
   EXPECT_GT(alarms->rowCount(), 2);  // the jogs and the homing were news too
   page.findChild<QPushButton*>("clearAlarmsButton")->click();
   EXPECT_EQ(alarms->rowCount(), 0);
-  kill(pid, SIGTERM);
-  waitpid(pid, nullptr, 0);
-  shm_unlink(shm.c_str());
 }
 
 }  // namespace
