@@ -13,6 +13,10 @@ Result<std::unique_ptr<SerialPointProbe>> SerialPointProbe::open(const std::stri
   if (!map) return map.error();
   drivers::ProbeClientConfig c;
   c.device = device;
+  // a probe answers within its latency; a loaded PC may take its time to
+  // read the answer: the workflow waits longer than the driver's default
+  c.timeout = std::chrono::milliseconds(1000);
+  c.retries = 3;
   auto client = std::make_unique<drivers::ProbeClient>(*map, c);
   if (Status s = client->open(); !s) return s.error();
   return std::unique_ptr<SerialPointProbe>(new SerialPointProbe(std::move(client)));
