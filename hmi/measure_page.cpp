@@ -51,7 +51,13 @@ MeasurePage::MeasurePage(ProcessDatabase& db, std::string shm_name, std::string 
   connect(&progress_timer_, &QTimer::timeout, this, [this] {
     if (progress_) ui_->progressBar->setValue(progress_->done.load());
   });
-  // the planned points, before anything moves
+  connect(ui_->bestFitCheck, &QCheckBox::toggled, this, [this] { show_plan(); });
+  show_plan();
+}
+
+// The planned points, before anything moves.
+void MeasurePage::show_plan() {
+  QTableWidget* t = ui_->pointTable;
   Result<std::vector<ProbePoint>> planned = plan_321(plan());
   if (planned) {
     MeasureOutcome o;
@@ -79,6 +85,7 @@ MeasurePlan MeasurePage::plan() const {
   p.nominal = Eigen::Translation3d(ui_->nominalXSpin->value(), ui_->nominalYSpin->value(),
                                    ui_->nominalZSpin->value()) *
               Eigen::AngleAxisd(ui_->nominalCSpin->value() * M_PI / 180.0, Vec3::UnitZ());
+  p.best_fit = ui_->bestFitCheck->isChecked();
   return p;
 }
 
@@ -94,7 +101,7 @@ void MeasurePage::measure() {
   ui_->applyButton->setEnabled(false);
   ui_->cancelButton->setEnabled(true);
   ui_->progressBar->setVisible(true);
-  ui_->progressBar->setRange(0, 6);
+  ui_->progressBar->setRange(0, plan().best_fit ? 10 : 6);
   ui_->progressBar->setValue(0);
   progress_timer_.start();
   show_message(tr("Measuring: the machine moves to each point…"), false);

@@ -1,5 +1,6 @@
 // The 3D-measurement screen (six-point positioning, DESIGN §7): the drawing's
-// block and where it nominally stands; "Measure six points" runs the
+// block and where it nominally stands, 3-2-1 or a best fit on ten points;
+// "Measure" runs the
 // workflow (hmi/measure_workflow.h) on a worker thread with progress and a
 // cancel, each point's approach, measured point and residual shown; the
 // fitted placement (corner, turn and tilt, residuals); "Apply to the
@@ -56,6 +57,7 @@ class MeasurePage : public QWidget {
     std::atomic<bool> cancel{false};
   };
   void present(const MeasureOutcome& o);
+  void show_plan();
   void show_message(const QString& text, bool error);
 
   std::unique_ptr<Ui::MeasurePage> ui_;

@@ -51,7 +51,11 @@ Result<Pose> approach_for(const ProbePoint& p, const Eigen::Isometry3d& frame, d
 // frame about z so the front runs through both.
 Eigen::Isometry3d refined(const Eigen::Isometry3d& frame, const std::vector<ProbePoint>& pts, std::size_t done) {
   Eigen::Isometry3d f = frame;
-  if (done == 3) {
+  if (done == 6) {  // the 3-2-1 fit plans the extra points of a best fit
+    Result<FrameFit> fit = fit_321({*pts[0].measured, *pts[1].measured, *pts[2].measured},
+                                   {*pts[3].measured, *pts[4].measured}, *pts[5].measured);
+    if (fit) f = fit->work_to_machine;
+  } else if (done == 3) {
     const Vec3 a = *pts[0].measured, b = *pts[1].measured, c = *pts[2].measured;
     Vec3 n = (b - a).cross(c - a).normalized();
     if (n.dot(f.linear().col(2)) < 0) n = -n;
@@ -94,10 +98,17 @@ Result<std::vector<ProbePoint>> plan_321(const MeasurePlan& plan) {
       {"secondary 1", {0.25 * L, 0.0, -0.5 * H}, -Vec3::UnitY()},
       {"secondary 2", {0.75 * L, 0.0, -0.5 * H}, -Vec3::UnitY()},
       {"tertiary", {0.0, 0.5 * W, -0.5 * H}, -Vec3::UnitX()},
+      // best fit: more of each face, at other places and heights
+      {"primary 4", {0.5 * L, 0.5 * W, 0.0}, Vec3::UnitZ()},
+      {"secondary 3", {0.5 * L, 0.0, -0.25 * H}, -Vec3::UnitY()},
+      {"tertiary 2", {0.0, 0.2 * W, -0.75 * H}, -Vec3::UnitX()},
+      {"tertiary 3", {0.0, 0.8 * W, -0.25 * H}, -Vec3::UnitX()},
   };
   std::vector<ProbePoint> out;
   RotaryJoints prev{};
-  for (const Spec& s : specs) {
+  const std::size_t count = plan.best_fit ? std::size(specs) : 6;
+  for (std::size_t i = 0; i < count; ++i) {
+    const Spec& s = specs[i];
     ProbePoint p;
     p.face = s.face;
     p.planned_work = s.p;
@@ -176,6 +187,12 @@ MeasureOutcome run_measurement(const MeasurePlan& plan, MachineMover& mover, Poi
   const std::array<Vec3, 3> primary{*o.points[0].measured, *o.points[1].measured, *o.points[2].measured};
   const std::array<Vec3, 2> secondary{*o.points[3].measured, *o.points[4].measured};
   Result<FrameFit> fit = fit_321(primary, secondary, *o.points[5].measured);
+  if (fit && o.points.size() > 6) {
+    std::vector<FacePoint> faces;
+    for (const ProbePoint& p : o.points)
+      faces.push_back(FacePoint{*p.measured, p.normal_work, p.normal_work.dot(p.planned_work)});
+    fit = fit_faces(faces, fit->work_to_machine);
+  }
   if (!fit) {
     o.error = fit.error().message;
     return o;

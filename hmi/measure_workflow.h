@@ -56,6 +56,10 @@ struct MeasurePlan {
   Eigen::Isometry3d nominal = Eigen::Isometry3d::Identity();
   double standoff_mm = 5.0;   // from the face, along its normal (within the probe's reach)
   double clearance_mm = 20.0; // above the block's top for the moves between points
+  // Four more points (one on the top, one on the front, two on the left, at
+  // other heights) and the best fit on faces over all ten
+  // (workpiece_frame.h fit_faces) instead of the 3-2-1 alone.
+  bool best_fit = false;
 };
 
 struct ProbePoint {
@@ -69,7 +73,8 @@ struct ProbePoint {
 };
 
 // The six points and their approach poses (3 primary, 2 secondary, 1
-// tertiary), or an error when a face cannot be reached by the tool axis.
+// tertiary; with best_fit four more), or an error when a face cannot be
+// reached by the tool axis.
 [[nodiscard]] Result<std::vector<ProbePoint>> plan_321(const MeasurePlan& plan);
 
 struct MeasureOutcome {
@@ -78,8 +83,9 @@ struct MeasureOutcome {
   std::string error;            // why not
 };
 
-// Probes the planned points in turn (progress(done, 6) after each, cancel
-// checked between), then fits. Any point not measured ends the run.
+// Probes the planned points in turn (progress(done, total) after each,
+// cancel checked between), then fits: 3-2-1, and with best_fit the fit on
+// faces over every point from it. Any point not measured ends the run.
 [[nodiscard]] MeasureOutcome run_measurement(const MeasurePlan& plan, MachineMover& mover,
                                              PointProbe& probe,
                                              const std::function<void(int, int)>& progress = {},

@@ -101,6 +101,45 @@ Result<FrameFit> fit_best(const std::vector<Vec3>& nominal, const std::vector<Ve
   return f;
 }
 
+Result<FrameFit> fit_faces(const std::vector<FacePoint>& points, const Eigen::Isometry3d& initial) {
+  if (points.size() < 6)
+    return degenerate("a fit on faces needs at least 6 points, " + std::to_string(points.size()) + " given");
+  Eigen::Isometry3d t = initial;
+  using Vec6 = Eigen::Matrix<double, 6, 1>;
+  for (int iter = 0; iter < 20; ++iter) {
+    Eigen::Matrix<double, 6, 6> jtj = Eigen::Matrix<double, 6, 6>::Zero();
+    Vec6 jtr = Vec6::Zero();
+    const Eigen::Isometry3d inv = t.inverse();
+    for (const FacePoint& p : points) {
+      const Vec3 x = inv * p.measured;  // in the workpiece frame
+      const double r = p.normal.dot(x) - p.offset;
+      // x' = Δ⁻¹x with Δ = (rotation δθ, translation δt) applied in the
+      // workpiece frame: r' ≈ r − δθ·(x × n) − δt·n
+      Vec6 j;
+      j << -x.cross(p.normal), -p.normal;
+      jtj += j * j.transpose();
+      jtr += j * r;
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(jtj);
+    if (eig.eigenvalues()(0) < 1e-9 * std::max(1.0, eig.eigenvalues()(5)))
+      return degenerate("the probed faces leave the workpiece free to move: points on three faces that are "
+                        "not parallel, at least 3 on one and 2 on another, pin it");
+    const Vec6 d = jtj.ldlt().solve(-jtr);
+    const Vec3 dtheta = d.head<3>();
+    Eigen::Isometry3d delta = Eigen::Isometry3d::Identity();
+    if (dtheta.norm() > 0) delta.linear() = Eigen::AngleAxisd(dtheta.norm(), dtheta.normalized()).toRotationMatrix();
+    delta.translation() = d.tail<3>();
+    t = t * delta;
+    if (d.norm() < 1e-12) break;
+  }
+  FrameFit f;
+  f.work_to_machine = t;
+  const Eigen::Isometry3d inv = t.inverse();
+  for (const FacePoint& p : points) f.residuals_mm.push_back(std::abs(p.normal.dot(inv * p.measured) - p.offset));
+  finish(f);
+  return f;
+}
+
 Result<Pose> transform_hole(const Eigen::Isometry3d& t, const Pose& hole) {
   Pose out = hole;
   out.head<3>() = t * Vec3(hole.head<3>());

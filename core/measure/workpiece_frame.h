@@ -53,6 +53,23 @@ struct FrameFit {
 [[nodiscard]] Result<FrameFit> fit_best(const std::vector<Vec3>& nominal,
                                         const std::vector<Vec3>& measured);
 
+// A point probed on a face of the drawing: the face is the plane
+// normal·x = offset of the workpiece frame (normal a unit vector).
+struct FacePoint {
+  Vec3 measured = Vec3::Zero();  // machine
+  Vec3 normal = Vec3::UnitZ();   // workpiece frame
+  double offset = 0.0;           // mm
+};
+
+// Best fit on faces: the T minimising Σ (normal·(T⁻¹·measured) − offset)²
+// over any number (≥ 6) of points on planes that pin all six degrees of
+// freedom (Gauss–Newton from `initial`, e.g. the 3-2-1 fit; with exactly the
+// six 3-2-1 points it is that fit). Residuals: each point's distance from
+// its face. Degenerate when the faces leave a motion free (e.g. all points
+// on two faces): the error says so.
+[[nodiscard]] Result<FrameFit> fit_faces(const std::vector<FacePoint>& points,
+                                         const Eigen::Isometry3d& initial);
+
 // A hole of the process database moved by the fit: its centre and its axis
 // (tool_axis(A, C)) through T; A and C the solution of the new axis nearest
 // the old joints within the A range. Error GcodeBeyondTravel when no A

@@ -415,16 +415,20 @@
         <translation>поворот, °</translation>
     </message>
     <message>
-        <source>Measure six points</source>
-        <translation>Измерить шесть точек</translation>
-    </message>
-    <message>
         <source>Cancel</source>
         <translation>Отмена</translation>
     </message>
     <message>
         <source>Apply to the holes…</source>
         <translation>Применить к отверстиям…</translation>
+    </message>
+    <message>
+        <source>Best fit with four more points</source>
+        <translation>Наилучшее приближение по четырём доп. точкам</translation>
+    </message>
+    <message>
+        <source>Measure</source>
+        <translation>Измерить</translation>
     </message>
 </context>
 <context>

@@ -415,16 +415,20 @@
         <translation>旋转，°</translation>
     </message>
     <message>
-        <source>Measure six points</source>
-        <translation>测量六点</translation>
-    </message>
-    <message>
         <source>Cancel</source>
         <translation>取消</translation>
     </message>
     <message>
         <source>Apply to the holes…</source>
         <translation>应用到孔…</translation>
+    </message>
+    <message>
+        <source>Best fit with four more points</source>
+        <translation>再测四点做最佳拟合</translation>
+    </message>
+    <message>
+        <source>Measure</source>
+        <translation>测量</translation>
     </message>
 </context>
 <context>

@@ -109,6 +109,32 @@ TEST(MeasureWorkflow, FindsTheBlocksPlacementOnTheSimulatedMachine) {
   EXPECT_NEAR(std::abs(h2[3]), 0.3, 0.01);
 }
 
+// Ten points and the best fit on faces: the same placement, each point's
+// residual its distance from its face.
+TEST(MeasureWorkflow, BestFitOnTenPointsFindsThePlacementToo) {
+  const std::string shm = shm_name();
+  e2e::Daemon daemon(shm);
+  ASSERT_TRUE(daemon.ready()) << daemon.log();
+  const drivers::WorkpieceBlock truth = default_sim_block();
+  auto sims = SimPeripherals::start(shm, truth);
+  ASSERT_TRUE(static_cast<bool>(sims));
+  auto probe = SerialPointProbe::open((*sims)->probe_serial_path());
+  ASSERT_TRUE(static_cast<bool>(probe));
+  MachineMover mover(shm, e2e::temp_dir() / "moves");
+  MeasurePlan plan;
+  plan.block_mm = truth.size_mm;
+  plan.nominal = Eigen::Translation3d(401, 149, 60) * Eigen::Isometry3d::Identity();
+  plan.best_fit = true;
+  const MeasureOutcome o = run_measurement(plan, mover, **probe);
+  ASSERT_TRUE(o.fit.has_value()) << o.error;
+  ASSERT_EQ(o.points.size(), 10u);
+  EXPECT_EQ(o.fit->residuals_mm.size(), 10u);
+  EXPECT_LT((o.fit->work_to_machine.translation() - truth.work_to_machine.translation()).norm(), 0.01);
+  EXPECT_LT(angle_deg(o.fit->work_to_machine.linear(), truth.work_to_machine.linear()), 0.01);
+  EXPECT_LT(o.fit->max_residual_mm, 0.01);
+  EXPECT_GT(o.fit->max_residual_mm, 0.0);  // ten points on six unknowns: the noise shows
+}
+
 TEST(MeasureWorkflow, APointThatFindsNoFaceEndsTheRunAndSaysWhich) {
   const std::string shm = shm_name();
   e2e::Daemon daemon(shm);

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -94,6 +95,67 @@ TEST(WorkpieceFrame, BestFitOfManyPointsRecoversThePlacementWithinTheNoise) {
   f = fit_best(nominal, measured);
   ASSERT_TRUE(static_cast<bool>(f));
   EXPECT_LT(f->max_residual_mm, 1e-9);
+}
+
+// Best fit on faces: more points than six, each only known to lie on its
+// face. From a rough start it finds the placement exactly without noise,
+// and with noise places a hole better than the 3-2-1 of the same probe.
+std::vector<FacePoint> face_points(const Eigen::Isometry3d& t, double sigma, std::uint32_t seed, bool many) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, sigma);
+  std::vector<FacePoint> out;
+  const auto on = [&](const Vec3& w, const Vec3& n) {
+    out.push_back(FacePoint{t * (w + noise(rng) * n), n, n.dot(w)});
+  };
+  // the 3-2-1 points first, then the extra ones
+  on({20, 20, 0}, Vec3::UnitZ()), on({180, 25, 0}, Vec3::UnitZ()), on({100, 110, 0}, Vec3::UnitZ());
+  on({30, 0, -5}, -Vec3::UnitY()), on({170, 0, -5}, -Vec3::UnitY());
+  on({0, 60, -5}, -Vec3::UnitX());
+  if (many) {
+    on({30, 100, 0}, Vec3::UnitZ()), on({170, 100, 0}, Vec3::UnitZ()), on({100, 60, 0}, Vec3::UnitZ());
+    on({100, 0, -15}, -Vec3::UnitY()), on({60, 0, -10}, -Vec3::UnitY());
+    on({0, 20, -10}, -Vec3::UnitX()), on({0, 100, -10}, -Vec3::UnitX());
+  }
+  return out;
+}
+
+TEST(WorkpieceFrame, FitOnFacesRecoversThePlacementAndBeatsThreeTwoOneWithMorePoints) {
+  const Eigen::Isometry3d t = placement();
+  const Eigen::Isometry3d rough = Eigen::Translation3d(310, 150, 25) * Eigen::Isometry3d::Identity();
+  Result<FrameFit> exact = fit_faces(face_points(t, 0.0, 1, true), rough);
+  ASSERT_TRUE(static_cast<bool>(exact)) << exact.error().to_string();
+  EXPECT_LT(rotation_error_deg(exact->work_to_machine, t), 1e-9);
+  EXPECT_LT((exact->work_to_machine.translation() - t.translation()).norm(), 1e-9);
+  EXPECT_EQ(exact->residuals_mm.size(), 13u);
+  EXPECT_LT(exact->max_residual_mm, 1e-9);
+  // the six 3-2-1 points alone: the 3-2-1 fit itself
+  const std::vector<FacePoint> six = face_points(t, 0.002, 3, false);
+  Result<FrameFit> f6 = fit_faces(six, rough);
+  Result<FrameFit> f321 = fit_321({six[0].measured, six[1].measured, six[2].measured},
+                                  {six[3].measured, six[4].measured}, six[5].measured);
+  ASSERT_TRUE(f6 && f321);
+  EXPECT_LT((f6->work_to_machine.matrix() - f321->work_to_machine.matrix()).norm(), 1e-6);
+  // with noise: the hole's error, 13 points against the 3-2-1 of their first six
+  const Vec3 hole(150, 80, 0);
+  double e13 = 0, e6 = 0;
+  for (std::uint32_t seed = 1; seed <= 50; ++seed) {
+    const std::vector<FacePoint> pts = face_points(t, 0.002, seed, true);
+    Result<FrameFit> many = fit_faces(pts, rough);
+    Result<FrameFit> base = fit_321({pts[0].measured, pts[1].measured, pts[2].measured},
+                                    {pts[3].measured, pts[4].measured}, pts[5].measured);
+    ASSERT_TRUE(many && base);
+    e13 += (many->work_to_machine * hole - t * hole).norm();
+    e6 += (base->work_to_machine * hole - t * hole).norm();
+  }
+  EXPECT_LT(e13, 0.8 * e6) << "mean error 13 points " << e13 / 50 << " mm, 3-2-1 " << e6 / 50 << " mm";
+  // points on two faces only: the block could slide along both
+  std::vector<FacePoint> two = face_points(t, 0.0, 1, true);
+  two.erase(std::remove_if(two.begin(), two.end(), [](const FacePoint& p) { return p.normal.x() != 0.0; }),
+            two.end());
+  Result<FrameFit> bad = fit_faces(two, rough);
+  ASSERT_FALSE(static_cast<bool>(bad));
+  EXPECT_EQ(bad.error().code, ErrorCode::MeasureDegenerate);
+  EXPECT_NE(bad.error().message.find("free to move"), std::string::npos) << bad.error().message;
 }
 
 TEST(WorkpieceFrame, DegenerateSetsAreRejectedSayingWhy) {
