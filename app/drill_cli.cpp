@@ -221,6 +221,7 @@ int drill_main(int argc, char** argv) {
   opt.program = table;
   opt.segments = std::make_shared<const std::vector<Segment>>(job->segments);
   opt.summary = *summary;
+  opt.line_unit = "holes";
   ProgressFn progress;
   if (show_progress)
     progress = [](double f) {

@@ -20,7 +20,7 @@ std::string printf_string(const char* fmt, auto... args) {
 std::string format_report(const RunReport& r) {
   std::string s;
   s += "LaserCNC run report (simulated machine)\n";
-  s += printf_string("  program          %s (%u lines, %llu segments)\n", r.program.c_str(), r.lines,
+  s += printf_string("  program          %s (%u %s, %llu segments)\n", r.program.c_str(), r.lines, r.line_unit.c_str(),
                      static_cast<unsigned long long>(r.segments));
   s += printf_string("  machine          %s, RT period %.1f us\n", r.machine.c_str(), r.period_s * 1e6);
   s += printf_string("  feed override    %.1f %% (a period lasts %.1f us)\n", r.feed_override * 100.0,
@@ -81,6 +81,7 @@ std::string report_json(const RunReport& r) {
   j["program"] = r.program;
   j["machine"] = r.machine;
   j["lines"] = r.lines;
+  j["line_unit"] = r.line_unit;
   j["segments"] = r.segments;
   j["period_s"] = r.period_s;
   j["periods"] = r.periods;

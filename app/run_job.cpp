@@ -222,6 +222,7 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   report.program = options.program;
   report.machine = machine.name;
   report.lines = summary->lines;
+  report.line_unit = options.line_unit;
   report.segments = summary->segments;
   report.path_length_mm = summary->path_length_mm;
   report.feed_length_mm = summary->feed_length_mm;

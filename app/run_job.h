@@ -42,6 +42,7 @@ struct RunOptions {
   // holes/drill_job.h), checked by the caller; `program` names it.
   std::shared_ptr<const std::vector<Segment>> segments;
   std::optional<ProgramSummary> summary;  // what the caller's check found (segments only)
+  std::string line_unit = "lines";        // what the summary's lines count: "holes" for a drilling job
   // Called from the job's drain loop (never from the RT thread) each time
   // the segment being executed changes, with the machine time then (s).
   std::function<void(std::uint32_t segment, double machine_time_s)> on_segment;
@@ -61,6 +62,7 @@ struct RunReport {
   std::string program;
   std::string machine;
   std::uint32_t lines = 0;
+  std::string line_unit = "lines";  // "holes" for a drilling job
   std::uint64_t segments = 0;
   double period_s = 0.0;            // nominal period T; at override K a period lasts T/K
   std::uint64_t periods = 0;

@@ -36,7 +36,8 @@ TEST(LasercncDrill, RunsTheHolesInOrderAndWritesEachHeadBlockAtItsHole) {
   EXPECT_TRUE(j["steps_match"].get<bool>());
   EXPECT_EQ(j["underruns"], 0);
   EXPECT_EQ(j["fault"], "");
-  EXPECT_EQ(j["lines"], 2);  // holes
+  EXPECT_EQ(j["lines"], 2);
+  EXPECT_EQ(j["line_unit"], "holes");
   const nlohmann::json& holes = j["holes"];
   ASSERT_EQ(holes.size(), 2u);
   EXPECT_EQ(holes[0]["hole"], 11);
