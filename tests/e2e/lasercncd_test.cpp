@@ -209,6 +209,43 @@ TEST(Lasercncd, SecondDaemonRefusedStaleSegmentRecovered) {
   EXPECT_EQ(again.stop(SIGTERM), 0);
 }
 
+// The daemon killed outright in the middle of a job: the CLI says the link
+// is gone within a second; a new daemon takes the stale segment over and
+// comes up at rest — idle, no job, nothing moving, no program until one is
+// loaded anew.
+TEST(Lasercncd, KilledMidJobTheRestartedDaemonComesUpAtRest) {
+  const std::string shm = shm_name();
+  const fs::path prog = write_program("long.ngc", "G21 G90\nM3 S50\nG1 X300 F600\nM5\nM2\n");
+  {
+    Daemon first(shm);
+    ASSERT_TRUE(first.ready()) << first.log();
+    ASSERT_EQ(lasercnc("send load " + prog.string() + " --shm " + shm).exit_code, 0);
+    ASSERT_EQ(lasercnc("send start --shm " + shm).exit_code, 0);
+    for (int i = 0; i < 300 && status(shm)["position"][0].get<double>() < 2.0; ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    EXPECT_EQ(status(shm)["state"], "running");
+    EXPECT_EQ(first.stop(SIGKILL), -1);
+    const auto killed = std::chrono::steady_clock::now();
+    const CmdResult r = lasercnc("status --shm " + shm);
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_NE(r.err.find("stale"), std::string::npos) << r.err;
+    EXPECT_LT(std::chrono::steady_clock::now() - killed, std::chrono::seconds(1));
+  }
+  Daemon again(shm);
+  ASSERT_TRUE(again.ready()) << again.log();
+  EXPECT_NE(again.log().find("recovered a stale segment"), std::string::npos) << again.log();
+  const nlohmann::json a = status(shm);
+  EXPECT_EQ(a["state"], "idle");
+  EXPECT_EQ(a["job_active"], false);
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  EXPECT_EQ(status(shm)["position"], a["position"]);  // not moving
+  // and a start needs a program loaded anew
+  const CmdResult s = lasercnc("send start --shm " + shm);
+  EXPECT_EQ(s.exit_code, 1);
+  EXPECT_NE(s.err.find("no program loaded"), std::string::npos) << s.err;
+  EXPECT_EQ(again.stop(SIGTERM), 0);
+}
+
 TEST(Lasercncd, StatusWithoutDaemonSaysSo) {
   const CmdResult r = lasercnc("status --shm /lcnc_e2e_nobody_here");
   EXPECT_EQ(r.exit_code, 1);
