@@ -218,6 +218,11 @@ Result<ScanResult> Scanner::run() {
     const std::size_t end = nl == std::string_view::npos ? text_.size() : nl;
     std::string_view l = text_.substr(pos, end - pos);
     if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
+    if (l.size() > kMaxDxfLine) {
+      return error(ErrorCode::DxfSyntax, static_cast<std::uint32_t>(lines.size() + 1),
+                   "a line of " + std::to_string(l.size()) + " characters; expected at most " +
+                       std::to_string(kMaxDxfLine) + " (a group code or value)");
+    }
     lines.push_back(l);
     pos = end + 1;
   }

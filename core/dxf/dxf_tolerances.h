@@ -33,6 +33,11 @@ inline constexpr int kMaxBlockDepth = 16;
 // Sanity limits against malformed counts: a DXF that declares more vertices,
 // knots or array copies than these is rejected before anything is allocated.
 inline constexpr std::size_t kMaxDeclaredCount = 10'000'000;
+
+// The longest line dxflib reads (DL_DXF_MAXLINE, 1024, with its terminator):
+// a longer one leaves its stream failed but not at the end, and its reading
+// loop never ends — found by fuzzing. The scanner refuses longer lines first.
+inline constexpr std::size_t kMaxDxfLine = 1023;
 inline constexpr std::size_t kMaxInsertCopies = 100'000;
 
 // Affine maps of arcs (INSERT scale, OCS) must be similarities: |M^T M − s² I|

@@ -251,6 +251,22 @@ TEST(DxfReader, SplineKnotCountMismatchIsAnError) {
   EXPECT_MENTIONS(r.error(), "5 knots for 4 control points of degree 3; expected 8");
 }
 
+// Found by fuzzing: a value line longer than dxflib reads (1023 characters)
+// left its reading loop running for ever; the scanner refuses it first.
+TEST(DxfReader, ALineLongerThanTheReaderTakesIsAnErrorNotAHang) {
+  const std::string c = "0\nCIRCLE\n8\n0\n10\n0." + std::string(1500, '4') + "\n20\n0\n40\n1\n";
+  Result<ReadResult> r = read_dxf_text(test::dxf_doc(c), "long.dxf");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().code, ErrorCode::DxfSyntax);
+  EXPECT_MENTIONS(r.error(), "a line of 1502 characters; expected at most 1023");
+  EXPECT_GT(r.error().line, 0u);
+  // the fuzzer's own input, from the corpus
+  std::ifstream in(std::string(LCNC_SOURCE_DIR) + "/tests/fuzz/corpus/dxf/hang_long_line.dxf", std::ios::binary);
+  const std::string found((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_FALSE(found.empty());
+  EXPECT_FALSE(read_dxf_text(found, "hang.dxf").ok());
+}
+
 TEST(DxfReader, ArcOfZeroRadiusIsAnError) {
   const std::string arc = "0\nARC\n8\n0\n10\n0\n20\n0\n40\n0\n50\n0\n51\n90\n";
   Result<ReadResult> r = read_dxf_text(test::dxf_doc(arc), "a.dxf");
