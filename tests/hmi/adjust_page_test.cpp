@@ -18,20 +18,12 @@
 
 #include "hmi/adjust_page.h"
 #include "hmi/sim_peripherals.h"
+#include "tests/hmi/hmi_test_support.h"
 
 namespace lcnc::hmi {
 namespace {
 
-template <typename F>
-bool wait_until(F done, int ms = 5000) {
-  QElapsedTimer t;
-  t.start();
-  while (!done() && t.elapsed() < ms) {
-    QApplication::processEvents(QEventLoop::AllEvents, 20);
-    usleep(5000);
-  }
-  return done();
-}
+using test::wait_until;
 
 double label_value(QWidget& w, const char* name) {
   return w.findChild<QLabel*>(name)->text().split(' ').front().toDouble();

@@ -20,6 +20,7 @@
 #include "decompose/part_decomposition.h"
 #include "dxf/dxf_reader.h"
 #include "hmi/decomposition_page.h"
+#include "tests/e2e/e2e_support.h"
 
 namespace lcnc::hmi {
 namespace {
@@ -30,14 +31,7 @@ const QString kStar = QString(LCNC_SOURCE_DIR) + "/share/examples/star_decompose
 const QString kPlate = QString(LCNC_SOURCE_DIR) + "/share/examples/plate_decompose.dxf";
 const QString kBad = QString(LCNC_SOURCE_DIR) + "/tests/data/dxf/bad_number.dxf";
 
-fs::path temp_dir() {
-  const fs::path d = fs::temp_directory_path() /
-                     ("lcnc_hmi_dec_" + std::to_string(getpid()) + "_" +
-                      ::testing::UnitTest::GetInstance()->current_test_info()->name());
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+using e2e::temp_dir;
 
 template <typename T>
 T* child(QWidget& w, const char* name) {

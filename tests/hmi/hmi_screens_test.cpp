@@ -33,6 +33,8 @@
 #include "hmi/machine_page.h"
 #include "hmi/main_window.h"
 #include "hmi/process_db_page.h"
+#include "tests/e2e/e2e_support.h"
+#include "tests/hmi/hmi_test_support.h"
 
 extern char** environ;
 
@@ -41,14 +43,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path temp_dir() {
-  const fs::path d = fs::temp_directory_path() /
-                     ("lcnc_hmi_" + std::to_string(getpid()) + "_" +
-                      ::testing::UnitTest::GetInstance()->current_test_info()->name());
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+using e2e::temp_dir;
+using test::wait_until;
 
 std::unique_ptr<ProcessDatabase> db_with_holes(const fs::path& dir, int n) {
   auto db = ProcessDatabase::open((dir / "p.db").string());
@@ -62,17 +58,6 @@ std::unique_ptr<ProcessDatabase> db_with_holes(const fs::path& dir, int n) {
   return std::move(db).value();
 }
 
-// Processes events until `done` or the time is up.
-template <typename F>
-bool wait_until(F done, int ms = 5000) {
-  QElapsedTimer t;
-  t.start();
-  while (!done() && t.elapsed() < ms) {
-    QApplication::processEvents(QEventLoop::AllEvents, 20);
-    usleep(5000);
-  }
-  return done();
-}
 
 TEST(HoleTableModel, PassesTheModelTesterAndRefusesOutOfRangeEdits) {
   const fs::path dir = temp_dir();
@@ -118,32 +103,6 @@ TEST(ProcessDbScreen, ImportShowsWhereTheFileIsWrongAndAddsHoles) {
   EXPECT_EQ(table->model()->rowCount(), 3);
 }
 
-// lasercncd on its own segment, killed at the end.
-struct DaemonProcess {
-  std::string shm;
-  pid_t pid = -1;
-  explicit DaemonProcess(std::string name) : shm(std::move(name)) {
-    shm_unlink(shm.c_str());
-    const std::string exe = LASERCNCD_EXE;
-    std::vector<std::string> args = {exe, "--shm", shm, "--no-realtime"};
-    std::vector<char*> argv;
-    for (std::string& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
-    posix_spawn(&pid, exe.c_str(), &fa, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&fa);
-  }
-  ~DaemonProcess() {
-    if (pid > 0) {
-      kill(pid, SIGKILL);
-      waitpid(pid, nullptr, 0);
-    }
-    shm_unlink(shm.c_str());
-  }
-};
-
 TEST(MainWindow, EveryScreenRendersToPng) {
   const fs::path dir = temp_dir();
   auto db = db_with_holes(dir, 5);
@@ -184,17 +143,7 @@ TEST(MachineScreen, ShowsTheDaemonSendsEStopAndSeesTheLinkLost) {
   page.refresh();
   EXPECT_TRUE(link->text().contains("link lost")) << link->text().toStdString();
 
-  const std::string exe = LASERCNCD_EXE;
-  std::vector<std::string> args = {exe, "--shm", shm, "--no-realtime"};
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
-  pid_t pid = -1;
-  ASSERT_EQ(posix_spawn(&pid, exe.c_str(), &fa, nullptr, argv.data(), environ), 0);
-  posix_spawn_file_actions_destroy(&fa);
+  e2e::Daemon daemon(shm);
 
   EXPECT_TRUE(wait_until([&] { return link->text().contains("connected"); })) << link->text().toStdString();
   EXPECT_TRUE(wait_until([&] { return state->text().contains("idle"); })) << state->text().toStdString();
@@ -202,21 +151,20 @@ TEST(MachineScreen, ShowsTheDaemonSendsEStopAndSeesTheLinkLost) {
   estop->click();
   EXPECT_TRUE(wait_until([&] { return state->text().contains("e-stop"); })) << state->text().toStdString();
   // the daemon killed outright: the screen says so within a second
-  kill(pid, SIGKILL);
-  waitpid(pid, nullptr, 0);
+  EXPECT_EQ(daemon.stop(SIGKILL), -1);
   QElapsedTimer t;
   t.start();
   EXPECT_TRUE(wait_until([&] { return link->text().contains("link lost"); }, 3000));
   EXPECT_LT(t.elapsed(), 1000);
   EXPECT_EQ(dro_x->text(), "—");
-  shm_unlink(shm.c_str());
 }
 
 // The process database's holes sent to a real lasercncd as a drilling job,
 // each Z raised by its measured focus offset.
 TEST(ProcessDbScreen, SendsTheHolesWithTheirFocusOffsetsToTheController) {
   const std::string shm = "/lcnc_hmi_send_" + std::to_string(getpid());
-  DaemonProcess daemon(shm);
+  e2e::Daemon daemon(shm);
+  ASSERT_TRUE(daemon.ready()) << daemon.log();
   const fs::path dir = temp_dir();
   auto db = db_with_holes(dir, 2);  // Z 20
   ASSERT_TRUE(db->set_focus_offset(1, 0.4).ok());
@@ -247,7 +195,8 @@ TEST(ProcessDbScreen, SendsTheHolesWithTheirFocusOffsetsToTheController) {
 // kernel's events — a fault in the alarm colour, newest first.
 TEST(MachineScreen, JogsHomesAndListsTheAlarms) {
   const std::string shm = "/lcnc_hmi_jog_" + std::to_string(getpid());
-  DaemonProcess daemon(shm);
+  e2e::Daemon daemon(shm);
+  ASSERT_TRUE(daemon.ready()) << daemon.log();
   MachinePage page(shm);
   auto* state = page.findChild<QLabel*>("stateLabel");
   auto* dro_x = page.findChild<QLabel*>("droX");
