@@ -39,7 +39,8 @@ std::optional<shm::ShmClient> connect(const ClientOptions& o) {
 }
 
 bool read_both(shm::ShmBlock& b, shm::Status& st, shm::JobStatus& job) {
-  return b.status.load(st) && b.job.load(job);
+  constexpr std::chrono::milliseconds kPatience{100};
+  return b.status.load_patiently(st, kPatience) && b.job.load_patiently(job, kPatience);
 }
 
 std::optional<int> axis_index(const std::string& s) {

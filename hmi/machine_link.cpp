@@ -42,14 +42,14 @@ bool MachineLink::poll() {
 std::optional<shm::Status> MachineLink::status() const {
   if (!linked()) return std::nullopt;
   shm::Status s;
-  if (!const_cast<shm::ShmClient&>(*client_).block().status.load(s)) return std::nullopt;
+  if (!const_cast<shm::ShmClient&>(*client_).block().status.load_patiently(s, kReadPatience)) return std::nullopt;
   return s;
 }
 
 std::optional<shm::JobStatus> MachineLink::job() const {
   if (!linked()) return std::nullopt;
   shm::JobStatus j;
-  if (!const_cast<shm::ShmClient&>(*client_).block().job.load(j)) return std::nullopt;
+  if (!const_cast<shm::ShmClient&>(*client_).block().job.load_patiently(j, kReadPatience)) return std::nullopt;
   return j;
 }
 

@@ -18,6 +18,8 @@ namespace lcnc::hmi {
 class MachineLink {
  public:
   static constexpr std::chrono::milliseconds kLostAfter{500};
+  // How long a read waits out a daemon preempted in the middle of a write.
+  static constexpr std::chrono::milliseconds kReadPatience{100};
 
   explicit MachineLink(std::string shm_name = shm::kDefaultName);
 

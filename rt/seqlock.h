@@ -11,9 +11,11 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <thread>
 #include <type_traits>
 
 namespace lcnc::rt {
@@ -57,6 +59,19 @@ class Seqlock {
       }
     }
     return false;
+  }
+
+  // Reader outside the RT path (HMI, CLI): a writer preempted in the middle
+  // of its store holds the sequence odd for as long as it is off the CPU, so
+  // spinning alone can fail on a loaded machine. This one spins, then yields
+  // the CPU (a syscall: never in the RT loop) until `patience` has passed.
+  [[nodiscard]] bool load_patiently(T& out, std::chrono::milliseconds patience) const {
+    const auto until = std::chrono::steady_clock::now() + patience;
+    for (;;) {
+      if (load(out, 64)) return true;
+      if (std::chrono::steady_clock::now() > until) return false;
+      std::this_thread::yield();
+    }
   }
 
   [[nodiscard]] std::uint64_t sequence() const noexcept { return seq_.load(std::memory_order_acquire); }

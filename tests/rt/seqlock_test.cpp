@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <thread>
+#include <type_traits>
 
 namespace lcnc::rt {
 namespace {
@@ -72,6 +73,30 @@ TEST(Seqlock, ConcurrentReadsAreNeverTorn) {
   EXPECT_GT(reads, 1000u);
   EXPECT_EQ(torn, 0u);
   EXPECT_EQ(backwards, 0u);
+}
+
+// A writer preempted between its two sequence stores (simulated: the
+// sequence word, the lock's first member, held odd for 30 ms) defeats a
+// spinning read; the patient read of the HMI and CLI waits it out, and gives
+// up when its patience is shorter than the stall.
+TEST(Seqlock, APatientReadWaitsOutAWriterPreemptedMidWrite) {
+  static_assert(std::is_standard_layout_v<Seqlock<Block>>);
+  Seqlock<Block> s;
+  s.store(make(7));
+  auto& seq = *reinterpret_cast<std::atomic<std::uint64_t>*>(&s);
+  ASSERT_EQ(seq.load(), 2u);
+  seq.store(3);  // the write begun
+  std::thread writer([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(30));
+    seq.store(4, std::memory_order_release);  // and finished (the data were not changed)
+  });
+  Block b{};
+  EXPECT_FALSE(s.load(b));
+  EXPECT_FALSE(s.load_patiently(b, std::chrono::milliseconds(2)));
+  EXPECT_TRUE(s.load_patiently(b, std::chrono::milliseconds(5000)));
+  writer.join();
+  EXPECT_EQ(b.n, 7u);
+  EXPECT_TRUE(consistent(b));
 }
 
 }  // namespace
