@@ -17,6 +17,7 @@
 #include "holes/drill_job.h"
 #include "plan/program_source.h"
 #include "rt/rt_kernel.h"
+#include "rt/shm_command.h"
 #include "rt/shm_interface.h"
 
 namespace lcnc::app {
@@ -42,6 +43,7 @@ std::shared_ptr<spdlog::logger> logger() {
 
 struct Daemon::Impl {
   MachineConfig machine;
+  shm::CommandLimits limits;  // what a command frame may ask of this machine
   shm::ShmOwner shm;
   std::array<std::int64_t, kAxisCount> start_steps{};
   std::unique_ptr<rt::PositionBuffer> buffer = std::make_unique<rt::PositionBuffer>();
@@ -130,17 +132,10 @@ struct Daemon::Impl {
     follow_job();  // a job the kernel has just ended is over for this command too
     const shm::MachineState st = kernel->state();
     const auto refuse = [](const std::string& why) { return Ack{false, ErrorCode::RtRefused, why}; };
-    if (static_cast<std::uint8_t>(c.type) >= static_cast<std::uint8_t>(shm::CommandType::Count)) {
-      return refuse("bad command frame: type " + std::to_string(static_cast<int>(c.type)) + " unknown");
-    }
-    const bool axis_ok = c.axis < kAxisCount && machine.axes[c.axis].present;
-    const std::string axis_text =
-        c.axis < kAxisCount ? std::string(1, kAxisLetters[c.axis]) : std::to_string(c.axis);
+    if (lcnc::Status f = shm::check_command_frame(c, limits); !f) return refuse(f.error().message);
+    const std::string axis_text(1, kAxisLetters[c.axis < kAxisCount ? c.axis : 0]);
     switch (c.type) {
       case shm::CommandType::Load: {
-        if (std::memchr(c.text, '\0', sizeof c.text) == nullptr) {
-          return refuse("bad command frame: load path not terminated");
-        }
         if (job_active) {
           return refuse("load refused: a job is running (stop it first)");
         }
@@ -202,22 +197,12 @@ struct Daemon::Impl {
         kernel->command({rt::RtCommandType::Reset, 0, 0.0});
         return Ack{true, ErrorCode::Internal, "reset"};
       case shm::CommandType::Override: {
-        const double kmax = machine.max_feed_override;
-        if (!std::isfinite(c.value) || c.value < 0.0 || c.value > kmax) {
-          char msg[160];
-          std::snprintf(msg, sizeof msg, "override %g %% refused: allowed 0 … %g %%",
-                        c.value * 100.0, kmax * 100.0);
-          return refuse(msg);
-        }
         kernel->set_feed_override(c.value);
         char msg[64];
         std::snprintf(msg, sizeof msg, "override %g %%", c.value * 100.0);
         return Ack{true, ErrorCode::Internal, msg};
       }
       case shm::CommandType::Jog: {
-        if (!axis_ok) return refuse("jog refused: no axis " + axis_text);
-        if (!std::isfinite(c.value) || std::abs(c.value) > 1e5)
-          return refuse("jog refused: distance not a number or out of range");
         if (st != shm::MachineState::Idle || job_active)
           return refuse(std::string("jog refused: the machine is ") + state_name(st));
         kernel->command({rt::RtCommandType::Jog, static_cast<std::int8_t>(c.axis), c.value});
@@ -226,7 +211,6 @@ struct Daemon::Impl {
         return Ack{true, ErrorCode::Internal, msg};
       }
       case shm::CommandType::Home: {
-        if (!axis_ok) return refuse("home refused: no axis " + axis_text);
         if (st != shm::MachineState::Idle || job_active)
           return refuse(std::string("home refused: the machine is ") + state_name(st));
         kernel->command({rt::RtCommandType::Home, static_cast<std::int8_t>(c.axis), 0.0});
@@ -236,6 +220,24 @@ struct Daemon::Impl {
     }
     return refuse("bad command frame");
   }
+
+  // The HMIs' and the CLI's commands: at most a ring's worth per tick (the
+  // ring is in shared memory; a sender can keep it full, not keep the
+  // daemon from its other work). A ring found corrupt is dropped by the
+  // ring itself and reported here.
+  void drain_commands() {
+    auto& ring = shm.block().commands;
+    shm::Command c;
+    for (std::size_t n = 0; n < ring.kCapacity && ring.try_pop(c); ++n) ack(c, handle(c));
+    if (ring.resyncs() != command_resyncs) {
+      command_resyncs = ring.resyncs();
+      const std::string why = "the command ring's indices were corrupt (a sender wrote past its turn): "
+                              "its contents dropped, " + std::to_string(command_resyncs) + " so far";
+      logger()->error("lasercncd: {}", why);
+      event(static_cast<std::uint16_t>(ErrorCode::RtRefused), 0, 0, why);
+    }
+  }
+  std::uint64_t command_resyncs = 0;
 
   // The PLC/MES side: commands taken with the shm ring's rules, the status
   // published every kModbusPublish.
@@ -324,6 +326,9 @@ Result<std::unique_ptr<Daemon>> Daemon::create(const DaemonOptions& options) {
   auto impl = std::make_unique<Impl>(std::move(machine).value(), std::move(owner).value());
   Impl& d = *impl;
   d.realtime = options.realtime;
+  d.limits.max_override = d.machine.max_feed_override;
+  for (int i = 0; i < kAxisCount; ++i)
+    if (d.machine.axes[i].present) d.limits.axes_mask |= 1u << i;
   StepQuantizer q(d.machine, Pose::Zero());
   for (int i = 0; i < kAxisCount; ++i) d.start_steps[i] = q.commanded(i);
   // the simulated machine wired as a real one: hard limits beyond the soft
@@ -361,8 +366,7 @@ int Daemon::run(const std::atomic<bool>& quit) {
   shm::ShmBlock& block = d.shm.block();
   while (!quit.load()) {
     block.header.heartbeat.fetch_add(1, std::memory_order_relaxed);
-    shm::Command c;
-    while (block.commands.try_pop(c)) d.ack(c, d.handle(c));
+    d.drain_commands();
     if (d.modbus) d.serve_modbus();
     d.follow_job();
     d.drain_rt_log();

@@ -4,8 +4,8 @@
 //
 // Indices are free-running 64-bit counters (never wrap in practice: 2^64
 // periods of 75 µs is 44 million years); slot = counter & (Capacity − 1).
-// Invariants: 0 ≤ tail − head ≤ Capacity; only the producer writes tail_,
-// only the consumer writes head_. Each side keeps a cached copy of the other
+// Invariants: 0 ≤ tail − head ≤ Capacity (checked by the consumer: see
+// try_pop); only the producer writes tail_, only the consumer writes head_. Each side keeps a cached copy of the other
 // side's index to avoid touching its cache line on every call.
 #pragma once
 
@@ -48,12 +48,24 @@ class SpscRing {
   }
 
   // Consumer side. False when empty.
+  //
+  // A ring in shared memory can be written by any process that maps it, so
+  // the indices are not trusted: a distance the producer cannot make
+  // (tail − head > Capacity, which includes tail behind head) is a corrupt
+  // ring. The consumer then drops what is in it (head ← tail), counts a
+  // resync, and says empty — it never hands out more than the ring holds
+  // nor spins on it.
   [[nodiscard]] bool try_pop(T& out) noexcept {
     const std::uint64_t head = head_.load(std::memory_order_relaxed);  // own index
-    if (head == tail_cache_) {
+    if (head == tail_cache_ || tail_cache_ - head > Capacity) {
       // acquire pairs with the producer's release store of tail_.
       tail_cache_ = tail_.load(std::memory_order_acquire);
       if (head == tail_cache_) return false;
+      if (tail_cache_ - head > Capacity) {
+        ++resyncs_;
+        head_.store(tail_cache_, std::memory_order_release);
+        return false;
+      }
     }
     out = slots_[head & kMask];
     // release pairs with the producer's acquire load of head_: our read of the
@@ -73,6 +85,8 @@ class SpscRing {
     return tail >= head ? static_cast<std::size_t>(std::min<std::uint64_t>(tail - head, Capacity)) : 0;
   }
   [[nodiscard]] bool empty() const noexcept { return size() == 0; }
+  // Consumer side: how many times try_pop found the indices corrupt.
+  [[nodiscard]] std::uint64_t resyncs() const noexcept { return resyncs_; }
 
  private:
   static constexpr std::uint64_t kMask = Capacity - 1;
@@ -80,6 +94,7 @@ class SpscRing {
   // Consumer's line: its index and its cache of the producer's.
   alignas(kCacheLine) std::atomic<std::uint64_t> head_{0};
   std::uint64_t tail_cache_ = 0;
+  std::uint64_t resyncs_ = 0;
   // Producer's line.
   alignas(kCacheLine) std::atomic<std::uint64_t> tail_{0};
   std::uint64_t head_cache_ = 0;

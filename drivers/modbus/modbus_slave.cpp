@@ -1,8 +1,5 @@
-// The slave's request check (check_request) is the part of seed 000 fig. 15
-// that matters: every address of the request must hold a register of the
-// map, writes must hit whole writable registers, and every value must be in
-// range — all checked before libmodbus's modbus_reply() touches the tables,
-// so a refused block leaves everything as it was.
+// The slave's thread: its sockets, clients and ticks. Each request is taken
+// by SlaveRequestHandler (slave_request.h: the check before anything changes).
 #include "drivers/modbus/modbus_slave.h"
 
 #include <arpa/inet.h>
@@ -26,26 +23,17 @@ namespace {
 
 constexpr int kByteTimeoutUs = 100'000;  // a started frame must complete within this
 constexpr int kIdlePollMs = 200;         // poll period when no tick is due
-constexpr std::uint16_t kMaxReadRegisters = 125;   // Modbus limits per request
-constexpr std::uint16_t kMaxReadBits = 2000;
-constexpr std::uint16_t kMaxWriteRegisters = 123;
-constexpr std::uint16_t kMaxWriteBits = 1968;
-
-std::uint16_t be16(const std::uint8_t* p) noexcept {
-  return static_cast<std::uint16_t>((p[0] << 8) | p[1]);
-}
-
 }  // namespace
 
 struct ModbusSlave::Impl {
   SlaveConfig cfg;
-  RegisterBank bank;
+  SlaveRequestHandler handler;
+  RegisterBank& bank;
   mutable std::mutex mutex;  // guards bank (slave thread ↔ owner threads)
   WriteHook write_hook;
   TickHook tick_hook;
 
   modbus_t* ctx = nullptr;
-  modbus_mapping_t mapping{};
   int listen_fd = -1;
   int wake_fd = -1;
   std::vector<int> clients;
@@ -56,16 +44,7 @@ struct ModbusSlave::Impl {
   std::atomic<std::uint64_t> requests{0}, exceptions{0}, refused{0}, crc_errors{0},
       connections{0};
 
-  Impl(DeviceMap map, SlaveConfig c) : cfg(std::move(c)), bank(std::move(map)) {
-    mapping.nb_bits = static_cast<int>(bank.bits(Table::Coil).size());
-    mapping.tab_bits = bank.bits(Table::Coil).data();
-    mapping.nb_input_bits = static_cast<int>(bank.bits(Table::Discrete).size());
-    mapping.tab_input_bits = bank.bits(Table::Discrete).data();
-    mapping.nb_registers = static_cast<int>(bank.words(Table::Holding).size());
-    mapping.tab_registers = bank.words(Table::Holding).data();
-    mapping.nb_input_registers = static_cast<int>(bank.words(Table::Input).size());
-    mapping.tab_input_registers = bank.words(Table::Input).data();
-  }
+  Impl(DeviceMap map, SlaveConfig c) : cfg(std::move(c)), handler(std::move(map)), bank(handler.bank()) {}
 
   std::string who() const { return bank.map().name + " slave (" + cfg.endpoint.to_string() + ")"; }
 
@@ -73,9 +52,6 @@ struct ModbusSlave::Impl {
   void close_all() noexcept;
   void run() noexcept;
   void serve(int fd) noexcept;
-  ModbusException check_request(const std::uint8_t* q, int len,
-                                std::vector<RegisterWrite>& writes) const;
-  void handle(const std::uint8_t* q, int len) noexcept;
 };
 
 Status ModbusSlave::Impl::open() {
@@ -139,121 +115,32 @@ void ModbusSlave::Impl::close_all() noexcept {
   wake_fd = -1;
 }
 
-// Checks a request against the map; fills `writes` for a valid write.
-ModbusException ModbusSlave::Impl::check_request(const std::uint8_t* q, int len,
-                                                 std::vector<RegisterWrite>& writes) const {
-  const int o = modbus_get_header_length(ctx);
-  if (len < o + 5) return ModbusException::IllegalDataValue;
-  const std::uint8_t fc = q[o];
-  const std::uint16_t addr = be16(q + o + 1);
-  const std::uint16_t n = be16(q + o + 3);
-  const DeviceMap& map = bank.map();
-
-  // Every address in [addr, addr + count) must hold a register of table t.
-  auto all_mapped = [&](Table t, std::uint32_t count) {
-    for (std::uint32_t a = addr; a < addr + count; ++a)
-      if (a > 0xFFFF || map.at(t, static_cast<std::uint16_t>(a)) == nullptr) return false;
-    return true;
-  };
-
-  switch (fc) {
-    case 1: case 2: case 3: case 4: {
-      const Table t = fc == 1 ? Table::Coil
-                      : fc == 2 ? Table::Discrete
-                      : fc == 3 ? Table::Holding
-                                : Table::Input;
-      const std::uint16_t limit = is_bit_table(t) ? kMaxReadBits : kMaxReadRegisters;
-      if (n < 1 || n > limit) return ModbusException::IllegalDataValue;
-      return all_mapped(t, n) ? ModbusException::None : ModbusException::IllegalDataAddress;
-    }
-    case 5: {
-      const RegisterDef* r = map.at(Table::Coil, addr);
-      if (r == nullptr || !r->writable()) return ModbusException::IllegalDataAddress;
-      if (n != 0xFF00 && n != 0x0000) return ModbusException::IllegalDataValue;
-      writes.push_back({r, n == 0xFF00 ? 1.0 : 0.0});
-      return ModbusException::None;
-    }
-    case 6: {
-      const RegisterDef* r = map.at(Table::Holding, addr);
-      if (r == nullptr || !r->writable() || r->words() != 1)
-        return ModbusException::IllegalDataAddress;
-      const double v = r->decode(std::span<const std::uint16_t>(&n, 1));
-      if (!r->in_range(v)) return ModbusException::IllegalDataValue;
-      writes.push_back({r, v});
-      return ModbusException::None;
-    }
-    case 15: {
-      if (len < o + 6) return ModbusException::IllegalDataValue;
-      const std::uint8_t bytes = q[o + 5];
-      if (n < 1 || n > kMaxWriteBits || bytes != (n + 7) / 8 || len < o + 6 + bytes)
-        return ModbusException::IllegalDataValue;
-      for (std::uint32_t i = 0; i < n; ++i) {
-        const std::uint32_t a = addr + i;
-        const RegisterDef* r = a > 0xFFFF ? nullptr : map.at(Table::Coil, static_cast<std::uint16_t>(a));
-        if (r == nullptr || !r->writable()) return ModbusException::IllegalDataAddress;
-        writes.push_back({r, ((q[o + 6 + i / 8] >> (i % 8)) & 1) ? 1.0 : 0.0});
-      }
-      return ModbusException::None;
-    }
-    case 16: {
-      if (len < o + 6) return ModbusException::IllegalDataValue;
-      const std::uint8_t bytes = q[o + 5];
-      if (n < 1 || n > kMaxWriteRegisters || bytes != 2 * n || len < o + 6 + bytes)
-        return ModbusException::IllegalDataValue;
-      ModbusException verdict = ModbusException::None;
-      for (std::uint32_t a = addr; a < addr + n;) {
-        const RegisterDef* r = a > 0xFFFF ? nullptr : map.at(Table::Holding, static_cast<std::uint16_t>(a));
-        // Whole registers only: a write must not start or end inside a u32/i32.
-        if (r == nullptr || !r->writable() || r->address != a || a + r->words() > addr + n)
-          return ModbusException::IllegalDataAddress;
-        std::uint16_t raw[2];
-        for (std::uint16_t k = 0; k < r->words(); ++k) raw[k] = be16(q + o + 6 + 2 * (a - addr + k));
-        const double v = r->decode(std::span<const std::uint16_t>(raw, r->words()));
-        // Addresses outrank values: keep scanning for a 02 after a bad value.
-        if (!r->in_range(v)) verdict = ModbusException::IllegalDataValue;
-        writes.push_back({r, v});
-        a += r->words();
-      }
-      return verdict;
-    }
-    default:
-      return ModbusException::IllegalFunction;
-  }
-}
-
-void ModbusSlave::Impl::handle(const std::uint8_t* q, int len) noexcept {
-  requests.fetch_add(1, std::memory_order_relaxed);
-  std::vector<RegisterWrite> writes;
-  std::lock_guard lock(mutex);
-  ModbusException ex = check_request(q, len, writes);
-  if (ex == ModbusException::None && !writes.empty() && write_hook)
-    ex = write_hook(std::span<const RegisterWrite>(writes), bank);
-  if (ex != ModbusException::None) {
-    exceptions.fetch_add(1, std::memory_order_relaxed);
-    const std::uint8_t fc = q[modbus_get_header_length(ctx)];
-    if (fc == 5 || fc == 6 || fc == 15 || fc == 16) refused.fetch_add(1, std::memory_order_relaxed);
-    modbus_reply_exception(ctx, q, static_cast<unsigned>(ex));
-    return;
-  }
-  modbus_reply(ctx, q, len, &mapping);  // applies the (checked) write and answers
-}
-
 void ModbusSlave::Impl::serve(int fd) noexcept {
-  std::uint8_t q[MODBUS_TCP_MAX_ADU_LENGTH];
   if (cfg.endpoint.transport == Transport::Tcp) modbus_set_socket(ctx, fd);
-  const int rc = modbus_receive(ctx, q);
-  if (rc > 0) {
-    handle(q, rc);
-    return;
-  }
-  if (rc == 0) return;  // RTU: a frame for another unit
-  if (errno == EMBBADCRC) {
-    crc_errors.fetch_add(1, std::memory_order_relaxed);
-    return;
-  }
-  if (cfg.endpoint.transport == Transport::Tcp) {  // peer closed or broke the framing
-    ::close(fd);
-    std::erase(clients, fd);
+  const Received r = handler.receive_and_answer(ctx, write_hook, &mutex);
+  switch (r.kind) {
+    case Received::Kind::Answered:
+      requests.fetch_add(1, std::memory_order_relaxed);
+      if (r.exception != ModbusException::None) {
+        exceptions.fetch_add(1, std::memory_order_relaxed);
+        if (r.write) refused.fetch_add(1, std::memory_order_relaxed);
+      }
+      return;
+    case Received::Kind::OtherUnit:  // RTU: a frame for another unit
+      return;
+    case Received::Kind::NotARequest:
+      requests.fetch_add(1, std::memory_order_relaxed);
+      exceptions.fetch_add(1, std::memory_order_relaxed);
+      return;
+    case Received::Kind::BadCrc:
+      crc_errors.fetch_add(1, std::memory_order_relaxed);
+      return;
+    case Received::Kind::Broken:
+      if (cfg.endpoint.transport == Transport::Tcp) {  // peer closed or broke the framing
+        ::close(fd);
+        std::erase(clients, fd);
+      }
+      return;
   }
 }
 

@@ -36,6 +36,7 @@
 #include "drivers/modbus/modbus_types.h"
 #include "drivers/modbus/register_bank.h"
 #include "drivers/modbus/register_map.h"
+#include "drivers/modbus/slave_request.h"
 
 namespace lcnc::drivers {
 
@@ -48,20 +49,12 @@ struct SlaveConfig {
 
 struct SlaveCounters {
   std::uint64_t requests = 0;     // well-framed requests received
-  std::uint64_t exceptions = 0;   // answered with an exception
+  std::uint64_t exceptions = 0;   // answered with an exception, or not a request (fc ≥ 0x80)
   std::uint64_t refused_writes = 0;  // writes refused (exceptions 02/03/hook)
   std::uint64_t crc_errors = 0;   // RTU frames dropped for a bad CRC
   std::uint64_t connections = 0;  // TCP connections accepted
 };
 
-// One register of a write request, decoded and range-checked.
-struct RegisterWrite {
-  const RegisterDef* reg;
-  double value;
-};
-
-// Called before a valid write is applied; return None to accept it.
-using WriteHook = std::function<ModbusException(std::span<const RegisterWrite>, RegisterBank&)>;
 // Called every tick_period with the seconds since the last call.
 using TickHook = std::function<void(double dt_s, RegisterBank&)>;
 

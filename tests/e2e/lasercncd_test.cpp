@@ -10,6 +10,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -23,6 +24,7 @@
 extern char** environ;
 
 #include "e2e_support.h"
+#include "rt/shm_interface.h"
 
 namespace {
 
@@ -244,6 +246,36 @@ TEST(Lasercncd, KilledMidJobTheRestartedDaemonComesUpAtRest) {
   EXPECT_EQ(s.exit_code, 1);
   EXPECT_NE(s.err.find("no program loaded"), std::string::npos) << s.err;
   EXPECT_EQ(again.stop(SIGTERM), 0);
+}
+
+// Any process of the group can write the segment. One that leaves the
+// command ring's indices corrupt (here: the tail pushed 2^40 ahead, as a
+// crashed or hostile sender might) must not hang the daemon in its drain
+// (before the check: 2^40 garbage commands) — the daemon drops the ring,
+// says so, and answers the next command.
+TEST(Lasercncd, ACorruptCommandRingIsDroppedAndTheDaemonAnswersOn) {
+  const std::string shm = shm_name();
+  Daemon d(shm);
+  ASSERT_TRUE(d.ready()) << d.log();
+  {
+    const int fd = shm_open(shm.c_str(), O_RDWR, 0);
+    ASSERT_GE(fd, 0);
+    void* p = mmap(nullptr, sizeof(lcnc::shm::ShmBlock), PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+    close(fd);
+    ASSERT_NE(p, MAP_FAILED);
+    auto* block = static_cast<lcnc::shm::ShmBlock*>(p);
+    // the ring's layout: head_ at 0, tail_ one cache line on (rt/spsc_ring.h)
+    auto* tail = reinterpret_cast<std::atomic<std::uint64_t>*>(reinterpret_cast<char*>(&block->commands) +
+                                                               lcnc::rt::kCacheLine);
+    tail->fetch_add(std::uint64_t{1} << 40);
+    munmap(p, sizeof(lcnc::shm::ShmBlock));
+  }
+  std::this_thread::sleep_for(100ms);
+  const CmdResult r = lasercnc("send override 120 --shm " + shm);
+  EXPECT_EQ(r.exit_code, 0) << r.err << d.log();
+  EXPECT_NEAR(status(shm)["feed_override_target"].get<double>(), 1.2, 1e-12);
+  EXPECT_NE(d.log().find("command ring's indices were corrupt"), std::string::npos) << d.log();
+  EXPECT_EQ(d.stop(SIGTERM), 0) << d.log();
 }
 
 TEST(Lasercncd, StatusWithoutDaemonSaysSo) {

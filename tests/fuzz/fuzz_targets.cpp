@@ -6,15 +6,27 @@
 // (fuzz_driver.cpp) as the CI's smoke under ASan+UBSan.
 #include "tests/fuzz/fuzz_targets.h"
 
+#include <cstdio>
+#include <cstdlib>
+#include <cmath>
+#include <cstring>
+#include <new>
+#include <type_traits>
+#include <algorithm>
+#include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "dxf/dxf_reader.h"
 #include "drivers/modbus/register_map.h"
+#include "drivers/modbus/slave_request.h"
 #include "drivers/serial/probe_protocol.h"
 #include "gcode/program_reader.h"
 #include "holes/hole_table.h"
 #include "machine/machine_config.h"
+#include "rt/shm_command.h"
+#include "rt/shm_interface.h"
 
 namespace lcnc::fuzz {
 namespace {
@@ -65,6 +77,124 @@ int register_map(const std::uint8_t* data, std::size_t size) {
   return 0;
 }
 
+
+// A broken invariant is a finding: say which and abort (the fuzzer keeps
+// the input).
+[[noreturn]] void finding(const std::string& what) {
+  std::fprintf(stderr, "fuzz finding: %s\n", what.c_str());
+  std::abort();
+}
+
+// The slave's request handling with raw frames: the cnc device of the
+// shipped map (what lasercncd exposes to a PLC), each input delivered
+// through libmodbus's receive and reply over a socket pair. The first byte
+// picks the framing: TCP as given, RTU as given, or RTU with the CRC
+// appended by the harness (so that mutations reach the request's body).
+// Invariants: no request writes a read-only register or a value outside a
+// register's range (the defaults before any write may be); a request
+// taken gets an answer; an exception answer echoes the function code.
+struct ModbusHarness {
+  drivers::SlaveRequestHandler handler;
+  std::unique_ptr<drivers::RawFrameLoop> tcp, rtu;
+  std::uint8_t unit;
+
+  static ModbusHarness& get() {
+    static ModbusHarness h = [] {
+      Result<drivers::DeviceMap> map = drivers::shipped_device("cnc");
+      if (!map) finding("the shipped map: " + map.error().to_string());
+      return ModbusHarness(std::move(map).value());
+    }();
+    return h;
+  }
+  explicit ModbusHarness(drivers::DeviceMap map) : handler(std::move(map)), unit(handler.bank().map().unit_id) {
+    auto t = drivers::RawFrameLoop::open(drivers::Transport::Tcp, unit);
+    auto r = drivers::RawFrameLoop::open(drivers::Transport::Rtu, unit);
+    if (!t || !r) finding("cannot open the frame loops");
+    tcp = std::move(t).value();
+    rtu = std::move(r).value();
+  }
+  ModbusHarness(ModbusHarness&&) = delete;
+};
+
+std::string hex(std::span<const std::uint8_t> b) {
+  std::string s;
+  char h[4];
+  for (std::uint8_t c : b) {
+    std::snprintf(h, sizeof h, "%02x ", c);
+    s += h;
+  }
+  return s;
+}
+
+int modbus_request(const std::uint8_t* data, std::size_t size) {
+  if (size == 0) return 0;
+  ModbusHarness& h = ModbusHarness::get();
+  const int mode = data[0] % 3;
+  const std::span<const std::uint8_t> rest(data + 1, size - 1);
+  std::vector<std::uint8_t> frame(rest.begin(), rest.end());
+  if (mode == 2) frame = drivers::RawFrameLoop::rtu_frame(h.unit, rest);
+  drivers::RawFrameLoop& loop = mode == 0 ? *h.tcp : *h.rtu;
+  const drivers::RegisterBank& bank = h.handler.bank();
+  const std::vector<drivers::RegisterDef>& regs = bank.map().registers;
+  std::vector<double> before(regs.size());
+  for (std::size_t i = 0; i < regs.size(); ++i) before[i] = bank.value(regs[i]);
+  const drivers::RawFrameLoop::Exchange x = loop.deliver(h.handler, frame);
+  for (std::size_t i = 0; i < regs.size(); ++i) {
+    const double v = bank.value(regs[i]);
+    if (!regs[i].writable() && v != before[i]) finding("read-only register " + regs[i].name + " written");
+    if (v != before[i] && !regs[i].in_range(v))
+      finding("register " + regs[i].name + " written " + std::to_string(v) + ", outside its range");
+  }
+  if (x.received.kind == drivers::Received::Kind::Answered) {
+    const bool broadcast = mode != 0 && !frame.empty() && frame[0] == 0;
+    const std::size_t fc_at = mode == 0 ? 7 : 1;
+    if (!broadcast && x.reply.size() <= fc_at) finding("a request taken got no answer");
+    if (!broadcast && x.received.exception != drivers::ModbusException::None &&
+        x.reply[fc_at] != (frame[fc_at] | 0x80))
+      finding("an exception answer without the function code's echo: " + hex(frame) + " → " + hex(x.reply));
+  }
+  return 0;
+}
+
+// The daemon's command ring as another process may leave it: the input
+// laid over the ring's bytes (indices and slots), then drained as the
+// daemon drains it, each frame checked. Invariants: the drain ends within
+// two rings' worth; a frame that passes the check is one the daemon can act
+// on without reading past a field (type known, axis present, value finite
+// and in range, path terminated).
+int shm_commands(const std::uint8_t* data, std::size_t size) {
+  using Ring = decltype(shm::ShmBlock::commands);
+  static_assert(std::is_trivially_destructible_v<Ring>);
+  alignas(Ring) static unsigned char storage[sizeof(Ring)];
+  std::memset(storage, 0, sizeof storage);
+  Ring* ring = new (storage) Ring();
+  std::memcpy(storage, data, std::min(size, sizeof storage));  // what a sender wrote
+  shm::CommandLimits limits;
+  limits.axes_mask = 0b101111;  // X Y Z A C
+  limits.max_override = 1.5;
+  shm::Command c;
+  std::size_t taken = 0;
+  for (; taken <= 2 * Ring::kCapacity && ring->try_pop(c); ++taken) {
+    if (!shm::check_command_frame(c, limits)) continue;
+    if (static_cast<std::uint8_t>(c.type) >= static_cast<std::uint8_t>(shm::CommandType::Count))
+      finding("an unknown command type passed");
+    if (c.type == shm::CommandType::Load && std::memchr(c.text, 0, sizeof c.text) == nullptr)
+      finding("an unterminated path passed");
+    if ((c.type == shm::CommandType::Jog || c.type == shm::CommandType::Home) &&
+        (c.axis >= kAxisCount || !((limits.axes_mask >> c.axis) & 1u)))
+      finding("a missing axis passed");
+    if (c.type == shm::CommandType::Override && !(c.value >= 0.0 && c.value <= limits.max_override))
+      finding("an override out of range passed");
+    if (c.type == shm::CommandType::Jog && !(std::abs(c.value) <= limits.max_jog))
+      finding("a jog out of range passed");
+  }
+  // At most what the consumer's cached tail promised plus one ring's worth
+  // after it reads the real tail: anything more is a ring handing out
+  // garbage (before the check in try_pop: 2^64 items, a hung daemon).
+  if (taken > 2 * Ring::kCapacity) finding("the ring served more than it can hold");
+  return 0;
+}
+
 }  // namespace
 
 const Target* find_target(std::string_view name) {
@@ -72,6 +202,7 @@ const Target* find_target(std::string_view name) {
       {"gcode", gcode},           {"dxf", dxf},
       {"machine_config", machine_config}, {"hole_table", hole_table},
       {"probe_sentence", probe_sentence}, {"register_map", register_map},
+      {"modbus_request", modbus_request}, {"shm_commands", shm_commands},
   };
   for (const Target& t : targets)
     if (name == t.name) return &t;

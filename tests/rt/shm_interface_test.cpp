@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
+#include <grp.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -134,6 +135,30 @@ TEST(ShmInterface, SegmentIsMode0660AndVersioned) {
   EXPECT_EQ(s.st_mode & 0777, 0660u);
   EXPECT_EQ(owner->block().header.version, kVersion);
   EXPECT_EQ(owner->block().header.owner_pid, getpid());
+}
+
+// Mode 0660 means something only for a user outside the owner's group: a
+// child process that gives up root for nobody:nogroup cannot open the
+// segment (and says why), while the owner's side can.
+TEST(ShmInterface, AUserOutsideTheGroupIsRefused) {
+  if (geteuid() != 0) GTEST_SKIP() << "needs root to become another user (CI runs as root)";
+  const std::string name = unique_name("others");
+  auto owner = ShmOwner::create(name);
+  ASSERT_TRUE(owner);
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    if (setgroups(0, nullptr) != 0 || setgid(65534) != 0 || setuid(65534) != 0) _exit(10);
+    auto c = ShmClient::open(name);
+    if (c) _exit(11);  // opened: the mode did not protect it
+    if (c.error().message.find("ermission") == std::string::npos) _exit(12);
+    _exit(0);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0) << "10: could not drop root, 11: opened, 12: no reason given";
+  EXPECT_TRUE(ShmClient::open(name));
 }
 
 TEST(ShmInterface, SecondOwnerIsRefusedWhileTheFirstLives) {

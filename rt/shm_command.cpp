@@ -1,0 +1,52 @@
+#include "rt/shm_command.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include "geom/pose.h"
+
+namespace lcnc::shm {
+namespace {
+
+Diagnostic refused(const std::string& why) { return make_error(ErrorCode::RtRefused, why); }
+
+std::string axis_text(std::uint8_t axis) {
+  return axis < kAxisCount ? std::string(1, kAxisLetters[axis]) : std::to_string(axis);
+}
+
+bool has_axis(std::uint8_t axis, std::uint32_t mask) { return axis < kAxisCount && ((mask >> axis) & 1u); }
+
+}  // namespace
+
+lcnc::Status check_command_frame(const Command& c, const CommandLimits& limits) {
+  if (static_cast<std::uint8_t>(c.type) >= static_cast<std::uint8_t>(CommandType::Count))
+    return refused("bad command frame: type " + std::to_string(static_cast<int>(c.type)) + " unknown");
+  switch (c.type) {
+    case CommandType::Load:
+      if (std::memchr(c.text, '\0', sizeof c.text) == nullptr)
+        return refused("bad command frame: load path not terminated");
+      return {};
+    case CommandType::Override:
+      if (!std::isfinite(c.value) || c.value < 0.0 || c.value > limits.max_override) {
+        char msg[160];
+        std::snprintf(msg, sizeof msg, "override %g %% refused: allowed 0 … %g %%", c.value * 100.0,
+                      limits.max_override * 100.0);
+        return refused(msg);
+      }
+      return {};
+    case CommandType::Jog:
+      if (!has_axis(c.axis, limits.axes_mask)) return refused("jog refused: no axis " + axis_text(c.axis));
+      if (!std::isfinite(c.value) || std::abs(c.value) > limits.max_jog)
+        return refused("jog refused: distance not a number or out of range");
+      return {};
+    case CommandType::Home:
+      if (!has_axis(c.axis, limits.axes_mask)) return refused("home refused: no axis " + axis_text(c.axis));
+      return {};
+    default:
+      return {};
+  }
+}
+
+}  // namespace lcnc::shm
