@@ -73,6 +73,12 @@ class PlannerFeed {
     return stopped_short_.load(std::memory_order_acquire);
   }
   [[nodiscard]] bool running() const noexcept { return thread_.joinable(); }
+
+  // Fault injection (the reliability tests, RELIABILITY.md): while on, the
+  // planner thread pushes nothing, as a planner starved of the CPU or
+  // blocked would. The kernel brakes along the path on its reserve and
+  // runs on once the entries come again.
+  void inject_stall(bool on) noexcept { stalled_.store(on, std::memory_order_relaxed); }
   // Valid once done().
   [[nodiscard]] const PlannedJob& result() const noexcept { return result_; }
 
@@ -94,6 +100,7 @@ class PlannerFeed {
   std::atomic<bool> abort_{false};
   std::atomic<bool> done_{false};
   std::atomic<bool> stopped_short_{false};
+  std::atomic<bool> stalled_{false};
   std::string program_;
   std::unique_ptr<ProgramSource> program_source_;  // a program job's source (planner thread)
   Diagnostic source_error_;                // why the source failed

@@ -146,11 +146,12 @@ void RtKernel::run(const RtOptions& options) noexcept {
     // 1. sleep to the absolute deadline
     const std::int64_t deadline = t0 + std::llround(machine_ns);
     const timespec until = to_timespec(deadline);
+    if (options.virtual_time) wait_for_producer();
     // a period already due (catching up after a stall) starts at once: on a
     // VM the sleep call alone can cost ~20 µs, which a 25 µs period cannot
     // afford while it catches up
     clock_gettime(CLOCK_MONOTONIC, &now);
-    const bool slept = to_ns(now) < deadline;
+    const bool slept = !options.virtual_time && to_ns(now) < deadline;
     if (slept) {
       while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &until, nullptr) == EINTR) {
       }
@@ -160,10 +161,10 @@ void RtKernel::run(const RtOptions& options) noexcept {
     // deadline (as cyclictest measures it). A period that was already due
     // — the machine catching up after a stall — is no wake-up: it is counted
     // apart, and the stall once, in the wake-up that ended it.
-    const std::int64_t late = to_ns(now) - deadline;
+    const std::int64_t late = options.virtual_time ? 0 : to_ns(now) - deadline;
     if (slept) {
       latency_.add(late);
-    } else {
+    } else if (!options.virtual_time) {
       catch_up_.fetch_add(1, std::memory_order_relaxed);
     }
     // 3–4. commands and inputs
@@ -214,6 +215,13 @@ void RtKernel::run(const RtOptions& options) noexcept {
   // release pairs with finished()'s acquire: counters and positions written
   // above are visible to a thread that sees finished.
   finished_.store(true, std::memory_order_release);
+}
+
+void RtKernel::wait_for_producer() const noexcept {
+  const std::size_t enough = std::min(kPositionBufferCapacity - 1, 2 * braking_reserve(ramp_.k_max()));
+  while (!shutdown_requested_.load(std::memory_order_relaxed) &&
+         streaming_.load(std::memory_order_acquire) && buffer_.size() < enough)
+    sched_yield();
 }
 
 void RtKernel::log(RtLogCode code, std::int64_t value, int axis, std::uint32_t line) noexcept {

@@ -128,6 +128,13 @@ struct RtOptions {
   // 0: one period after the thread starts. Kernels given the same epoch and
   // period share their period boundaries — two axis groups on one time base.
   std::int64_t epoch_ns = 0;
+  // Virtual time (soak runs and simulations faster than real time): no
+  // sleep, no wall clock. Each period runs as soon as the producer has kept
+  // the buffer above twice its braking reserve (or has ended its stream),
+  // i.e. a planner that is never late; machine time still advances by T/K
+  // per period. Waiting for the producer yields the CPU: this is not the
+  // real-time path, and the latency histogram stays empty.
+  bool virtual_time = false;
 };
 
 class RtKernel {
@@ -261,6 +268,8 @@ class RtKernel {
   void run(const RtOptions& options) noexcept;
   void log(RtLogCode code, std::int64_t value, int axis = -1, std::uint32_t line = 0) noexcept;
   void set_state(MachineState s) noexcept;
+  // Virtual time: until the producer has filled the buffer (RtOptions).
+  void wait_for_producer() const noexcept;
   void take_commands() noexcept;
   void take_inputs() noexcept;
   void set_fault(ErrorCode code, int axis, std::uint32_t line) noexcept;

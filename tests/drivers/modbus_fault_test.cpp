@@ -9,6 +9,11 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <cstdio>
+#include <cstdlib>
+#include <future>
+#include <random>
+
 #include "modbus_test_support.h"
 
 namespace lcnc::drivers {
@@ -230,6 +235,137 @@ TEST(ModbusFaults, NoDeviceAtAllIsAClearErrorAtOnce) {
   ASSERT_FALSE(v.ok());
   EXPECT_NE(v.error().message.find("rtu /dev/nonexistent-tty"), std::string::npos);
   EXPECT_NE(v.error().message.find("cannot connect"), std::string::npos) << v.error().message;
+}
+
+}  // namespace
+}  // namespace lcnc::drivers
+
+namespace lcnc::drivers {
+namespace {
+
+using namespace testing;
+
+// Waits for a request's answer, failing (never hanging) past `limit`.
+template <typename T>
+T answer(std::future<T> f, std::chrono::milliseconds limit = 3000ms) {
+  if (f.wait_for(limit) != std::future_status::ready) {
+    ADD_FAILURE() << "a request hung past " << limit.count() << " ms";
+    std::abort();  // the master would outlive the test: nothing sane to go on with
+  }
+  return f.get();
+}
+
+// The soak: LCNC_SOAK_FAULTS faults (CI: 40; RELIABILITY.md: 1,000) drawn
+// at random from five kinds, on an RTU link (a pty pair through a PtyLink)
+// and a TCP link (loopback): a corrupted answer, a corrupted request, a
+// pulled cable, an exception answer, the TCP device switched off and on.
+// After each: the fault showed as its kind (error code, counters moved as
+// that kind moves them), nothing hung, the link answers again. At the end
+// the master's counters add up.
+TEST(ModbusFaults, SoakOfInjectedFaultsEveryLinkRecoversAndTheCountersAddUp) {
+  const char* env = std::getenv("LCNC_SOAK_FAULTS");
+  const int faults = env != nullptr ? std::atoi(env) : 40;
+  auto fast = [](MasterConfig& c) {
+    c.response_timeout = 100ms;
+    c.retries = 1;
+  };
+  auto rtu = Pair::make(Transport::Rtu, shipped("laser_source"), {}, fast);
+  const DeviceMap meter = shipped("power_meter");
+  auto tcp_slave = std::make_unique<ModbusSlave>(meter, SlaveConfig{});
+  ASSERT_TRUE(tcp_slave->start().ok());
+  const std::uint16_t port = tcp_slave->port();
+  Endpoint ep;
+  ep.port = port;
+  MasterConfig mc = quick_master(ep);
+  fast(mc);
+  ModbusMaster tcp(meter, mc);
+  ASSERT_TRUE(tcp.start().ok());
+  ASSERT_TRUE(answer(tcp.read("wavelength_nm")).ok());
+
+  std::mt19937 rng(2026);
+  int kinds[5] = {};
+  const auto t0 = Clock::now();
+  for (int i = 0; i < faults; ++i) {
+    const int kind = static_cast<int>(rng() % 5);
+    ++kinds[kind];
+    SCOPED_TRACE("fault " + std::to_string(i) + " of kind " + std::to_string(kind));
+    const MasterCounters r0 = rtu->master->counters(), t0c = tcp.counters();
+    const SlaveCounters s0 = rtu->slave->counters();
+    switch (kind) {
+      case 0: {  // a corrupted answer: the CRC check catches it, the retry gets it
+        rtu->link->corrupt_next(LinkDirection::BtoA);
+        ASSERT_TRUE(answer(rtu->master->read("power_setpoint_pct")).ok());
+        const MasterCounters r = rtu->master->counters();
+        EXPECT_EQ(r.crc_errors - r0.crc_errors, 1u);
+        EXPECT_EQ(r.retries - r0.retries, 1u);
+        break;
+      }
+      case 1: {  // a corrupted request: the slave drops it, the master times out and retries
+        rtu->link->corrupt_next(LinkDirection::AtoB);
+        const double v = static_cast<double>(rng() % 100);
+        ASSERT_TRUE(answer(rtu->master->write("power_setpoint_pct", v)).ok());
+        EXPECT_EQ(rtu->slave->counters().crc_errors - s0.crc_errors, 1u);
+        EXPECT_EQ(rtu->master->counters().timeouts - r0.timeouts, 1u);
+        EXPECT_EQ(rtu->slave->get("power_setpoint_pct").value(), v);
+        break;
+      }
+      case 2: {  // the cable pulled for one request, then plugged in again
+        rtu->link->set_connected(false);
+        const Result<double> gone = answer(rtu->master->read("status"));
+        ASSERT_FALSE(gone.ok());
+        EXPECT_EQ(gone.error().code, ErrorCode::PeripheralTimeout);
+        EXPECT_EQ(rtu->master->counters().timeouts - r0.timeouts, 2u);  // both attempts
+        rtu->link->set_connected(true);
+        ASSERT_TRUE(eventually([&] { return answer(rtu->master->read("status")).ok(); }));
+        break;
+      }
+      case 3: {  // an exception answer: final, no retry
+        const auto r = answer(tcp.request({Function::ReadInputRegisters, 40, 1, {}, "read input 40"}));
+        ASSERT_FALSE(r.ok());
+        EXPECT_EQ(r.error().code, ErrorCode::PeripheralException);
+        const MasterCounters t = tcp.counters();
+        EXPECT_EQ(t.exceptions - t0c.exceptions, 1u);
+        EXPECT_EQ(t.retries - t0c.retries, 0u);
+        break;
+      }
+      case 4: {  // the TCP device switched off, then on again at the same address
+        tcp_slave.reset();
+        const Result<double> gone = answer(tcp.read("wavelength_nm"));
+        ASSERT_FALSE(gone.ok());
+        EXPECT_EQ(gone.error().code, ErrorCode::PeripheralDisconnected);
+        SlaveConfig back;
+        back.endpoint.port = port;
+        tcp_slave = std::make_unique<ModbusSlave>(meter, back);
+        ASSERT_TRUE(tcp_slave->start().ok());
+        ASSERT_TRUE(eventually([&] { return answer(tcp.read("wavelength_nm")).ok(); }));
+        EXPECT_EQ(tcp.counters().reconnects - t0c.reconnects, 1u);
+        break;
+      }
+    }
+    // whatever came before, both links answer now
+    ASSERT_TRUE(answer(rtu->master->read("power_setpoint_pct")).ok());
+    ASSERT_TRUE(answer(tcp.read("wavelength_nm")).ok());
+  }
+  const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  for (const MasterCounters& c : {rtu->master->counters(), tcp.counters()}) {
+    EXPECT_EQ(c.requests, c.ok + c.failed);
+    EXPECT_EQ(c.refused, 0u);
+  }
+  const MasterCounters r = rtu->master->counters(), t = tcp.counters();
+  std::printf("modbus soak: %d faults (answer corrupted %d, request corrupted %d, cable pulled %d, "
+              "exception %d, device off/on %d) in %.1f s; 0 hangs; RTU master %llu requests, %llu ok, "
+              "%llu crc errors, %llu timeouts, %llu retries; TCP master %llu requests, %llu ok, "
+              "%llu exceptions, %llu link errors, %llu reconnects\n",
+              faults, kinds[0], kinds[1], kinds[2], kinds[3], kinds[4], seconds,
+              static_cast<unsigned long long>(r.requests), static_cast<unsigned long long>(r.ok),
+              static_cast<unsigned long long>(r.crc_errors), static_cast<unsigned long long>(r.timeouts),
+              static_cast<unsigned long long>(r.retries), static_cast<unsigned long long>(t.requests),
+              static_cast<unsigned long long>(t.ok), static_cast<unsigned long long>(t.exceptions),
+              static_cast<unsigned long long>(t.link_errors), static_cast<unsigned long long>(t.reconnects));
+  EXPECT_EQ(rtu->link->corruptions(), static_cast<std::uint64_t>(kinds[0] + kinds[1]));
+  EXPECT_GE(r.crc_errors, static_cast<std::uint64_t>(kinds[0]));
+  EXPECT_EQ(t.exceptions, static_cast<std::uint64_t>(kinds[3]));
+  EXPECT_EQ(t.reconnects, static_cast<std::uint64_t>(kinds[4]));
 }
 
 }  // namespace
