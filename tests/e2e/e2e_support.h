@@ -48,11 +48,11 @@ inline fs::path temp_dir() {
   return d;
 }
 
-inline CmdResult lasercnc(const std::string& args) {
+// Runs `exe` with `args` (through the shell) as a user does.
+inline CmdResult run_program(const std::string& exe, const std::string& args) {
   const fs::path dir = temp_dir();
   const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string cmd = std::string(LASERCNC_EXE) + " " + args + " >" + out.string() + " 2>" +
-                          err.string() + " </dev/null";
+  const std::string cmd = exe + " " + args + " >" + out.string() + " 2>" + err.string() + " </dev/null";
   const int status = std::system(cmd.c_str());
   CmdResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -60,6 +60,8 @@ inline CmdResult lasercnc(const std::string& args) {
   r.err = slurp(err);
   return r;
 }
+
+inline CmdResult lasercnc(const std::string& args) { return run_program(LASERCNC_EXE, args); }
 
 // A lasercncd child process on its own segment (LASERCNCD_EXE), its stderr
 // in a log file of the test's folder; `extra` are further arguments.
