@@ -40,7 +40,10 @@ std::optional<shm::ShmClient> connect(const ClientOptions& o) {
 
 bool read_both(shm::ShmBlock& b, shm::Status& st, shm::JobStatus& job) {
   constexpr std::chrono::milliseconds kPatience{100};
-  return b.status.load_patiently(st, kPatience) && b.job.load_patiently(job, kPatience);
+  if (!b.status.load_patiently(st, kPatience) || !b.job.load_patiently(job, kPatience)) return false;
+  shm::sanitize(st);
+  shm::sanitize(job);
+  return true;
 }
 
 std::optional<int> axis_index(const std::string& s) {

@@ -43,6 +43,7 @@ std::optional<shm::Status> MachineLink::status() const {
   if (!linked()) return std::nullopt;
   shm::Status s;
   if (!const_cast<shm::ShmClient&>(*client_).block().status.load_patiently(s, kReadPatience)) return std::nullopt;
+  shm::sanitize(s);
   return s;
 }
 
@@ -50,11 +51,14 @@ std::optional<shm::JobStatus> MachineLink::job() const {
   if (!linked()) return std::nullopt;
   shm::JobStatus j;
   if (!const_cast<shm::ShmClient&>(*client_).block().job.load_patiently(j, kReadPatience)) return std::nullopt;
+  shm::sanitize(j);
   return j;
 }
 
 bool MachineLink::next_event(shm::Event& out) {
-  return linked() && client_->block().events.try_pop(out);
+  if (!linked() || !client_->block().events.try_pop(out)) return false;
+  shm::sanitize(out);
+  return true;
 }
 
 std::uint32_t MachineLink::send(shm::CommandType type, double value, std::uint8_t axis, const std::string& text) {

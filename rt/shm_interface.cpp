@@ -141,4 +141,18 @@ std::uint32_t ShmClient::send(Command c) {
 
 bool ShmClient::owner_alive() const noexcept { return process_alive(block_->header.owner_pid); }
 
+void sanitize(Status& s) noexcept {
+  if (s.fault_axis < -1 || s.fault_axis >= static_cast<int>(s.pos.size())) s.fault_axis = -1;
+}
+
+void sanitize(JobStatus& j) noexcept {
+  j.message[sizeof j.message - 1] = '\0';
+  j.program[sizeof j.program - 1] = '\0';
+  std::uint8_t active = 0;  // the byte as written: a bool of any other value is undefined
+  std::memcpy(&active, &j.job_active, 1);
+  j.job_active = active != 0;
+}
+
+void sanitize(Event& e) noexcept { e.text[sizeof e.text - 1] = '\0'; }
+
 }  // namespace lcnc::shm

@@ -102,6 +102,14 @@ struct JobStatus {
   std::uint16_t last_fault = 0;  // ErrorCode that ended the last job, 0 if it ran to the end
 };
 
+// Blocks copied out of the segment, made safe to use: any process of the
+// group can write there, so a reader (HMI, CLI) passes its copy through
+// sanitize() — text fields end at their last byte at the latest, a bool is
+// 0 or 1, an axis index names an axis or is −1.
+void sanitize(Status& s) noexcept;
+void sanitize(JobStatus& j) noexcept;
+void sanitize(Event& e) noexcept;
+
 struct ShmHeader {
   std::uint32_t magic = 0;
   std::uint32_t version = 0;

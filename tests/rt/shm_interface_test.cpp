@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <array>
+#include <cstring>
 #include <chrono>
 #include <set>
 #include <vector>
@@ -159,6 +160,32 @@ TEST(ShmInterface, AUserOutsideTheGroupIsRefused) {
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 0) << "10: could not drop root, 11: opened, 12: no reason given";
   EXPECT_TRUE(ShmClient::open(name));
+}
+
+// What another process of the group may leave in the blocks: texts without
+// their NUL, a bool byte of 0xFF, an axis index of 100. A reader's copy,
+// sanitized, reads within its fields.
+TEST(ShmInterface, ABlockWrittenWithAnythingIsSafeToReadOnceSanitized) {
+  JobStatus j;
+  std::memset(static_cast<void*>(&j), 'A', sizeof j);
+  std::memset(static_cast<void*>(&j.job_active), 0xFF, 1);
+  sanitize(j);
+  EXPECT_EQ(std::strlen(j.message), sizeof j.message - 1);
+  EXPECT_EQ(std::strlen(j.program), sizeof j.program - 1);
+  std::uint8_t b = 0;
+  std::memcpy(&b, &j.job_active, 1);
+  EXPECT_EQ(b, 1u);
+  Event e;
+  std::memset(static_cast<void*>(&e), 'B', sizeof e);
+  sanitize(e);
+  EXPECT_EQ(std::strlen(e.text), sizeof e.text - 1);
+  Status st;
+  st.fault_axis = 100;
+  sanitize(st);
+  EXPECT_EQ(st.fault_axis, -1);
+  st.fault_axis = 2;
+  sanitize(st);
+  EXPECT_EQ(st.fault_axis, 2);
 }
 
 TEST(ShmInterface, SecondOwnerIsRefusedWhileTheFirstLives) {
