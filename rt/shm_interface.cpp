@@ -18,7 +18,7 @@ constexpr mode_t kMode = 0660;
 bool process_alive(pid_t pid) { return pid > 0 && (kill(pid, 0) == 0 || errno == EPERM); }
 
 Diagnostic shm_error(const std::string& name, const std::string& what) {
-  return make_error(ErrorCode::Internal, "shared memory '" + name + "': " + what);
+  return make_error(ErrorCode::RtShmLink, "shared memory '" + name + "': " + what);
 }
 
 ShmBlock* map(int fd) {

@@ -19,6 +19,11 @@ inline constexpr double kSplineFlatnessMm = 1e-4;
 // Deepest subdivision of one spline knot span for that table (2^20 nodes).
 inline constexpr int kSplineMaxDepth = 20;
 
+// Most nodes of one spline's table: a 2 m curve of 1 mm radius takes ~6,000
+// at kSplineFlatnessMm, so this is reached only by a curve kilometres long —
+// a drawing in the wrong units — whose table would otherwise take minutes.
+inline constexpr std::size_t kSplineMaxNodes = 1u << 17;
+
 // Highest SPLINE degree read (DXF writers use 2 and 3; de Boor's scratch
 // space is sized by it).
 inline constexpr int kSplineMaxDegree = 15;

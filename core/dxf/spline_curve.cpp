@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "dxf/dxf_tolerances.h"
 
@@ -60,6 +61,19 @@ std::shared_ptr<const SplineCurve> SplineCurve::make(const SplineData& s, std::s
   }
   if (!(s.knots[n] > s.knots[p])) return fail("empty parameter range (all knots equal)");
   std::shared_ptr<SplineCurve> c(new SplineCurve(s));
+  if (c->too_many_nodes()) {
+    Vec2 lo = s.control.front(), hi = lo;
+    for (const Vec2& q : s.control) {
+      lo = lo.cwiseMin(q);
+      hi = hi.cwiseMax(q);
+    }
+    char msg[200];
+    std::snprintf(msg, sizeof msg,
+                  "a curve spanning %.6g mm needs more than %zu pieces; expected a part of machine "
+                  "size (are the drawing's units right?)",
+                  (hi - lo).norm(), kSplineMaxNodes);
+    return fail(msg);
+  }
   if (!(c->length() > 0.0)) return fail("zero length");
   return c;
 }
@@ -79,10 +93,12 @@ SplineCurve::SplineCurve(SplineData d) : d_(std::move(d)) {
       s_.push_back(0.0);
     }
     subdivide(u0, at_param(u0), u1, at_param(u1), 0);
+    if (too_many_nodes()) return;
   }
 }
 
 void SplineCurve::subdivide(double u0, const Vec2& p0, double u1, const Vec2& p1, int depth) {
+  if (too_many_nodes()) return;  // make() refuses the curve
   const double um = 0.5 * (u0 + u1);
   const Vec2 pm = at_param(um);
   if (depth < kSplineMaxDepth &&

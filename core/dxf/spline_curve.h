@@ -13,6 +13,8 @@
 // S(u) = s by Newton's method (S' = |C'(u)|) to 1e-10 mm.
 #pragma once
 
+#include "dxf/dxf_tolerances.h"
+
 #include <memory>
 #include <string>
 #include <vector>
@@ -34,7 +36,7 @@ struct SplineData {
 class SplineCurve {
  public:
   // The curve, or nullptr with the reason in `why` (knot count, order,
-  // weights, fit points only).
+  // weights, fit points only, a curve too long for its table).
   [[nodiscard]] static std::shared_ptr<const SplineCurve> make(const SplineData& s,
                                                                std::string* why);
 
@@ -51,6 +53,7 @@ class SplineCurve {
   [[nodiscard]] double speed(double u) const;  // |C'(u)|
   [[nodiscard]] double arc(double u0, double u1) const;  // Gauss–Legendre
   void subdivide(double u0, const Vec2& p0, double u1, const Vec2& p1, int depth);
+  [[nodiscard]] bool too_many_nodes() const noexcept { return u_.size() > kSplineMaxNodes; }
 
   SplineData d_;
   std::vector<Eigen::Vector3d> pw_;  // (w·x, w·y, w)

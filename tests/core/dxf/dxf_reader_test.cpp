@@ -2,6 +2,9 @@
 // kind of malformed file — a clear error with file and line, never a crash.
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <cmath>
+
 #include <cmath>
 #include <fstream>
 #include <numbers>
@@ -249,6 +252,29 @@ TEST(DxfReader, SplineKnotCountMismatchIsAnError) {
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.error().code, ErrorCode::DxfUnsupported);
   EXPECT_MENTIONS(r.error(), "5 knots for 4 control points of degree 3; expected 8");
+}
+
+// Found by fuzzing: a drawing whose $INSUNITS said miles made a closed
+// spline of the sample part 24 km long; its arc-length table (a node per
+// 0.1 µm of chord error) took minutes. A table past kSplineMaxNodes is
+// refused, saying why, within a fraction of a second.
+TEST(DxfReader, ASplineKilometresLongIsRefusedNotTabulatedForMinutes) {
+  std::string sp = "0\nSPLINE\n8\n0\n70\n11\n71\n3\n72\n15\n73\n11\n74\n0\n";
+  for (int k = 0; k < 15; ++k) sp += "40\n" + std::to_string(k) + "\n";
+  for (int i = 0; i < 11; ++i) {  // a periodic cubic on a circle of 10 km
+    const double a = 2.0 * 3.141592653589793 * (i % 8) / 8.0;
+    sp += "10\n" + std::to_string(1e7 * std::cos(a)) + "\n20\n" + std::to_string(1e7 * std::sin(a)) + "\n";
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  Result<ReadResult> r = read_dxf_text(test::dxf_doc(sp), "km.dxf");
+  ASSERT_FALSE(r.ok());
+  EXPECT_MENTIONS(r.error(), "are the drawing's units right?");
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(20));  // a hang, not a speed test
+  // the fuzzer's own input reads to an answer
+  std::ifstream in(std::string(LCNC_SOURCE_DIR) + "/tests/fuzz/corpus/dxf/timeout_spline_in_miles.dxf", std::ios::binary);
+  const std::string found((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_FALSE(found.empty());
+  (void)read_dxf_text(found, "miles.dxf");
 }
 
 // Found by fuzzing: a value line longer than dxflib reads (1023 characters)
