@@ -7,7 +7,6 @@
 #include <QHeaderView>
 #include <QTableWidget>
 #include <QVBoxLayout>
-#include <QtConcurrent/QtConcurrentRun>
 
 #include <algorithm>
 #include <fstream>
@@ -31,7 +30,16 @@ const char* const kColumns[] = {"#",        "first entity", "length mm", "points
 }  // namespace
 
 DecompositionPage::DecompositionPage(QWidget* parent)
-    : QWidget(parent), ui_(std::make_unique<Ui::DecompositionPage>()) {
+    : QWidget(parent),
+      ui_(std::make_unique<Ui::DecompositionPage>()),
+      decomposing_(
+          this,
+          [this](const TaskProgress& p) {
+            const int total = p.total;
+            ui_->progressBar->setRange(0, std::max(total, 0));  // 0, 0: busy while reading
+            if (total > 0) ui_->progressBar->setValue(p.done);
+          },
+          [this](const Outcome& o) { present(o); }, std::chrono::milliseconds(50)) {
   ui_->setupUi(this);
   view_ = new DecompositionView(ui_->viewHolder);
   auto* holder = new QVBoxLayout(ui_->viewHolder);
@@ -53,23 +61,15 @@ DecompositionPage::DecompositionPage(QWidget* parent)
     const QString p = QFileDialog::getSaveFileName(this, tr("Export kinematics table"), {}, tr("CSV (*.csv)"));
     if (!p.isEmpty()) export_table(p);
   });
-  connect(&watcher_, &QFutureWatcher<Outcome>::finished, this, [this] { present(watcher_.result()); });
-  progress_timer_.setInterval(50);
-  connect(&progress_timer_, &QTimer::timeout, this, [this] {
-    if (!progress_) return;
-    const int total = progress_->total.load();
-    ui_->progressBar->setRange(0, std::max(total, 0));  // 0, 0: busy while reading
-    if (total > 0) ui_->progressBar->setValue(progress_->done.load());
-  });
 }
 
-DecompositionPage::~DecompositionPage() { watcher_.waitForFinished(); }
+DecompositionPage::~DecompositionPage() = default;
 
 void DecompositionPage::open_file(const QString& path) {
   path_ = path;
   ui_->fileLabel->setText(QFileInfo(path).fileName());
   ui_->fileLabel->setToolTip(path);
-  ui_->decomposeButton->setEnabled(!running_);
+  ui_->decomposeButton->setEnabled(!decomposing_.running());
   show_message(tr("Drawing %1: set the options and decompose.").arg(path), false);
 }
 
@@ -83,23 +83,20 @@ decompose::Options DecompositionPage::options() const {
 }
 
 void DecompositionPage::decompose() {
-  if (running_ || path_.isEmpty()) return;
-  running_ = true;
+  if (decomposing_.running() || path_.isEmpty()) return;
   ui_->decomposeButton->setEnabled(false);
   ui_->progressBar->setVisible(true);
   ui_->progressBar->setRange(0, 0);
   show_message(tr("Decomposing…"), false);
-  progress_ = std::make_shared<Progress>();
-  progress_timer_.start();
-  watcher_.setFuture(QtConcurrent::run(&DecompositionPage::work, path_.toStdString(),
-                                       ui_->stepSpin->value(), options(), progress_));
+  decomposing_.start([path = path_.toStdString(), step = ui_->stepSpin->value(),
+                      opt = options()](TaskProgress& p) { return work(path, step, opt, p); },
+                     -1);
 }
 
 // The worker thread: read, prepare (chain, discretize, check), then each
 // contour on its own so the screen can show how far it is.
-DecompositionPage::Outcome DecompositionPage::work(std::string path, double step_mm,
-                                                   decompose::Options opt,
-                                                   std::shared_ptr<Progress> progress) {
+DecompositionPage::Outcome DecompositionPage::work(const std::string& path, double step_mm,
+                                                   decompose::Options opt, TaskProgress& progress) {
   Outcome o;
   o.step_mm = step_mm;
   o.options = opt;
@@ -114,7 +111,7 @@ DecompositionPage::Outcome DecompositionPage::work(std::string path, double step
   o.notes = read->notes;
   Result<decompose::PreparedPart> prep = decompose::prepare_part(read->drawing, step_mm);
   if (!prep) return fail(prep.error());
-  progress->total = static_cast<int>(prep->contours.size());
+  progress.total = static_cast<int>(prep->contours.size());
   decompose::PartResult all;
   for (std::size_t i = 0; i < prep->contours.size(); ++i) {
     decompose::PreparedPart one;
@@ -124,15 +121,13 @@ DecompositionPage::Outcome DecompositionPage::work(std::string path, double step
     if (!r) return fail(r.error());
     all.points += r->points;
     for (decompose::ContourResult& c : r->contours) all.contours.push_back(std::move(c));
-    progress->done = static_cast<int>(i + 1);
+    progress.done = static_cast<int>(i + 1);
   }
   o.part = std::move(all);
   return o;
 }
 
 void DecompositionPage::present(const Outcome& o) {
-  running_ = false;
-  progress_timer_.stop();
   ui_->progressBar->setVisible(false);
   ui_->decomposeButton->setEnabled(!path_.isEmpty());
   if (o.error) {
@@ -235,7 +230,7 @@ bool DecompositionPage::export_table(const QString& path) {
   return true;
 }
 
-bool DecompositionPage::wait_done(int timeout_ms) { return wait_while(running_, timeout_ms); }
+bool DecompositionPage::wait_done(int timeout_ms) { return decomposing_.wait(timeout_ms); }
 
 void DecompositionPage::show_message(const QString& text, bool error) { set_message(ui_->messageLabel, text, error); }
 

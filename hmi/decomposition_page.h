@@ -8,11 +8,8 @@
 // decomposition_page.ui.
 #pragma once
 
-#include <QFutureWatcher>
-#include <QTimer>
 #include <QWidget>
 
-#include <atomic>
 #include <memory>
 #include <optional>
 #include <string>
@@ -21,6 +18,7 @@
 #include "common/error.h"
 #include "decompose/decompose_options.h"
 #include "decompose/part_decomposition.h"
+#include "hmi/background_task.h"
 
 class QTableWidget;
 
@@ -46,7 +44,7 @@ class DecompositionPage : public QWidget {
   void decompose();
   // Waits (processing events) until the decomposition started last is shown.
   bool wait_done(int timeout_ms = 30000);
-  [[nodiscard]] bool busy() const noexcept { return running_; }
+  [[nodiscard]] bool busy() const noexcept { return decomposing_.running(); }
 
   [[nodiscard]] const decompose::PartResult* result() const noexcept {
     return part_ ? &*part_ : nullptr;
@@ -67,12 +65,9 @@ class DecompositionPage : public QWidget {
     double step_mm = 0;
     decompose::Options options{};
   };
-  struct Progress {
-    std::atomic<int> total{-1};  // contours, −1 while the drawing is read
-    std::atomic<int> done{0};
-  };
-  static Outcome work(std::string path, double step_mm, decompose::Options opt,
-                      std::shared_ptr<Progress> progress);
+  // progress: contours done of total (−1 while the drawing is read)
+  static Outcome work(const std::string& path, double step_mm, decompose::Options opt,
+                      TaskProgress& progress);
   void present(const Outcome& o);
   void show_message(const QString& text, bool error);
   void fill_table();
@@ -82,10 +77,7 @@ class DecompositionPage : public QWidget {
   QString path_;
   std::optional<decompose::PartResult> part_;
   decompose::Options shown_options_{};
-  bool running_ = false;
-  std::shared_ptr<Progress> progress_;
-  QFutureWatcher<Outcome> watcher_;
-  QTimer progress_timer_;
+  BackgroundTask<Outcome> decomposing_;
 };
 
 }  // namespace lcnc::hmi

@@ -5,7 +5,6 @@
 #include <QElapsedTimer>
 #include <QHeaderView>
 #include <QTableWidget>
-#include <QtConcurrent/QtConcurrentRun>
 
 #include <filesystem>
 
@@ -22,7 +21,14 @@ enum Column { kHole, kX, kY, kZ, kStored, kDistance, kOffset, kStatus, kColumns 
 FocalPage::FocalPage(ProcessDatabase& db, std::string shm_name, std::optional<drivers::Endpoint> sensor,
                      QWidget* parent)
     : QWidget(parent), ui_(std::make_unique<Ui::FocalPage>()), db_(db), shm_name_(std::move(shm_name)),
-      sensor_(std::move(sensor)) {
+      sensor_(std::move(sensor)),
+      measuring_(
+          this,
+          [this](const TaskProgress& p) {
+            ui_->progressBar->setRange(0, p.total);
+            ui_->progressBar->setValue(p.done);
+          },
+          [this](const std::vector<FocalReading>& r) { present(r); }) {
   ui_->setupUi(this);
   QTableWidget* t = ui_->holeTable;
   t->setColumnCount(kColumns);
@@ -36,25 +42,12 @@ FocalPage::FocalPage(ProcessDatabase& db, std::string shm_name, std::optional<dr
     for (int r = 0; r < ui_->holeTable->rowCount(); ++r) ui_->holeTable->item(r, kHole)->setCheckState(Qt::Checked);
   });
   connect(ui_->measureButton, &QPushButton::clicked, this, [this] { measure(); });
-  connect(ui_->cancelButton, &QPushButton::clicked, this, [this] {
-    if (progress_) progress_->cancel = true;
-  });
+  connect(ui_->cancelButton, &QPushButton::clicked, this, [this] { measuring_.cancel(); });
   connect(ui_->saveButton, &QPushButton::clicked, this, [this] { save(); });
-  connect(&watcher_, &QFutureWatcher<std::vector<FocalReading>>::finished, this,
-          [this] { present(watcher_.result()); });
-  progress_timer_.setInterval(100);
-  connect(&progress_timer_, &QTimer::timeout, this, [this] {
-    if (!progress_) return;
-    ui_->progressBar->setRange(0, progress_->total.load());
-    ui_->progressBar->setValue(progress_->done.load());
-  });
   reload();
 }
 
-FocalPage::~FocalPage() {
-  if (progress_) progress_->cancel = true;
-  watcher_.waitForFinished();
-}
+FocalPage::~FocalPage() = default;
 
 void FocalPage::reload() {
   Result<std::vector<HoleRecord>> holes = db_.holes();
@@ -86,7 +79,7 @@ void FocalPage::reload() {
 
 void FocalPage::showEvent(QShowEvent* event) {
   QWidget::showEvent(event);
-  if (!running_ && readings_.empty()) reload();
+  if (!measuring_.running() && readings_.empty()) reload();
 }
 
 void FocalPage::select(const std::vector<std::uint32_t>& holes) {
@@ -104,7 +97,7 @@ std::vector<HoleRecord> FocalPage::ticked() const {
 }
 
 void FocalPage::measure() {
-  if (running_) return;
+  if (measuring_.running()) return;
   const std::vector<HoleRecord> holes = ticked();
   if (holes.empty()) {
     show_message(tr("Tick the holes to measure first."), true);
@@ -114,22 +107,18 @@ void FocalPage::measure() {
     show_message(tr("No displacement sensor configured."), true);
     return;
   }
-  running_ = true;
-  progress_ = std::make_shared<Progress>();
-  progress_->total = static_cast<int>(holes.size());
   ui_->measureButton->setEnabled(false);
   ui_->saveButton->setEnabled(false);
   ui_->cancelButton->setEnabled(true);
   ui_->progressBar->setVisible(true);
   ui_->progressBar->setRange(0, static_cast<int>(holes.size()));
   ui_->progressBar->setValue(0);
-  progress_timer_.start();
   show_message(tr("Measuring %n hole(s)…", nullptr, static_cast<int>(holes.size())), false);
   FocalConfig config;
   config.standoff_mm = ui_->standoffSpin->value();
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / ("lasercnc_hmi_" + std::to_string(QCoreApplication::applicationPid()));
-  watcher_.setFuture(QtConcurrent::run([holes, config, dir, shm = shm_name_, ep = *sensor_, p = progress_] {
+  measuring_.start([holes, config, dir, shm = shm_name_, ep = *sensor_](TaskProgress& p) {
     Result<std::unique_ptr<ModbusDistanceSensor>> sensor = ModbusDistanceSensor::connect(ep, 16);
     if (!sensor) {
       std::vector<FocalReading> none;
@@ -142,13 +131,11 @@ void FocalPage::measure() {
       return none;
     }
     MachineMover mover(shm, dir);
-    return run_focal(holes, mover, **sensor, config, [p](int done, int) { p->done = done; }, &p->cancel);
-  }));
+    return run_focal(holes, mover, **sensor, config, [&p](int done, int) { p.done = done; }, &p.cancel);
+  }, static_cast<int>(holes.size()));
 }
 
 void FocalPage::present(const std::vector<FocalReading>& readings) {
-  running_ = false;
-  progress_timer_.stop();
   ui_->progressBar->setVisible(false);
   ui_->measureButton->setEnabled(true);
   ui_->cancelButton->setEnabled(false);
@@ -190,7 +177,7 @@ bool FocalPage::save() {
   return true;
 }
 
-bool FocalPage::wait_done(int timeout_ms) { return wait_while(running_, timeout_ms); }
+bool FocalPage::wait_done(int timeout_ms) { return measuring_.wait(timeout_ms); }
 
 void FocalPage::show_message(const QString& text, bool error) { set_message(ui_->messageLabel, text, error); }
 

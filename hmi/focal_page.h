@@ -7,17 +7,15 @@
 // Layout and object names in focal_page.ui.
 #pragma once
 
-#include <QFutureWatcher>
-#include <QTimer>
 #include <QWidget>
 
-#include <atomic>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "drivers/modbus/modbus_types.h"
+#include "hmi/background_task.h"
 #include "hmi/focal_workflow.h"
 #include "hmi/process_db.h"
 
@@ -58,10 +56,6 @@ class FocalPage : public QWidget {
   void showEvent(QShowEvent* event) override;
 
  private:
-  struct Progress {
-    std::atomic<int> done{0}, total{0};
-    std::atomic<bool> cancel{false};
-  };
   void present(const std::vector<FocalReading>& readings);
   void show_message(const QString& text, bool error);
   [[nodiscard]] std::vector<HoleRecord> ticked() const;
@@ -72,10 +66,7 @@ class FocalPage : public QWidget {
   std::optional<drivers::Endpoint> sensor_;
   std::vector<HoleRecord> holes_;
   std::vector<FocalReading> readings_;
-  bool running_ = false;
-  std::shared_ptr<Progress> progress_;
-  QFutureWatcher<std::vector<FocalReading>> watcher_;
-  QTimer progress_timer_;
+  BackgroundTask<std::vector<FocalReading>> measuring_;
 };
 
 }  // namespace lcnc::hmi

@@ -5,7 +5,6 @@
 #include <QHeaderView>
 #include <QMessageBox>
 #include <QTableWidget>
-#include <QtConcurrent/QtConcurrentRun>
 
 #include <cmath>
 #include <filesystem>
@@ -26,7 +25,10 @@ QString xyz(const Vec3& v) {
 
 MeasurePage::MeasurePage(ProcessDatabase& db, std::string shm_name, std::string probe_serial, QWidget* parent)
     : QWidget(parent), ui_(std::make_unique<Ui::MeasurePage>()), db_(db), shm_name_(std::move(shm_name)),
-      probe_serial_(std::move(probe_serial)) {
+      probe_serial_(std::move(probe_serial)),
+      measuring_(
+          this, [this](const TaskProgress& p) { ui_->progressBar->setValue(p.done); },
+          [this](const MeasureOutcome& o) { present(o); }) {
   ui_->setupUi(this);
   QTableWidget* t = ui_->pointTable;
   t->setColumnCount(kColumns);
@@ -36,20 +38,13 @@ MeasurePage::MeasurePage(ProcessDatabase& db, std::string shm_name, std::string 
   t->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
   t->horizontalHeader()->setStretchLastSection(true);
   connect(ui_->measureButton, &QPushButton::clicked, this, [this] { measure(); });
-  connect(ui_->cancelButton, &QPushButton::clicked, this, [this] {
-    if (progress_) progress_->cancel = true;
-  });
+  connect(ui_->cancelButton, &QPushButton::clicked, this, [this] { measuring_.cancel(); });
   connect(ui_->applyButton, &QPushButton::clicked, this, [this] {
     if (QMessageBox::question(this, tr("Apply the measured placement"),
                               tr("Move every hole of the process database onto the measured placement? "
                                  "Their X, Y, Z, A and C are read as drawing coordinates.")) ==
         QMessageBox::Yes)
       apply();
-  });
-  connect(&watcher_, &QFutureWatcher<MeasureOutcome>::finished, this, [this] { present(watcher_.result()); });
-  progress_timer_.setInterval(100);
-  connect(&progress_timer_, &QTimer::timeout, this, [this] {
-    if (progress_) ui_->progressBar->setValue(progress_->done.load());
   });
   connect(ui_->bestFitCheck, &QCheckBox::toggled, this, [this] { show_plan(); });
   show_plan();
@@ -74,10 +69,7 @@ void MeasurePage::show_plan() {
   }
 }
 
-MeasurePage::~MeasurePage() {
-  if (progress_) progress_->cancel = true;
-  watcher_.waitForFinished();
-}
+MeasurePage::~MeasurePage() = default;
 
 MeasurePlan MeasurePage::plan() const {
   MeasurePlan p;
@@ -90,24 +82,21 @@ MeasurePlan MeasurePage::plan() const {
 }
 
 void MeasurePage::measure() {
-  if (running_) return;
+  if (measuring_.running()) return;
   if (probe_serial_.empty()) {
     show_message(tr("No 3D probe configured."), true);
     return;
   }
-  running_ = true;
-  progress_ = std::make_shared<Progress>();
   ui_->measureButton->setEnabled(false);
   ui_->applyButton->setEnabled(false);
   ui_->cancelButton->setEnabled(true);
   ui_->progressBar->setVisible(true);
   ui_->progressBar->setRange(0, plan().best_fit ? 10 : 6);
   ui_->progressBar->setValue(0);
-  progress_timer_.start();
   show_message(tr("Measuring: the machine moves to each point…"), false);
   const std::filesystem::path dir = std::filesystem::temp_directory_path() /
                                     ("lasercnc_hmi_" + std::to_string(QCoreApplication::applicationPid()));
-  watcher_.setFuture(QtConcurrent::run([plan = plan(), dir, shm = shm_name_, dev = probe_serial_, p = progress_] {
+  measuring_.start([plan = plan(), dir, shm = shm_name_, dev = probe_serial_](TaskProgress& p) {
     Result<std::unique_ptr<SerialPointProbe>> probe = SerialPointProbe::open(dev);
     if (!probe) {
       MeasureOutcome o;
@@ -115,13 +104,11 @@ void MeasurePage::measure() {
       return o;
     }
     MachineMover mover(shm, dir);
-    return run_measurement(plan, mover, **probe, [p](int done, int) { p->done = done; }, &p->cancel);
-  }));
+    return run_measurement(plan, mover, **probe, [&p](int done, int) { p.done = done; }, &p.cancel);
+  });
 }
 
 void MeasurePage::present(const MeasureOutcome& o) {
-  running_ = false;
-  progress_timer_.stop();
   ui_->progressBar->setVisible(false);
   ui_->measureButton->setEnabled(true);
   ui_->cancelButton->setEnabled(false);
@@ -193,7 +180,7 @@ bool MeasurePage::apply() {
   return true;
 }
 
-bool MeasurePage::wait_done(int timeout_ms) { return wait_while(running_, timeout_ms); }
+bool MeasurePage::wait_done(int timeout_ms) { return measuring_.wait(timeout_ms); }
 
 void MeasurePage::show_message(const QString& text, bool error) { set_message(ui_->messageLabel, text, error); }
 

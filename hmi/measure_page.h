@@ -8,15 +8,13 @@
 // or none). Layout and object names in measure_page.ui.
 #pragma once
 
-#include <QFutureWatcher>
-#include <QTimer>
 #include <QWidget>
 
-#include <atomic>
 #include <memory>
 #include <optional>
 #include <string>
 
+#include "hmi/background_task.h"
 #include "hmi/measure_workflow.h"
 #include "hmi/process_db.h"
 
@@ -52,10 +50,6 @@ class MeasurePage : public QWidget {
   void finished(bool ok);
 
  private:
-  struct Progress {
-    std::atomic<int> done{0};
-    std::atomic<bool> cancel{false};
-  };
   void present(const MeasureOutcome& o);
   void show_plan();
   void show_message(const QString& text, bool error);
@@ -64,10 +58,7 @@ class MeasurePage : public QWidget {
   ProcessDatabase& db_;
   std::string shm_name_, probe_serial_;
   std::optional<MeasureOutcome> outcome_;
-  bool running_ = false;
-  std::shared_ptr<Progress> progress_;
-  QFutureWatcher<MeasureOutcome> watcher_;
-  QTimer progress_timer_;
+  BackgroundTask<MeasureOutcome> measuring_;
 };
 
 }  // namespace lcnc::hmi

@@ -3,7 +3,6 @@
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QVBoxLayout>
-#include <QtConcurrent/QtConcurrentRun>
 
 #include "hmi/page_support.h"
 #include "hmi/toolpath_view.h"
@@ -12,8 +11,13 @@
 namespace lcnc::hmi {
 
 ProgramPage::ProgramPage(MachineConfig machine, std::string shm_name, QWidget* parent)
-    : QWidget(parent), ui_(std::make_unique<Ui::ProgramPage>()), machine_(std::move(machine)),
-      link_(std::move(shm_name)) {
+    : QWidget(parent),
+      ui_(std::make_unique<Ui::ProgramPage>()),
+      machine_(std::move(machine)),
+      link_(std::move(shm_name)),
+      planning_(
+          this, [this](const TaskProgress& p) { ui_->progressBar->setValue(p.done); },
+          [this](const Outcome& o) { present(o); }) {
   ui_->setupUi(this);
   view_ = new ToolpathView(ui_->viewHolder);
   auto* l = new QVBoxLayout(ui_->viewHolder);
@@ -24,27 +28,18 @@ ProgramPage::ProgramPage(MachineConfig machine, std::string shm_name, QWidget* p
     if (!p.isEmpty()) open_file(p);
   });
   connect(ui_->loadButton, &QPushButton::clicked, this, [this] { load(); });
-  connect(&watcher_, &QFutureWatcher<Outcome>::finished, this, [this] { present(watcher_.result()); });
-  connect(&timer_, &QTimer::timeout, this, [this] {
-    refresh();
-    if (progress_ && running_) ui_->progressBar->setValue(progress_->permille.load());
-  });
+  connect(&timer_, &QTimer::timeout, this, [this] { refresh(); });
   timer_.start(100);
 }
 
-ProgramPage::~ProgramPage() {
-  if (progress_) progress_->cancel = true;
-  watcher_.waitForFinished();
-}
+ProgramPage::~ProgramPage() = default;
 
 void ProgramPage::open_file(const QString& path) {
-  if (running_) return;
+  if (planning_.running()) return;
   program_ = path;
   ui_->fileLabel->setText(QFileInfo(path).fileName());
   ui_->fileLabel->setToolTip(path);
   ui_->loadButton->setEnabled(false);
-  running_ = true;
-  progress_ = std::make_shared<Progress>();
   ui_->progressBar->setVisible(true);
   ui_->progressBar->setRange(0, 1000);
   ui_->progressBar->setValue(0);
@@ -54,17 +49,18 @@ void ProgramPage::open_file(const QString& path) {
   if (link_.poll())
     if (const std::optional<shm::Status> st = link_.status())
       for (int i = 0; i < kAxisCount; ++i) start[i] = st->pos[i];
-  watcher_.setFuture(QtConcurrent::run([m = machine_, p = path.toStdString(), start, pr = progress_] {
-    Outcome o;
-    Result<Toolpath> t = plan_toolpath(p, m, start, [pr](double f) { pr->permille = static_cast<int>(f * 1000); },
-                                       &pr->cancel);
-    if (t) o.path = std::move(t).value(); else o.error = t.error();
-    return o;
-  }));
+  planning_.start(
+      [m = machine_, p = path.toStdString(), start](TaskProgress& pr) {
+        Outcome o;
+        Result<Toolpath> t =
+            plan_toolpath(p, m, start, [&pr](double f) { pr.done = static_cast<int>(f * 1000); }, &pr.cancel);
+        if (t) o.path = std::move(t).value(); else o.error = t.error();
+        return o;
+      },
+      1000);
 }
 
 void ProgramPage::present(const Outcome& o) {
-  running_ = false;
   ui_->progressBar->setVisible(false);
   if (o.error) {
     path_.reset();
@@ -104,7 +100,7 @@ void ProgramPage::refresh() {
   view_->set_position(at);
 }
 
-bool ProgramPage::wait_done(int timeout_ms) { return wait_while(running_, timeout_ms); }
+bool ProgramPage::wait_done(int timeout_ms) { return planning_.wait(timeout_ms); }
 void ProgramPage::show_message(const QString& text, bool error) { set_message(ui_->messageLabel, text, error); }
 QString ProgramPage::message() const { return ui_->messageLabel->text(); }
 QString ProgramPage::summary() const { return ui_->summaryLabel->text(); }

@@ -8,15 +8,14 @@
 // object names in program_page.ui.
 #pragma once
 
-#include <QFutureWatcher>
 #include <QTimer>
 #include <QWidget>
 
-#include <atomic>
 #include <memory>
 #include <optional>
 #include <string>
 
+#include "hmi/background_task.h"
 #include "hmi/machine_link.h"
 #include "hmi/toolpath.h"
 #include "machine/machine_config.h"
@@ -54,10 +53,6 @@ class ProgramPage : public QWidget {
     std::optional<Toolpath> path;
     std::optional<Diagnostic> error;
   };
-  struct Progress {
-    std::atomic<int> permille{0};
-    std::atomic<bool> cancel{false};
-  };
   void present(const Outcome& o);
   void show_message(const QString& text, bool error);
 
@@ -67,10 +62,8 @@ class ProgramPage : public QWidget {
   ToolpathView* view_ = nullptr;
   QString program_;
   std::optional<Toolpath> path_;
-  bool running_ = false;
-  std::shared_ptr<Progress> progress_;
-  QFutureWatcher<Outcome> watcher_;
-  QTimer timer_;
+  QTimer timer_;  // the machine's position
+  BackgroundTask<Outcome> planning_;
 };
 
 }  // namespace lcnc::hmi
