@@ -9,6 +9,7 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include "common/share_path.h"
 #include "drivers/sim_machine.h"
 #include "gcode/program_reader.h"
 #include "path/deviation_meter.h"
@@ -166,10 +167,7 @@ const char* rt_command_name(rt::RtCommandType t) {
   return "?";
 }
 
-std::string shipped_machine_file(const std::string& name) {
-  const char* share = std::getenv("LASERCNC_SHARE");
-  return std::string(share != nullptr ? share : LCNC_SHARE_DIR) + "/machines/" + name + ".toml";
-}
+std::string shipped_machine_file(const std::string& name) { return share_path("machines/" + name + ".toml"); }
 
 std::string default_machine_file() { return shipped_machine_file("default"); }
 

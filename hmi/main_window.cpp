@@ -12,14 +12,14 @@
 #include "hmi/focal_page.h"
 #include "hmi/measure_page.h"
 #include "hmi/machine_page.h"
+#include "common/share_path.h"
 #include "hmi/process_db_page.h"
 #include "hmi/program_page.h"
 
 namespace lcnc::hmi {
 
 Result<MachineConfig> shipped_machine() {
-  const char* share = std::getenv("LASERCNC_SHARE");
-  return load_machine_config(std::string(share != nullptr ? share : LCNC_SHARE_DIR) + "/machines/default.toml");
+  return load_machine_config(share_path("machines/default.toml"));
 }
 
 MainWindow::MainWindow(ProcessDatabase& db, const std::string& shm_name,

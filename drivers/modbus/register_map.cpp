@@ -3,6 +3,8 @@
 // (by name, or by index while the name is unknown) and what was expected.
 #include "drivers/modbus/register_map.h"
 
+#include "common/share_path.h"
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -401,7 +403,7 @@ Result<RegisterMap> load_register_map(const std::string& path) {
 }
 
 std::string default_register_map_path() {
-  return std::string(LCNC_SHARE_DIR) + "/modbus/register_map.toml";
+  return share_path("modbus/register_map.toml");
 }
 
 Result<DeviceMap> shipped_device(std::string_view name) {
