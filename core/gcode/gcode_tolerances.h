@@ -35,4 +35,8 @@ inline constexpr double kArcMinRadiusMm = 1e-6;
 inline constexpr double kCodeTenthsTol = 1e-3;
 inline constexpr double kIntegerTol = 1e-4;
 
+// Most full turns one arc word may add (P of G2/G3): a helix of 100,000
+// turns is beyond any hole; a larger P is a typo.
+inline constexpr double kMaxArcTurns = 100000.0;
+
 }  // namespace lcnc::gcode

@@ -454,10 +454,11 @@ bool Interpreter::arc(const Pose& end_in, SegmentBuffer& out) {
   if (b.has('P')) {
     const double p = b['P'];
     const double turns = std::round(p);
-    if (std::fabs(p - turns) > kIntegerTol || turns < 1.0) {
+    // (bounded before the conversion: a P of 1e18 is no number of turns)
+    if (std::fabs(p - turns) > kIntegerTol || turns < 1.0 || turns > kMaxArcTurns) {
       return fail(ErrorCode::GcodeBadValue, b.span('P'),
-                  "found " + quoted(b.span('P')) +
-                      " on an arc; expected P as a whole number of turns >= 1");
+                  "found " + quoted(b.span('P')) + " on an arc; expected P as a whole number of turns from 1 to " +
+                      std::to_string(static_cast<int>(kMaxArcTurns)));
     }
     extra_turns = static_cast<std::uint32_t>(turns) - 1;
   }

@@ -188,6 +188,11 @@ TEST(ProgramReader, ArcTurnsMustBeAPositiveWholeNumber) {
   EXPECT_MENTIONS(d, "whole number of turns");
   expect_error("G2 X100 Y100 I10 P1.5 F600\n", ErrorCode::GcodeBadValue, 1, 18,
                start_at(100, 100, 10));
+  // found by libFuzzer (UBSan): a P too large for any count of turns was
+  // converted to an integer before it was checked
+  d = expect_error("G2 X100 Y100 I10 P3482879571417046128 F600\n", ErrorCode::GcodeBadValue, 1, 18,
+                   start_at(100, 100, 10));
+  EXPECT_MENTIONS(d, "turns from 1 to 100000");
 }
 
 TEST(ProgramReader, CentreWordsWithoutAnArcAreError) {
