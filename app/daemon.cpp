@@ -56,7 +56,6 @@ struct Daemon::Impl {
 
   // the job
   std::string program;  // loaded, checked
-  ProgramSummary summary{};
   bool job_active = false;
   bool start_pending = false;  // planning ahead, the kernel not yet started
   bool stop_sent = false;      // the planner stopped short of a soft limit
@@ -109,21 +108,31 @@ struct Daemon::Impl {
   static bool is_hole_table(const std::string& path) {
     return path.size() > 4 && path.compare(path.size() - 4, 4, ".csv") == 0;
   }
-  std::shared_ptr<const std::vector<Segment>> drill_segments;  // the drilling job, when one is loaded
+  // A program checked from where the machine stands: its summary, and for
+  // a drilling job the segments built from its table.
+  struct CheckedJob {
+    ProgramSummary summary;
+    std::shared_ptr<const std::vector<Segment>> drill_segments;  // empty for G-code
+  };
+  CheckedJob loaded;  // the program loaded (`program`), as last checked
 
   // Checks the program (or builds and checks the drilling job) from where
-  // the machine stands now.
-  Result<ProgramSummary> check(const std::string& path) {
+  // the machine stands now; changes nothing of what is loaded.
+  Result<CheckedJob> check(const std::string& path) const {
     ReaderOptions ropt;
     ropt.start = position();
+    CheckedJob out;
     if (!is_hole_table(path)) {
-      drill_segments.reset();
-      return check_job_program(path, machine, ropt);
+      Result<ProgramSummary> s = check_job_program(path, machine, ropt);
+      if (!s) return s.error();
+      out.summary = *s;
+      return out;
     }
     Result<PreparedDrill> d = prepare_drill_job(path, machine, ropt.start);
     if (!d) return d.error();
-    drill_segments = std::make_shared<const std::vector<Segment>>(std::move(d->job.segments));
-    return d->summary;
+    out.summary = d->summary;
+    out.drill_segments = std::make_shared<const std::vector<Segment>>(std::move(d->job.segments));
+    return out;
   }
 
   // Executes a command (from the shm ring or the Modbus slave) and says what
@@ -139,20 +148,21 @@ struct Daemon::Impl {
         if (job_active) {
           return refuse("load refused: a job is running (stop it first)");
         }
-        Result<ProgramSummary> s = check(c.text);
-        if (!s) {
-          return Ack{false, s.error().code, "load: " + s.error().to_string()};
+        Result<CheckedJob> checked = check(c.text);
+        if (!checked) {  // what was loaded before stays loaded
+          return Ack{false, checked.error().code, "load: " + checked.error().to_string()};
         }
         program = c.text;
-        summary = *s;
+        loaded = std::move(checked).value();
+        const ProgramSummary& s = loaded.summary;
         copy_text(job.program, program);
-        job.lines = s->lines;
-        job.segments = s->segments;
+        job.lines = s.lines;
+        job.segments = s.segments;
         job.progress = 0.0;
         char msg[256];
         std::snprintf(msg, sizeof msg, "loaded %s: %u lines, %llu segments, path %.3f mm",
-                      program.c_str(), s->lines, static_cast<unsigned long long>(s->segments),
-                      s->path_length_mm);
+                      program.c_str(), s.lines, static_cast<unsigned long long>(s.segments),
+                      s.path_length_mm);
         return Ack{true, ErrorCode::Internal, msg};
       }
       case shm::CommandType::Start: {
@@ -161,13 +171,13 @@ struct Daemon::Impl {
           return refuse(std::string("start refused: the machine is ") + state_name(st));
         // checked again: the machine may have moved (jog, home) since the
         // load, or the file changed
-        Result<ProgramSummary> s = check(program);
-        if (!s) return Ack{false, s.error().code, "start: " + s.error().to_string()};
-        summary = *s;
+        Result<CheckedJob> checked = check(program);
+        if (!checked) return Ack{false, checked.error().code, "start: " + checked.error().to_string()};
+        loaded = std::move(checked).value();
         ReaderOptions ropt;
         ropt.start = position();
-        if (drill_segments) {
-          feed->start(drill_segments, ropt.start, program);
+        if (loaded.drill_segments) {
+          feed->start(loaded.drill_segments, ropt.start, program);
         } else {
           feed->start(program, ropt);
         }
@@ -278,8 +288,8 @@ struct Daemon::Impl {
       kernel->command({rt::RtCommandType::StartJob, 0, 0.0});
     }
     if (feed->stopped_short() && !stop_sent) stop_sent = kernel->command({rt::RtCommandType::Stop, 0, 0.0});
-    if (summary.segments > 0)
-      job.progress = std::min(1.0, kernel->current_segment() / static_cast<double>(summary.segments));
+    if (loaded.summary.segments > 0)
+      job.progress = std::min(1.0, kernel->current_segment() / static_cast<double>(loaded.summary.segments));
     const std::uint32_t ended = kernel->jobs_ended();
     const bool estopped = kernel->state() == shm::MachineState::EStop;
     if (ended == jobs_ended_seen && !estopped) return;

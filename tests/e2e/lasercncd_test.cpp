@@ -136,6 +136,15 @@ TEST(Lasercncd, RunsAHoleTableAsADrillingJob) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("bad_holes.csv:3"), std::string::npos) << r.err;
   EXPECT_NE(status(shm)["program"].get<std::string>().find("holes.csv"), std::string::npos);
+  // nor does a bad G-code program unload it: the next start drills the table again
+  const fs::path bad_ngc = write_program("bad.ngc", "G21 G90\nG1 X10 F100 Q\n");
+  r = lasercnc("send load " + bad_ngc.string() + " --shm " + shm);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("bad.ngc:2:13"), std::string::npos) << r.err;
+  r = lasercnc("send start --wait --shm " + shm);
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("job done"), std::string::npos) << r.out;
+  EXPECT_EQ(status(shm)["jobs_ended"], 2);
   EXPECT_EQ(d.stop(SIGTERM), 0) << d.log();
 }
 
