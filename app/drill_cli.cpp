@@ -200,24 +200,20 @@ int drill_main(int argc, char** argv) {
   }
   // Hole k runs over segments [first_segment, end_segment): its start, its
   // settle dwell (the head's block), its end.
-  std::size_t next = 0;  // the hole whose start is awaited
-  std::optional<std::size_t> current;
-  std::vector<bool> head_begun(records.size(), false);
-  opt.on_segment = [&](std::uint32_t segment, double t) {
-    while (next < job->holes.size() && segment >= job->holes[next].first_segment) {
-      if (current) {
-        records[*current].end_s = t;
-        if (head) head->end_hole(*current);
+  DrillProgress moments(job->holes);
+  const auto take = [&](const std::vector<DrillMoment>& ms, double t) {
+    for (const DrillMoment& m : ms) {
+      switch (m.kind) {
+        case DrillMoment::Kind::Start: records[m.hole].start_s = t; break;
+        case DrillMoment::Kind::Head: if (head) head->begin_hole(job->holes[m.hole], m.hole); break;
+        case DrillMoment::Kind::End:
+          records[m.hole].end_s = t;
+          if (head) head->end_hole(m.hole);
+          break;
       }
-      current = next;
-      records[next].start_s = t;
-      ++next;
-    }
-    if (current && head && segment == job->holes[*current].head_segment && !head_begun[*current]) {
-      head_begun[*current] = true;
-      head->begin_hole(job->holes[*current], *current);
     }
   };
+  opt.on_segment = [&](std::uint32_t segment, double t) { take(moments.advance(segment), t); };
   opt.program = table;
   opt.segments = std::make_shared<const std::vector<Segment>>(job->segments);
   opt.summary = *summary;
@@ -233,10 +229,7 @@ int drill_main(int argc, char** argv) {
     std::fprintf(stderr, "%s\n", report.error().to_string().c_str());
     return report.error().code == ErrorCode::Usage ? 2 : 1;
   }
-  if (current && records[*current].end_s < 0.0) {
-    records[*current].end_s = report->cycle_time_s;
-    if (head) head->end_hole(*current);
-  }
+  take(moments.finish(), report->cycle_time_s);
   drivers::MasterCounters head_counters;
   std::string head_who;
   if (head) {

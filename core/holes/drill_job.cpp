@@ -105,4 +105,34 @@ Result<PreparedDrill> prepare_drill_job(const std::string& table, const MachineC
   return p;
 }
 
+std::vector<DrillMoment> DrillProgress::advance(std::size_t segment) {
+  std::vector<DrillMoment> out;
+  for (;;) {
+    if (has_current_ && !head_done_ && segment >= holes_[current_].head_segment) {
+      head_done_ = true;
+      out.push_back({DrillMoment::Kind::Head, current_});
+    }
+    if (next_ >= holes_.size() || segment < holes_[next_].first_segment) return out;
+    close_current(out);
+    current_ = next_++;
+    has_current_ = true;
+    head_done_ = false;
+    out.push_back({DrillMoment::Kind::Start, current_});
+  }
+}
+
+std::vector<DrillMoment> DrillProgress::finish() {
+  std::vector<DrillMoment> out;
+  close_current(out);
+  return out;
+}
+
+void DrillProgress::close_current(std::vector<DrillMoment>& out) {
+  if (!has_current_) return;
+  if (!head_done_) out.push_back({DrillMoment::Kind::Head, current_});
+  out.push_back({DrillMoment::Kind::End, current_});
+  has_current_ = false;
+  head_done_ = true;
+}
+
 }  // namespace lcnc

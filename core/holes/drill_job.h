@@ -51,6 +51,34 @@ struct DrillJob {
   std::vector<DrillStep> holes;
 };
 
+// The holes' moments as the job runs, from the segment the kernel is on:
+// a hole starts at its travel rapid, its head block is due at its settle
+// dwell, it ends where the next starts (the last: at the job's end, finish()).
+// The segment is seen when a thread looks, so segments pass unseen: every
+// moment up to the one seen is handed out, in order, none twice, none
+// skipped — a hole whose dwell passed unseen still gets its head block.
+struct DrillMoment {
+  enum class Kind : std::uint8_t { Start, Head, End };
+  Kind kind;
+  std::size_t hole;  // index into DrillJob::holes
+};
+
+class DrillProgress {
+ public:
+  explicit DrillProgress(const std::vector<DrillStep>& holes) : holes_(holes) {}
+  // The moments reached by `segment` since the last call.
+  [[nodiscard]] std::vector<DrillMoment> advance(std::size_t segment);
+  // The job has ended: the moments still due (the last hole's head and end).
+  [[nodiscard]] std::vector<DrillMoment> finish();
+
+ private:
+  void close_current(std::vector<DrillMoment>& out);
+  const std::vector<DrillStep>& holes_;
+  std::size_t next_ = 0;  // the hole whose start is awaited
+  bool has_current_ = false, head_done_ = false;
+  std::size_t current_ = 0;
+};
+
 // `start`: where the machine stands (joints). Errors name the hole.
 [[nodiscard]] Result<DrillJob> build_drill_job(const std::vector<HoleProcessParams>& rows,
                                                const FiveAxisKinematics& kin, const Pose& start,

@@ -41,8 +41,7 @@ struct ModbusSlave::Impl {
   std::thread thread;
   std::atomic<bool> running{false};
 
-  std::atomic<std::uint64_t> requests{0}, exceptions{0}, refused{0}, crc_errors{0},
-      connections{0};
+  std::atomic<std::uint64_t> connections{0};
 
   Impl(DeviceMap map, SlaveConfig c) : cfg(std::move(c)), handler(std::move(map)), bank(handler.bank()) {}
 
@@ -117,30 +116,10 @@ void ModbusSlave::Impl::close_all() noexcept {
 
 void ModbusSlave::Impl::serve(int fd) noexcept {
   if (cfg.endpoint.transport == Transport::Tcp) modbus_set_socket(ctx, fd);
-  const Received r = handler.receive_and_answer(ctx, write_hook, &mutex);
-  switch (r.kind) {
-    case Received::Kind::Answered:
-      requests.fetch_add(1, std::memory_order_relaxed);
-      if (r.exception != ModbusException::None) {
-        exceptions.fetch_add(1, std::memory_order_relaxed);
-        if (r.write) refused.fetch_add(1, std::memory_order_relaxed);
-      }
-      return;
-    case Received::Kind::OtherUnit:  // RTU: a frame for another unit
-      return;
-    case Received::Kind::NotARequest:
-      requests.fetch_add(1, std::memory_order_relaxed);
-      exceptions.fetch_add(1, std::memory_order_relaxed);
-      return;
-    case Received::Kind::BadCrc:
-      crc_errors.fetch_add(1, std::memory_order_relaxed);
-      return;
-    case Received::Kind::Broken:
-      if (cfg.endpoint.transport == Transport::Tcp) {  // peer closed or broke the framing
-        ::close(fd);
-        std::erase(clients, fd);
-      }
-      return;
+  const Received r = handler.receive_and_answer(ctx, write_hook, &mutex);  // counts itself
+  if (r.kind == Received::Kind::Broken && cfg.endpoint.transport == Transport::Tcp) {
+    ::close(fd);  // the peer closed or broke the framing
+    std::erase(clients, fd);
   }
 }
 
@@ -255,8 +234,8 @@ bool ModbusSlave::try_with_bank(const std::function<void(RegisterBank&)>& fn) {
 }
 
 SlaveCounters ModbusSlave::counters() const noexcept {
-  return {impl_->requests.load(), impl_->exceptions.load(), impl_->refused.load(),
-          impl_->crc_errors.load(), impl_->connections.load()};
+  const SlaveRequestHandler::Counts c = impl_->handler.counts();
+  return {c.requests, c.exceptions, c.refused, c.crc_errors, impl_->connections.load()};
 }
 
 }  // namespace lcnc::drivers

@@ -4,6 +4,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <string>
@@ -110,6 +111,7 @@ ModbusException check_slave_request(const DeviceMap& map, int header_length, con
 struct SlaveRequestHandler::Impl {
   RegisterBank bank;
   modbus_mapping_t mapping{};
+  std::atomic<std::uint64_t> requests{0}, exceptions{0}, refused{0}, crc_errors{0};
 
   explicit Impl(DeviceMap map) : bank(std::move(map)) {
     mapping.nb_bits = static_cast<int>(bank.bits(Table::Coil).size());
@@ -126,6 +128,10 @@ struct SlaveRequestHandler::Impl {
 SlaveRequestHandler::SlaveRequestHandler(DeviceMap map) : impl_(std::make_unique<Impl>(std::move(map))) {}
 SlaveRequestHandler::~SlaveRequestHandler() = default;
 RegisterBank& SlaveRequestHandler::bank() noexcept { return impl_->bank; }
+
+SlaveRequestHandler::Counts SlaveRequestHandler::counts() const noexcept {
+  return {impl_->requests.load(), impl_->exceptions.load(), impl_->refused.load(), impl_->crc_errors.load()};
+}
 const RegisterBank& SlaveRequestHandler::bank() const noexcept { return impl_->bank; }
 
 Received SlaveRequestHandler::receive_and_answer(modbus_t* ctx, const WriteHook& hook,
@@ -139,11 +145,14 @@ Received SlaveRequestHandler::receive_and_answer(modbus_t* ctx, const WriteHook&
   }
   if (rc < 0) {
     out.kind = errno == EMBBADCRC ? Received::Kind::BadCrc : Received::Kind::Broken;
+    if (out.kind == Received::Kind::BadCrc) impl_->crc_errors.fetch_add(1, std::memory_order_relaxed);
     return out;
   }
+  impl_->requests.fetch_add(1, std::memory_order_relaxed);
   const int hl = modbus_get_header_length(ctx);
   if (rc <= hl || (q[hl] & 0x80u) != 0) {
     out.kind = Received::Kind::NotARequest;
+    impl_->exceptions.fetch_add(1, std::memory_order_relaxed);
     return out;
   }
   out.kind = Received::Kind::Answered;
@@ -156,6 +165,8 @@ Received SlaveRequestHandler::receive_and_answer(modbus_t* ctx, const WriteHook&
     ex = hook(std::span<const RegisterWrite>(writes), impl_->bank);
   out.exception = ex;
   if (ex != ModbusException::None) {
+    impl_->exceptions.fetch_add(1, std::memory_order_relaxed);
+    if (out.write) impl_->refused.fetch_add(1, std::memory_order_relaxed);
     modbus_reply_exception(ctx, q, static_cast<unsigned>(ex));
   } else {
     modbus_reply(ctx, q, rc, &impl_->mapping);  // applies the (checked) write and answers

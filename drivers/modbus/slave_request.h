@@ -67,12 +67,22 @@ class SlaveRequestHandler {
   SlaveRequestHandler(const SlaveRequestHandler&) = delete;
   SlaveRequestHandler& operator=(const SlaveRequestHandler&) = delete;
 
+  // What was received (any thread).
+  struct Counts {
+    std::uint64_t requests = 0;    // well-framed requests, answered or not (fc ≥ 0x80)
+    std::uint64_t exceptions = 0;  // answered with an exception, or not a request
+    std::uint64_t refused = 0;     // writes refused (exceptions 02/03/hook)
+    std::uint64_t crc_errors = 0;  // RTU frames dropped for a bad CRC
+  };
+  [[nodiscard]] Counts counts() const noexcept;
+
   [[nodiscard]] RegisterBank& bank() noexcept;
   [[nodiscard]] const RegisterBank& bank() const noexcept;
 
   // Receives one request on `ctx` (its socket already set) and answers it;
   // `bank_lock`, when given, is held from the check to the reply (not while
-  // waiting for the frame's bytes).
+  // waiting for the frame's bytes). The counts move before the answer goes
+  // out: a peer that has its answer sees them counted.
   Received receive_and_answer(modbus_t* ctx, const WriteHook& hook,
                               std::mutex* bank_lock = nullptr) noexcept;
 

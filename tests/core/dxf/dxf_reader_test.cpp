@@ -271,7 +271,7 @@ TEST(DxfReader, ASplineKilometresLongIsRefusedNotTabulatedForMinutes) {
   EXPECT_MENTIONS(r.error(), "are the drawing's units right?");
   EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(20));  // a hang, not a speed test
   // the fuzzer's own input reads to an answer
-  std::ifstream in(std::string(LCNC_SOURCE_DIR) + "/tests/fuzz/corpus/dxf/timeout_spline_in_miles.dxf", std::ios::binary);
+  std::ifstream in(std::string(LCNC_SOURCE_DIR) + "/tests/data/dxf_regress/spline_in_miles.dxf", std::ios::binary);
   const std::string found((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   ASSERT_FALSE(found.empty());
   (void)read_dxf_text(found, "miles.dxf");

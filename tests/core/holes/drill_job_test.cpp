@@ -134,4 +134,41 @@ TEST(DrillJob, BadRowIsAnErrorNamingTheHole) {
 }
 
 }  // namespace
+
+// The moments of three holes (segments: hole k travels at 10k, settles at
+// 10k + 3): looked at every segment, and looked at seldom — a jump over a
+// dwell, over a whole hole, to the end. Each way every moment comes once,
+// in order; a head block whose dwell passed unseen is still due (it was
+// missed before: a loaded run skipped hole 2's head block).
+TEST(DrillProgress, EveryMomentOnceInOrderHoweverSeldomItIsLookedAt) {
+  std::vector<DrillStep> holes(3);
+  for (std::size_t k = 0; k < 3; ++k) {
+    holes[k].first_segment = 10 * k;
+    holes[k].head_segment = 10 * k + 3;
+    holes[k].end_segment = 10 * k + 9;
+  }
+  using K = DrillMoment::Kind;
+  const std::vector<std::pair<K, std::size_t>> expected = {
+      {K::Start, 0}, {K::Head, 0}, {K::End, 0}, {K::Start, 1}, {K::Head, 1},
+      {K::End, 1},   {K::Start, 2}, {K::Head, 2}, {K::End, 2}};
+  auto run = [&](const std::vector<std::size_t>& looks) {
+    DrillProgress p(holes);
+    std::vector<std::pair<K, std::size_t>> got;
+    for (std::size_t seg : looks)
+      for (const DrillMoment& m : p.advance(seg)) got.emplace_back(m.kind, m.hole);
+    for (const DrillMoment& m : p.finish()) got.emplace_back(m.kind, m.hole);
+    return got;
+  };
+  std::vector<std::size_t> every;
+  for (std::size_t s = 0; s < 30; ++s) every.push_back(s);
+  EXPECT_EQ(run(every), expected);
+  EXPECT_EQ(run({0, 2, 11, 12, 25}), expected);  // hole 0's dwell and hole 2's start unseen
+  EXPECT_EQ(run({1, 29}), expected);             // holes 1 and 2 wholly unseen
+  EXPECT_EQ(run({}), (std::vector<std::pair<K, std::size_t>>{}));
+  // the head block comes at its dwell, not before
+  DrillProgress p(holes);
+  EXPECT_EQ(p.advance(2).size(), 1u);  // Start 0
+  ASSERT_EQ(p.advance(3).size(), 1u);  // Head 0
+}
+
 }  // namespace lcnc
