@@ -106,7 +106,7 @@ bool PlannerFeed::push(const PeriodIncrement& inc) {
   // An aborted job plans no further: the kernel discards what it is sent
   // after a stop faster than it can be planned, so the buffer never fills.
   if (abort_.load(std::memory_order_relaxed) || !within_limits(inc)) return false;
-  while (stalled_.load(std::memory_order_relaxed)) {  // fault injection
+  while (result_.increments >= stall_after_.load(std::memory_order_relaxed)) {  // fault injection
     if (abort_.load(std::memory_order_relaxed)) return false;
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }

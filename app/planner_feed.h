@@ -78,7 +78,12 @@ class PlannerFeed {
   // planner thread pushes nothing, as a planner starved of the CPU or
   // blocked would. The kernel brakes along the path on its reserve and
   // runs on once the entries come again.
-  void inject_stall(bool on) noexcept { stalled_.store(on, std::memory_order_relaxed); }
+  void inject_stall(bool on) noexcept { stall_after_.store(on ? 0 : kNever, std::memory_order_relaxed); }
+  // The same from the moment `increments` entries have been pushed: at a
+  // point of the job whatever the threads' timing.
+  void inject_stall_after(std::uint64_t increments) noexcept {
+    stall_after_.store(increments, std::memory_order_relaxed);
+  }
   // Valid once done().
   [[nodiscard]] const PlannedJob& result() const noexcept { return result_; }
 
@@ -100,7 +105,8 @@ class PlannerFeed {
   std::atomic<bool> abort_{false};
   std::atomic<bool> done_{false};
   std::atomic<bool> stopped_short_{false};
-  std::atomic<bool> stalled_{false};
+  static constexpr std::uint64_t kNever = ~std::uint64_t{0};
+  std::atomic<std::uint64_t> stall_after_{kNever};
   std::string program_;
   std::unique_ptr<ProgramSource> program_source_;  // a program job's source (planner thread)
   Diagnostic source_error_;                // why the source failed
