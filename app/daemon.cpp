@@ -39,11 +39,20 @@ std::shared_ptr<spdlog::logger> logger() {
   return l;
 }
 
+// What a command frame may ask of `m`: its axes, its override range.
+shm::CommandLimits command_limits(const MachineConfig& m) {
+  shm::CommandLimits l;
+  l.max_override = m.max_feed_override;
+  for (int i = 0; i < kAxisCount; ++i)
+    if (m.axes[i].present) l.axes_mask |= 1u << i;
+  return l;
+}
+
 }  // namespace
 
 struct Daemon::Impl {
   MachineConfig machine;
-  shm::CommandLimits limits;  // what a command frame may ask of this machine
+  const shm::CommandLimits limits = command_limits(machine);  // what a frame may ask of it
   shm::ShmOwner shm;
   std::array<std::int64_t, kAxisCount> start_steps{};
   std::unique_ptr<rt::PositionBuffer> buffer = std::make_unique<rt::PositionBuffer>();
@@ -336,9 +345,6 @@ Result<std::unique_ptr<Daemon>> Daemon::create(const DaemonOptions& options) {
   auto impl = std::make_unique<Impl>(std::move(machine).value(), std::move(owner).value());
   Impl& d = *impl;
   d.realtime = options.realtime;
-  d.limits.max_override = d.machine.max_feed_override;
-  for (int i = 0; i < kAxisCount; ++i)
-    if (d.machine.axes[i].present) d.limits.axes_mask |= 1u << i;
   StepQuantizer q(d.machine, Pose::Zero());
   for (int i = 0; i < kAxisCount; ++i) d.start_steps[i] = q.commanded(i);
   // the simulated machine wired as a real one: hard limits beyond the soft

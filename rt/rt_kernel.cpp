@@ -217,8 +217,12 @@ void RtKernel::run(const RtOptions& options) noexcept {
   finished_.store(true, std::memory_order_release);
 }
 
+std::size_t RtKernel::refill_level() const noexcept {
+  return std::min(kPositionBufferCapacity - 1, 2 * braking_reserve(ramp_.k_max()));
+}
+
 void RtKernel::wait_for_producer() const noexcept {
-  const std::size_t enough = std::min(kPositionBufferCapacity - 1, 2 * braking_reserve(ramp_.k_max()));
+  const std::size_t enough = refill_level();
   while (!shutdown_requested_.load(std::memory_order_relaxed) &&
          streaming_.load(std::memory_order_acquire) && buffer_.size() < enough)
     sched_yield();
@@ -380,8 +384,7 @@ void RtKernel::path_motion(Motion& m) noexcept {
     starving_ = true;
     starvations_.fetch_add(1, std::memory_order_relaxed);
     log(RtLogCode::StarveBegin, static_cast<std::int64_t>(fill), -1, line_);
-  } else if (starving_ && (!streaming || fill >= std::min(kPositionBufferCapacity - 1,
-                                                          2 * braking_reserve(ramp_.k_max())))) {
+  } else if (starving_ && (!streaming || fill >= refill_level())) {
     starving_ = false;
     log(RtLogCode::StarveEnd, static_cast<std::int64_t>(fill), -1, line_);
   }

@@ -268,7 +268,10 @@ class RtKernel {
   void run(const RtOptions& options) noexcept;
   void log(RtLogCode code, std::int64_t value, int axis = -1, std::uint32_t line = 0) noexcept;
   void set_state(MachineState s) noexcept;
-  // Virtual time: until the producer has filled the buffer (RtOptions).
+  // The fill at which a starving kernel runs on: twice the braking reserve
+  // at the highest override (or the whole buffer).
+  [[nodiscard]] std::size_t refill_level() const noexcept;
+  // Virtual time: until the producer has filled the buffer to refill_level().
   void wait_for_producer() const noexcept;
   void take_commands() noexcept;
   void take_inputs() noexcept;
