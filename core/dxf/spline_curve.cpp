@@ -92,21 +92,24 @@ SplineCurve::SplineCurve(SplineData d) : d_(std::move(d)) {
       u_.push_back(u0);
       s_.push_back(0.0);
     }
-    subdivide(u0, at_param(u0), u1, at_param(u1), 0);
+    subdivide(u0, at_param(u0), u1, at_param(u1), at_param(0.5 * (u0 + u1)), 0);
     if (too_many_nodes()) return;
   }
 }
 
-void SplineCurve::subdivide(double u0, const Vec2& p0, double u1, const Vec2& p1, int depth) {
+void SplineCurve::subdivide(double u0, const Vec2& p0, double u1, const Vec2& p1, const Vec2& pm,
+                            int depth) {
   if (too_many_nodes()) return;  // make() refuses the curve
+  // pm = C(middle) comes from the parent (its quarter point): two new
+  // evaluations per interval instead of three.
   const double um = 0.5 * (u0 + u1);
-  const Vec2 pm = at_param(um);
+  const Vec2 qa = at_param(0.5 * (u0 + um)), qb = at_param(0.5 * (um + u1));
   if (depth < kSplineMaxDepth &&
       (depth < 2 || dist_to_chord(pm, p0, p1) > kSplineFlatnessMm ||
-       dist_to_chord(at_param(0.5 * (u0 + um)), p0, p1) > kSplineFlatnessMm ||
-       dist_to_chord(at_param(0.5 * (um + u1)), p0, p1) > kSplineFlatnessMm)) {
-    subdivide(u0, p0, um, pm, depth + 1);
-    subdivide(um, pm, u1, p1, depth + 1);
+       dist_to_chord(qa, p0, p1) > kSplineFlatnessMm ||
+       dist_to_chord(qb, p0, p1) > kSplineFlatnessMm)) {
+    subdivide(u0, p0, um, pm, qa, depth + 1);
+    subdivide(um, pm, u1, p1, qb, depth + 1);
     return;
   }
   s_.push_back(s_.back() + arc(u0, u1));
@@ -127,31 +130,45 @@ std::size_t SplineCurve::span(double u) const {
   return k;
 }
 
-Vec2 SplineCurve::at_param(double u) const {
+SplineCurve::Eval SplineCurve::eval(double u) const {
+  // de Boor in homogeneous coordinates: after p − 1 levels the two points
+  // left, Q0 and Q1, span the last one linearly over [U_k, U_k+1], so the
+  // homogeneous curve is (1 − a)·Q0 + a·Q1 and its derivative
+  // p·(Q1 − Q0)/(U_k+1 − U_k). Plain arrays: this is the table's inner loop.
   const auto p = static_cast<std::size_t>(d_.degree);
   const std::size_t k = span(u);
-  const auto& U = d_.knots;
-  Eigen::Vector3d d[kSplineMaxDegree + 1];
-  const std::size_t pp = p;
-  for (std::size_t j = 0; j <= pp; ++j) d[j] = pw_[j + k - pp];
-  for (std::size_t r = 1; r <= pp; ++r) {
-    for (std::size_t j = pp; j >= r; --j) {
-      const std::size_t i = j + k - pp;
-      const double den = U[i + pp + 1 - r] - U[i];
+  const double* U = d_.knots.data();
+  double x[kSplineMaxDegree + 1], y[kSplineMaxDegree + 1], w[kSplineMaxDegree + 1];
+  for (std::size_t j = 0; j <= p; ++j) {
+    const Eigen::Vector3d& q = pw_[j + k - p];
+    x[j] = q.x();
+    y[j] = q.y();
+    w[j] = q.z();
+  }
+  for (std::size_t r = 1; r < p; ++r) {
+    for (std::size_t j = p; j >= r; --j) {
+      const std::size_t i = j + k - p;
+      const double den = U[i + p + 1 - r] - U[i];
       const double a = den > 0.0 ? (u - U[i]) / den : 0.0;
-      d[j] = (1.0 - a) * d[j - 1] + a * d[j];
+      x[j] = (1.0 - a) * x[j - 1] + a * x[j];
+      y[j] = (1.0 - a) * y[j - 1] + a * y[j];
+      w[j] = (1.0 - a) * w[j - 1] + a * w[j];
     }
   }
-  return d[pp].head<2>() / d[pp].z();
+  const double den = U[k + 1] - U[k];  // > 0: span() picks a non-empty span
+  const double a = (u - U[k]) / den, g = static_cast<double>(p) / den;
+  const double cx = (1.0 - a) * x[p - 1] + a * x[p], cy = (1.0 - a) * y[p - 1] + a * y[p];
+  const double cw = (1.0 - a) * w[p - 1] + a * w[p];
+  const double dx = g * (x[p] - x[p - 1]), dy = g * (y[p] - y[p - 1]), dw = g * (w[p] - w[p - 1]);
+  Eval e;
+  e.point = Vec2(cx / cw, cy / cw);
+  e.tangent = Vec2((dx - dw * e.point.x()) / cw, (dy - dw * e.point.y()) / cw);  // (A' − w'·C) / w
+  return e;
 }
 
-double SplineCurve::speed(double u) const {
-  const auto p = static_cast<std::size_t>(d_.degree);
-  const double u_min = d_.knots[p], u_max = d_.knots[d_.control.size()];
-  const double h = 1e-6 * (u_max - u_min);
-  const double lo = std::max(u_min, u - h), hi = std::min(u_max, u + h);
-  return (at_param(hi) - at_param(lo)).norm() / (hi - lo);
-}
+Vec2 SplineCurve::at_param(double u) const { return eval(u).point; }
+
+double SplineCurve::speed(double u) const { return eval(u).tangent.norm(); }
 
 double SplineCurve::arc(double u0, double u1) const {
   // 5-point Gauss–Legendre on [u0, u1].

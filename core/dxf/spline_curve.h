@@ -49,10 +49,15 @@ class SplineCurve {
 
  private:
   explicit SplineCurve(SplineData d);
+  struct Eval {
+    Vec2 point;    // C(u)
+    Vec2 tangent;  // C'(u)
+  };
+  [[nodiscard]] Eval eval(double u) const;
   [[nodiscard]] std::size_t span(double u) const;
   [[nodiscard]] double speed(double u) const;  // |C'(u)|
   [[nodiscard]] double arc(double u0, double u1) const;  // Gauss–Legendre
-  void subdivide(double u0, const Vec2& p0, double u1, const Vec2& p1, int depth);
+  void subdivide(double u0, const Vec2& p0, double u1, const Vec2& p1, const Vec2& pm, int depth);
   [[nodiscard]] bool too_many_nodes() const noexcept { return u_.size() > kSplineMaxNodes; }
 
   SplineData d_;
