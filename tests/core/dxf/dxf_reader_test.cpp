@@ -4,8 +4,6 @@
 
 #include <chrono>
 #include <cmath>
-
-#include <cmath>
 #include <fstream>
 #include <numbers>
 #include <random>
@@ -15,6 +13,7 @@
 
 #include "core/dxf/dxf_test_util.h"
 #include "dxf/contour_chain.h"
+#include "dxf/spline_curve.h"
 #include "common/error.h"
 
 namespace lcnc::dxf {
@@ -125,6 +124,29 @@ TEST(DxfReader, ClosedSplineIsSampledOnTheCurve) {
     hi = std::max(hi, c);
   }
   EXPECT_LT(hi - lo, 1e-6 * l / 1000 + 1e-9);
+}
+
+// A rational quadratic with weights 1, √2/2, 1 is exactly a quarter circle:
+// every point at radius R, the length πR/2, the point at s at angle s/R —
+// which holds only if the table's rational point and derivative are right
+// (its arc lengths integrate |C'|).
+TEST(SplineCurve, ARationalQuarterCircleIsExactInPointsAndLength) {
+  constexpr double R = 25.0;
+  SplineData d;
+  d.degree = 2;
+  d.knots = {0, 0, 0, 1, 1, 1};
+  d.control = {Vec2(R, 0), Vec2(R, R), Vec2(0, R)};
+  d.weights = {1.0, std::sqrt(0.5), 1.0};
+  std::string why;
+  const auto c = SplineCurve::make(d, &why);
+  ASSERT_TRUE(c) << why;
+  EXPECT_NEAR(c->length(), kPi * R / 2, 1e-9);
+  for (int k = 0; k <= 100; ++k) {
+    const double s = c->length() * k / 100;
+    const Vec2 q = c->at_length(s);
+    EXPECT_NEAR(q.norm(), R, 1e-9) << "s " << s;
+    EXPECT_NEAR(std::atan2(q.y(), q.x()), s / R, 1e-9) << "s " << s;
+  }
 }
 
 TEST(DxfReader, InsertPlacesBlockArraysScaledAndRotated) {
