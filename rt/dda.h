@@ -12,6 +12,10 @@
 // accumulator unchanged; only the tick positions depend on it. The
 // numerators grow by N from one pulse to the next, so after one division per
 // axis each t_j follows from the last by adding N / n and carrying N % n.
+// Since the accumulator ends every period where it began (N/2), a period's
+// ticks depend on n alone: up to kTabulatedMaxPulses (every preset of 10
+// bits or less: ≤ 2 MB) they are tabulated once in the constructor and a
+// period only looks them up; wider presets compute them per period.
 // reference_period() runs the tick loop itself; tests hold the two equal.
 #pragma once
 
@@ -26,7 +30,10 @@ namespace lcnc::rt {
 
 class Dda {
  public:
-  // Allocates the tick storage (max pulses per axis) once, here.
+  // Tabulated when max pulses ≤ this (Σ n ≤ 523,776 ticks).
+  static constexpr std::uint32_t kTabulatedMaxPulses = 1023;
+
+  // Allocates the tick storage (the table, or max pulses per axis) once, here.
   explicit Dda(const DdaConfig& config);
 
   // One period for all axes; fills `frame` (ticks point into this Dda's
@@ -45,7 +52,8 @@ class Dda {
   std::uint32_t n_cap_;
   std::uint32_t max_pulses_;
   std::array<std::uint32_t, kAxisCount> acc_{};
-  std::vector<std::uint32_t> ticks_;  // kAxisCount × max_pulses_, sized in the constructor
+  std::vector<std::uint32_t> first_;  // tabulated: n's ticks start at ticks_[first_[n]]; else empty
+  std::vector<std::uint32_t> ticks_;  // the table, or kAxisCount × max_pulses_ to compute into
 };
 
 }  // namespace lcnc::rt

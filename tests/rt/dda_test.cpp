@@ -15,9 +15,11 @@ std::array<std::int32_t, kAxisCount> one_axis(std::int32_t n) {
 }
 
 // The closed form in Dda::run_period equals the tick-by-tick definition for
-// every magnitude, over many periods (accumulator carried), for several presets.
+// every magnitude, over many periods (accumulator carried), for several
+// presets: tabulated (≤ kTabulatedMaxPulses) and computed per period (12 bits).
 TEST(Dda, ClosedFormMatchesTickLoopForEveryMagnitude) {
-  const DdaConfig presets[] = {{4, 30}, {8, 300}, {6, 64}, {3, 7}};
+  static_assert(Dda::kTabulatedMaxPulses < 4095);
+  const DdaConfig presets[] = {{4, 30}, {8, 300}, {6, 64}, {3, 7}, {10, 1100}, {12, 5000}};
   std::mt19937 rng(7);
   for (const DdaConfig& cfg : presets) {
     Dda dda(cfg);
