@@ -61,6 +61,40 @@ TEST(SimMachine, CountsPulsesFromItsStart) {
   EXPECT_EQ(sim.bad_frames(), 0u);
 }
 
+// A drive loses a pulse that shares a tick with the one before, or falls
+// outside the period: such a frame is counted bad wherever the fault sits —
+// in the first ticks, in the middle, in the last few — and a clean frame of
+// any length is not.
+TEST(SimMachine, CountsAFrameWithTwoPulsesOnATickOrOneOutsideThePeriodAsBad) {
+  constexpr std::uint32_t kN = 300;
+  for (std::uint32_t n : {1u, 2u, 3u, 4u, 5u, 7u, 8u, 9u, 64u, 255u}) {
+    std::array<std::uint32_t, 255> t{};
+    for (std::uint32_t j = 0; j < n; ++j) t[j] = j * (kN / n);  // rising, inside
+    PulseFrame f;
+    f.ticks_per_period = kN;
+    f.axes[2] = AxisPulses{n, false, t.data()};
+    SimMachine sim(Steps{});
+    sim.emit(f);
+    EXPECT_EQ(sim.bad_frames(), 0u) << "n " << n;
+    std::uint64_t expected_bad = 0;
+    for (std::uint32_t j = 1; j < n; ++j) {  // pulse j on the tick of pulse j − 1
+      const std::uint32_t keep = t[j];
+      t[j] = t[j - 1];
+      sim.emit(f);
+      EXPECT_EQ(sim.bad_frames(), ++expected_bad) << "n " << n << " repeated tick at " << j;
+      t[j] = keep;
+    }
+    const std::uint32_t last = t[n - 1];
+    t[n - 1] = kN;  // one tick past the period
+    sim.emit(f);
+    EXPECT_EQ(sim.bad_frames(), ++expected_bad) << "n " << n << " last tick outside";
+    t[n - 1] = last;
+    sim.emit(f);
+    EXPECT_EQ(sim.bad_frames(), expected_bad) << "n " << n;
+    EXPECT_EQ(sim.pulses(2), std::uint64_t{n} * (expected_bad + 2));  // every frame still moves
+  }
+}
+
 TEST(SimMachine, OldConstructorHasNoSwitches) {
   SimMachine sim(Steps{});
   EXPECT_FALSE(any_active(sim.read_inputs()));
