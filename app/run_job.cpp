@@ -201,6 +201,48 @@ Status check_feed_override(double pct, const MachineConfig& machine) {
   return make_error(ErrorCode::Usage, msg);
 }
 
+// The figures of a finished run: from the kernel's counters, the simulated
+// drives and what the planner queued.
+void fill_run_figures(RunReport& report, const rt::RtKernel& kernel, const drivers::SimMachine& sim,
+                      const PlannedJob& planned, const MachineConfig& machine,
+                      const std::array<std::int64_t, kAxisCount>& start_steps) {
+  report.periods = kernel.periods();
+  report.cycle_time_s = static_cast<double>(kernel.machine_time_ns()) * 1e-9;
+  report.feed_override = kernel.feed_override();
+  // The plan's peaks are at the nominal period; the whole run executed at K.
+  const double k = report.feed_override;
+  report.steps_match = true;
+  for (int i = 0; i < kAxisCount; ++i) {
+    AxisReport& a = report.axes[i];
+    a.present = machine.axes[i].present;
+    a.peak_velocity = planned.peak_v[i] * k;
+    a.peak_acceleration = planned.peak_a[i] * k * k;
+    // the pulses are the commanded steps plus the change of the pitch
+    // correction between the start and the end (rt/pitch_compensation.h)
+    const rt::PitchCompensation comp(machine.axes[i]);
+    a.steps_sent = sim.position_steps(i) - start_steps[i];
+    a.steps_commanded = planned.commanded[i] - start_steps[i] +
+                        comp.correction_steps(planned.commanded[i]) -
+                        comp.correction_steps(start_steps[i]);
+    report.steps_match = report.steps_match && a.steps_sent == a.steps_commanded &&
+                         kernel.pulses_emitted(i) == a.steps_sent;
+  }
+  report.underruns = kernel.underruns();
+  report.starvations = kernel.starvations();
+  if (const rt::RtFault f = kernel.fault(); f.active) report.fault = describe_fault(f, machine);
+  if (planned.limit) report.fault = planned.limit_error.to_string();
+  report.overruns = kernel.overruns();
+  report.trace_drops = kernel.trace_drops();
+  report.bad_frames = sim.bad_frames();
+  report.laser_on_s = static_cast<double>(kernel.laser_on_ns()) * 1e-9;
+  const rt::LatencyHistogram& lat = kernel.latency();
+  report.latency_p50_us = lat.quantile_us(0.50);
+  report.latency_p99_us = lat.quantile_us(0.99);
+  report.latency_max_us = static_cast<double>(lat.max_ns()) / 1000.0;
+  report.schedule = kernel.schedule() == rt::RtSchedule::Fifo ? "SCHED_FIFO" : "normal";
+  report.rt_warning = kernel.warning();
+}
+
 Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress) {
   Result<MachineConfig> loaded = load_machine(options);
   if (!loaded) return loaded.error();
@@ -340,42 +382,8 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   const PlannedJob& planned = feed.result();
   if (planned.failed) return planned.error;
 
-  report.periods = kernel.periods();
-  report.cycle_time_s = static_cast<double>(kernel.machine_time_ns()) * 1e-9;
-  report.feed_override = kernel.feed_override();
-  // The plan's peaks are at the nominal period; the whole run executed at K.
-  const double k = report.feed_override;
+  fill_run_figures(report, kernel, sim, planned, machine, start_steps);
   report.max_deviation_mm = deviation.max_mm();
-  report.steps_match = true;
-  for (int i = 0; i < kAxisCount; ++i) {
-    AxisReport& a = report.axes[i];
-    a.present = machine.axes[i].present;
-    a.peak_velocity = planned.peak_v[i] * k;
-    a.peak_acceleration = planned.peak_a[i] * k * k;
-    // the pulses are the commanded steps plus the change of the pitch
-    // correction between the start and the end (rt/pitch_compensation.h)
-    const rt::PitchCompensation comp(machine.axes[i]);
-    a.steps_sent = sim.position_steps(i) - start_steps[i];
-    a.steps_commanded = planned.commanded[i] - start_steps[i] +
-                        comp.correction_steps(planned.commanded[i]) -
-                        comp.correction_steps(start_steps[i]);
-    report.steps_match = report.steps_match && a.steps_sent == a.steps_commanded &&
-                         kernel.pulses_emitted(i) == a.steps_sent;
-  }
-  report.underruns = kernel.underruns();
-  report.starvations = kernel.starvations();
-  if (const rt::RtFault f = kernel.fault(); f.active) report.fault = describe_fault(f, machine);
-  if (planned.limit) report.fault = planned.limit_error.to_string();
-  report.overruns = kernel.overruns();
-  report.trace_drops = kernel.trace_drops();
-  report.bad_frames = sim.bad_frames();
-  report.laser_on_s = static_cast<double>(kernel.laser_on_ns()) * 1e-9;
-  const rt::LatencyHistogram& lat = kernel.latency();
-  report.latency_p50_us = lat.quantile_us(0.50);
-  report.latency_p99_us = lat.quantile_us(0.99);
-  report.latency_max_us = static_cast<double>(lat.max_ns()) / 1000.0;
-  report.schedule = kernel.schedule() == rt::RtSchedule::Fifo ? "SCHED_FIFO" : "normal";
-  report.rt_warning = kernel.warning();
   return report;
 }
 
