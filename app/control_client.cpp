@@ -13,6 +13,7 @@
 
 #include "common/error.h"
 #include "geom/pose.h"
+#include "app/json_text.h"
 #include "app/run_job.h"
 #include "rt/shm_interface.h"
 
@@ -62,16 +63,8 @@ std::optional<double> number(const std::string& s) {
 
 }  // namespace
 
-int client_status(const ClientOptions& options) {
-  auto client = connect(options);
-  if (!client) return 1;
-  shm::Status st;
-  shm::JobStatus job;
-  if (!read_both(client->block(), st, job)) {
-    std::fprintf(stderr, "lasercnc: the status is being rewritten too often to read\n");
-    return 1;
-  }
-  if (options.json) {
+std::string format_status(const shm::Status& st, const shm::JobStatus& job, bool json) {
+  if (json) {
     nlohmann::json j;
     j["state"] = state_name(st.state);
     j["fault"] = st.fault == 0 ? "" : std::string(error_summary(static_cast<ErrorCode>(st.fault)));
@@ -97,28 +90,48 @@ int client_status(const ClientOptions& options) {
     j["last_cycle_time_s"] = job.last_cycle_time_s;
     j["last_fault"] = job.last_fault;
     j["message"] = job.message;
-    std::printf("%s\n", j.dump(2).c_str());
-    return 0;
+    return json_text(j) + "\n";
   }
-  std::printf("state      %s%s\n", state_name(st.state),
-              st.fault ? (std::string(" — ") + std::string(error_summary(static_cast<ErrorCode>(st.fault))) +
-                          (st.fault_axis >= 0 ? std::string(" (axis ") + kAxisLetters[st.fault_axis] + ")" : ""))
-                             .c_str()
-                       : "");
-  std::printf("position  ");
+  std::string out;
+  char buf[512];
+  const auto add = [&](const char* fmt, auto... args) {
+    std::snprintf(buf, sizeof buf, fmt, args...);
+    out += buf;
+  };
+  std::string fault;
+  if (st.fault != 0) {
+    fault = std::string(" — ") + std::string(error_summary(static_cast<ErrorCode>(st.fault)));
+    if (st.fault_axis >= 0) fault += std::string(" (axis ") + kAxisLetters[st.fault_axis] + ")";
+  }
+  out += std::string("state      ") + state_name(st.state) + fault + "\n";
+  out += "position  ";
   for (int i = 0; i < kAxisCount; ++i)  // "?": not homed
     if ((st.axes_mask >> i) & 1u)
-      std::printf(" %c %.3f%s", kAxisLetters[i], st.pos[i], (st.homed_mask >> i) & 1u ? "" : "?");
-  std::printf("\noverride   %.0f %% (target %.0f %%)   buffer %u   line %u\n",
-              st.feed_override * 100.0, st.feed_override_target * 100.0, st.buffer_fill, st.line);
-  std::printf("program    %s%s  %.1f %%\n", job.program[0] ? job.program : "(none)",
-              job.job_active ? " (running)" : "", job.progress * 100.0);
-  std::printf("underruns  %llu   decelerations for a low buffer %llu   machine time %.3f s\n",
-              static_cast<unsigned long long>(st.underruns),
-              static_cast<unsigned long long>(st.starvations), st.machine_time_s);
-  std::printf("RT latency p50 %.0f us, p99 %.0f us, max %.1f us\n", st.latency_p50_us,
-              st.latency_p99_us, st.latency_max_us);
-  if (job.message[0]) std::printf("last       %s\n", job.message);
+      add(" %c %.3f%s", kAxisLetters[i], st.pos[i], (st.homed_mask >> i) & 1u ? "" : "?");
+  add("\noverride   %.0f %% (target %.0f %%)   buffer %u   line %u\n", st.feed_override * 100.0,
+      st.feed_override_target * 100.0, st.buffer_fill, st.line);
+  out += std::string("program    ") + (job.program[0] ? job.program : "(none)") +
+         (job.job_active ? " (running)" : "");
+  add("  %.1f %%\n", job.progress * 100.0);
+  add("underruns  %llu   decelerations for a low buffer %llu   machine time %.3f s\n",
+      static_cast<unsigned long long>(st.underruns), static_cast<unsigned long long>(st.starvations),
+      st.machine_time_s);
+  add("RT latency p50 %.0f us, p99 %.0f us, max %.1f us\n", st.latency_p50_us, st.latency_p99_us,
+      st.latency_max_us);
+  if (job.message[0]) out += std::string("last       ") + job.message + "\n";
+  return out;
+}
+
+int client_status(const ClientOptions& options) {
+  auto client = connect(options);
+  if (!client) return 1;
+  shm::Status st;
+  shm::JobStatus job;
+  if (!read_both(client->block(), st, job)) {
+    std::fprintf(stderr, "lasercnc: the status is being rewritten too often to read\n");
+    return 1;
+  }
+  std::fputs(format_status(st, job, options.json).c_str(), stdout);
   return 0;
 }
 

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "rt/shm_interface.h"
+
 namespace lcnc::app {
 
 struct ClientOptions {
@@ -16,6 +18,9 @@ struct ClientOptions {
   bool wait = false;     // send start: wait for the job to end, print its result
 };
 
+// The status as `lasercnc status` prints it (text, or one JSON object),
+// from blocks already sanitized (shm::sanitize); any bytes there print.
+[[nodiscard]] std::string format_status(const shm::Status& st, const shm::JobStatus& job, bool json);
 // Prints the daemon's status; returns the exit code (0, or 1 without daemon).
 int client_status(const ClientOptions& options);
 // Sends one command: args = {CMD, ARG...}; returns the exit code (0 accepted,

@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/json_text.h"
 #include "app/run_job.h"
 #include "drivers/devices/scan_head_sim.h"
 #include "drivers/modbus/modbus_master.h"
@@ -251,7 +252,7 @@ int drill_main(int argc, char** argv) {
     if (head)
       j["scan_head"] = {{"device", head_who}, {"requests", head_counters.requests},
                         {"failed", head_counters.failed}};
-    std::printf("%s\n", j.dump(2).c_str());
+    std::printf("%s\n", json_text(j).c_str());
   } else {
     std::fputs(format_report(*report).c_str(), stdout);
     std::printf("  holes            %zu\n", records.size());

@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/json_text.h"
 #include "app/run_job.h"
 
 namespace lcnc::app {
@@ -131,7 +132,7 @@ std::string report_json(const RunReport& r) {
         {"error", p.error},
     };
   }
-  return j.dump(2);
+  return json_text(j);
 }
 
 }  // namespace lcnc::app

@@ -79,6 +79,19 @@ fs::path write_file(const std::string& name, const std::string& text) {
   return p;
 }
 
+// A Linux file name is bytes, not always UTF-8: the JSON report of a
+// program named so still prints (the bad byte as U+FFFD) — it used to end
+// the process in an uncaught exception from the JSON library.
+TEST(LasercncRun, AProgramWhoseNameIsNotUtf8StillGetsItsJsonReport) {
+  const fs::path prog = write_file("part_\xff.ngc", "G21 G90 G64 P0.01\nG1 X2 Y1 F600\nM2\n");
+  const CmdResult r = lasercnc("run '" + prog.string() + "' --json --no-progress --no-realtime");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_NE(j["program"].get<std::string>().find("part_\xEF\xBF\xBD.ngc"), std::string::npos)
+      << j["program"];
+  EXPECT_TRUE(j["steps_match"].get<bool>());
+}
+
 TEST(LasercncRun, SampleJobRunsWithExactStepsAndAnHonestReport) {
   const fs::path trace = temp_dir() / "trace.csv";
   const CmdResult r = lasercnc("run " + kShare + "/examples/bracket.ngc --json --no-progress --trace " +

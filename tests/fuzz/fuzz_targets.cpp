@@ -18,6 +18,9 @@
 #include <string_view>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
+#include "app/control_client.h"
 #include "dxf/dxf_reader.h"
 #include "drivers/modbus/register_map.h"
 #include "drivers/modbus/slave_request.h"
@@ -195,6 +198,39 @@ int shm_commands(const std::uint8_t* data, std::size_t size) {
   return 0;
 }
 
+// The status blocks as any process of the group may leave them: the input
+// laid over the kernel's Status, the daemon's JobStatus and an Event, each
+// sanitized as a reader does (shm::sanitize), then printed as `lasercnc
+// status` prints them. Invariants: the texts end inside their fields, and
+// the JSON printed is valid JSON (any bytes in a text, any number).
+int shm_status(const std::uint8_t* data, std::size_t size) {
+  shm::Status st;
+  shm::JobStatus job;
+  shm::Event ev;
+  static_assert(std::is_trivially_copyable_v<shm::Status> && std::is_trivially_copyable_v<shm::JobStatus> &&
+                std::is_trivially_copyable_v<shm::Event>);
+  std::size_t at = 0;
+  const auto lay = [&](auto& block) {  // what a writer left
+    const std::size_t n = std::min(sizeof block, size - at);
+    std::memcpy(static_cast<void*>(&block), data + at, n);
+    at += n;
+  };
+  lay(st);
+  lay(job);
+  lay(ev);
+  shm::sanitize(st);
+  shm::sanitize(job);
+  shm::sanitize(ev);
+  if (std::memchr(job.message, 0, sizeof job.message) == nullptr ||
+      std::memchr(job.program, 0, sizeof job.program) == nullptr ||
+      std::memchr(ev.text, 0, sizeof ev.text) == nullptr)
+    finding("a text runs past its field");
+  (void)app::format_status(st, job, false);
+  if (!nlohmann::json::accept(app::format_status(st, job, true)))
+    finding("lasercnc status --json printed invalid JSON");
+  return 0;
+}
+
 }  // namespace
 
 const Target* find_target(std::string_view name) {
@@ -203,6 +239,7 @@ const Target* find_target(std::string_view name) {
       {"machine_config", machine_config}, {"hole_table", hole_table},
       {"probe_sentence", probe_sentence}, {"register_map", register_map},
       {"modbus_request", modbus_request}, {"shm_commands", shm_commands},
+      {"shm_status", shm_status},
   };
   for (const Target& t : targets)
     if (name == t.name) return &t;
