@@ -6,6 +6,7 @@
 #include <memory>
 #include <numbers>
 #include <optional>
+#include <set>
 #include <sstream>
 
 #include <Eigen/Dense>
@@ -326,6 +327,29 @@ class Expander {
            Drawing& out)
       : blocks_(blocks), file_(file), out_(out) {}
 
+  // Before anything is placed: every INSERT names a block, no block inserts
+  // itself, nesting stays under kMaxBlockDepth and the INSERTs place at
+  // most kMaxPlacedEntities in all — counted per block once, so a drawing
+  // whose nested arrays multiply into millions of copies is refused at once
+  // instead of worked through (found by fuzzing: 16 levels of 2 × 2 arrays
+  // of a spline took minutes under the sanitizers).
+  Status check(const Container& top) {
+    double placed = 0.0;
+    for (const RawInsert& in : top.inserts) {
+      Result<Count> c = count(in, 1, "");
+      if (!c) return c.error();
+      placed += c->entities;
+      if (placed > static_cast<double>(kMaxPlacedEntities)) {
+        return make_error(ErrorCode::DxfUnsupported,
+                          "the INSERTs place more than " + std::to_string(kMaxPlacedEntities) +
+                              " entities (this one of block '" + in.name + "' " +
+                              fmt_count(c->entities) + "); expected fewer copies",
+                          file_, in.line);
+      }
+    }
+    return {};
+  }
+
   Status expand(const Container& c, const Affine& xf, const std::string& block, int depth,
                 std::uint32_t insert_line) {
     for (const auto& [is_insert, idx] : c.order) {
@@ -339,6 +363,59 @@ class Expander {
   }
 
  private:
+  struct Count {
+    double entities = 0.0;  // placed by one copy of the block, its INSERTs expanded
+  };
+
+  static std::string fmt_count(double n) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.4g", n);
+    return b;
+  }
+
+  // What one INSERT places (all its copies), its block counted once.
+  // `inside`: the block holding this INSERT ("" at the top).
+  Result<Count> count(const RawInsert& in, int depth, const std::string& inside) {
+    const auto it = blocks_.find(in.name);
+    if (it == blocks_.end()) {
+      return make_error(ErrorCode::DxfSyntax,
+                        "INSERT of block '" + in.name +
+                            "', which is not defined; expected a BLOCK of that name",
+                        file_, in.line);
+    }
+    if (depth > kMaxBlockDepth) return too_deep(in);
+    Count one;
+    if (const auto done = counted_.find(in.name); done != counted_.end()) {
+      one = done->second;
+    } else {
+      if (!visiting_.insert(in.name).second) {
+        return make_error(ErrorCode::DxfUnsupported,
+                          "INSERT of block '" + in.name + "' inside block '" + inside +
+                              "' closes a loop; expected no block to insert itself, directly "
+                              "or through others",
+                          file_, in.line);
+      }
+      one.entities = static_cast<double>(it->second.entities.size());
+      for (const RawInsert& inner : it->second.inserts) {
+        Result<Count> c = count(inner, depth + 1, in.name);
+        if (!c) return c.error();
+        one.entities += c->entities;
+      }
+      visiting_.erase(in.name);
+      counted_[in.name] = one;
+    }
+    Count all;
+    all.entities = one.entities * in.cols * in.rows;
+    return all;
+  }
+
+  Diagnostic too_deep(const RawInsert& in) const {
+    return make_error(ErrorCode::DxfUnsupported,
+                      "INSERT of block '" + in.name + "' nests " + std::to_string(kMaxBlockDepth) +
+                          " blocks deep; expected fewer",
+                      file_, in.line);
+  }
+
   Status expand_insert(const RawInsert& in, const Affine& outer, int depth) {
     const auto it = blocks_.find(in.name);
     if (it == blocks_.end()) {
@@ -347,13 +424,7 @@ class Expander {
                             "', which is not defined; expected a BLOCK of that name",
                         file_, in.line);
     }
-    if (depth >= kMaxBlockDepth) {
-      return make_error(ErrorCode::DxfUnsupported,
-                        "INSERT of block '" + in.name + "' nests " +
-                            std::to_string(kMaxBlockDepth) +
-                            " blocks deep (does a block insert itself?); expected fewer",
-                        file_, in.line);
-    }
+    if (depth >= kMaxBlockDepth) return too_deep(in);  // check() refused it first
     const Container& blk = it->second;
     const double ang = in.angle_deg * kPi / 180.0;
     const Eigen::Matrix2d rot = Eigen::Rotation2Dd(ang).toRotationMatrix();
@@ -384,8 +455,15 @@ class Expander {
       SplineData s = *e.spline;
       for (Vec2& p : s.control) p = xf(p);
       std::string why;
-      std::shared_ptr<const SplineCurve> curve = SplineCurve::make(s, &why);
-      if (!curve) return make_error(ErrorCode::DxfUnsupported, "SPLINE: " + why, file_, e.line);
+      std::shared_ptr<const SplineCurve> curve =
+          SplineCurve::make(s, &why, std::min(kSplineMaxNodes, spline_nodes_left_));
+      if (!curve) {
+        if (spline_nodes_left_ < kSplineMaxNodes)
+          why += " — the drawing's splines take at most " + std::to_string(kMaxDrawingSplineNodes) +
+                 " pieces in all, " + std::to_string(spline_nodes_left_) + " were left";
+        return make_error(ErrorCode::DxfUnsupported, "SPLINE: " + why, file_, e.line);
+      }
+      spline_nodes_left_ -= curve->nodes();
       out.edges.push_back(make_spline(curve));
       // A closed spline whose ends do not meet: the closing line is drawn.
       if (e.closed && (curve->end() - curve->start()).norm() > kMinEdgeMm) {
@@ -427,6 +505,9 @@ class Expander {
   const std::map<std::string, Container>& blocks_;
   const std::string& file_;
   Drawing& out_;
+  std::map<std::string, Count> counted_;  // check(): one copy of each block
+  std::set<std::string> visiting_;        // check(): the blocks being counted, outermost first
+  std::size_t spline_nodes_left_ = kMaxDrawingSplineNodes;
 };
 
 }  // namespace
@@ -497,6 +578,7 @@ Result<ReadResult> read_dxf_text(std::string_view text, const std::string& file,
   Affine units;
   units.m *= unit_mm;
   Expander ex(col.blocks, file, out.drawing);
+  if (Status s = ex.check(col.top); !s) return s.error();
   if (Status s = ex.expand(col.top, units, {}, 0, 0); !s) return s.error();
   return out;
 }

@@ -13,16 +13,26 @@ namespace lcnc::dxf {
 inline constexpr double kJoinToleranceMm = 1e-3;
 
 // A SPLINE's arc-length table has a node wherever the curve would leave the
-// chord by more than this: a tenth of the finest step a user may ask for.
-inline constexpr double kSplineFlatnessMm = 1e-4;
+// chord by more than this: the finest step a user may ask for. The table only
+// brackets arc lengths — each interval's length is a 5-point Gauss–Legendre
+// sum and every point is the curve's own, found by Newton's method — so
+// lengths and points come out the same to 12 digits as with a table ten
+// or a hundred times finer (the test drawings, the sample part).
+inline constexpr double kSplineFlatnessMm = 1e-3;
 
 // Deepest subdivision of one spline knot span for that table (2^20 nodes).
 inline constexpr int kSplineMaxDepth = 20;
 
-// Most nodes of one spline's table: a 2 m curve of 1 mm radius takes ~6,000
-// at kSplineFlatnessMm, so this is reached only by a curve kilometres long —
-// a drawing in the wrong units — whose table would otherwise take minutes.
+// Most nodes of one spline's table: a 2 m curve bent at 1 mm radius all along
+// takes ~22,000 at kSplineFlatnessMm, so this is reached only by a curve
+// kilometres long — a drawing in the wrong units — whose table would
+// otherwise take minutes.
 inline constexpr std::size_t kSplineMaxNodes = 1u << 17;
+
+// Most nodes of all the spline tables of one drawing (an INSERT array of a
+// spline block tabulates each copy): ~90 m of spline bent at 1 mm radius,
+// a fraction of a second.
+inline constexpr std::size_t kMaxDrawingSplineNodes = 1u << 20;
 
 // Highest SPLINE degree read (DXF writers use 2 and 3; de Boor's scratch
 // space is sized by it).
@@ -31,9 +41,12 @@ inline constexpr int kSplineMaxDegree = 15;
 // Edges shorter than this are dropped (zero-length lines, repeated vertices).
 inline constexpr double kMinEdgeMm = 1e-9;
 
-// An INSERT inside a block inside ... deeper than this is an error (and
-// catches a block that inserts itself).
+// An INSERT inside a block inside ... deeper than this is an error.
 inline constexpr int kMaxBlockDepth = 16;
+
+// Most entities the INSERTs of one drawing may place, counted before any is
+// (nested arrays multiply: 16 levels of 2 × 2 are 4^16 copies).
+inline constexpr std::size_t kMaxPlacedEntities = 1'000'000;
 
 // Sanity limits against malformed counts: a DXF that declares more vertices,
 // knots or array copies than these is rejected before anything is allocated.

@@ -10,11 +10,14 @@ namespace lcnc::dxf {
 namespace {
 
 double dist_to_chord(const Vec2& q, const Vec2& a, const Vec2& b) {
-  const Vec2 ab = b - a;
-  const double l2 = ab.squaredNorm();
-  if (l2 <= 0.0) return (q - a).norm();
-  const double t = std::clamp((q - a).dot(ab) / l2, 0.0, 1.0);
-  return (q - (a + t * ab)).norm();
+  // plain doubles: the table's inner loop
+  const double abx = b.x() - a.x(), aby = b.y() - a.y();
+  const double aqx = q.x() - a.x(), aqy = q.y() - a.y();
+  const double l2 = abx * abx + aby * aby;
+  if (l2 <= 0.0) return std::sqrt(aqx * aqx + aqy * aqy);
+  const double t = std::clamp((aqx * abx + aqy * aby) / l2, 0.0, 1.0);
+  const double dx = aqx - t * abx, dy = aqy - t * aby;
+  return std::sqrt(dx * dx + dy * dy);
 }
 
 // Arc length to this precision (mm): far below the 1 µm grid, so equal
@@ -23,7 +26,8 @@ constexpr double kArcLengthTolMm = 1e-10;
 
 }  // namespace
 
-std::shared_ptr<const SplineCurve> SplineCurve::make(const SplineData& s, std::string* why) {
+std::shared_ptr<const SplineCurve> SplineCurve::make(const SplineData& s, std::string* why,
+                                                     std::size_t max_nodes) {
   const std::size_t n = s.control.size();
   const auto p = static_cast<std::size_t>(std::max(s.degree, 0));
   auto fail = [&](std::string msg) {
@@ -60,7 +64,7 @@ std::shared_ptr<const SplineCurve> SplineCurve::make(const SplineData& s, std::s
     }
   }
   if (!(s.knots[n] > s.knots[p])) return fail("empty parameter range (all knots equal)");
-  std::shared_ptr<SplineCurve> c(new SplineCurve(s));
+  std::shared_ptr<SplineCurve> c(new SplineCurve(s, max_nodes));
   if (c->too_many_nodes()) {
     Vec2 lo = s.control.front(), hi = lo;
     for (const Vec2& q : s.control) {
@@ -71,14 +75,14 @@ std::shared_ptr<const SplineCurve> SplineCurve::make(const SplineData& s, std::s
     std::snprintf(msg, sizeof msg,
                   "a curve spanning %.6g mm needs more than %zu pieces; expected a part of machine "
                   "size (are the drawing's units right?)",
-                  (hi - lo).norm(), kSplineMaxNodes);
+                  (hi - lo).norm(), max_nodes);
     return fail(msg);
   }
   if (!(c->length() > 0.0)) return fail("zero length");
   return c;
 }
 
-SplineCurve::SplineCurve(SplineData d) : d_(std::move(d)) {
+SplineCurve::SplineCurve(SplineData d, std::size_t max_nodes) : d_(std::move(d)), max_nodes_(max_nodes) {
   for (std::size_t i = 0; i < d_.control.size(); ++i) {
     const double w = d_.weights.empty() ? 1.0 : d_.weights[i];
     pw_.emplace_back(w * d_.control[i].x(), w * d_.control[i].y(), w);

@@ -37,10 +37,12 @@ class SplineCurve {
  public:
   // The curve, or nullptr with the reason in `why` (knot count, order,
   // weights, fit points only, a curve too long for its table).
-  [[nodiscard]] static std::shared_ptr<const SplineCurve> make(const SplineData& s,
-                                                               std::string* why);
+  // At most max_nodes table nodes (kSplineMaxNodes, or what a drawing has left).
+  [[nodiscard]] static std::shared_ptr<const SplineCurve> make(const SplineData& s, std::string* why,
+                                                               std::size_t max_nodes = kSplineMaxNodes);
 
   [[nodiscard]] double length() const { return s_.back(); }
+  [[nodiscard]] std::size_t nodes() const noexcept { return u_.size(); }
   [[nodiscard]] Vec2 start() const { return at_param(u_.front()); }
   [[nodiscard]] Vec2 end() const { return at_param(u_.back()); }
   // The point at arc length s ∈ [0, length()] from the start.
@@ -48,7 +50,7 @@ class SplineCurve {
   [[nodiscard]] Vec2 at_param(double u) const;
 
  private:
-  explicit SplineCurve(SplineData d);
+  SplineCurve(SplineData d, std::size_t max_nodes);
   struct Eval {
     Vec2 point;    // C(u)
     Vec2 tangent;  // C'(u)
@@ -58,9 +60,10 @@ class SplineCurve {
   [[nodiscard]] double speed(double u) const;  // |C'(u)|
   [[nodiscard]] double arc(double u0, double u1) const;  // Gauss–Legendre
   void subdivide(double u0, const Vec2& p0, double u1, const Vec2& p1, const Vec2& pm, int depth);
-  [[nodiscard]] bool too_many_nodes() const noexcept { return u_.size() > kSplineMaxNodes; }
+  [[nodiscard]] bool too_many_nodes() const noexcept { return u_.size() > max_nodes_; }
 
   SplineData d_;
+  std::size_t max_nodes_;
   std::vector<Eigen::Vector3d> pw_;  // (w·x, w·y, w)
   std::vector<double> u_;  // nodes
   std::vector<double> s_;  // arc length at each node

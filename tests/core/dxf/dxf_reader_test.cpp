@@ -31,6 +31,18 @@ double total_length(const Drawing& d) {
   return l;
 }
 
+// A closed periodic cubic SPLINE near a circle of radius r (mm): 8 control
+// points on the circle, 3 repeated, uniform knots.
+std::string periodic_cubic_spline(double r) {
+  std::string sp = "0\nSPLINE\n8\n0\n70\n11\n71\n3\n72\n15\n73\n11\n74\n0\n";
+  for (int k = 0; k < 15; ++k) sp += "40\n" + std::to_string(k) + "\n";
+  for (int i = 0; i < 11; ++i) {
+    const double a = 2.0 * kPi * (i % 8) / 8.0;
+    sp += "10\n" + std::to_string(r * std::cos(a)) + "\n20\n" + std::to_string(r * std::sin(a)) + "\n";
+  }
+  return sp;
+}
+
 std::vector<Contour> contours_of(const Drawing& d) {
   Result<std::vector<Contour>> cs = chain_contours(d);
   EXPECT_TRUE(cs.ok()) << (cs.ok() ? "" : cs.error().to_string());
@@ -247,7 +259,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadFile{"truncated.dxf", ErrorCode::DxfSyntax, 31, "truncated"},
         BadFile{"count_mismatch.dxf", ErrorCode::DxfSyntax, 23, "declares 5 vertices"},
         BadFile{"undefined_block.dxf", ErrorCode::DxfSyntax, 19, "'NOPE', which is not defined"},
-        BadFile{"recursive_block.dxf", ErrorCode::DxfUnsupported, 35, "does a block insert itself?"},
+        BadFile{"recursive_block.dxf", ErrorCode::DxfUnsupported, 35, "inside block 'LOOP' closes a loop"},
         BadFile{"ellipse.dxf", ErrorCode::DxfUnsupported, 19, "ELLIPSE is not supported"},
         BadFile{"not_dxf.dxf", ErrorCode::DxfSyntax, 1, "where a group code was expected"},
         BadFile{"empty.dxf", ErrorCode::DxfSyntax, 0, "empty file"}));
@@ -281,12 +293,7 @@ TEST(DxfReader, SplineKnotCountMismatchIsAnError) {
 // 0.1 µm of chord error) took minutes. A table past kSplineMaxNodes is
 // refused, saying why, within a fraction of a second.
 TEST(DxfReader, ASplineKilometresLongIsRefusedNotTabulatedForMinutes) {
-  std::string sp = "0\nSPLINE\n8\n0\n70\n11\n71\n3\n72\n15\n73\n11\n74\n0\n";
-  for (int k = 0; k < 15; ++k) sp += "40\n" + std::to_string(k) + "\n";
-  for (int i = 0; i < 11; ++i) {  // a periodic cubic on a circle of 10 km
-    const double a = 2.0 * 3.141592653589793 * (i % 8) / 8.0;
-    sp += "10\n" + std::to_string(1e7 * std::cos(a)) + "\n20\n" + std::to_string(1e7 * std::sin(a)) + "\n";
-  }
+  const std::string sp = periodic_cubic_spline(1e7);  // on a circle of 10 km
   const auto t0 = std::chrono::steady_clock::now();
   Result<ReadResult> r = read_dxf_text(test::dxf_doc(sp), "km.dxf");
   ASSERT_FALSE(r.ok());
@@ -297,6 +304,65 @@ TEST(DxfReader, ASplineKilometresLongIsRefusedNotTabulatedForMinutes) {
   const std::string found((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   ASSERT_FALSE(found.empty());
   (void)read_dxf_text(found, "miles.dxf");
+}
+
+// Found by fuzzing: blocks nested 16 deep, each inserting the next as an
+// array, took minutes under the sanitizers — every copy placed (and its
+// spline tabulated) before the depth was found too deep. The INSERTs' copies
+// are now counted per block before anything is placed: refused at once,
+// at the outermost INSERT, saying how many.
+TEST(DxfReader, NestedArraysThatMultiplyIntoMillionsAreRefusedBeforeAnyIsPlaced) {
+  std::string blocks;
+  constexpr int kLevels = 12;  // B0 … B10 each insert the next 2 × 2: 4^11 = 4.2 million lines
+  for (int b = 0; b < kLevels; ++b) {
+    blocks += "0\nBLOCK\n8\n0\n2\nB" + std::to_string(b) + "\n70\n0\n10\n0\n20\n0\n3\nB" +
+              std::to_string(b) + "\n";
+    if (b + 1 < kLevels) {
+      blocks += "0\nINSERT\n8\n0\n2\nB" + std::to_string(b + 1) +
+                "\n10\n0\n20\n0\n70\n2\n71\n2\n44\n10\n45\n10\n";
+    } else {
+      blocks += test::dxf_line(0, 0, 1, 1);
+    }
+    blocks += "0\nENDBLK\n8\n0\n";
+  }
+  const std::string top = "0\nINSERT\n8\n0\n2\nB0\n10\n0\n20\n0\n";
+  const auto t0 = std::chrono::steady_clock::now();
+  Result<ReadResult> r = read_dxf_text(test::dxf_doc(top, blocks), "nest.dxf");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().code, ErrorCode::DxfUnsupported);
+  EXPECT_MENTIONS(r.error(), "the INSERTs place more than 1000000 entities");
+  EXPECT_MENTIONS(r.error(), "block 'B0' 4.194e+06");
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(5));  // no placing, not a speed test
+  // fewer levels are a drawing (4^10 = 1,048,576 lines would still be over)
+  std::string nine = blocks;
+  const std::string b9 = "0\nINSERT\n8\n0\n2\nB9\n";
+  ASSERT_NE(nine.find(b9), std::string::npos);
+  nine.replace(nine.find(b9), b9.size(), "0\nINSERT\n8\n0\n2\nB11\n");  // B8 inserts the line: 9 arrays
+  Result<ReadResult> ok = read_dxf_text(test::dxf_doc(top, nine), "nine.dxf");
+  ASSERT_TRUE(ok.ok()) << ok.error().to_string();
+  EXPECT_EQ(ok->drawing.entities.size(), 262144u);  // 4^9
+  // the fuzzer's own input
+  std::ifstream in(std::string(LCNC_SOURCE_DIR) + "/tests/fuzz/corpus/dxf/timeout_nested_arrays.dxf",
+                   std::ios::binary);
+  const std::string found((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_FALSE(found.empty());
+  const auto t1 = std::chrono::steady_clock::now();
+  EXPECT_FALSE(read_dxf_text(found, "found.dxf").ok());
+  EXPECT_LT(std::chrono::steady_clock::now() - t1, std::chrono::seconds(5));
+}
+
+// An array of a spline block tabulates every copy: the drawing's tables
+// together are bounded too (kMaxDrawingSplineNodes), with a clear error.
+TEST(DxfReader, AnArrayOfSplinesPastTheDrawingsTableBudgetIsRefused) {
+  const std::string sp = periodic_cubic_spline(5000);  // near a circle of 5 m
+  Result<ReadResult> one = read_dxf_text(test::dxf_doc(sp), "one.dxf");
+  ASSERT_TRUE(one.ok()) << one.error().to_string();
+  const std::string block = "0\nBLOCK\n8\n0\n2\nS\n70\n0\n10\n0\n20\n0\n3\nS\n" + sp + "0\nENDBLK\n8\n0\n";
+  const std::string array = "0\nINSERT\n8\n0\n2\nS\n10\n0\n20\n0\n70\n40\n71\n40\n44\n20000\n45\n20000\n";
+  Result<ReadResult> r = read_dxf_text(test::dxf_doc(array, block), "array.dxf");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().code, ErrorCode::DxfUnsupported);
+  EXPECT_MENTIONS(r.error(), "the drawing's splines take at most 1048576 pieces in all");
 }
 
 // Found by fuzzing: a value line longer than dxflib reads (1023 characters)
