@@ -27,12 +27,12 @@ inline constexpr int kSplineMaxDepth = 20;
 // takes ~22,000 at kSplineFlatnessMm, so this is reached only by a curve
 // kilometres long — a drawing in the wrong units — whose table would
 // otherwise take minutes.
-inline constexpr std::size_t kSplineMaxNodes = 1u << 17;
+inline constexpr std::size_t kSplineMaxNodes = 1u << 16;
 
 // Most nodes of all the spline tables of one drawing (an INSERT array of a
-// spline block tabulates each copy): ~90 m of spline bent at 1 mm radius,
-// a fraction of a second.
-inline constexpr std::size_t kMaxDrawingSplineNodes = 1u << 20;
+// spline block tabulates each copy): ~23 m of spline bent at 1 mm radius
+// all along, ~75 m at 10 mm; a twentieth of a second.
+inline constexpr std::size_t kMaxDrawingSplineNodes = 1u << 18;
 
 // Highest SPLINE degree read (DXF writers use 2 and 3; de Boor's scratch
 // space is sized by it).

@@ -362,7 +362,7 @@ TEST(DxfReader, AnArrayOfSplinesPastTheDrawingsTableBudgetIsRefused) {
   Result<ReadResult> r = read_dxf_text(test::dxf_doc(array, block), "array.dxf");
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.error().code, ErrorCode::DxfUnsupported);
-  EXPECT_MENTIONS(r.error(), "the drawing's splines take at most 1048576 pieces in all");
+  EXPECT_MENTIONS(r.error(), "the drawing's splines take at most 262144 pieces in all");
 }
 
 // Found by fuzzing: a value line longer than dxflib reads (1023 characters)
