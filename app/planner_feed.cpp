@@ -76,7 +76,7 @@ void PlannerFeed::wait_prefilled() const {
 }
 
 void PlannerFeed::abort() {
-  abort_ = true;
+  request_abort();
   if (thread_.joinable()) thread_.join();
 }
 

@@ -59,6 +59,9 @@ class PlannerFeed {
   void wait_prefilled() const;
   // Stops pushing (a stopped or e-stopped job) and joins the thread.
   void abort();
+  // The same without the join: the planner thread pushes at most the entry
+  // it holds after this returns, and then finishes (done()).
+  void request_abort() noexcept { abort_.store(true, std::memory_order_relaxed); }
   // Joins the thread once it has finished by itself.
   void join();
   [[nodiscard]] bool done() const noexcept { return done_.load(std::memory_order_acquire); }
