@@ -6,6 +6,8 @@
 //                                     # their speed profiles as CSV), the square and
 //                                     # the gear with a jerk limit, then throughput
 //   build/bench/planner_bench --throughput-only PROGRAM.ngc [runs]
+//   build/bench/planner_bench --stages PROGRAM.ngc [runs]   # the time of each
+//                                     # stage: the pipeline cut after each one
 //
 // The reference is computed here, independently of the planner: the blended
 // path the planner produced is sampled on a fine arc-length grid (ds), and the
@@ -29,6 +31,8 @@
 
 #include "gcode/program_reader.h"
 #include "path/deviation_meter.h"
+#include "plan/lookahead.h"
+#include "plan/path_blender.h"
 #include "plan/planner.h"
 #include "plan/program_source.h"
 
@@ -290,6 +294,64 @@ void throughput(const std::string& file, const MachineConfig& m, int runs) {
               peak_rss_mb());
 }
 
+// Where the throughput goes: the pipeline run whole up to each stage and cut
+// there (parse; + corner blends; + look-ahead; + coarse interpolation; +
+// step quantization), the median of `runs` for each; a stage costs the
+// difference to the one before.
+volatile std::int64_t g_sink = 0;
+
+void stages(const std::string& file, const MachineConfig& m, int runs) {
+  static const char* const kNames[] = {"parse (reader)", "+ corner blends", "+ look-ahead",
+                                       "+ coarse interpolation", "+ step quantization"};
+  double before = 0.0;
+  std::printf("%-24s %10s %12s %10s\n", "pipeline up to", "items", "median [s]", "stage [s]");
+  for (int stage = 0; stage < 5; ++stage) {
+    std::vector<double> secs;
+    std::uint64_t items = 0;
+    for (int r = 0; r < runs; ++r) {
+      const auto t0 = std::chrono::steady_clock::now();
+      auto reader = ProgramReader::open(file, m);
+      if (!reader) {
+        std::fprintf(stderr, "%s\n", reader.error().to_string().c_str());
+        return;
+      }
+      const SegmentSource source = reader_source(**reader);
+      std::uint64_t n = 0;
+      std::int64_t checksum = 0;
+      if (stage == 0) {
+        Segment s;
+        while (source(s) == SourceStatus::Item) ++n;
+      } else if (stage <= 2) {
+        PathBlender blender(m, source);
+        IndexedSegment s;
+        if (stage == 1) {
+          while (blender.next(s) == SourceStatus::Item) ++n;
+        } else {
+          Lookahead la(m, [&](IndexedSegment& in) { return blender.next(in); });
+          PlannedSegment p;
+          while (la.next(p) == SourceStatus::Item) ++n;
+        }
+      } else {
+        Planner planner(m, source);
+        StepQuantizer q(m, Pose::Zero());
+        PeriodSample s;
+        while (planner.next(s) == SourceStatus::Item) {
+          ++n;
+          if (stage == 4) checksum += q.quantize(s).steps[0];
+        }
+      }
+      secs.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      items = n;
+      g_sink = checksum;  // the quantizer's work is kept
+    }
+    std::sort(secs.begin(), secs.end());
+    const double med = secs[secs.size() / 2];
+    std::printf("%-24s %10llu %12.3f %10.3f\n", kNames[stage], static_cast<unsigned long long>(items),
+                med, med - before);
+    before = med;
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -302,6 +364,10 @@ int main(int argc, char** argv) {
   }
   if (argc >= 3 && std::strcmp(argv[1], "--throughput-only") == 0) {
     throughput(argv[2], m, argc >= 4 ? std::atoi(argv[3]) : 3);
+    return 0;
+  }
+  if (argc >= 3 && std::strcmp(argv[1], "--stages") == 0) {
+    stages(argv[2], m, argc >= 4 ? std::atoi(argv[3]) : 5);
     return 0;
   }
   struct Case {
