@@ -376,13 +376,8 @@ class Expander {
   // What one INSERT places (all its copies), its block counted once.
   // `inside`: the block holding this INSERT ("" at the top).
   Result<Count> count(const RawInsert& in, int depth, const std::string& inside) {
-    const auto it = blocks_.find(in.name);
-    if (it == blocks_.end()) {
-      return make_error(ErrorCode::DxfSyntax,
-                        "INSERT of block '" + in.name +
-                            "', which is not defined; expected a BLOCK of that name",
-                        file_, in.line);
-    }
+    Result<const Container*> blk = block_of(in);
+    if (!blk) return blk.error();
     if (depth > kMaxBlockDepth) return too_deep(in);
     Count one;
     if (const auto done = counted_.find(in.name); done != counted_.end()) {
@@ -395,8 +390,8 @@ class Expander {
                               "or through others",
                           file_, in.line);
       }
-      one.entities = static_cast<double>(it->second.entities.size());
-      for (const RawInsert& inner : it->second.inserts) {
+      one.entities = static_cast<double>((*blk)->entities.size());
+      for (const RawInsert& inner : (*blk)->inserts) {
         Result<Count> c = count(inner, depth + 1, in.name);
         if (!c) return c.error();
         one.entities += c->entities;
@@ -416,7 +411,8 @@ class Expander {
                       file_, in.line);
   }
 
-  Status expand_insert(const RawInsert& in, const Affine& outer, int depth) {
+  // The block an INSERT names.
+  Result<const Container*> block_of(const RawInsert& in) const {
     const auto it = blocks_.find(in.name);
     if (it == blocks_.end()) {
       return make_error(ErrorCode::DxfSyntax,
@@ -424,8 +420,14 @@ class Expander {
                             "', which is not defined; expected a BLOCK of that name",
                         file_, in.line);
     }
-    if (depth >= kMaxBlockDepth) return too_deep(in);  // check() refused it first
-    const Container& blk = it->second;
+    return &it->second;
+  }
+
+  Status expand_insert(const RawInsert& in, const Affine& outer, int depth) {
+    Result<const Container*> found = block_of(in);  // check() refused these first
+    if (!found) return found.error();
+    if (depth >= kMaxBlockDepth) return too_deep(in);
+    const Container& blk = **found;
     const double ang = in.angle_deg * kPi / 180.0;
     const Eigen::Matrix2d rot = Eigen::Rotation2Dd(ang).toRotationMatrix();
     for (int r = 0; r < in.rows; ++r) {
