@@ -28,7 +28,7 @@ void period_ticks(std::uint32_t capacity, std::uint32_t acc0, std::uint32_t n,
 }  // namespace
 
 Dda::Dda(const DdaConfig& config) : n_cap_(config.capacity), max_pulses_(config.max_pulses()) {
-  acc_.fill(n_cap_ / 2);  // preset half capacity: pulses centred in the period
+  // The accumulators are preset to half capacity: pulses centred in the period.
   if (max_pulses_ <= kTabulatedMaxPulses) {
     // Every axis starts at N/2 and a whole period leaves it there, so a
     // period's ticks depend on n alone: the table of every n, here, once.
@@ -54,7 +54,7 @@ void Dda::run_period(const std::array<std::int32_t, kAxisCount>& steps,
       ticks = ticks_.data() + first_[n];
     } else {
       std::uint32_t* out = ticks_.data() + static_cast<std::size_t>(i) * max_pulses_;
-      period_ticks(n_cap_, acc_[i], n, out);
+      period_ticks(n_cap_, accumulator(), n, out);
       ticks = out;
     }
     // acc is unchanged over a whole period (exactly n overflows of N).

@@ -40,7 +40,9 @@ class Dda {
   // storage, valid until the next call). steps[i] must satisfy |steps| ≤ max.
   void run_period(const std::array<std::int32_t, kAxisCount>& steps, PulseFrame& frame) noexcept;
 
-  [[nodiscard]] std::uint32_t accumulator(int axis) const noexcept { return acc_[axis]; }
+  // Every axis's accumulator, at the end of any period: the N/2 it is
+  // preset to (a whole period leaves it unchanged, see above).
+  [[nodiscard]] std::uint32_t accumulator() const noexcept { return n_cap_ / 2; }
   [[nodiscard]] std::uint32_t capacity() const noexcept { return n_cap_; }
 
   // The tick-by-tick definition, for tests and for cross-checking hdl/.
@@ -51,7 +53,6 @@ class Dda {
  private:
   std::uint32_t n_cap_;
   std::uint32_t max_pulses_;
-  std::array<std::uint32_t, kAxisCount> acc_{};
   std::vector<std::uint32_t> first_;  // tabulated: n's ticks start at ticks_[first_[n]]; else empty
   std::vector<std::uint32_t> ticks_;  // the table, or kAxisCount × max_pulses_ to compute into
 };

@@ -82,7 +82,7 @@ int expect(const std::string& in_path, const std::string& out_path) {
       lcnc::rt::Dda::reference_period(cfg.capacity, ref_acc[a],
                                       static_cast<std::uint32_t>(std::abs(steps[a])), ref);
       const bool same = ref.size() == ax.count && std::equal(ref.begin(), ref.end(), ax.ticks);
-      if (!same || dda.accumulator(a) != ref_acc[a]) {
+      if (!same || dda.accumulator() != ref_acc[a]) {
         std::fprintf(stderr,
                      "%s:%d: axis %d: rt::Dda::run_period and Dda::reference_period disagree "
                      "(%u vs %zu pulses) — a bug in the C++ DDA\n",
