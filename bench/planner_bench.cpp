@@ -25,6 +25,7 @@
 #include <cstdio>
 #include <cstring>
 #include <functional>
+#include <memory>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -262,18 +263,27 @@ long peak_rss_mb() {
   return u.ru_maxrss / 1024;
 }
 
-void throughput(const std::string& file, const MachineConfig& m, int runs) {
+// The program's reader, or nullptr after saying why it cannot be read.
+std::unique_ptr<ProgramReader> open_program(const std::string& file, const MachineConfig& m) {
+  auto reader = ProgramReader::open(file, m);
+  if (!reader) {
+    std::fprintf(stderr, "%s\n", reader.error().to_string().c_str());
+    return nullptr;
+  }
+  return std::move(*reader);
+}
+
+// False when the program cannot be read.
+bool throughput(const std::string& file, const MachineConfig& m, int runs) {
   std::vector<double> rates;
   for (int r = 0; r < runs; ++r) {
     const auto t0 = std::chrono::steady_clock::now();
-    auto reader = ProgramReader::open(file, m);
-    if (!reader) {
-      std::fprintf(stderr, "%s\n", reader.error().to_string().c_str());
-      return;
-    }
+    const std::unique_ptr<ProgramReader> reader = open_program(file, m);
+    if (!reader) return false;
+    const SegmentSource source = reader_source(*reader);
     std::uint64_t segs = 0;
     Planner ci(m, [&](Segment& s) {
-      const SourceStatus st = reader_source(**reader)(s);
+      const SourceStatus st = source(s);
       if (st == SourceStatus::Item) ++segs;
       return st;
     });
@@ -292,6 +302,7 @@ void throughput(const std::string& file, const MachineConfig& m, int runs) {
   std::sort(rates.begin(), rates.end());
   std::printf("  median: %.0f segments/s; peak memory (max RSS) %ld MB\n", rates[rates.size() / 2],
               peak_rss_mb());
+  return true;
 }
 
 // Where the throughput goes: the pipeline run whole up to each stage and cut
@@ -300,7 +311,7 @@ void throughput(const std::string& file, const MachineConfig& m, int runs) {
 // difference to the one before.
 volatile std::int64_t g_sink = 0;
 
-void stages(const std::string& file, const MachineConfig& m, int runs) {
+bool stages(const std::string& file, const MachineConfig& m, int runs) {
   static const char* const kNames[] = {"parse (reader)", "+ corner blends", "+ look-ahead",
                                        "+ coarse interpolation", "+ step quantization"};
   double before = 0.0;
@@ -310,12 +321,9 @@ void stages(const std::string& file, const MachineConfig& m, int runs) {
     std::uint64_t items = 0;
     for (int r = 0; r < runs; ++r) {
       const auto t0 = std::chrono::steady_clock::now();
-      auto reader = ProgramReader::open(file, m);
-      if (!reader) {
-        std::fprintf(stderr, "%s\n", reader.error().to_string().c_str());
-        return;
-      }
-      const SegmentSource source = reader_source(**reader);
+      const std::unique_ptr<ProgramReader> reader = open_program(file, m);
+      if (!reader) return false;
+      const SegmentSource source = reader_source(*reader);
       std::uint64_t n = 0;
       std::int64_t checksum = 0;
       if (stage == 0) {
@@ -350,6 +358,7 @@ void stages(const std::string& file, const MachineConfig& m, int runs) {
                 med, med - before);
     before = med;
   }
+  return true;
 }
 
 }  // namespace
@@ -363,12 +372,10 @@ int main(int argc, char** argv) {
     argv += 2;
   }
   if (argc >= 3 && std::strcmp(argv[1], "--throughput-only") == 0) {
-    throughput(argv[2], m, argc >= 4 ? std::atoi(argv[3]) : 3);
-    return 0;
+    return throughput(argv[2], m, argc >= 4 ? std::max(1, std::atoi(argv[3])) : 3) ? 0 : 1;
   }
   if (argc >= 3 && std::strcmp(argv[1], "--stages") == 0) {
-    stages(argv[2], m, argc >= 4 ? std::atoi(argv[3]) : 5);
-    return 0;
+    return stages(argv[2], m, argc >= 4 ? std::max(1, std::atoi(argv[3])) : 5) ? 0 : 1;
   }
   struct Case {
     const char* name;
@@ -419,7 +426,7 @@ int main(int argc, char** argv) {
   }
   if (argc >= 2) {
     std::printf("throughput on %s\n", argv[1]);
-    throughput(argv[1], m, 3);
+    if (!throughput(argv[1], m, 3)) return 1;
   }
   return 0;
 }
