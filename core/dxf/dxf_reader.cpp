@@ -336,14 +336,14 @@ class Expander {
   Status check(const Container& top) {
     double placed = 0.0;
     for (const RawInsert& in : top.inserts) {
-      Result<Count> c = count(in, 1, "");
+      Result<double> c = count(in, 1, "");
       if (!c) return c.error();
-      placed += c->entities;
+      placed += *c;
       if (placed > static_cast<double>(kMaxPlacedEntities)) {
         return make_error(ErrorCode::DxfUnsupported,
                           "the INSERTs place more than " + std::to_string(kMaxPlacedEntities) +
                               " entities (this one of block '" + in.name + "' " +
-                              fmt_count(c->entities) + "); expected fewer copies",
+                              fmt_count(*c) + "); expected fewer copies",
                           file_, in.line);
       }
     }
@@ -363,23 +363,20 @@ class Expander {
   }
 
  private:
-  struct Count {
-    double entities = 0.0;  // placed by one copy of the block, its INSERTs expanded
-  };
-
   static std::string fmt_count(double n) {
     char b[32];
     std::snprintf(b, sizeof b, "%.4g", n);
     return b;
   }
 
-  // What one INSERT places (all its copies), its block counted once.
-  // `inside`: the block holding this INSERT ("" at the top).
-  Result<Count> count(const RawInsert& in, int depth, const std::string& inside) {
+  // The entities one INSERT places (all its copies, their INSERTs expanded),
+  // its block counted once. `inside`: the block holding this INSERT ("" at
+  // the top).
+  Result<double> count(const RawInsert& in, int depth, const std::string& inside) {
     Result<const Container*> blk = block_of(in);
     if (!blk) return blk.error();
     if (depth > kMaxBlockDepth) return too_deep(in);
-    Count one;
+    double one = 0.0;  // one copy of the block
     if (const auto done = counted_.find(in.name); done != counted_.end()) {
       one = done->second;
     } else {
@@ -390,18 +387,16 @@ class Expander {
                               "or through others",
                           file_, in.line);
       }
-      one.entities = static_cast<double>((*blk)->entities.size());
+      one = static_cast<double>((*blk)->entities.size());
       for (const RawInsert& inner : (*blk)->inserts) {
-        Result<Count> c = count(inner, depth + 1, in.name);
+        Result<double> c = count(inner, depth + 1, in.name);
         if (!c) return c.error();
-        one.entities += c->entities;
+        one += *c;
       }
       visiting_.erase(in.name);
       counted_[in.name] = one;
     }
-    Count all;
-    all.entities = one.entities * in.cols * in.rows;
-    return all;
+    return one * in.cols * in.rows;
   }
 
   Diagnostic too_deep(const RawInsert& in) const {
@@ -507,7 +502,7 @@ class Expander {
   const std::map<std::string, Container>& blocks_;
   const std::string& file_;
   Drawing& out_;
-  std::map<std::string, Count> counted_;  // check(): one copy of each block
+  std::map<std::string, double> counted_;  // check(): entities of one copy of each block
   std::set<std::string> visiting_;        // check(): the blocks being counted, outermost first
   std::size_t spline_nodes_left_ = kMaxDrawingSplineNodes;
 };
