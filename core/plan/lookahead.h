@@ -58,38 +58,45 @@ class Lookahead {
   [[nodiscard]] std::size_t max_window_seen() const noexcept { return max_window_; }
 
  private:
+  // What the passes read and write, kept apart from the planned segments
+  // (some 600 bytes each, touched only when they come in and go out): the
+  // passes sweep the window several times, and a compact one stays in cache.
   struct Node {
-    explicit Node(const IndexedSegment& in)
-        : p{in.seg, SegmentGeometry(in.seg), Trapezoid{}, 0.0, in.index} {}
-
-    PlannedSegment p;
-    double v_max = 0.0;     // top speed on the segment
-    SegmentLimits lim;      // tangential acceleration as a function of speed
-    Accel at_v_max;         // lim.at(v_max): all a cruising segment asks for
-    double v_junction = 0;  // limit where this segment ends and the next starts
+    double length = 0.0;
+    double v_max = 0.0;       // top speed on the segment
+    double v_junction = 0.0;  // limit where this segment ends and the next starts
     // The backward pass's speeds, kept from one plan to the next: the pass
     // stops at the first segment whose entry speed comes out unchanged.
     double v_entry_back = 0.0, v_exit_back = 0.0;
-    Accel at_exit_back;  // accelerations at v_exit_back
+    // The forward pass's, for released segments: the profile runs v_entry → v_exit.
+    double v_entry = 0.0, v_exit = 0.0;
+    bool dwell = false;
     bool planned_back = false;
+    SegmentLimits lim;  // tangential acceleration as a function of speed
   };
 
   bool fill();  // pull until the window is deep enough; false when nothing is left
   void plan_and_release();
-  [[nodiscard]] double junction_limit(const Node& a, const Node& b);
+  [[nodiscard]] double junction_limit(const PlannedSegment& a, double v_a,
+                                      const PlannedSegment& b, double v_b);
 
   const MachineConfig& machine_;
   IndexedSource source_;
-  // The window, oldest first. window_[0, released_) are planned and handed
-  // out in order (handed_ of them so far); they are erased before the next
-  // fill, so the vector's storage is reused: no allocation once it has grown.
+  // The window, oldest first, as two vectors of the same length: the passes'
+  // nodes and the segments. [0, released_) are planned and handed out in
+  // order (handed_ of them so far); they are erased before the next fill, so
+  // the vectors' storage is reused: no allocation once they have grown.
   std::vector<Node> window_;
+  std::vector<PlannedSegment> segments_;
   std::size_t released_ = 0, handed_ = 0;
   // The unit tangent (dp/ds) where window_.back() ends, when already known:
   // a line's is its start tangent, found for the junction before it.
   std::optional<Pose> back_end_tangent_;
   double tail_length_ = 0.0;  // length of the window behind its front segment
+  // Braking length from the highest top speed in the window: what a stop
+  // assumed at its end may reach back over.
   double braking_length_ = 0.0;
+  double a_brake_ = 0.0;  // the weakest axis's acceleration (planned units)
   double v_start_ = 0.0;      // speed the last released segment ends at
   bool source_done_ = false;
   bool source_error_ = false;

@@ -54,12 +54,46 @@ void sinusoid_range(double a, double b, const SegmentGeometry& geo, double& lo, 
 
 }  // namespace
 
+namespace {
+
+// Per linear axis an arc moves in: what its two bounds need.
+struct ArcAxis {
+  double a_axis = 0.0;  // amax_i
+  double g = 0.0;       // sqrt(u_i² + w_i²)
+  double t_lo = 0.0, t_hi = 0.0, n_lo = 0.0, n_hi = 0.0;  // ranges over the sweep
+};
+
+// The box bound of one axis for one side as lines in a_n, x = ±t over the
+// sweep (+ speeding up, − slowing down):
+//   a ≤ (amax − a_n·max(0, n_hi)) / (ρ·x_hi)   (x_hi > 0)
+//   a ≤ (amax + a_n·min(0, n_lo)) / (ρ·(−x_lo)) (x_lo < 0)
+// in planned units: a_n = c·x, divided by K². A side the tangent never
+// points to gives no line (p = ∞).
+void box_lines(const ArcAxis& x, double rho, double c, double k2, bool speed_up,
+               std::array<double, 2>& p, std::array<double, 2>& q) {
+  const double x_lo = speed_up ? x.t_lo : -x.t_hi, x_hi = speed_up ? x.t_hi : -x.t_lo;
+  p = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  q = {0.0, 0.0};
+  if (x_hi > 1e-15) {
+    const double den = rho * x_hi * k2;
+    p[0] = x.a_axis / den;
+    q[0] = std::max(0.0, x.n_hi) * c / den;
+  }
+  if (x_lo < -1e-15) {
+    const double den = rho * -x_lo * k2;
+    p[1] = x.a_axis / den;
+    q[1] = -std::min(0.0, x.n_lo) * c / den;
+  }
+}
+
+}  // namespace
+
 SegmentLimits segment_limits(const Segment& seg, const SegmentGeometry& geo,
                              const MachineConfig& machine) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   SegmentLimits lim;
   lim.v_max = kInf;
-  lim.a_linear = kInf;
+  double a_linear = kInf;
   const double L = geo.length();
   if (L <= plan::kMinSegmentLength) return {};
   // Linearly moving part of every axis (whole line; helix normal and rotary axes of an arc).
@@ -72,37 +106,26 @@ SegmentLimits segment_limits(const Segment& seg, const SegmentGeometry& geo,
     const AxisConfig& ax = machine.axes[i];
     if (!ax.present) return {};  // the reader rejects such moves first
     lim.v_max = std::min(lim.v_max, ax.max_velocity / k);
-    lim.a_linear = std::min(lim.a_linear, ax.max_acceleration / k);
+    a_linear = std::min(a_linear, ax.max_acceleration / k);
   }
-  if (geo.is_arc() && geo.plane_speed_ratio() > 0.0) {
-    const double rho = geo.plane_speed_ratio();
+  std::array<ArcAxis, 3> arc_axes{};
+  int arc_axis_count = 0;
+  const double rho = geo.plane_speed_ratio();
+  if (geo.is_arc() && rho > 0.0) {
     lim.arc = true;
-    lim.rho = rho;
-    lim.radius = geo.radius();
     double a_n_max = kInf;
     for (int i = 0; i < 3; ++i) {
       const double ui = geo.u()[i], wi = geo.w()[i];
       const double g = std::hypot(ui, wi);
       if (g <= 1e-15) continue;
       const AxisConfig& ax = machine.axes[i];
-      double t_lo, t_hi, n_lo, n_hi;
-      sinusoid_range(wi, -ui, geo, t_lo, t_hi);   // t = −sin φ·u + cos φ·w
-      sinusoid_range(-ui, -wi, geo, n_lo, n_hi);  // n = −cos φ·u − sin φ·w
-      SegmentLimits::ArcAxis& x = lim.arc_axes[lim.arc_axis_count++];
+      ArcAxis& x = arc_axes[arc_axis_count++];
       x.a_axis = ax.max_acceleration;
-      const double by_norm = ax.max_acceleration / g;
-      x.by_norm_sqr = by_norm * by_norm;
-      x.a1_cap = std::sqrt(x.by_norm_sqr) / rho;  // the norm bound at a_n = 0
-      x.n_lo = n_lo;
-      x.n_hi = n_hi;
-      // box bound, x = s·t over [x_lo, x_hi]: s = +1 speeding up, −1 slowing down
-      for (int side = 0; side < 2; ++side) {
-        const double x_lo = side == 0 ? t_lo : -t_hi, x_hi = side == 0 ? t_hi : -t_lo;
-        x.den_hi[side] = x_hi > 1e-15 ? rho * x_hi : 0.0;
-        x.den_lo[side] = x_lo < -1e-15 ? rho * -x_lo : 0.0;
-      }
-      const double t_abs = std::max(std::abs(t_lo), std::abs(t_hi));
-      const double n_abs = std::max(std::abs(n_lo), std::abs(n_hi));
+      x.g = g;
+      sinusoid_range(wi, -ui, geo, x.t_lo, x.t_hi);   // t = −sin φ·u + cos φ·w
+      sinusoid_range(-ui, -wi, geo, x.n_lo, x.n_hi);  // n = −cos φ·u − sin φ·w
+      const double t_abs = std::max(std::abs(x.t_lo), std::abs(x.t_hi));
+      const double n_abs = std::max(std::abs(x.n_lo), std::abs(x.n_hi));
       lim.v_max = std::min(lim.v_max, ax.max_velocity / (rho * t_abs + std::abs(lin[i])));
       if (n_abs > 1e-15) a_n_max = std::min(a_n_max, ax.max_acceleration / n_abs);
     }
@@ -114,43 +137,23 @@ SegmentLimits segment_limits(const Segment& seg, const SegmentGeometry& geo,
   if (!std::isfinite(lim.v_max)) return {};
   // Planned at the highest feed override (DESIGN §5.5): at K the speed is K·v
   // and the acceleration K²·a.
-  const double k = machine.max_feed_override;
-  lim.override_k = k;
+  const double k = machine.max_feed_override, k2 = k * k;
   lim.v_max /= k;
-  return lim;
-}
-
-// Per axis the larger a_t either bound allows (both bounds are true):
-//   by the norm  a1 = sqrt((amax_i/g_i)² − a_n²)/ρ
-//   the box      largest a with −amax_i ≤ ρ·a·x + c ≤ amax_i for x in
-//                [x_lo, x_hi], c in [min(0, a_n·n_lo), max(0, a_n·n_hi)]
-// a_n anywhere in [0, a_n(v)]: the bound then holds at every speed ≤ v,
-// and falls as v rises (the look-ahead relies on that).
-Accel SegmentLimits::arc_at(double v) const noexcept {
-  const double k2 = override_k * override_k;
-  const double vp = rho * v * override_k;  // physical in-plane speed
-  const double a_n = vp * vp / radius;
-  auto box_bound = [](const ArcAxis& x, int side, double c_lo, double c_hi) {
-    if (c_hi > x.a_axis || c_lo < -x.a_axis) return 0.0;
-    double a = std::numeric_limits<double>::infinity();
-    if (x.den_hi[side] != 0.0) a = std::min(a, (x.a_axis - c_hi) / x.den_hi[side]);
-    if (x.den_lo[side] != 0.0) a = std::min(a, (x.a_axis + c_lo) / x.den_lo[side]);
-    return std::max(0.0, a);
-  };
-  double accel = a_linear, decel = a_linear;
+  lim.a_linear = a_linear / k2;  // ∞ when only the arc's plane moves
+  if (!lim.arc) return lim;
+  // a_n = (ρ·K·v)²/r: the physical centripetal acceleration at planned speed v
+  const double c = rho * rho * k2 / geo.radius();
+  lim.c = c / (rho * k2);  // the norm bound sqrt((amax/g)² − a_n²)/ρ/K² as sqrt(b − (c'·x)²)
   for (int j = 0; j < arc_axis_count; ++j) {
     const ArcAxis& x = arc_axes[j];
-    const double c_lo = std::min(0.0, a_n * x.n_lo), c_hi = std::max(0.0, a_n * x.n_hi);
-    const double up = box_bound(x, 0, c_lo, c_hi), down = box_bound(x, 1, c_lo, c_hi);
-    // a1 ≤ a1_cap (its value at a_n = 0): max(a1, b) is b when b ≥ a1_cap,
-    // so the square root is taken only when a box bound falls below that
-    double a1 = x.a1_cap;
-    if (up < x.a1_cap || down < x.a1_cap || std::isnan(a_n))
-      a1 = std::sqrt(std::max(0.0, x.by_norm_sqr - a_n * a_n)) / rho;
-    accel = std::min(accel, std::max(a1, up));
-    decel = std::min(decel, std::max(a1, down));
+    ArcAxisBound& ax = lim.axes[lim.axis_count++];
+    box_lines(x, rho, c, k2, true, ax.p_up, ax.q_up);
+    box_lines(x, rho, c, k2, false, ax.p_down, ax.q_down);
+    const double by_norm = x.a_axis / x.g / (rho * k2);
+    ax.b = by_norm * by_norm;
+    ax.cap = by_norm;
   }
-  return {accel / k2, decel / k2};
+  return lim;
 }
 
 double target_speed(const Segment& seg, const SegmentGeometry& geo, const SegmentLimits& lim) {

@@ -21,15 +21,22 @@
 // centripetal limit (DESIGN §5.1) takes a share of the budget:
 // a_n·max(|n_lo|, |n_hi|) ≤ kArcNormalShare·amax_i.
 // Normal (helix) and rotary axes move linearly with the path, as on a line.
+//
+// The look-ahead asks for accelerations many times per segment, at speeds
+// that differ each time, and for the speed reachable over a length. Both
+// must be cheap and the second exact, so the bounds are kept in x = v²:
+// a_n = (ρ·v)²/r is linear in x, and so is the box bound (a min of two
+// lines per axis and side); the norm bound is sqrt(b − (c·x)²). The
+// reachable speed then solves v'² = v² + 2L·a(v') in closed form.
 // All of it is planned at the highest feed override K (DESIGN §5.5): the
 // limits returned are v_max/K and accelerations/K², so any override up to K
 // keeps every axis within its limits.
-// Cost: the look-ahead asks for accelerations many times per segment, so
-// everything that does not depend on the speed is computed once, and the
-// ranges over the sweep avoid atan2 where the answer is certain.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <limits>
 
 #include "machine/machine_config.h"
 #include "path/segment.h"
@@ -43,48 +50,78 @@ struct Accel {
   double decel = 0.0;
 };
 
+// One arc axis's bounds in x = v² (planned units): the box as up to two
+// lines per side, a ≤ p − q·x (a missing line has p = ∞, q = 0); the norm as
+// sqrt(b − (c·x)²), c shared by the segment's axes.
+struct ArcAxisBound {
+  std::array<double, 2> p_up{}, q_up{}, p_down{}, q_down{};
+  double b = 0.0;
+  double cap = 0.0;  // sqrt(b): the norm bound at rest, its largest
+};
+
 struct SegmentLimits {
   double v_max = 0.0;  // path units/s: the highest speed the axes allow
+  bool arc = false;    // the limits depend on the speed
 
   // Tangential acceleration (speeding up) and deceleration (slowing down,
-  // > 0) allowed while the speed stays ≤ v (planned units): on an arc, slower
-  // means less centripetal load; on a line both are the same whatever v.
-  [[nodiscard]] double accel_at(double v) const noexcept { return at(v).accel; }
-  [[nodiscard]] double decel_at(double v) const noexcept { return at(v).decel; }
-  [[nodiscard]] double tangential(double v, double sign) const noexcept {
-    return sign > 0 ? accel_at(v) : decel_at(v);
-  }
-  // Both at once (they share the centripetal part); inline for lines.
+  // > 0) allowed while the speed stays ≤ v (planned units): on an arc,
+  // slower means less centripetal load; on a line both are the same
+  // whatever v. Per arc axis the larger of its two bounds (both are true).
   [[nodiscard]] Accel at(double v) const noexcept {
-    if (!arc) {
-      const double a = a_linear / (override_k * override_k);
-      return {a, a};
+    const double x = v * v;
+    Accel a{a_linear, a_linear};
+    for (int j = 0; j < axis_count; ++j) {
+      const ArcAxisBound& ax = axes[j];
+      const double up = std::min(ax.p_up[0] - ax.q_up[0] * x, ax.p_up[1] - ax.q_up[1] * x);
+      const double down =
+          std::min(ax.p_down[0] - ax.q_down[0] * x, ax.p_down[1] - ax.q_down[1] * x);
+      double n = 0.0;  // the norm bound, needed only where a box bound falls below its cap
+      if (up < ax.cap || down < ax.cap) {
+        const double cx = c * x;
+        n = std::sqrt(std::max(0.0, ax.b - cx * cx));
+      }
+      a.accel = std::min(a.accel, std::max(n, up));
+      a.decel = std::min(a.decel, std::max(n, down));
     }
-    return arc_at(v);
+    return {std::max(0.0, a.accel), std::max(0.0, a.decel)};
   }
+  // The speed reached from v over length L speeding up (or, read backward,
+  // the entry from which v is reached slowing down) at the acceleration
+  // allowed at the speed reached — safe, since it falls as the speed rises:
+  // v'² = v² + 2L·a(v'), solved exactly. a(x) is a min over axes of a max
+  // of two bounds, each falling in x, so x' is the min over axes of the max
+  // of the two x' — a linear equation per box line, a quadratic for the
+  // norm. Never below v; not capped at v_max.
+  [[nodiscard]] double reach_up(double v, double L) const noexcept { return reach(v, L, true); }
+  [[nodiscard]] double reach_down(double v, double L) const noexcept { return reach(v, L, false); }
 
-  // What at() needs (physical units), fixed per segment.
-  double a_linear = 0.0;  // bound from the linearly moving axes
-  bool arc = false;
-  double rho = 0.0, radius = 0.0;
-  double override_k = 1.0;
-  // Per linear axis an arc moves in (g_i > 0), the constants of the two
-  // bounds, computed once per segment (at() is asked many times): the range
-  // [n_lo, n_hi] of the unit normal over the sweep, and the box bound's
-  // denominators ρ·x_hi and ρ·(−x_lo) for speeding up [0] and slowing down
-  // [1] (x = ±t_i over the sweep; 0: that side gives no bound).
-  struct ArcAxis {
-    double a_axis = 0.0;       // amax_i
-    double by_norm_sqr = 0.0;  // (amax_i/g_i)²
-    double a1_cap = 0.0;       // sqrt(by_norm_sqr)/ρ: the norm bound at a_n = 0, its largest
-    double n_lo = 0.0, n_hi = 0.0;
-    std::array<double, 2> den_hi{}, den_lo{};
-  };
-  std::array<ArcAxis, 3> arc_axes{};
-  int arc_axis_count = 0;
+  // What at() and reach() need, per segment.
+  double a_linear = 0.0;  // the linearly moving axes' bound (planned units)
+  double c = 0.0;         // the norm bounds' a_n per x
+  std::array<ArcAxisBound, 3> axes{};
+  int axis_count = 0;
 
  private:
-  [[nodiscard]] Accel arc_at(double v) const noexcept;
+  [[nodiscard]] double reach(double v, double L, bool up) const noexcept {
+    const double x = v * v, two_l = 2.0 * L;
+    double x1 = x + two_l * a_linear;
+    for (int j = 0; j < axis_count; ++j) {
+      const ArcAxisBound& ax = axes[j];
+      const auto& p = up ? ax.p_up : ax.p_down;
+      const auto& q = up ? ax.q_up : ax.q_down;
+      const double box =
+          std::min((x + two_l * p[0]) / (1.0 + two_l * q[0]), (x + two_l * p[1]) / (1.0 + two_l * q[1]));
+      double xj = box;
+      // the norm's x' is at most x + 2L·cap: asked only when that could beat the box
+      if (box < x + two_l * ax.cap) {
+        const double dc2 = two_l * two_l * c * c;
+        const double disc = ax.b * (1.0 + dc2) - c * c * x * x;
+        if (disc > 0.0) xj = std::max(xj, (x + two_l * std::sqrt(disc)) / (1.0 + dc2));
+      }
+      x1 = std::min(x1, xj);
+    }
+    return std::sqrt(std::max(x, x1));
+  }
 };
 
 // Limits of the segment (accel_at/decel_at give its acceleration at a speed).

@@ -6,9 +6,9 @@ namespace lcnc::plan {
 // Segments shorter than this (mm or deg) carry no motion of their own.
 inline constexpr double kMinSegmentLength = 1e-9;
 // Share of an arc's in-plane acceleration budget the centripetal part may
-// take at the arc's top speed; the rest, sqrt(1 − 0.97²) ≈ 24 %, stays for
+// take at the arc's top speed; the rest, sqrt(1 − 0.995²) ≈ 10 %, stays for
 // speeding up and slowing down on the arc. Curvature-limited arcs run at
-// sqrt(0.97) ≈ 98.5 % of the speed that would use the whole budget.
+// sqrt(0.995) ≈ 99.75 % of the speed that would use the whole budget.
 inline constexpr double kArcNormalShare = 0.995;
 // Corners turning less than this (rad) are tangent: no blend needed.
 inline constexpr double kMinBlendAngle = 1e-7;
