@@ -55,9 +55,11 @@ SegmentGeometry::SegmentGeometry(const Segment& seg) : start_(seg.start), end_(s
     radius_ = ra.norm();
     u_ = ra / radius_;
     w_ = n.cross(u_);
-    sweep_ = std::atan2(rb.dot(w_), rb.dot(u_));
+    const double y = rb.dot(w_), x = rb.dot(u_);
+    sweep_ = std::atan2(y, x);
     if (sweep_ <= 0.0) sweep_ += two_pi;
     sweep_ += two_pi * seg.extra_turns;
+    set_sin_cos_sweep(y, x);
   } else {
     const PlaneAxes pa = plane_axes(seg.plane);
     Vec3 n = Vec3::Zero();
@@ -72,16 +74,28 @@ SegmentGeometry::SegmentGeometry(const Segment& seg) : start_(seg.start), end_(s
     radius_ = ra.norm();
     u_ = ra / radius_;
     w_ = n.cross(u_);
-    double sweep = std::atan2(rb.dot(w_), rb.dot(u_));  // (−π, π]
-    if (sweep <= 1e-12) sweep += two_pi;                 // end == start: one full turn
+    const double y = rb.dot(w_), x = rb.dot(u_);
+    double sweep = std::atan2(y, x);      // (−π, π]
+    if (sweep <= 1e-12) sweep += two_pi;  // end == start: one full turn
     sweep_ = sweep + two_pi * seg.extra_turns;
+    set_sin_cos_sweep(y, x);
   }
-  sin_sweep_ = std::sin(sweep_);
-  cos_sweep_ = std::cos(sweep_);
   const double plane_len = radius_ * sweep_;
   // hypot(x, 0) is |x| exactly (C Annex F): skip the call for plane arcs
   length_ = helix_h_ == 0.0 ? std::abs(plane_len) : std::hypot(plane_len, helix_h_);
   plane_ratio_ = length_ > 0.0 ? plane_len / length_ : 0.0;
+}
+
+void SegmentGeometry::set_sin_cos_sweep(double y, double x) noexcept {
+  // those of atan2(y, x), which differs from the sweep by whole turns
+  const double h = std::hypot(x, y);
+  if (h > 0.0) {
+    sin_sweep_ = y / h;
+    cos_sweep_ = x / h;
+  } else {
+    sin_sweep_ = std::sin(sweep_);
+    cos_sweep_ = std::cos(sweep_);
+  }
 }
 
 double SegmentGeometry::angle_at(double s) const noexcept {

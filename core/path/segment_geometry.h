@@ -40,7 +40,7 @@ class SegmentGeometry {
   [[nodiscard]] double radius() const noexcept { return radius_; }
   // Total sweep angle of an arc (rad, > 0, about the turning normal), incl. turns.
   [[nodiscard]] double sweep_rad() const noexcept { return sweep_; }
-  // std::sin and std::cos of sweep_rad(), computed once.
+  // The sine and cosine of sweep_rad(), computed once.
   [[nodiscard]] double sin_sweep() const noexcept { return sin_sweep_; }
   [[nodiscard]] double cos_sweep() const noexcept { return cos_sweep_; }
   // In-plane unit vectors of an arc (u: centre → start, w: start tangent).
@@ -63,6 +63,8 @@ class SegmentGeometry {
 
  private:
   [[nodiscard]] double angle_at(double s) const noexcept;
+  // sin and cos of the sweep, from the end point's coordinates (y, x) about the centre
+  void set_sin_cos_sweep(double y, double x) noexcept;
   // dp/ds at arc angle phi, given sin φ and cos φ.
   [[nodiscard]] Pose tangent_at_angle(double sin_phi, double cos_phi) const;
 

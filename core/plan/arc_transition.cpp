@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "plan/tolerances.h"
 
@@ -29,13 +30,27 @@ ArcTransition arc_transition(const Segment& a, const Segment& b, double toleranc
     return t;
   const Vec3 d1 = da / la, d2 = db / lb;
   const Vec3 cross = d1.cross(d2);
-  const double theta = std::atan2(cross.norm(), d1.dot(d2));
-  if (theta < plan::kMinBlendAngle || theta > plan::kMaxBlendAngle) return t;
-  const double half = theta / 2.0;
-  const double l_c = tolerance_mm * std::sin(half) / (1.0 - std::cos(half));
+  // the turning angle θ by its sine and cosine, and the half angle's from
+  // them without trigonometric calls: each formula where it is well
+  // conditioned (θ near 0 and near π)
+  const double s_raw = cross.norm(), c_raw = d1.dot(d2), n = std::hypot(s_raw, c_raw);
+  const double sin_t = s_raw / n, cos_t = c_raw / n;
+  if (cos_t > 0.0 ? sin_t < std::sin(plan::kMinBlendAngle)
+                  : sin_t < std::sin(std::numbers::pi - plan::kMaxBlendAngle))
+    return t;  // (nearly) straight on, or (nearly) reversed
+  double sin_h, cos_h;
+  if (cos_t > 0.0) {
+    cos_h = std::sqrt(0.5 * (1.0 + cos_t));
+    sin_h = sin_t / (2.0 * cos_h);
+  } else {
+    sin_h = std::sqrt(0.5 * (1.0 - cos_t));
+    cos_h = sin_t / (2.0 * sin_h);
+  }
+  // l_c = E·sin(θ/2) / (1 − cos(θ/2)) = E·(1 + cos(θ/2)) / sin(θ/2)
+  const double l_c = tolerance_mm * (1.0 + cos_h) / sin_h;
   const double l = std::min({l_c, max_trim_a, max_trim_b});
   if (l <= plan::kMinSegmentLength) return t;
-  const double r = l / std::tan(half);
+  const double r = l * cos_h / sin_h;
 
   t.blended = true;
   t.trim = l;
@@ -47,7 +62,7 @@ ArcTransition arc_transition(const Segment& a, const Segment& b, double toleranc
   t.arc = blend_arc(a, b, t.q0, t.q2);
   t.arc.plane = Plane::Free;
   t.arc.normal = cross.normalized();
-  t.arc.center = p + (d2 - d1).normalized() * (r / std::cos(half));
+  t.arc.center = p + (d2 - d1).normalized() * (r / cos_h);
   return t;
 }
 

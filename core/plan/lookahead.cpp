@@ -133,8 +133,9 @@ void Lookahead::plan_and_release() {
   for (std::size_t k = n; k-- > 0;) {
     Node& s = window_[k];
     const double exit = (k + 1 == n) ? 0.0 : std::min(s.v_junction, next_entry);
-    const double entry =
-        s.dwell ? 0.0 : std::min(s.v_max, s.lim.reach_down(exit, s.length));
+    const double reach = s.dwell ? 0.0 : s.lim.reach_down(exit, s.length);
+    const double entry = std::min(s.v_max, reach);
+    s.entry_by_reach = reach < s.v_max;
     const bool unchanged = s.planned_back && entry == s.v_entry_back;
     s.v_exit_back = exit;
     s.v_entry_back = entry;
@@ -147,11 +148,19 @@ void Lookahead::plan_and_release() {
   for (std::size_t k = 0; k < count; ++k) {
     Node& s = window_[k];
     s.v_entry = std::min(s.v_entry_back, entry);
+    s.v_exit = s.v_exit_back;
+    s.shape = Node::Shape::Fit;
     // reach() gives at least v_entry (≤ v_max): no need to ask when that
     // already covers the exit the backward pass allows
-    s.v_exit = s.v_entry >= s.v_exit_back
-                   ? s.v_exit_back
-                   : std::min(s.v_exit_back, s.lim.reach_up(s.v_entry, s.length));
+    if (s.v_entry < s.v_exit_back) {
+      const double reach = s.lim.reach_up(s.v_entry, s.length);
+      if (reach < s.v_exit_back) {
+        s.v_exit = reach;  // speeding up all the way
+        s.shape = Node::Shape::SpeedUp;
+      }
+    }
+    if (s.shape == Node::Shape::Fit && s.entry_by_reach && s.v_entry == s.v_entry_back)
+      s.shape = Node::Shape::SlowDown;  // slowing down all the way to v_exit_back
     entry = s.v_exit;
   }
   v_start_ = entry;
@@ -175,7 +184,20 @@ SourceStatus Lookahead::next(PlannedSegment& out) {
   const Node& s = window_[handed_];
   out = segments_[handed_];
   ++handed_;
-  if (!s.dwell) out.profile = fit_profile(s.lim, s.v_max, s.length, s.v_entry, s.v_exit);
+  if (s.dwell) return SourceStatus::Item;
+  switch (s.shape) {
+    case Node::Shape::Fit:
+      out.profile = fit_profile(s.lim, s.v_max, s.length, s.v_entry, s.v_exit);
+      break;
+    case Node::Shape::SpeedUp:
+    case Node::Shape::SlowDown: {
+      // v_exit (v_entry) is the reach at the accelerations of that speed
+      const double peak = std::max(s.v_entry, s.v_exit);
+      const Accel a = s.lim.at(peak);
+      out.profile = Trapezoid::plan(s.length, a.accel, a.decel, s.v_entry, peak, s.v_exit);
+      break;
+    }
+  }
   return SourceStatus::Item;
 }
 

@@ -16,19 +16,20 @@
 // Forward pass from the speed the last released segment ends at:
 //   Ve(i) = min(Ve(i), sqrt(Vs(i)² + 2aL)),   Vs(i+1) = Ve(i)
 // On arcs a depends on the speed (less centripetal load when slower): a is
-// taken at an upper bound of the speeds on the segment, so each step is safe.
+// taken at the speed reached, the highest on the way, so each step is safe —
+// v'² = v² + 2L·a(v') solved exactly (SegmentLimits::reach_up/reach_down).
 // Each segment then runs a trapezoid Vs → Vc → Ve (plan/trapezoid.h) with the
 // highest Vc ≤ Vm whose acceleration a(Vc) still fits the segment.
 //
 // Only what changes is recomputed: the backward pass stops at the first
 // segment (from the end) whose entry speed is what the previous plan found —
 // nothing before it can change — and the forward pass covers the segments
-// released. Cruising segments take their accelerations at the top speed,
-// computed once.
+// released; a profile is fitted when its segment is handed out.
 //
 // Streaming: the window holds segments until what follows the front is
-// longer than the braking distance from the highest path speed, so a stop
-// assumed at the window's end cannot slow the segments released. Memory is
+// longer than the braking distance from the highest top speed in the window,
+// so a stop assumed at the window's end cannot slow the segments released
+// (none of them is faster than that). Memory is
 // bounded by kMaxWindow segments whatever the program's length; a release is
 // always safe (the assumed stop is conservative), only possibly slower.
 #pragma once
@@ -72,6 +73,10 @@ class Lookahead {
     double v_entry = 0.0, v_exit = 0.0;
     bool dwell = false;
     bool planned_back = false;
+    bool entry_by_reach = false;  // v_entry_back is the reach from v_exit_back (below v_max)
+    // The profile's shape, when the passes already know it: speeding up or
+    // slowing down over the whole segment (else it is fitted).
+    enum class Shape : std::uint8_t { Fit, SpeedUp, SlowDown } shape = Shape::Fit;
     SegmentLimits lim;  // tangential acceleration as a function of speed
   };
 
