@@ -31,6 +31,20 @@ double line_length(const Pose& d) {
   return lin > 0.0 ? lin : d.tail<3>().norm();
 }
 
+// sin φ and cos φ; small angles (every sample of a corner blend) by their
+// series: for |φ| ≤ 1/64 the terms left out are below 1e-20 of the result,
+// far under a double's rounding, and there is no library call.
+void sin_cos(double phi, double& s, double& c) noexcept {
+  if (std::abs(phi) <= 0.015625) {
+    const double p2 = phi * phi;
+    s = phi * (1.0 - p2 / 6.0 * (1.0 - p2 / 20.0 * (1.0 - p2 / 42.0)));
+    c = 1.0 - p2 / 2.0 * (1.0 - p2 / 12.0 * (1.0 - p2 / 30.0 * (1.0 - p2 / 56.0)));
+    return;
+  }
+  s = std::sin(phi);
+  c = std::cos(phi);
+}
+
 }  // namespace
 
 double path_length(const Segment& seg) {
@@ -42,6 +56,7 @@ SegmentGeometry::SegmentGeometry(const Segment& seg) : start_(seg.start), end_(s
   const Pose d = end_ - start_;
   if (seg.kind != MotionKind::Arc) {
     length_ = line_length(d);
+    inv_length_ = length_ > 0.0 ? 1.0 / length_ : 0.0;
     return;
   }
   arc_ = true;
@@ -84,11 +99,12 @@ SegmentGeometry::SegmentGeometry(const Segment& seg) : start_(seg.start), end_(s
   // hypot(x, 0) is |x| exactly (C Annex F): skip the call for plane arcs
   length_ = helix_h_ == 0.0 ? std::abs(plane_len) : std::hypot(plane_len, helix_h_);
   plane_ratio_ = length_ > 0.0 ? plane_len / length_ : 0.0;
+  inv_length_ = length_ > 0.0 ? 1.0 / length_ : 0.0;
 }
 
 void SegmentGeometry::set_sin_cos_sweep(double y, double x) noexcept {
   // those of atan2(y, x), which differs from the sweep by whole turns
-  const double h = std::hypot(x, y);
+  const double h = std::sqrt(x * x + y * y);  // about the radius
   if (h > 0.0) {
     sin_sweep_ = y / h;
     cos_sweep_ = x / h;
@@ -103,24 +119,25 @@ double SegmentGeometry::angle_at(double s) const noexcept {
 }
 
 Pose SegmentGeometry::at(double s) const {
-  if (length_ <= 0.0) return end_;
-  const double f = std::clamp(s / length_, 0.0, 1.0);
+  if (length_ <= 0.0 || s >= length_) return end_;
+  const double f = std::clamp(s * inv_length_, 0.0, 1.0);
   if (f >= 1.0) return end_;
   Pose p = start_ + (end_ - start_) * f;
   if (arc_) {
-    const double phi = sweep_ * f;
-    p.head<3>() = center_ + radius_ * (std::cos(phi) * u_ + std::sin(phi) * w_) +
-                  (f * helix_h_) * axis_n_;
+    double sin_phi, cos_phi;
+    sin_cos(sweep_ * f, sin_phi, cos_phi);
+    p.head<3>() = center_ + radius_ * (cos_phi * u_ + sin_phi * w_) + (f * helix_h_) * axis_n_;
   }
   return p;
 }
 
 Pose SegmentGeometry::tangent_at_angle(double sin_phi, double cos_phi) const {
   if (length_ <= 0.0) return Pose::Zero();
-  Pose t = (end_ - start_) / length_;
+  Pose t = (end_ - start_) * inv_length_;
   if (arc_) {
-    const double dphi_ds = sweep_ / length_;
-    t.head<3>() = radius_ * dphi_ds * (-sin_phi * u_ + cos_phi * w_) + (helix_h_ / length_) * axis_n_;
+    const double dphi_ds = sweep_ * inv_length_;
+    t.head<3>() = radius_ * dphi_ds * (-sin_phi * u_ + cos_phi * w_) +
+                  (helix_h_ * inv_length_) * axis_n_;
   }
   return t;
 }

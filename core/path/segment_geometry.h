@@ -75,6 +75,7 @@ class SegmentGeometry {
   Vec3 axis_n_ = Vec3::Zero();  // helix direction (unit) or zero
   double helix_h_ = 0.0;        // travel along axis_n_
   double radius_ = 0.0, sweep_ = 0.0, length_ = 0.0, plane_ratio_ = 0.0;
+  double inv_length_ = 0.0;  // 1/length_ (0 for no length): at() is asked every period
   double sin_sweep_ = 0.0, cos_sweep_ = 1.0;  // of sweep_ (arcs): the end tangent, the limits
 };
 

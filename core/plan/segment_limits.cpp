@@ -47,7 +47,7 @@ void sinusoid_range(double a, double b, const SegmentGeometry& geo, double& lo, 
     min_in = phi_min <= sweep ? Within::Yes : Within::No;
   }
   if (max_in == Within::No && min_in == Within::No) return;
-  const double amp = std::hypot(a, b);
+  const double amp = std::sqrt(a * a + b * b);  // a, b: components of unit vectors
   if (max_in == Within::Yes) hi = amp;
   if (min_in == Within::Yes) lo = -amp;
 }
@@ -116,7 +116,7 @@ SegmentLimits segment_limits(const Segment& seg, const SegmentGeometry& geo,
     double a_n_max = kInf;
     for (int i = 0; i < 3; ++i) {
       const double ui = geo.u()[i], wi = geo.w()[i];
-      const double g = std::hypot(ui, wi);
+      const double g = std::sqrt(ui * ui + wi * wi);  // ≤ 1
       if (g <= 1e-15) continue;
       const AxisConfig& ax = machine.axes[i];
       ArcAxis& x = arc_axes[arc_axis_count++];

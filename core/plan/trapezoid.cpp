@@ -19,14 +19,16 @@ Trapezoid Trapezoid::plan(double length, double accel, double decel, double v0, 
       v_target <= plan::kMinVelocity) {
     return p;  // nothing to move
   }
+  // the triangle's peak, (2L + v0²/a + v1²/d) / (1/a + 1/d), times a·d / a·d
   const double peak_sqr =
-      (2.0 * length + v0 * v0 / accel + v1 * v1 / decel) / (1.0 / accel + 1.0 / decel);
+      (2.0 * length * accel * decel + v0 * v0 * decel + v1 * v1 * accel) / (accel + decel);
   p.vc = std::min(v_target, std::sqrt(peak_sqr));
   p.vc = std::max({p.vc, v0, v1});
   p.t_acc = (p.vc - v0) / accel;
   p.t_dec = (p.vc - v1) / decel;
-  p.s_acc = (p.vc * p.vc - v0 * v0) / (2.0 * accel);
-  const double s_dec = (p.vc * p.vc - v1 * v1) / (2.0 * decel);
+  // (vc² − v0²)/2a = t_acc·(vc + v0)/2: the mean speed over the time
+  p.s_acc = p.t_acc * (p.vc + v0) * 0.5;
+  const double s_dec = p.t_dec * (p.vc + v1) * 0.5;
   p.s_cruise = std::max(0.0, length - p.s_acc - s_dec);
   p.t_cruise = p.vc > plan::kMinVelocity ? p.s_cruise / p.vc : 0.0;
   return p;

@@ -35,6 +35,23 @@ TEST(SegmentGeometry, FullCircleLengthAndPoints) {
   EXPECT_NEAR(cw.at(cw.length() / 4)[1], 45.0, 1e-12);
 }
 
+TEST(SegmentGeometry, PointsOfSmallAndLargeSweepsAreOnTheCircle) {
+  // small angles take a series instead of sin and cos: on a 1 m radius a
+  // wrong term would show far above 1e-11 mm
+  constexpr double r = 1000.0;
+  for (const double sweep : {1e-6, 0.01, 0.015625, 0.02, 0.5}) {
+    Segment s = arc(r, false);
+    s.end << 50 + r * std::cos(sweep), 50 + r * std::sin(sweep), 10, 0, 0, 0;
+    const SegmentGeometry g(s);
+    for (int k = 1; k < 16; ++k) {
+      const double f = k / 16.0, phi = g.sweep_rad() * f;
+      const Pose p = g.at(g.length() * f);
+      EXPECT_NEAR(p[0], 50 + r * std::cos(phi), 1e-11) << sweep << " " << f;
+      EXPECT_NEAR(p[1], 50 + r * std::sin(phi), 1e-11) << sweep << " " << f;
+    }
+  }
+}
+
 TEST(SegmentGeometry, HelixWithTurns) {
   const SegmentGeometry g(arc(2.0, false, 2, 3.0));  // 3 turns, 3 mm up
   const double plane = 3 * 2 * std::numbers::pi * 2.0;
