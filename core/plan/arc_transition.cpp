@@ -8,15 +8,15 @@
 
 namespace lcnc {
 
-Segment blend_arc(const Segment& a, const Segment& b, const Pose& q0, const Pose& q2) {
-  Segment arc = a;
+void set_blend_arc(const Segment& a, const Segment& b, const Pose& q0, const Pose& q2,
+                   Segment& arc) {
+  arc = a;
   arc.kind = MotionKind::Arc;
   arc.clockwise = false;
   arc.extra_turns = 0;
   arc.start = q0;
   arc.end = q2;
   arc.line = b.line;
-  return arc;
 }
 
 ArcTransition arc_transition(const Segment& a, const Segment& b, double tolerance_mm,
@@ -59,7 +59,7 @@ ArcTransition arc_transition(const Segment& a, const Segment& b, double toleranc
   t.q0.head<3>() = p - l * d1;  // exact on the line, whatever the rounding above
   t.q2.head<3>() = p + l * d2;
 
-  t.arc = blend_arc(a, b, t.q0, t.q2);
+  set_blend_arc(a, b, t.q0, t.q2, t.arc);
   t.arc.plane = Plane::Free;
   t.arc.normal = cross.normalized();
   t.arc.center = p + (d2 - d1).normalized() * (r / cos_h);

@@ -24,9 +24,11 @@ struct ArcTransition {
   Segment arc;        // Plane::Free arc from q0 to q2
 };
 
-// The blend arc's segment from q0 to q2: feed, laser and modes from `a`, the
-// source line of `b`; the caller sets its plane, centre and turning sense.
-[[nodiscard]] Segment blend_arc(const Segment& a, const Segment& b, const Pose& q0, const Pose& q2);
+// Sets `arc` to the blend arc's segment from q0 to q2: feed, laser and modes
+// from `a`, the source line of `b`; the caller sets its plane, centre and
+// turning sense.
+void set_blend_arc(const Segment& a, const Segment& b, const Pose& q0, const Pose& q2,
+                   Segment& arc);
 
 // `a` ends where `b` starts; both are lines with X Y Z motion. The arc takes
 // its feed, laser and modes from `a`. Not blended when the lines are

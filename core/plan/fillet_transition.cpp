@@ -179,7 +179,7 @@ ArcTransition fillet_transition(const Segment& a, const Segment& b, double toler
   t.trim = std::max(f.trim_a, f.trim_b);
   t.q0 = pose_at(a, f.ta);
   t.q2 = pose_at(b, f.tb);
-  t.arc = blend_arc(a, b, t.q0, t.q2);
+  set_blend_arc(a, b, t.q0, t.q2, t.arc);
   t.arc.plane = arc.plane;
   t.arc.center = b.start.head<3>();
   t.arc.center[pa.first] = f.center.x();

@@ -37,39 +37,39 @@ bool LineMerger::extends_run(const Segment& next) const {
 
 SourceStatus LineMerger::next(IndexedSegment& out) {
   for (;;) {
-    IndexedSegment cur;
-    if (have_held_) {
-      cur = held_;
-      have_held_ = false;
-    } else if (end_status_ == SourceStatus::Item) {
-      const SourceStatus st = source_(cur.seg);
-      if (st != SourceStatus::Item) {
-        end_status_ = st;
-        continue;
-      }
-      cur.index = count_++;
-    } else {
+    if (end_status_ != SourceStatus::Item) {
       if (!have_run_) return end_status_;
       out = run_;
       have_run_ = false;
       return SourceStatus::Item;
     }
-    if (have_run_ && extends_run(cur.seg)) {
+    // With no run held, read straight into out: no copy for what passes through.
+    IndexedSegment& cur = have_run_ ? read_ : out;
+    const SourceStatus st = source_(cur.seg);
+    if (st != SourceStatus::Item) {
+      end_status_ = st;
+      continue;
+    }
+    cur.index = count_++;
+    if (!have_run_) {
+      if (!mergeable(out.seg)) return SourceStatus::Item;
+      run_ = out;  // a run starts
+      have_run_ = true;
+      inner_count_ = 0;
+      continue;
+    }
+    if (extends_run(cur.seg)) {
       inner_[inner_count_++] = cur.seg.start.head<3>();
       run_.seg.end = cur.seg.end;
       run_.seg.line = cur.seg.line;
       run_.index = cur.index;
       continue;
     }
-    if (have_run_) {  // the run is complete: hand it on, keep cur for later
-      out = run_;
-      run_ = cur;
-      inner_count_ = 0;
-      return SourceStatus::Item;
-    }
+    // the run is complete: hand it on; what ended it may start the next
+    out = run_;
     run_ = cur;
-    have_run_ = true;
     inner_count_ = 0;
+    return SourceStatus::Item;
   }
 }
 

@@ -7,7 +7,9 @@
 //
 // The first stage of the planner: program segments in, indexed segments out
 // (a merged line carries the index of the last program segment it covers).
-// Streaming: holds one run back; constant memory.
+// Streaming: holds one run back; constant memory. A segment that cannot
+// start a run (every one without G64 Q) passes straight through when no run
+// is held.
 #pragma once
 
 #include <array>
@@ -41,8 +43,7 @@ class LineMerger {
   IndexedSegment run_;                             // the run so far, as one line
   std::array<Vec3, kMaxMergeRun> inner_{};          // its inner points
   std::size_t inner_count_ = 0;
-  bool have_held_ = false;
-  IndexedSegment held_;  // a segment read but not yet taken into a run
+  IndexedSegment read_;  // the segment read while a run is held
   std::uint32_t count_ = 0;
   SourceStatus end_status_ = SourceStatus::Item;
 };

@@ -97,7 +97,7 @@ bool Lookahead::fill() {
       p.profile = Trapezoid::hold(in.seg.dwell_s);
     } else {
       // one evaluation: the tangential limits are functions of the speed
-      n.lim = segment_limits(in.seg, p.geo, machine_);
+      segment_limits(in.seg, p.geo, machine_, n.lim);
       p.programmed_speed = target_speed(in.seg, p.geo, n.lim);
       n.v_max = p.programmed_speed;
       if (a_brake_ > 0.0)

@@ -63,6 +63,7 @@ class Lookahead {
   // (some 600 bytes each, touched only when they come in and go out): the
   // passes sweep the window several times, and a compact one stays in cache.
   struct Node {
+    Node() {}  // user-provided: the vector does not zero the whole node first
     double length = 0.0;
     double v_max = 0.0;       // top speed on the segment
     double v_junction = 0.0;  // limit where this segment ends and the next starts

@@ -39,26 +39,31 @@ PathBlender::PathBlender(const MachineConfig& machine, SegmentSource source,
   margin_mm_ = std::sqrt(sum);
 }
 
-void PathBlender::emit(const IndexedSegment& s) {
-  const Pose d = s.seg.end - s.seg.start;
+void PathBlender::emit(const Segment& seg, std::uint32_t index) {
+  const Pose d = seg.end - seg.start;
   // Lines used up entirely by their two blends carry no motion: drop them.
-  if (s.seg.kind == MotionKind::Linear && d.norm() <= plan::kMinSegmentLength) return;
-  ready_[(ready_front_ + ready_count_++) % ready_.size()] = s;
+  if (seg.kind == MotionKind::Linear && d.norm() <= plan::kMinSegmentLength) return;
+  IndexedSegment& slot = ready_[(ready_front_ + ready_count_++) % ready_.size()];
+  slot.seg = seg;
+  slot.index = index;
 }
 
 SourceStatus PathBlender::next(IndexedSegment& out) {
   while (ready_count_ == 0) {
     if (end_status_ != SourceStatus::Item) return end_status_;
-    IndexedSegment cur;
+    // read into the slot the pending line does not hold: it becomes the
+    // pending one by a flip, not a copy
+    IndexedSegment& pending = slots_[pending_slot_];
+    IndexedSegment& cur = slots_[1 - pending_slot_];
     const SourceStatus st = merger_.next(cur);
     if (st != SourceStatus::Item) {
-      if (have_pending_) emit(pending_);
+      if (have_pending_) emit(pending.seg, pending.index);
       have_pending_ = false;
       end_status_ = st;
       continue;
     }
     if (have_pending_ && blendable(cur.seg)) {
-      const Segment& a = pending_.seg;
+      const Segment& a = pending.seg;
       const double tol = std::min(a.blend_tolerance_mm, cur.seg.blend_tolerance_mm) -
                          std::max(merge_tolerance(a), merge_tolerance(cur.seg)) - margin_mm_ -
                          filter_error_mm_;
@@ -74,22 +79,22 @@ SourceStatus PathBlender::next(IndexedSegment& out) {
               ? arc_transition(a, cur.seg, tol, max_a, len_b * share_b)
               : fillet_transition(a, cur.seg, tol, max_a, len_b * share_b);
       if (t.blended) {
-        pending_.seg.end = t.q0;
-        emit(pending_);
-        emit(IndexedSegment{t.arc, cur.index});
+        pending.seg.end = t.q0;
+        emit(pending.seg, pending.index);
+        emit(t.arc, cur.index);
         pending_full_length_ = len_b;
         cur.seg.start = t.q2;
-        pending_ = cur;
+        pending_slot_ = 1 - pending_slot_;
         continue;
       }
     }
-    if (have_pending_) emit(pending_);
+    if (have_pending_) emit(pending.seg, pending.index);
     have_pending_ = blendable(cur.seg);
     if (have_pending_) {
-      pending_ = cur;
+      pending_slot_ = 1 - pending_slot_;
       pending_full_length_ = path_length(cur.seg);
     } else {
-      emit(cur);
+      emit(cur.seg, cur.index);
     }
   }
   out = ready_[ready_front_];

@@ -38,13 +38,16 @@ class PathBlender {
   [[nodiscard]] double quantization_margin_mm() const noexcept { return margin_mm_; }
 
  private:
-  void emit(const IndexedSegment& s);
+  void emit(const Segment& seg, std::uint32_t index);
 
   LineMerger merger_;
   double margin_mm_ = 0.0;
   double filter_error_mm_ = 0.0;
   bool have_pending_ = false;
-  IndexedSegment pending_;          // a line whose end may still be blended
+  // The pending line, whose end may still be blended, and the one read after
+  // it: slots_[pending_slot_] and the other.
+  std::array<IndexedSegment, 2> slots_;
+  std::size_t pending_slot_ = 0;
   double pending_full_length_ = 0;  // its length as programmed
   // Segments ready to hand out, oldest first: one step of next() emits at
   // most two (a trimmed line and its blend arc), and next() hands one out

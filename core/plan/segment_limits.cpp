@@ -88,14 +88,17 @@ void box_lines(const ArcAxis& x, double rho, double c, double k2, bool speed_up,
 
 }  // namespace
 
-SegmentLimits segment_limits(const Segment& seg, const SegmentGeometry& geo,
-                             const MachineConfig& machine) {
+void segment_limits(const Segment& seg, const SegmentGeometry& geo, const MachineConfig& machine,
+                    SegmentLimits& lim) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
-  SegmentLimits lim;
-  lim.v_max = kInf;
-  double a_linear = kInf;
+  lim.v_max = 0.0;  // until known: no motion (as for the segments rejected below)
+  lim.arc = false;
+  lim.a_linear = 0.0;
+  lim.c = 0.0;
+  lim.axis_count = 0;
   const double L = geo.length();
-  if (L <= plan::kMinSegmentLength) return {};
+  if (L <= plan::kMinSegmentLength) return;
+  double v_max = kInf, a_linear = kInf;
   // Linearly moving part of every axis (whole line; helix normal and rotary axes of an arc).
   Pose lin = (seg.end - seg.start) / L;
   if (geo.is_arc()) lin.head<3>() = geo.start_tangent().head<3>() -
@@ -104,15 +107,15 @@ SegmentLimits segment_limits(const Segment& seg, const SegmentGeometry& geo,
     const double k = std::abs(lin[i]);
     if (k <= 1e-15) continue;
     const AxisConfig& ax = machine.axes[i];
-    if (!ax.present) return {};  // the reader rejects such moves first
-    lim.v_max = std::min(lim.v_max, ax.max_velocity / k);
+    if (!ax.present) return;  // the reader rejects such moves first
+    v_max = std::min(v_max, ax.max_velocity / k);
     a_linear = std::min(a_linear, ax.max_acceleration / k);
   }
-  std::array<ArcAxis, 3> arc_axes{};
+  std::array<ArcAxis, 3> arc_axes;
   int arc_axis_count = 0;
   const double rho = geo.plane_speed_ratio();
-  if (geo.is_arc() && rho > 0.0) {
-    lim.arc = true;
+  const bool arc = geo.is_arc() && rho > 0.0;
+  if (arc) {
     double a_n_max = kInf;
     for (int i = 0; i < 3; ++i) {
       const double ui = geo.u()[i], wi = geo.w()[i];
@@ -126,21 +129,21 @@ SegmentLimits segment_limits(const Segment& seg, const SegmentGeometry& geo,
       sinusoid_range(-ui, -wi, geo, x.n_lo, x.n_hi);  // n = −cos φ·u − sin φ·w
       const double t_abs = std::max(std::abs(x.t_lo), std::abs(x.t_hi));
       const double n_abs = std::max(std::abs(x.n_lo), std::abs(x.n_hi));
-      lim.v_max = std::min(lim.v_max, ax.max_velocity / (rho * t_abs + std::abs(lin[i])));
+      v_max = std::min(v_max, ax.max_velocity / (rho * t_abs + std::abs(lin[i])));
       if (n_abs > 1e-15) a_n_max = std::min(a_n_max, ax.max_acceleration / n_abs);
     }
     // centripetal limit: (ρ·v)²/r · N_i ≤ share · amax_i
     if (std::isfinite(a_n_max))
-      lim.v_max = std::min(lim.v_max,
-                           std::sqrt(plan::kArcNormalShare * a_n_max * geo.radius()) / rho);
+      v_max = std::min(v_max, std::sqrt(plan::kArcNormalShare * a_n_max * geo.radius()) / rho);
   }
-  if (!std::isfinite(lim.v_max)) return {};
+  if (!std::isfinite(v_max)) return;
   // Planned at the highest feed override (DESIGN §5.5): at K the speed is K·v
   // and the acceleration K²·a.
   const double k = machine.max_feed_override, k2 = k * k;
-  lim.v_max /= k;
+  lim.v_max = v_max / k;
   lim.a_linear = a_linear / k2;  // ∞ when only the arc's plane moves
-  if (!lim.arc) return lim;
+  lim.arc = arc;
+  if (!arc) return;
   // a_n = (ρ·K·v)²/r: the physical centripetal acceleration at planned speed v
   const double c = rho * rho * k2 / geo.radius();
   lim.c = c / (rho * k2);  // the norm bound sqrt((amax/g)² − a_n²)/ρ/K² as sqrt(b − (c'·x)²)
@@ -153,7 +156,6 @@ SegmentLimits segment_limits(const Segment& seg, const SegmentGeometry& geo,
     ax.b = by_norm * by_norm;
     ax.cap = by_norm;
   }
-  return lim;
 }
 
 double target_speed(const Segment& seg, const SegmentGeometry& geo, const SegmentLimits& lim) {

@@ -53,10 +53,11 @@ struct Accel {
 // One arc axis's bounds in x = v² (planned units): the box as up to two
 // lines per side, a ≤ p − q·x (a missing line has p = ∞, q = 0); the norm as
 // sqrt(b − (c·x)²), c shared by the segment's axes.
+// (No initializers: segment_limits() writes every one it counts.)
 struct ArcAxisBound {
-  std::array<double, 2> p_up{}, q_up{}, p_down{}, q_down{};
-  double b = 0.0;
-  double cap = 0.0;  // sqrt(b): the norm bound at rest, its largest
+  std::array<double, 2> p_up, q_up, p_down, q_down;
+  double b;
+  double cap;  // sqrt(b): the norm bound at rest, its largest
 };
 
 struct SegmentLimits {
@@ -98,7 +99,7 @@ struct SegmentLimits {
   // What at() and reach() need, per segment.
   double a_linear = 0.0;  // the linearly moving axes' bound (planned units)
   double c = 0.0;         // the norm bounds' a_n per x
-  std::array<ArcAxisBound, 3> axes{};
+  std::array<ArcAxisBound, 3> axes;  // [0, axis_count) are set
   int axis_count = 0;
 
  private:
@@ -124,9 +125,17 @@ struct SegmentLimits {
   }
 };
 
-// Limits of the segment (accel_at/decel_at give its acceleration at a speed).
-[[nodiscard]] SegmentLimits segment_limits(const Segment& seg, const SegmentGeometry& geo,
-                                           const MachineConfig& machine);
+// Limits of the segment, written into `lim` (the look-ahead's node: no copy
+// of a few hundred bytes per segment). No motion (v_max 0) for a segment of
+// no length or one that moves an absent axis.
+void segment_limits(const Segment& seg, const SegmentGeometry& geo, const MachineConfig& machine,
+                    SegmentLimits& lim);
+[[nodiscard]] inline SegmentLimits segment_limits(const Segment& seg, const SegmentGeometry& geo,
+                                                  const MachineConfig& machine) {
+  SegmentLimits lim;
+  segment_limits(seg, geo, machine, lim);
+  return lim;
+}
 
 // The speed to plan for: rapid → v_max; feed → min(F, v_max); G93 → L/duration.
 [[nodiscard]] double target_speed(const Segment& seg, const SegmentGeometry& geo,
