@@ -66,8 +66,8 @@ SourceStatus CoarseInterpolator::next(PeriodSample& out) {
   }
   ++periods_;
   const PlannedSegment& c = cur();
-  const double s = c.profile.position(tau_);
-  const double v = c.profile.speed(tau_);
+  double s, v;
+  c.profile.sample(tau_, s, v);
   out.t_s = static_cast<double>(periods_) * period_s_;
   out.pose = c.seg.kind == MotionKind::Dwell ? c.seg.end : c.geo.at(s);
   out.speed = v;

@@ -75,14 +75,14 @@ void box_lines(const ArcAxis& x, double rho, double c, double k2, bool speed_up,
   p = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
   q = {0.0, 0.0};
   if (x_hi > 1e-15) {
-    const double den = rho * x_hi * k2;
-    p[0] = x.a_axis / den;
-    q[0] = std::max(0.0, x.n_hi) * c / den;
+    const double per = 1.0 / (rho * x_hi * k2);
+    p[0] = x.a_axis * per;
+    q[0] = std::max(0.0, x.n_hi) * c * per;
   }
   if (x_lo < -1e-15) {
-    const double den = rho * -x_lo * k2;
-    p[1] = x.a_axis / den;
-    q[1] = -std::min(0.0, x.n_lo) * c / den;
+    const double per = 1.0 / (rho * -x_lo * k2);
+    p[1] = x.a_axis * per;
+    q[1] = -std::min(0.0, x.n_lo) * c * per;
   }
 }
 
@@ -100,7 +100,7 @@ void segment_limits(const Segment& seg, const SegmentGeometry& geo, const Machin
   if (L <= plan::kMinSegmentLength) return;
   double v_max = kInf, a_linear = kInf;
   // Linearly moving part of every axis (whole line; helix normal and rotary axes of an arc).
-  Pose lin = (seg.end - seg.start) / L;
+  Pose lin = (seg.end - seg.start) * (1.0 / L);
   if (geo.is_arc()) lin.head<3>() = geo.start_tangent().head<3>() -
                                     geo.plane_speed_ratio() * geo.w();
   for (int i = 0; i < kAxisCount; ++i) {

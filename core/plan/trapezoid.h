@@ -49,6 +49,25 @@ struct Trapezoid {
     if (t < t_dec) return std::min(length, s_acc + s_cruise + vc * t - 0.5 * decel * t * t);
     return length;
   }
+  // Both at once (the coarse interpolator asks for both every period).
+  void sample(double t, double& s, double& v) const noexcept {
+    if (t <= 0.0) {
+      s = 0.0;
+      v = v0;
+    } else if (t < t_acc) {
+      s = v0 * t + 0.5 * accel * t * t;
+      v = v0 + accel * t;
+    } else if ((t -= t_acc) < t_cruise) {
+      s = s_acc + vc * t;
+      v = vc;
+    } else if ((t -= t_cruise) < t_dec) {
+      s = std::min(length, s_acc + s_cruise + vc * t - 0.5 * decel * t * t);
+      v = vc - decel * t;
+    } else {
+      s = length;
+      v = v1;
+    }
+  }
   // Path speed at time t.
   [[nodiscard]] double speed(double t) const noexcept {
     if (t <= 0.0) return v0;

@@ -38,6 +38,20 @@ TEST(Trapezoid, NonZeroEndSpeeds) {
   }
 }
 
+TEST(Trapezoid, SampleIsPositionAndSpeedTogether) {
+  // accelerate, cruise and decelerate, with different a and d, and a triangle
+  for (const Trapezoid& p : {Trapezoid::plan(10.0, 100.0, 60.0, 10.0, 20.0, 5.0),
+                             Trapezoid::plan(0.5, 100.0, 60.0, 10.0, 50.0, 5.0)}) {
+    for (int k = -1; k <= 1001; ++k) {
+      const double t = p.duration() * k / 1000.0;
+      double s = -1.0, v = -1.0;
+      p.sample(t, s, v);
+      EXPECT_EQ(s, p.position(t)) << t;
+      EXPECT_EQ(v, p.speed(t)) << t;
+    }
+  }
+}
+
 TEST(Trapezoid, HoldHasDurationAndNoPath) {
   const Trapezoid p = Trapezoid::hold(0.25);
   EXPECT_DOUBLE_EQ(p.duration(), 0.25);
