@@ -33,7 +33,8 @@ ArcTransition arc_transition(const Segment& a, const Segment& b, double toleranc
   // the turning angle θ by its sine and cosine, and the half angle's from
   // them without trigonometric calls: each formula where it is well
   // conditioned (θ near 0 and near π)
-  const double s_raw = cross.norm(), c_raw = d1.dot(d2), n = std::sqrt(s_raw * s_raw + c_raw * c_raw);
+  const double s_raw = cross.norm(), c_raw = d1.dot(d2);
+  const double n = std::sqrt(s_raw * s_raw + c_raw * c_raw);
   const double sin_t = s_raw / n, cos_t = c_raw / n;
   if (cos_t > 0.0 ? sin_t < std::sin(plan::kMinBlendAngle)
                   : sin_t < std::sin(std::numbers::pi - plan::kMaxBlendAngle))

@@ -24,8 +24,7 @@ Trapezoid fit_profile(const SegmentLimits& lim, double v_max, double L, double v
     return (vc * vc - v0 * v0) / a.accel + (vc * vc - v1 * v1) / a.decel <= 2.0 * L * (1.0 + 1e-12);
   };
   auto peak = [&](const Accel& a) {
-    return std::sqrt((2.0 * L + v0 * v0 / a.accel + v1 * v1 / a.decel) /
-                     (1.0 / a.accel + 1.0 / a.decel));
+    return std::sqrt(Trapezoid::peak_sqr(L, a.accel, a.decel, v0, v1));
   };
   const double lo = std::max(v0, v1);
   double vc = std::max(lo, v_max);
@@ -100,8 +99,7 @@ bool Lookahead::fill() {
       segment_limits(in.seg, p.geo, machine_, n.lim);
       p.programmed_speed = target_speed(in.seg, p.geo, n.lim);
       n.v_max = p.programmed_speed;
-      if (a_brake_ > 0.0)
-        braking_length_ = std::max(braking_length_, n.v_max * n.v_max / (2.0 * a_brake_));
+      braking_length_ = std::max(braking_length_, braking_length(n.v_max));
     }
     if (window_.size() > 1) {
       const std::size_t k = window_.size() - 2;
@@ -169,7 +167,7 @@ void Lookahead::plan_and_release() {
   // The braking length of what stays (the released may have been faster).
   braking_length_ = 0.0;
   for (std::size_t k = count; k < n; ++k)
-    braking_length_ = std::max(braking_length_, window_[k].v_max * window_[k].v_max / (2.0 * a_brake_));
+    braking_length_ = std::max(braking_length_, braking_length(window_[k].v_max));
 }
 
 SourceStatus Lookahead::next(PlannedSegment& out) {

@@ -83,6 +83,10 @@ class Lookahead {
 
   bool fill();  // pull until the window is deep enough; false when nothing is left
   void plan_and_release();
+  // How far a stop from speed v reaches back (0 on a machine with no axes).
+  [[nodiscard]] double braking_length(double v) const noexcept {
+    return a_brake_ > 0.0 ? v * v / (2.0 * a_brake_) : 0.0;
+  }
   [[nodiscard]] double junction_limit(const PlannedSegment& a, double v_a,
                                       const PlannedSegment& b, double v_b);
 

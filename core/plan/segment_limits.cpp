@@ -92,7 +92,6 @@ void segment_limits(const Segment& seg, const SegmentGeometry& geo, const Machin
                     SegmentLimits& lim) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   lim.v_max = 0.0;  // until known: no motion (as for the segments rejected below)
-  lim.arc = false;
   lim.a_linear = 0.0;
   lim.c = 0.0;
   lim.axis_count = 0;
@@ -142,7 +141,6 @@ void segment_limits(const Segment& seg, const SegmentGeometry& geo, const Machin
   const double k = machine.max_feed_override, k2 = k * k;
   lim.v_max = v_max / k;
   lim.a_linear = a_linear / k2;  // ∞ when only the arc's plane moves
-  lim.arc = arc;
   if (!arc) return;
   // a_n = (ρ·K·v)²/r: the physical centripetal acceleration at planned speed v
   const double c = rho * rho * k2 / geo.radius();

@@ -62,7 +62,6 @@ struct ArcAxisBound {
 
 struct SegmentLimits {
   double v_max = 0.0;  // path units/s: the highest speed the axes allow
-  bool arc = false;    // the limits depend on the speed
 
   // Tangential acceleration (speeding up) and deceleration (slowing down,
   // > 0) allowed while the speed stays ≤ v (planned units): on an arc,

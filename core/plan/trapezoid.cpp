@@ -19,10 +19,7 @@ Trapezoid Trapezoid::plan(double length, double accel, double decel, double v0, 
       v_target <= plan::kMinVelocity) {
     return p;  // nothing to move
   }
-  // the triangle's peak, (2L + v0²/a + v1²/d) / (1/a + 1/d), times a·d / a·d
-  const double peak_sqr =
-      (2.0 * length * accel * decel + v0 * v0 * decel + v1 * v1 * accel) / (accel + decel);
-  p.vc = std::min(v_target, std::sqrt(peak_sqr));
+  p.vc = std::min(v_target, std::sqrt(peak_sqr(length, accel, decel, v0, v1)));
   p.vc = std::max({p.vc, v0, v1});
   p.t_acc = (p.vc - v0) / accel;
   p.t_dec = (p.vc - v1) / decel;

@@ -34,6 +34,12 @@ struct Trapezoid {
   }
   [[nodiscard]] static Trapezoid plan(double length, double accel, double decel, double v0,
                                       double v_target, double v1);
+  // The triangle's peak speed squared: (vc² − v0²)/2a + (vc² − v1²)/2d = L.
+  [[nodiscard]] static double peak_sqr(double length, double accel, double decel, double v0,
+                                       double v1) noexcept {
+    // (2L + v0²/a + v1²/d) / (1/a + 1/d), times a·d / a·d
+    return (2.0 * length * accel * decel + v0 * v0 * decel + v1 * v1 * accel) / (accel + decel);
+  }
   // A stand-still of the given duration (dwell): no path, only time.
   [[nodiscard]] static Trapezoid hold(double duration_s);
 
