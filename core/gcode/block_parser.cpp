@@ -1,6 +1,7 @@
 #include "gcode/block_parser.h"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <system_error>
@@ -19,10 +20,22 @@ constexpr const char* kSupportedMCodes = "M2 M3 M4 M5 M7 M8 M9 M30";
 constexpr double kPow10[] = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
                              1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
 // Digits that fit a double exactly (10^15 < 2^53): then mantissa / 10^frac is
-// one correctly rounded division, the same result as strtod.
-constexpr int kFastDigits = 15;
+// one correctly rounded division, the same result as strtod. (The mantissa
+// wraps past 19 digits; such numbers take the slow path.)
+constexpr std::uint32_t kFastDigits = 15;
 
 [[nodiscard]] constexpr bool is_digit(char c) noexcept { return c >= '0' && c <= '9'; }
+
+// What compact() does with each byte: keep it, upper-case it, drop it (blanks),
+// or look closer (comments).
+enum class CharClass : std::uint8_t { Keep, Lower, Blank, Special };
+constexpr std::array<CharClass, 256> kCharClass = [] {
+  std::array<CharClass, 256> t{};
+  for (int c = 'a'; c <= 'z'; ++c) t[c] = CharClass::Lower;
+  t[' '] = t['\t'] = t['\r'] = CharClass::Blank;
+  t['('] = t[')'] = t[';'] = CharClass::Special;
+  return t;
+}();
 
 // Axis index of an axis letter, -1 for other letters.
 [[nodiscard]] constexpr int axis_of(char upper) noexcept {
@@ -86,53 +99,48 @@ bool BlockParser::compact(std::string_view line) {
   char* out = text_.compact.data();
   std::uint32_t* off = text_.offset.data();
   std::uint32_t n = 0;
-  bool in_comment = false;
-  std::uint32_t comment_pos = 0;
   const auto len = static_cast<std::uint32_t>(line.size());
   for (std::uint32_t i = 0; i < len; ++i) {
-    char c = line[i];
-    if (in_comment) {
-      if (c == ')') {
-        in_comment = false;
-      } else if (c == '(') {
+    const auto c = static_cast<unsigned char>(line[i]);
+    switch (kCharClass[c]) {
+      case CharClass::Keep:
+        out[n] = static_cast<char>(c);
+        off[n++] = i;
+        continue;
+      case CharClass::Lower:
+        out[n] = static_cast<char>(c - 'a' + 'A');
+        off[n++] = i;
+        continue;
+      case CharClass::Blank:
+        continue;
+      case CharClass::Special:
+        break;
+    }
+    if (c == ';') break;  // the rest of the line is a comment
+    if (c == ')') {
+      text_.size = n;
+      return fail(ErrorCode::GcodeComment, i,
+                  "found ')' with no comment open; expected '(' before it");
+    }
+    // '(': a comment to its ')'
+    const std::uint32_t comment_pos = i;
+    for (++i; i < len && line[i] != ')'; ++i) {
+      if (line[i] == '(') {
         text_.size = n;
         return fail(ErrorCode::GcodeComment, i,
                     "found '(' inside the comment opened at column " +
                         std::to_string(comment_pos + 1) +
                         "; expected ')' first: comments do not nest");
       }
-      continue;
     }
-    switch (c) {
-      case '(':
-        in_comment = true;
-        comment_pos = i;
-        continue;
-      case ')':
-        text_.size = n;
-        return fail(ErrorCode::GcodeComment, i,
-                    "found ')' with no comment open; expected '(' before it");
-      case ';':
-        i = len;  // the rest of the line is a comment
-        continue;
-      case ' ':
-      case '\t':
-      case '\r':
-        continue;
-      default:
-        break;
+    if (i == len) {
+      text_.size = n;
+      return fail(ErrorCode::GcodeComment, comment_pos,
+                  "found a comment '(' not closed on its line; expected ')' before the end "
+                  "of the line");
     }
-    if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');
-    out[n] = c;
-    off[n] = i;
-    ++n;
   }
   text_.size = n;
-  if (in_comment) {
-    return fail(ErrorCode::GcodeComment, comment_pos,
-                "found a comment '(' not closed on its line; expected ')' before the end "
-                "of the line");
-  }
   return true;
 }
 
@@ -149,23 +157,19 @@ bool BlockParser::read_number(std::uint32_t& i, std::uint32_t letter_at_pos, dou
     ++j;
   }
   const std::uint32_t digits_start = j;
+  // Every digit into the mantissa: with at most kFastDigits digits in all
+  // (leading zeros included) it is exact; longer numbers go to from_chars.
   std::uint64_t mantissa = 0;
-  int digits = 0;  // significant digits (leading zeros do not count)
-  int frac = 0;    // digits after the point
-  auto take = [&](char d) {
-    if (digits > 0 || d != '0') ++digits;
-    if (digits <= kFastDigits) mantissa = mantissa * 10 + static_cast<unsigned>(d - '0');
-  };
-  while (j < n && is_digit(c[j])) take(c[j++]);
-  bool any_digit = j > digits_start;
+  while (j < n && is_digit(c[j])) mantissa = mantissa * 10 + static_cast<unsigned>(c[j++] - '0');
+  const std::uint32_t int_digits = j - digits_start;
+  std::uint32_t frac = 0;  // digits after the point
   if (j < n && c[j] == '.') {
-    ++j;
-    while (j < n && is_digit(c[j])) {
-      take(c[j++]);
-      ++frac;
-      any_digit = true;
-    }
+    const std::uint32_t frac_start = ++j;
+    while (j < n && is_digit(c[j])) mantissa = mantissa * 10 + static_cast<unsigned>(c[j++] - '0');
+    frac = j - frac_start;
   }
+  const bool any_digit = int_digits + frac > 0;
+  const std::uint32_t digits = int_digits + frac;
   const std::uint32_t letter_pos = text_.offset[letter_at_pos];
   if (!any_digit) {
     if (start < n && c[start] == '#') {
@@ -194,7 +198,7 @@ bool BlockParser::read_number(std::uint32_t& i, std::uint32_t letter_at_pos, dou
                     "...': exponents are not allowed in G-code numbers; expected plain digits "
                     "with an optional decimal point");
   }
-  if (digits <= kFastDigits && frac <= kFastDigits) {
+  if (digits <= kFastDigits) {
     double v = static_cast<double>(mantissa);
     if (frac > 0) v /= kPow10[frac];
     value = negative ? -v : v;
@@ -217,7 +221,12 @@ bool BlockParser::read_g(Span w, double value, Block& out) {
   const std::uint32_t pos = text_.byte_pos(w);
   const double scaled = value * 10.0;
   const bool in_range = value >= 0.0 && value < 10000.0;
-  const int tenths = in_range ? static_cast<int>(std::lround(scaled)) : -1;
+  // rounded half up, as lround does for these (non-negative) values, inline
+  int tenths = -1;
+  if (in_range) {
+    tenths = static_cast<int>(scaled);
+    if (scaled - tenths >= 0.5) ++tenths;
+  }
   const bool whole_tenths = in_range && std::fabs(scaled - tenths) <= kCodeTenthsTol;
   const int grp = whole_tenths ? g_group(tenths) : -1;
   if (grp < 0) {
