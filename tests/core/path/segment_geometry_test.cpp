@@ -52,6 +52,23 @@ TEST(SegmentGeometry, PointsOfSmallAndLargeSweepsAreOnTheCircle) {
   }
 }
 
+TEST(SegmentGeometry, SmallSweepsAreTheAngleOfTheEndPoint) {
+  // small sweeps take a series instead of atan2: a wrong term would show far
+  // above a few ulps, in both senses and in a free plane
+  for (const double sweep : {1e-9, 1e-4, 0.0155, 0.0157, 0.3}) {
+    for (const bool cw : {false, true}) {
+      Segment s = arc(7.0, cw);
+      s.end << 50 + 7.0 * std::cos(sweep), 50 + 7.0 * (cw ? -1 : 1) * std::sin(sweep), 10, 0, 0, 0;
+      // the angle of the end point as stored (its coordinates about the centre)
+      const double want = std::atan2((cw ? -1 : 1) * (s.end[1] - 50), s.end[0] - 50);
+      EXPECT_NEAR(SegmentGeometry(s).sweep_rad(), want, 4e-16 * want) << sweep << " " << cw;
+      s.plane = Plane::Free;
+      s.normal = Vec3(0, 0, cw ? -1 : 1);
+      EXPECT_NEAR(SegmentGeometry(s).sweep_rad(), want, 4e-16 * want) << sweep << " free";
+    }
+  }
+}
+
 TEST(SegmentGeometry, HelixWithTurns) {
   const SegmentGeometry g(arc(2.0, false, 2, 3.0));  // 3 turns, 3 mm up
   const double plane = 3 * 2 * std::numbers::pi * 2.0;
