@@ -76,50 +76,72 @@ double Lookahead::junction_limit(const PlannedSegment& a, double v_a, const Plan
   return v;
 }
 
+void Lookahead::grow() {
+  const std::size_t cap = nodes_.empty() ? kInitialCapacity : 2 * nodes_.size();
+  std::vector<Node> nodes(cap);
+  std::vector<PlannedSegment> segments(cap);
+  for (std::size_t k = 0; k < size_; ++k) {
+    nodes[k] = node(k);
+    segments[k] = segment(k);
+  }
+  nodes_.swap(nodes);
+  segments_.swap(segments);
+  head_ = 0;
+  mask_ = cap - 1;
+}
+
 bool Lookahead::fill() {
-  while (!source_done_ && window_.size() < kMaxWindow &&
-         (window_.size() < 2 || tail_length_ < kRefillDepth * braking_length_)) {
-    IndexedSegment in;
-    const SourceStatus st = source_(in);
+  while (!source_done_ && size_ < kMaxWindow &&
+         (size_ < 2 || tail_length_ < kRefillDepth * braking_length_)) {
+    const SourceStatus st = source_(in_);
     if (st != SourceStatus::Item) {
       source_done_ = true;
       source_error_ = st == SourceStatus::Error;
       break;
     }
-    PlannedSegment& p = segments_.emplace_back(
-        PlannedSegment{in.seg, SegmentGeometry(in.seg), Trapezoid{}, 0.0, in.index});
-    Node& n = window_.emplace_back();
-    if (window_.size() == 1) back_end_tangent_.reset();  // belonged to a released segment
+    if (size_ == nodes_.size()) grow();
+    const std::size_t k = size_++;
+    PlannedSegment& p = segment(k);
+    p.seg = in_.seg;
+    p.geo = SegmentGeometry(in_.seg);
+    p.profile = Trapezoid{};
+    p.programmed_speed = 0.0;
+    p.index = in_.index;
+    Node& n = node(k);
+    n = Node{};
+    if (k == 0) back_end_tangent_.reset();  // belonged to a released segment
     n.length = p.geo.length();
-    if (in.seg.kind == MotionKind::Dwell) {
+    if (p.seg.kind == MotionKind::Dwell) {
       n.dwell = true;
-      p.profile = Trapezoid::hold(in.seg.dwell_s);
+      p.profile = Trapezoid::hold(p.seg.dwell_s);
     } else {
       // one evaluation: the tangential limits are functions of the speed
-      segment_limits(in.seg, p.geo, machine_, n.lim);
-      p.programmed_speed = target_speed(in.seg, p.geo, n.lim);
-      n.v_max = p.programmed_speed;
-      braking_length_ = std::max(braking_length_, braking_length(n.v_max));
+      segment_limits(p.seg, p.geo, machine_, n.lim);
+      p.programmed_speed = target_speed(p.seg, p.geo, n.lim);
+      n.x_max = p.programmed_speed * p.programmed_speed;
+      braking_length_ = std::max(braking_length_, braking_length(n.x_max));
     }
-    if (window_.size() > 1) {
-      const std::size_t k = window_.size() - 2;
-      window_[k].v_junction = junction_limit(segments_[k], window_[k].v_max, p, n.v_max);
+    if (k > 0) {
+      Node& before = node(k - 1);
+      const PlannedSegment& a = segment(k - 1);
+      const double v = junction_limit(a, a.programmed_speed, p, p.programmed_speed);
+      before.x_junction = v * v;
       tail_length_ += n.length;
     }
-    max_window_ = std::max(max_window_, window_.size());
+    max_window_ = std::max(max_window_, size_);
   }
-  return !window_.empty();
+  return size_ > 0;
 }
 
 void Lookahead::plan_and_release() {
-  const std::size_t n = window_.size();
+  const std::size_t n = size_;
   // What to release: the front, while what stays behind it covers the
   // braking length (all of it at the program's end).
   double behind = tail_length_;
   std::size_t count = 0;
   while (count < n && (source_done_ || behind >= braking_length_ || count == 0)) {
     ++count;
-    if (count < n) behind -= window_[count].length;
+    if (count < n) behind -= node(count).length;
   }
   tail_length_ = count == n ? 0.0 : std::max(0.0, behind);
 
@@ -129,70 +151,73 @@ void Lookahead::plan_and_release() {
   // everything before it.
   double next_entry = 0.0;
   for (std::size_t k = n; k-- > 0;) {
-    Node& s = window_[k];
-    const double exit = (k + 1 == n) ? 0.0 : std::min(s.v_junction, next_entry);
-    const double reach = s.dwell ? 0.0 : s.lim.reach_down(exit, s.length);
-    const double entry = std::min(s.v_max, reach);
-    s.entry_by_reach = reach < s.v_max;
-    const bool unchanged = s.planned_back && entry == s.v_entry_back;
-    s.v_exit_back = exit;
-    s.v_entry_back = entry;
+    Node& s = node(k);
+    const double exit = (k + 1 == n) ? 0.0 : std::min(s.x_junction, next_entry);
+    // the reach is at least the exit: no need to ask when that covers x_max
+    const double reach = s.dwell             ? 0.0
+                         : exit >= s.x_max ? exit
+                                           : s.lim.reach_down_sqr(exit, s.length);
+    const double entry = std::min(s.x_max, reach);
+    s.entry_by_reach = reach < s.x_max;
+    const bool unchanged = s.planned_back && entry == s.x_entry_back;
+    s.x_exit_back = exit;
+    s.x_entry_back = entry;
     s.planned_back = true;
     if (unchanged) break;
     next_entry = entry;
   }
   // Forward from the speed we are committed to, over the segments released.
-  double entry = v_start_;
+  double entry = x_start_;
   for (std::size_t k = 0; k < count; ++k) {
-    Node& s = window_[k];
-    s.v_entry = std::min(s.v_entry_back, entry);
-    s.v_exit = s.v_exit_back;
+    Node& s = node(k);
+    s.x_entry = std::min(s.x_entry_back, entry);
+    s.x_exit = s.x_exit_back;
     s.shape = Node::Shape::Fit;
-    // reach() gives at least v_entry (≤ v_max): no need to ask when that
+    // the reach is at least the entry (≤ x_max): no need to ask when that
     // already covers the exit the backward pass allows
-    if (s.v_entry < s.v_exit_back) {
-      const double reach = s.lim.reach_up(s.v_entry, s.length);
-      if (reach < s.v_exit_back) {
-        s.v_exit = reach;  // speeding up all the way
+    if (s.x_entry < s.x_exit_back) {
+      const double reach = s.lim.reach_up_sqr(s.x_entry, s.length);
+      if (reach < s.x_exit_back) {
+        s.x_exit = reach;  // speeding up all the way
         s.shape = Node::Shape::SpeedUp;
       }
     }
-    if (s.shape == Node::Shape::Fit && s.entry_by_reach && s.v_entry == s.v_entry_back)
-      s.shape = Node::Shape::SlowDown;  // slowing down all the way to v_exit_back
-    entry = s.v_exit;
+    if (s.shape == Node::Shape::Fit && s.entry_by_reach && s.x_entry == s.x_entry_back)
+      s.shape = Node::Shape::SlowDown;  // slowing down all the way to x_exit_back
+    entry = s.x_exit;
   }
-  v_start_ = entry;
+  x_start_ = entry;
   released_ = count;
   handed_ = 0;
   // The braking length of what stays (the released may have been faster).
   braking_length_ = 0.0;
   for (std::size_t k = count; k < n; ++k)
-    braking_length_ = std::max(braking_length_, braking_length(window_[k].v_max));
+    braking_length_ = std::max(braking_length_, braking_length(node(k).x_max));
 }
 
 SourceStatus Lookahead::next(PlannedSegment& out) {
   while (handed_ == released_) {
-    const auto released = static_cast<std::ptrdiff_t>(released_);
-    window_.erase(window_.begin(), window_.begin() + released);
-    segments_.erase(segments_.begin(), segments_.begin() + released);
+    head_ = (head_ + released_) & mask_;
+    size_ -= released_;
     released_ = handed_ = 0;
     if (!fill()) return source_error_ ? SourceStatus::Error : SourceStatus::End;
     plan_and_release();
   }
-  const Node& s = window_[handed_];
-  out = segments_[handed_];
+  const Node& s = node(handed_);
+  out = segment(handed_);
   ++handed_;
   if (s.dwell) return SourceStatus::Item;
+  const double v_entry = std::sqrt(s.x_entry), v_exit = std::sqrt(s.x_exit);
   switch (s.shape) {
     case Node::Shape::Fit:
-      out.profile = fit_profile(s.lim, s.v_max, s.length, s.v_entry, s.v_exit);
+      out.profile = fit_profile(s.lim, out.programmed_speed, s.length, v_entry, v_exit);
       break;
     case Node::Shape::SpeedUp:
     case Node::Shape::SlowDown: {
       // v_exit (v_entry) is the reach at the accelerations of that speed
-      const double peak = std::max(s.v_entry, s.v_exit);
+      const double peak = std::max(v_entry, v_exit);
       const Accel a = s.lim.at(peak);
-      out.profile = Trapezoid::plan(s.length, a.accel, a.decel, s.v_entry, peak, s.v_exit);
+      out.profile = Trapezoid::plan(s.length, a.accel, a.decel, v_entry, peak, v_exit);
       break;
     }
   }

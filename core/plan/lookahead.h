@@ -18,6 +18,8 @@
 // On arcs a depends on the speed (less centripetal load when slower): a is
 // taken at the speed reached, the highest on the way, so each step is safe —
 // v'² = v² + 2L·a(v') solved exactly (SegmentLimits::reach_up/reach_down).
+// The passes run on the squares (x = v², the phase plane), where a step is
+// x' = x + 2L·a: a square root is taken only when a profile is fitted.
 // Each segment then runs a trapezoid Vs → Vc → Ve (plan/trapezoid.h) with the
 // highest Vc ≤ Vm whose acceleration a(Vc) still fits the segment.
 //
@@ -48,6 +50,7 @@ namespace lcnc {
 class Lookahead {
  public:
   static constexpr std::size_t kMaxWindow = 1 << 16;
+  static constexpr std::size_t kInitialCapacity = 1 << 10;
   // The window is filled to this many braking lengths and planned; what lies
   // more than one braking length before its end is released. Each segment is
   // thus planned about kRefillDepth / (kRefillDepth − 1) times.
@@ -64,17 +67,19 @@ class Lookahead {
   // passes sweep the window several times, and a compact one stays in cache.
   struct Node {
     Node() {}  // user-provided: the vector does not zero the whole node first
+    // Speeds as their squares (x = v², the phase plane): the passes chain
+    // reaches with no square root between segments.
     double length = 0.0;
-    double v_max = 0.0;       // top speed on the segment
-    double v_junction = 0.0;  // limit where this segment ends and the next starts
+    double x_max = 0.0;       // top speed on the segment
+    double x_junction = 0.0;  // limit where this segment ends and the next starts
     // The backward pass's speeds, kept from one plan to the next: the pass
     // stops at the first segment whose entry speed comes out unchanged.
-    double v_entry_back = 0.0, v_exit_back = 0.0;
-    // The forward pass's, for released segments: the profile runs v_entry → v_exit.
-    double v_entry = 0.0, v_exit = 0.0;
+    double x_entry_back = 0.0, x_exit_back = 0.0;
+    // The forward pass's, for released segments: the profile runs entry → exit.
+    double x_entry = 0.0, x_exit = 0.0;
     bool dwell = false;
     bool planned_back = false;
-    bool entry_by_reach = false;  // v_entry_back is the reach from v_exit_back (below v_max)
+    bool entry_by_reach = false;  // x_entry_back is the reach from x_exit_back (below x_max)
     // The profile's shape, when the passes already know it: speeding up or
     // slowing down over the whole segment (else it is fitted).
     enum class Shape : std::uint8_t { Fit, SpeedUp, SlowDown } shape = Shape::Fit;
@@ -83,23 +88,31 @@ class Lookahead {
 
   bool fill();  // pull until the window is deep enough; false when nothing is left
   void plan_and_release();
-  // How far a stop from speed v reaches back (0 on a machine with no axes).
-  [[nodiscard]] double braking_length(double v) const noexcept {
-    return a_brake_ > 0.0 ? v * v / (2.0 * a_brake_) : 0.0;
+  // How far a stop from speed sqrt(x) reaches back (0 on a machine with no axes).
+  [[nodiscard]] double braking_length(double x) const noexcept {
+    return a_brake_ > 0.0 ? x / (2.0 * a_brake_) : 0.0;
   }
   [[nodiscard]] double junction_limit(const PlannedSegment& a, double v_a,
                                       const PlannedSegment& b, double v_b);
 
   const MachineConfig& machine_;
   IndexedSource source_;
-  // The window, oldest first, as two vectors of the same length: the passes'
-  // nodes and the segments. [0, released_) are planned and handed out in
-  // order (handed_ of them so far); they are erased before the next fill, so
-  // the vectors' storage is reused: no allocation once they have grown.
-  std::vector<Node> window_;
+  IndexedSegment in_;  // read into here, then into its ring slot
+  // The window, oldest first, as two rings of the same capacity (a power of
+  // two, doubled when full): the passes' nodes and the segments, window
+  // position k at slot (head_ + k) & mask_. [0, released_) are planned and
+  // handed out in order (handed_ of them so far); then the head moves past
+  // them: nothing is moved, and nothing allocated once the rings have grown.
+  std::vector<Node> nodes_;
   std::vector<PlannedSegment> segments_;
+  std::size_t head_ = 0, size_ = 0, mask_ = 0;
   std::size_t released_ = 0, handed_ = 0;
-  // The unit tangent (dp/ds) where window_.back() ends, when already known:
+  [[nodiscard]] Node& node(std::size_t k) noexcept { return nodes_[(head_ + k) & mask_]; }
+  [[nodiscard]] PlannedSegment& segment(std::size_t k) noexcept {
+    return segments_[(head_ + k) & mask_];
+  }
+  void grow();  // doubles the rings' capacity, the window kept in order
+  // The unit tangent (dp/ds) where the window's last segment ends, when already known:
   // a line's is its start tangent, found for the junction before it.
   std::optional<Pose> back_end_tangent_;
   double tail_length_ = 0.0;  // length of the window behind its front segment
@@ -107,7 +120,7 @@ class Lookahead {
   // assumed at its end may reach back over.
   double braking_length_ = 0.0;
   double a_brake_ = 0.0;  // the weakest axis's acceleration (planned units)
-  double v_start_ = 0.0;      // speed the last released segment ends at
+  double x_start_ = 0.0;      // speed² the last released segment ends at
   bool source_done_ = false;
   bool source_error_ = false;
   std::size_t max_window_ = 0;

@@ -92,8 +92,20 @@ struct SegmentLimits {
   // of two bounds, each falling in x, so x' is the min over axes of the max
   // of the two x' — a linear equation per box line, a quadratic for the
   // norm. Never below v; not capped at v_max.
-  [[nodiscard]] double reach_up(double v, double L) const noexcept { return reach(v, L, true); }
-  [[nodiscard]] double reach_down(double v, double L) const noexcept { return reach(v, L, false); }
+  [[nodiscard]] double reach_up(double v, double L) const noexcept {
+    return std::sqrt(reach_sqr(v * v, L, true));
+  }
+  [[nodiscard]] double reach_down(double v, double L) const noexcept {
+    return std::sqrt(reach_sqr(v * v, L, false));
+  }
+  // The same in the phase plane, speeds squared (x = v²): the look-ahead's
+  // passes chain these with no square root between segments.
+  [[nodiscard]] double reach_up_sqr(double x, double L) const noexcept {
+    return reach_sqr(x, L, true);
+  }
+  [[nodiscard]] double reach_down_sqr(double x, double L) const noexcept {
+    return reach_sqr(x, L, false);
+  }
 
   // What at() and reach() need, per segment.
   double a_linear = 0.0;  // the linearly moving axes' bound (planned units)
@@ -102,8 +114,8 @@ struct SegmentLimits {
   int axis_count = 0;
 
  private:
-  [[nodiscard]] double reach(double v, double L, bool up) const noexcept {
-    const double x = v * v, two_l = 2.0 * L;
+  [[nodiscard]] double reach_sqr(double x, double L, bool up) const noexcept {
+    const double two_l = 2.0 * L;
     double x1 = x + two_l * a_linear;
     for (int j = 0; j < axis_count; ++j) {
       const ArcAxisBound& ax = axes[j];
@@ -120,7 +132,7 @@ struct SegmentLimits {
       }
       x1 = std::min(x1, xj);
     }
-    return std::sqrt(std::max(x, x1));
+    return std::max(x, x1);
   }
 };
 
