@@ -336,7 +336,7 @@ bool stages(const std::string& file, const MachineConfig& m, int runs) {
           while (blender.next(s) == SourceStatus::Item) ++n;
         } else {
           Lookahead la(m, [&](IndexedSegment& in) { return blender.next(in); });
-          PlannedSegment p;
+          const PlannedSegment* p = nullptr;
           while (la.next(p) == SourceStatus::Item) ++n;
         }
       } else {

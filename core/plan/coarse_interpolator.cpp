@@ -12,22 +12,23 @@ CoarseInterpolator::CoarseInterpolator(const MachineConfig& machine, PlannedSour
 
 bool CoarseInterpolator::pull() {
   for (;;) {
-    PlannedSegment& next = slots_[1 - cur_slot_];
+    const PlannedSegment* next = nullptr;
     const SourceStatus st = source_(next);
     if (st == SourceStatus::Error) error_ = true;
     if (st != SourceStatus::Item) return false;
     ++started_;
     // A zero-length move takes no time: read on.
-    if (next.profile.duration() > 0.0) {
-      cur_slot_ = 1 - cur_slot_;
-      have_cur_ = true;
+    if (next->profile.duration() > 0.0) {
+      cur_ = next;
+      duration_ = next->profile.duration();
+      end_ = End{next->seg.end, next->profile.v1, next->seg.line, next->index, next->seg.kind};
       return true;
     }
   }
 }
 
 float CoarseInterpolator::laser_power(double speed) const {
-  const Segment& s = cur().seg;
+  const Segment& s = cur_->seg;
   if (s.kind == MotionKind::Rapid) return 0.0f;
   if (s.kind == MotionKind::Dwell) {
     return s.laser == LaserMode::Constant ? static_cast<float>(s.power_pct) : 0.0f;
@@ -36,8 +37,8 @@ float CoarseInterpolator::laser_power(double speed) const {
     case LaserMode::Off: return 0.0f;
     case LaserMode::Constant: return static_cast<float>(s.power_pct);
     case LaserMode::Dynamic: {
-      if (cur().programmed_speed <= plan::kMinVelocity) return 0.0f;
-      const double k = std::clamp(speed / cur().programmed_speed, 0.0, 1.0);
+      if (cur_->programmed_speed <= plan::kMinVelocity) return 0.0f;
+      const double k = std::clamp(speed / cur_->programmed_speed, 0.0, 1.0);
       return static_cast<float>(s.power_pct * k);
     }
   }
@@ -46,29 +47,35 @@ float CoarseInterpolator::laser_power(double speed) const {
 
 SourceStatus CoarseInterpolator::next(PeriodSample& out) {
   if (done_) return error_ ? SourceStatus::Error : SourceStatus::End;
-  if (!have_cur_ && !pull()) {
+  if (cur_ == nullptr && !pull()) {
     done_ = true;
     return error_ ? SourceStatus::Error : SourceStatus::End;
   }
   tau_ += period_s_;
-  bool last = false;
-  while (tau_ >= cur().profile.duration()) {
-    const double rest = tau_ - cur().profile.duration();
+  ++periods_;
+  out.t_s = static_cast<double>(periods_) * period_s_;
+  while (tau_ >= duration_) {
+    const double rest = tau_ - duration_;
     if (!pull()) {
       // The end, or a source error after the last good segment: the plan
       // already ends at rest there (the look-ahead plans its window to
       // rest), so arrive exactly; next() says Error afterwards.
-      tau_ = cur().profile.duration();
-      last = true;
-      break;
+      out.pose = end_.pose;
+      out.speed = end_.speed;
+      out.power_pct = 0.0f;
+      out.power_cap_pct = 0.0f;
+      out.line = end_.line;
+      out.segment = end_.segment;
+      out.kind = end_.kind;
+      out.end_of_program = true;
+      done_ = true;
+      return SourceStatus::Item;
     }
     tau_ = rest;
   }
-  ++periods_;
-  const PlannedSegment& c = cur();
+  const PlannedSegment& c = *cur_;
   double s, v;
   c.profile.sample(tau_, s, v);
-  out.t_s = static_cast<double>(periods_) * period_s_;
   out.pose = c.seg.kind == MotionKind::Dwell ? c.seg.end : c.geo.at(s);
   out.speed = v;
   out.power_pct = laser_power(v);
@@ -79,13 +86,7 @@ SourceStatus CoarseInterpolator::next(PeriodSample& out) {
   out.line = c.seg.line;
   out.segment = c.index;
   out.kind = c.seg.kind;
-  out.end_of_program = last;
-  if (last) {
-    out.pose = c.seg.end;
-    out.power_pct = 0.0f;
-    out.power_cap_pct = 0.0f;
-    done_ = true;
-  }
+  out.end_of_program = false;
   return SourceStatus::Item;
 }
 

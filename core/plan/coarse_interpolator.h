@@ -46,18 +46,25 @@ class CoarseInterpolator {
   [[nodiscard]] std::uint32_t segments_started() const noexcept { return started_; }
 
  private:
-  bool pull();  // next non-empty segment into cur(); false (cur() kept) at end or error
+  // The next segment that takes time becomes the current one; false at the
+  // end or on an error (the current one is then no longer valid: the last
+  // sample comes from its end, kept apart).
+  bool pull();
   [[nodiscard]] float laser_power(double speed) const;
-  [[nodiscard]] const PlannedSegment& cur() const noexcept { return slots_[cur_slot_]; }
 
   double period_s_;
   PlannedSource source_;
-  // The current segment and the one being read: pull() reads into the spare
-  // slot and swaps only when it has a segment that takes time, so nothing is
-  // copied and the current one survives the end of the program.
-  std::array<PlannedSegment, 2> slots_;
-  std::size_t cur_slot_ = 0;
-  bool have_cur_ = false;
+  // The current segment, as its source handed it out (valid until the
+  // source is asked again), and its duration.
+  const PlannedSegment* cur_ = nullptr;
+  double duration_ = 0.0;
+  // Where the current segment ends: the program's last sample.
+  struct End {
+    Pose pose = Pose::Zero();
+    double speed = 0.0;
+    std::uint32_t line = 0, segment = 0;
+    MotionKind kind = MotionKind::Dwell;
+  } end_;
   bool done_ = false;
   bool error_ = false;
   double tau_ = 0.0;  // time into cur_

@@ -76,11 +76,12 @@ PlannedSegment StopHolds::half(const PlannedSegment& neighbour, bool stand, cons
   return h;
 }
 
-SourceStatus StopHolds::next(PlannedSegment& out) {
+SourceStatus StopHolds::next(const PlannedSegment*& out) {
   if (!enabled_) return source_(out);
   while (count_ == 0) {
     if (done_) return end_status_;
-    const SourceStatus st = source_(out);
+    const PlannedSegment* in = nullptr;
+    const SourceStatus st = source_(in);
     if (st != SourceStatus::Item) {
       done_ = true;
       end_status_ = st;
@@ -90,23 +91,24 @@ SourceStatus StopHolds::next(PlannedSegment& out) {
       }
       continue;
     }
-    if (out.profile.duration() <= 0.0) return SourceStatus::Item;  // takes no time: no stop of its own
+    out = in;
+    if (in->profile.duration() <= 0.0) return SourceStatus::Item;  // takes no time: no stop of its own
     const bool stop_before = at_rest_;
-    at_rest_ = out.profile.v1 <= 0.0;  // dwells too
+    at_rest_ = in->profile.v1 <= 0.0;  // dwells too
     if (!stop_before) {
-      last_ = out;
+      last_ = *in;
       have_last_ = true;
       return SourceStatus::Item;
     }
-    // A stop between last_ and out (or the start): arrive, then depart.
-    const Pose at = have_last_ ? last_.seg.end : out.seg.start;
-    queue(have_last_ ? half(last_, last_.seg.kind == MotionKind::Dwell, at) : half(out, true, at));
-    queue(half(out, out.seg.kind == MotionKind::Dwell, at));
-    queue(out);
-    last_ = out;
+    // A stop between last_ and in (or the start): arrive, then depart.
+    const Pose at = have_last_ ? last_.seg.end : in->seg.start;
+    queue(have_last_ ? half(last_, last_.seg.kind == MotionKind::Dwell, at) : half(*in, true, at));
+    queue(half(*in, in->seg.kind == MotionKind::Dwell, at));
+    queue(*in);
+    last_ = *in;
     have_last_ = true;
   }
-  out = queue_[front_];
+  out = &queue_[front_];
   front_ = (front_ + 1) % queue_.size();
   --count_;
   return SourceStatus::Item;

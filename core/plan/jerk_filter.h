@@ -107,7 +107,8 @@ struct JerkLimit {
 class StopHolds {
  public:
   StopHolds(PlannedSource source, const JerkLimit& limit, double period_s);
-  [[nodiscard]] SourceStatus next(PlannedSegment& out);
+  // The next segment, valid until next() is called again.
+  [[nodiscard]] SourceStatus next(const PlannedSegment*& out);
 
  private:
   // Half a hold at `at`, like `neighbour` (its kind and laser) or, when

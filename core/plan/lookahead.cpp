@@ -195,7 +195,7 @@ void Lookahead::plan_and_release() {
     braking_length_ = std::max(braking_length_, braking_length(node(k).x_max));
 }
 
-SourceStatus Lookahead::next(PlannedSegment& out) {
+SourceStatus Lookahead::next(const PlannedSegment*& out) {
   while (handed_ == released_) {
     head_ = (head_ + released_) & mask_;
     size_ -= released_;
@@ -204,20 +204,21 @@ SourceStatus Lookahead::next(PlannedSegment& out) {
     plan_and_release();
   }
   const Node& s = node(handed_);
-  out = segment(handed_);
+  PlannedSegment& p = segment(handed_);
   ++handed_;
+  out = &p;
   if (s.dwell) return SourceStatus::Item;
   const double v_entry = std::sqrt(s.x_entry), v_exit = std::sqrt(s.x_exit);
   switch (s.shape) {
     case Node::Shape::Fit:
-      out.profile = fit_profile(s.lim, out.programmed_speed, s.length, v_entry, v_exit);
+      p.profile = fit_profile(s.lim, p.programmed_speed, s.length, v_entry, v_exit);
       break;
     case Node::Shape::SpeedUp:
     case Node::Shape::SlowDown: {
       // v_exit (v_entry) is the reach at the accelerations of that speed
       const double peak = std::max(v_entry, v_exit);
       const Accel a = s.lim.at(peak);
-      out.profile = Trapezoid::plan(s.length, a.accel, a.decel, v_entry, peak, v_exit);
+      p.profile = Trapezoid::plan(s.length, a.accel, a.decel, v_entry, peak, v_exit);
       break;
     }
   }

@@ -57,7 +57,16 @@ class Lookahead {
   static constexpr double kRefillDepth = 4.0;
 
   Lookahead(const MachineConfig& machine, IndexedSource source);
-  [[nodiscard]] SourceStatus next(PlannedSegment& out);
+  // The next planned segment, valid until next() is called again (it stays
+  // in the window's ring).
+  [[nodiscard]] SourceStatus next(const PlannedSegment*& out);
+  // The same, copied out.
+  [[nodiscard]] SourceStatus next(PlannedSegment& out) {
+    const PlannedSegment* p = nullptr;
+    const SourceStatus st = next(p);
+    if (st == SourceStatus::Item) out = *p;
+    return st;
+  }
 
   [[nodiscard]] std::size_t max_window_seen() const noexcept { return max_window_; }
 

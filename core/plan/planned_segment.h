@@ -22,7 +22,9 @@ struct PlannedSegment {
 enum class SourceStatus : std::uint8_t { Item, End, Error };
 
 // Pull-style streams: each stage asks the previous one for its next item.
+// Planned segments are handed out by reference (some 600 bytes each, not
+// copied): the one handed out stays valid until the source is asked again.
 using SegmentSource = std::function<SourceStatus(Segment&)>;
-using PlannedSource = std::function<SourceStatus(PlannedSegment&)>;
+using PlannedSource = std::function<SourceStatus(const PlannedSegment*&)>;
 
 }  // namespace lcnc

@@ -8,13 +8,13 @@ Planner::Planner(const MachineConfig& machine, SegmentSource source)
       blender_(machine, std::move(source), jerk_.error_mm),
       lookahead_(planned_, [this](IndexedSegment& s) { return blender_.next(s); }),
       holds_(
-          [this](PlannedSegment& p) {
+          [this](const PlannedSegment*& p) {
             const SourceStatus st = lookahead_.next(p);
-            if (st == SourceStatus::Item && on_planned_) on_planned_(p);
+            if (st == SourceStatus::Item && on_planned_) on_planned_(*p);
             return st;
           },
           jerk_, machine.period_s()),
-      interp_(machine, [this](PlannedSegment& p) { return holds_.next(p); }),
+      interp_(machine, [this](const PlannedSegment*& p) { return holds_.next(p); }),
       filter_(jerk_.taps) {}
 
 SourceStatus Planner::next_filtered(PeriodSample& out) {

@@ -49,7 +49,7 @@ PipelineRun run(const MachineConfig& m, const std::vector<Segment>& segs, const 
     return SourceStatus::Item;
   });
   Lookahead planner(m, [&](IndexedSegment& s) { return blender.next(s); });
-  CoarseInterpolator ci(m, [&](PlannedSegment& p) { return planner.next(p); });
+  CoarseInterpolator ci(m, [&](const PlannedSegment*& p) { return planner.next(p); });
   StepQuantizer q(m, start);
   PipelineRun r;
   for (int a = 0; a < kAxisCount; ++a) r.sum[a] = q.commanded(a);
@@ -96,7 +96,7 @@ TEST(CoarseInterpolator, SourceErrorEndsAtRestWhereTheLastGoodSegmentEnds) {
     return SourceStatus::Item;
   });
   Lookahead planner(m, [&](IndexedSegment& s) { return blender.next(s); });
-  CoarseInterpolator ci(m, [&](PlannedSegment& p) { return planner.next(p); });
+  CoarseInterpolator ci(m, [&](const PlannedSegment*& p) { return planner.next(p); });
   std::vector<PeriodSample> samples;
   PeriodSample s;
   SourceStatus st;

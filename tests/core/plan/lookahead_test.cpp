@@ -58,11 +58,11 @@ Outcome run(const MachineConfig& m, const std::vector<Segment>& segs) {
   Lookahead la(m, [&](IndexedSegment& s) { return blender.next(s); });
   double prev_exit = 0.0;
   Outcome o;
-  CoarseInterpolator ci(m, [&](PlannedSegment& p) {
+  CoarseInterpolator ci(m, [&](const PlannedSegment*& p) {
     const SourceStatus st = la.next(p);
     if (st == SourceStatus::Item) {
-      o.max_entry_exit_gap = std::max(o.max_entry_exit_gap, std::abs(p.profile.v0 - prev_exit));
-      prev_exit = p.profile.v1;
+      o.max_entry_exit_gap = std::max(o.max_entry_exit_gap, std::abs(p->profile.v0 - prev_exit));
+      prev_exit = p->profile.v1;
     }
     return st;
   });

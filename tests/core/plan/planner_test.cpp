@@ -357,7 +357,7 @@ TEST(Planner, WithoutJerkLimitThePlanIsBitIdentical) {
   Planner planner(m, from(segs, i));
   PathBlender blender(m, from(segs, j));
   Lookahead la(m, [&](IndexedSegment& s) { return blender.next(s); });
-  CoarseInterpolator ci(m, [&](PlannedSegment& p) { return la.next(p); });
+  CoarseInterpolator ci(m, [&](const PlannedSegment*& p) { return la.next(p); });
   PeriodSample x, y;
   std::uint64_t n = 0;
   for (;;) {
