@@ -331,11 +331,11 @@ bool stages(const std::string& file, const MachineConfig& m, int runs) {
         while (source(s) == SourceStatus::Item) ++n;
       } else if (stage <= 2) {
         PathBlender blender(m, source);
-        IndexedSegment s;
+        const IndexedSegment* s = nullptr;
         if (stage == 1) {
           while (blender.next(s) == SourceStatus::Item) ++n;
         } else {
-          Lookahead la(m, [&](IndexedSegment& in) { return blender.next(in); });
+          Lookahead la(m, [&](const IndexedSegment*& in) { return blender.next(in); });
           const PlannedSegment* p = nullptr;
           while (la.next(p) == SourceStatus::Item) ++n;
         }

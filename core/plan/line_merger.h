@@ -23,7 +23,9 @@ struct IndexedSegment {
   Segment seg;
   std::uint32_t index = 0;  // index of the program segment this piece belongs to
 };
-using IndexedSource = std::function<SourceStatus(IndexedSegment&)>;
+// The blender's output, handed out by reference: valid until the source is
+// asked again.
+using IndexedSource = std::function<SourceStatus(const IndexedSegment*&)>;
 
 // Merge tolerance q of a G64 block: half of min(Q, P); 0 turns merging off.
 [[nodiscard]] double merge_tolerance(const Segment& s) noexcept;

@@ -93,7 +93,8 @@ void Lookahead::grow() {
 bool Lookahead::fill() {
   while (!source_done_ && size_ < kMaxWindow &&
          (size_ < 2 || tail_length_ < kRefillDepth * braking_length_)) {
-    const SourceStatus st = source_(in_);
+    const IndexedSegment* in = nullptr;
+    const SourceStatus st = source_(in);
     if (st != SourceStatus::Item) {
       source_done_ = true;
       source_error_ = st == SourceStatus::Error;
@@ -102,11 +103,11 @@ bool Lookahead::fill() {
     if (size_ == nodes_.size()) grow();
     const std::size_t k = size_++;
     PlannedSegment& p = segment(k);
-    p.seg = in_.seg;
-    p.geo = SegmentGeometry(in_.seg);
+    p.seg = in->seg;
+    p.geo = SegmentGeometry(in->seg);
     p.profile = Trapezoid{};
     p.programmed_speed = 0.0;
-    p.index = in_.index;
+    p.index = in->index;
     Node& n = node(k);
     n = Node{};
     if (k == 0) back_end_tangent_.reset();  // belonged to a released segment

@@ -106,7 +106,6 @@ class Lookahead {
 
   const MachineConfig& machine_;
   IndexedSource source_;
-  IndexedSegment in_;  // read into here, then into its ring slot
   // The window, oldest first, as two rings of the same capacity (a power of
   // two, doubled when full): the passes' nodes and the segments, window
   // position k at slot (head_ + k) & mask_. [0, released_) are planned and

@@ -39,16 +39,14 @@ PathBlender::PathBlender(const MachineConfig& machine, SegmentSource source,
   margin_mm_ = std::sqrt(sum);
 }
 
-void PathBlender::emit(const Segment& seg, std::uint32_t index) {
-  const Pose d = seg.end - seg.start;
+void PathBlender::emit(const IndexedSegment& s) {
   // Lines used up entirely by their two blends carry no motion: drop them.
-  if (seg.kind == MotionKind::Linear && d.norm() <= plan::kMinSegmentLength) return;
-  IndexedSegment& slot = ready_[(ready_front_ + ready_count_++) % ready_.size()];
-  slot.seg = seg;
-  slot.index = index;
+  if (s.seg.kind == MotionKind::Linear && (s.seg.end - s.seg.start).norm() <= plan::kMinSegmentLength)
+    return;
+  ready_[(ready_front_ + ready_count_++) % ready_.size()] = &s;
 }
 
-SourceStatus PathBlender::next(IndexedSegment& out) {
+SourceStatus PathBlender::next(const IndexedSegment*& out) {
   while (ready_count_ == 0) {
     if (end_status_ != SourceStatus::Item) return end_status_;
     // read into the slot the pending line does not hold: it becomes the
@@ -57,7 +55,7 @@ SourceStatus PathBlender::next(IndexedSegment& out) {
     IndexedSegment& cur = slots_[1 - pending_slot_];
     const SourceStatus st = merger_.next(cur);
     if (st != SourceStatus::Item) {
-      if (have_pending_) emit(pending.seg, pending.index);
+      if (have_pending_) emit(pending);
       have_pending_ = false;
       end_status_ = st;
       continue;
@@ -80,21 +78,23 @@ SourceStatus PathBlender::next(IndexedSegment& out) {
               : fillet_transition(a, cur.seg, tol, max_a, len_b * share_b);
       if (t.blended) {
         pending.seg.end = t.q0;
-        emit(pending.seg, pending.index);
-        emit(t.arc, cur.index);
+        emit(pending);
+        arc_.seg = t.arc;
+        arc_.index = cur.index;
+        emit(arc_);
         pending_full_length_ = len_b;
         cur.seg.start = t.q2;
         pending_slot_ = 1 - pending_slot_;
         continue;
       }
     }
-    if (have_pending_) emit(pending.seg, pending.index);
+    if (have_pending_) emit(pending);
     have_pending_ = blendable(cur.seg);
     if (have_pending_) {
       pending_slot_ = 1 - pending_slot_;
       pending_full_length_ = path_length(cur.seg);
     } else {
-      emit(cur.seg, cur.index);
+      emit(cur);
     }
   }
   out = ready_[ready_front_];

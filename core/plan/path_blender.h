@@ -32,13 +32,21 @@ class PathBlender {
  public:
   // filter_error_mm: e_f, kept out of every blend's tolerance.
   PathBlender(const MachineConfig& machine, SegmentSource source, double filter_error_mm = 0.0);
-  [[nodiscard]] SourceStatus next(IndexedSegment& out);
+  // The next segment, valid until next() is called again.
+  [[nodiscard]] SourceStatus next(const IndexedSegment*& out);
+  // The same, copied out.
+  [[nodiscard]] SourceStatus next(IndexedSegment& out) {
+    const IndexedSegment* p = nullptr;
+    const SourceStatus st = next(p);
+    if (st == SourceStatus::Item) out = *p;
+    return st;
+  }
 
   // Half a step on every linear axis, as a distance (mm).
   [[nodiscard]] double quantization_margin_mm() const noexcept { return margin_mm_; }
 
  private:
-  void emit(const Segment& seg, std::uint32_t index);
+  void emit(const IndexedSegment& s);
 
   LineMerger merger_;
   double margin_mm_ = 0.0;
@@ -49,10 +57,12 @@ class PathBlender {
   std::array<IndexedSegment, 2> slots_;
   std::size_t pending_slot_ = 0;
   double pending_full_length_ = 0;  // its length as programmed
-  // Segments ready to hand out, oldest first: one step of next() emits at
-  // most two (a trimmed line and its blend arc), and next() hands one out
-  // before it takes another step.
-  std::array<IndexedSegment, 2> ready_;
+  IndexedSegment arc_;  // the blend arc of the last corner
+  // Segments ready to hand out, oldest first, where they are (a slot or
+  // arc_): one step of next() emits at most two (a trimmed line and its
+  // blend arc), and next() hands them out before it takes another step —
+  // which is the first to write a slot or arc_ again.
+  std::array<const IndexedSegment*, 2> ready_{};
   std::size_t ready_front_ = 0, ready_count_ = 0;
   SourceStatus end_status_ = SourceStatus::Item;
 };

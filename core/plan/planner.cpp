@@ -6,7 +6,7 @@ Planner::Planner(const MachineConfig& machine, SegmentSource source)
     : jerk_(lcnc::jerk_limit(machine)),
       planned_(planned_machine(machine, jerk_)),
       blender_(machine, std::move(source), jerk_.error_mm),
-      lookahead_(planned_, [this](IndexedSegment& s) { return blender_.next(s); }),
+      lookahead_(planned_, [this](const IndexedSegment*& s) { return blender_.next(s); }),
       holds_(
           [this](const PlannedSegment*& p) {
             const SourceStatus st = lookahead_.next(p);

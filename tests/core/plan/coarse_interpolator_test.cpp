@@ -48,7 +48,7 @@ PipelineRun run(const MachineConfig& m, const std::vector<Segment>& segs, const 
     out = segs[i++];
     return SourceStatus::Item;
   });
-  Lookahead planner(m, [&](IndexedSegment& s) { return blender.next(s); });
+  Lookahead planner(m, [&](const IndexedSegment*& s) { return blender.next(s); });
   CoarseInterpolator ci(m, [&](const PlannedSegment*& p) { return planner.next(p); });
   StepQuantizer q(m, start);
   PipelineRun r;
@@ -95,7 +95,7 @@ TEST(CoarseInterpolator, SourceErrorEndsAtRestWhereTheLastGoodSegmentEnds) {
     out = segs[i++];
     return SourceStatus::Item;
   });
-  Lookahead planner(m, [&](IndexedSegment& s) { return blender.next(s); });
+  Lookahead planner(m, [&](const IndexedSegment*& s) { return blender.next(s); });
   CoarseInterpolator ci(m, [&](const PlannedSegment*& p) { return planner.next(p); });
   std::vector<PeriodSample> samples;
   PeriodSample s;

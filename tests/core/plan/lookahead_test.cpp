@@ -55,7 +55,7 @@ struct Outcome {
 Outcome run(const MachineConfig& m, const std::vector<Segment>& segs) {
   std::size_t i = 0, j = 0;
   PathBlender blender(m, from(segs, i));
-  Lookahead la(m, [&](IndexedSegment& s) { return blender.next(s); });
+  Lookahead la(m, [&](const IndexedSegment*& s) { return blender.next(s); });
   double prev_exit = 0.0;
   Outcome o;
   CoarseInterpolator ci(m, [&](const PlannedSegment*& p) {

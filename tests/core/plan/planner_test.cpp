@@ -356,7 +356,7 @@ TEST(Planner, WithoutJerkLimitThePlanIsBitIdentical) {
   std::size_t i = 0, j = 0;
   Planner planner(m, from(segs, i));
   PathBlender blender(m, from(segs, j));
-  Lookahead la(m, [&](IndexedSegment& s) { return blender.next(s); });
+  Lookahead la(m, [&](const IndexedSegment*& s) { return blender.next(s); });
   CoarseInterpolator ci(m, [&](const PlannedSegment*& p) { return la.next(p); });
   PeriodSample x, y;
   std::uint64_t n = 0;
