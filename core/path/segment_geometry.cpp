@@ -112,6 +112,26 @@ SegmentGeometry::SegmentGeometry(const Segment& seg) : start_(seg.start), end_(s
   inv_length_ = length_ > 0.0 ? 1.0 / length_ : 0.0;
 }
 
+SegmentGeometry SegmentGeometry::circular_arc(const Pose& start, const Pose& end,
+                                              const Vec3& center, const Vec3& u, const Vec3& w,
+                                              double radius, double sin_sweep, double cos_sweep) {
+  double sweep = atan2_small(sin_sweep, cos_sweep);
+  if (sweep <= 0.0) sweep += 2.0 * std::numbers::pi;
+  SegmentGeometry g{start, end};
+  g.arc_ = true;
+  g.center_ = center;
+  g.u_ = u;
+  g.w_ = w;
+  g.radius_ = radius;
+  g.sweep_ = sweep;
+  g.sin_sweep_ = sin_sweep;
+  g.cos_sweep_ = cos_sweep;
+  g.length_ = radius * sweep;
+  g.plane_ratio_ = g.length_ > 0.0 ? 1.0 : 0.0;
+  g.inv_length_ = g.length_ > 0.0 ? 1.0 / g.length_ : 0.0;
+  return g;
+}
+
 void SegmentGeometry::set_sin_cos_sweep(double y, double x) noexcept {
   // those of atan2(y, x), which differs from the sweep by whole turns
   const double h = std::sqrt(x * x + y * y);  // about the radius

@@ -62,8 +62,11 @@ ArcTransition arc_transition(const Segment& a, const Segment& b, double toleranc
 
   set_blend_arc(a, b, t.q0, t.q2, t.arc);
   t.arc.plane = Plane::Free;
-  t.arc.normal = cross.normalized();
+  t.arc.normal = cross / s_raw;
   t.arc.center = p + (d2 - d1).normalized() * (r / cos_h);
+  // it starts along d1, about the centre at u = d1 × n from it (w = n × u = d1)
+  t.geo = SegmentGeometry::circular_arc(t.q0, t.q2, t.arc.center, d1.cross(t.arc.normal), d1, r,
+                                        sin_t, cos_t);
   return t;
 }
 

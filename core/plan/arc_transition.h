@@ -13,7 +13,10 @@
 // n = d1 × d2. Rotary axes move linearly from their value at Q0 to that at Q2.
 #pragma once
 
+#include <optional>
+
 #include "path/segment.h"
+#include "path/segment_geometry.h"
 
 namespace lcnc {
 
@@ -22,6 +25,9 @@ struct ArcTransition {
   double trim = 0.0;  // l: length cut off the end of the first and the start of the second line
   Pose q0 = Pose::Zero(), q2 = Pose::Zero();
   Segment arc;        // Plane::Free arc from q0 to q2
+  // arc_transition: the arc's geometry as constructed (SegmentGeometry(arc)
+  // up to rounding, without recomputing it); fillet_transition leaves it.
+  std::optional<SegmentGeometry> geo;
 };
 
 // Sets `arc` to the blend arc's segment from q0 to q2: feed, laser and modes

@@ -15,6 +15,7 @@
 #include <array>
 #include <cstdint>
 
+#include "path/segment_geometry.h"
 #include "plan/planned_segment.h"
 
 namespace lcnc {
@@ -22,6 +23,11 @@ namespace lcnc {
 struct IndexedSegment {
   Segment seg;
   std::uint32_t index = 0;  // index of the program segment this piece belongs to
+  // Set by the blender on what it hands out: the geometry (the look-ahead's
+  // too), and whether the segment starts along the previous one's end
+  // tangent by construction (a blend arc and the line after it).
+  SegmentGeometry geo{Segment{}};
+  bool tangent_in = false;
 };
 // The blender's output, handed out by reference: valid until the source is
 // asked again.

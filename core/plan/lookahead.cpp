@@ -104,7 +104,7 @@ bool Lookahead::fill() {
     const std::size_t k = size_++;
     PlannedSegment& p = segment(k);
     p.seg = in->seg;
-    p.geo = SegmentGeometry(in->seg);
+    p.geo = in->geo;
     p.profile = Trapezoid{};
     p.programmed_speed = 0.0;
     p.index = in->index;
@@ -125,7 +125,12 @@ bool Lookahead::fill() {
     if (k > 0) {
       Node& before = node(k - 1);
       const PlannedSegment& a = segment(k - 1);
-      const double v = junction_limit(a, a.programmed_speed, p, p.programmed_speed);
+      double v = std::min(a.programmed_speed, p.programmed_speed);
+      if (in->tangent_in) {
+        back_end_tangent_.reset();  // not looked at
+      } else {
+        v = junction_limit(a, a.programmed_speed, p, p.programmed_speed);
+      }
       before.x_junction = v * v;
       tail_length_ += n.length;
     }

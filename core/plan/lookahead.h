@@ -10,7 +10,8 @@
 //   * on near-tangent joins (CAM arcs rounded to 4 decimals) the velocity
 //     jump per axis stays within a tenth of one period's acceleration:
 //       Vj ≤ min_i  0.1·amax_i·T / |t_i(b, start) − t_i(a, end)|
-//   * no limit but the segments' own on tangent joins (blends).
+//   * no limit but the segments' own on tangent joins (blends; the blender
+//     marks its own, IndexedSegment::tangent_in, which are not looked at).
 // Backward pass from the window's end, assumed a stop:
 //   Ve(i) = min(Vj(i), Vs(i+1)),   Vs(i) = min(Vm(i), sqrt(Ve(i)² + 2aL))
 // Forward pass from the speed the last released segment ends at:

@@ -39,10 +39,11 @@ PathBlender::PathBlender(const MachineConfig& machine, SegmentSource source,
   margin_mm_ = std::sqrt(sum);
 }
 
-void PathBlender::emit(const IndexedSegment& s) {
+void PathBlender::emit(IndexedSegment& s, bool with_geometry) {
   // Lines used up entirely by their two blends carry no motion: drop them.
   if (s.seg.kind == MotionKind::Linear && (s.seg.end - s.seg.start).norm() <= plan::kMinSegmentLength)
     return;
+  if (!with_geometry) s.geo = SegmentGeometry(s.seg);
   ready_[(ready_front_ + ready_count_++) % ready_.size()] = &s;
 }
 
@@ -54,6 +55,7 @@ SourceStatus PathBlender::next(const IndexedSegment*& out) {
     IndexedSegment& pending = slots_[pending_slot_];
     IndexedSegment& cur = slots_[1 - pending_slot_];
     const SourceStatus st = merger_.next(cur);
+    cur.tangent_in = false;
     if (st != SourceStatus::Item) {
       if (have_pending_) emit(pending);
       have_pending_ = false;
@@ -81,7 +83,16 @@ SourceStatus PathBlender::next(const IndexedSegment*& out) {
         emit(pending);
         arc_.seg = t.arc;
         arc_.index = cur.index;
-        emit(arc_);
+        // A line–line blend's geometry is known (a fillet's is computed as
+        // any arc's). It is tangent to both lines by construction — in X Y Z:
+        // with rotary axes moving, their rates per mm jump at its ends.
+        const bool line_line = t.geo.has_value();
+        if (line_line) arc_.geo = *t.geo;
+        const bool tangent = line_line && (a.end - a.start).tail<3>().isZero() &&
+                             (cur.seg.end - cur.seg.start).tail<3>().isZero();
+        arc_.tangent_in = tangent;
+        emit(arc_, line_line);
+        cur.tangent_in = tangent;
         pending_full_length_ = len_b;
         cur.seg.start = t.q2;
         pending_slot_ = 1 - pending_slot_;

@@ -46,7 +46,8 @@ class PathBlender {
   [[nodiscard]] double quantization_margin_mm() const noexcept { return margin_mm_; }
 
  private:
-  void emit(const IndexedSegment& s);
+  // Queues s to hand out, its geometry computed unless it has it already.
+  void emit(IndexedSegment& s, bool with_geometry = false);
 
   LineMerger merger_;
   double margin_mm_ = 0.0;

@@ -87,5 +87,48 @@ TEST(PathBlender, RotaryMotionIsNeverMerged) {
   for (std::size_t k = 0; k < seen.size(); ++k) EXPECT_TRUE(seen[k]) << k;
 }
 
+// What the blender hands out carries its geometry — for a blend arc the one
+// it was built with, which is SegmentGeometry(arc) up to rounding — and
+// marks the joins that are tangent by construction.
+TEST(PathBlender, BlendArcsCarryTheirGeometryAndTangentJoins) {
+  const std::vector<Segment> segs = {g1({10, 10, 5}, {20, 10, 6}, 0.05, 0.0),
+                                     g1({20, 10, 6}, {22, 19, 4}, 0.05, 0.0),
+                                     g1({22, 19, 4}, {22.5, 19.2, 4}, 0.05, 0.0)};
+  const auto out = blend(segs);
+  ASSERT_EQ(out.size(), 5u);  // line, arc, line, arc, line
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    const SegmentGeometry want(out[k].seg);
+    const SegmentGeometry& got = out[k].geo;
+    EXPECT_EQ(got.is_arc(), k % 2 == 1) << k;
+    EXPECT_NEAR(got.length(), want.length(), 1e-12) << k;
+    EXPECT_NEAR(got.sweep_rad(), want.sweep_rad(), 1e-12) << k;
+    for (int j = 0; j <= 8; ++j) {
+      const double f = j / 8.0;
+      EXPECT_LT((got.at(f * got.length()) - want.at(f * want.length())).norm(), 1e-12) << k << " " << f;
+    }
+    EXPECT_LT((got.start_tangent() - want.start_tangent()).norm(), 1e-12) << k;
+    EXPECT_LT((got.end_tangent() - want.end_tangent()).norm(), 1e-12) << k;
+    // each arc and the line after it start along what comes before them
+    EXPECT_EQ(out[k].tangent_in, k > 0) << k;
+    if (k > 0) {
+      EXPECT_LT((got.start_tangent() - out[k - 1].geo.end_tangent()).norm(), 1e-12) << k;
+    }
+  }
+}
+
+TEST(PathBlender, JoinsWithRotaryAxesMovingAreNotMarkedTangent) {
+  // X Y Z stay tangent, but the rotary axis's rate per mm jumps at the
+  // blend's ends: the look-ahead must look at those joins
+  std::vector<Segment> segs = {g1({10, 10, 5}, {20, 10, 5}, 0.05, 0.0),
+                               g1({20, 10, 5}, {20, 20, 5}, 0.05, 0.0)};
+  segs[0].end[5] = 30.0;
+  segs[1].start[5] = 30.0;
+  segs[1].end[5] = 40.0;
+  const auto out = blend(segs);
+  ASSERT_EQ(out.size(), 3u);
+  EXPECT_TRUE(out[1].seg.kind == MotionKind::Arc);
+  for (const auto& s : out) EXPECT_FALSE(s.tangent_in);
+}
+
 }  // namespace
 }  // namespace lcnc
