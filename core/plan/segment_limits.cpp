@@ -63,26 +63,30 @@ struct ArcAxis {
   double t_lo = 0.0, t_hi = 0.0, n_lo = 0.0, n_hi = 0.0;  // ranges over the sweep
 };
 
-// The box bound of one axis for one side as lines in a_n, x = ±t over the
-// sweep (+ speeding up, − slowing down):
+// The box bounds of one axis as lines in a_n, x = ±t over the sweep (+
+// speeding up, − slowing down):
 //   a ≤ (amax − a_n·max(0, n_hi)) / (ρ·x_hi)   (x_hi > 0)
 //   a ≤ (amax + a_n·min(0, n_lo)) / (ρ·(−x_lo)) (x_lo < 0)
 // in planned units: a_n = c·x, divided by K². A side the tangent never
-// points to gives no line (p = ∞).
-void box_lines(const ArcAxis& x, double rho, double c, double k2, bool speed_up,
-               std::array<double, 2>& p, std::array<double, 2>& q) {
-  const double x_lo = speed_up ? x.t_lo : -x.t_hi, x_hi = speed_up ? x.t_hi : -x.t_lo;
-  p = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
-  q = {0.0, 0.0};
-  if (x_hi > 1e-15) {
-    const double per = 1.0 / (rho * x_hi * k2);
-    p[0] = x.a_axis * per;
-    q[0] = std::max(0.0, x.n_hi) * c * per;
+// points to gives no line (p = ∞). Speeding up, x = t: x_hi = t_hi, x_lo =
+// t_lo; slowing down the two swap sides (x_hi = −t_lo, x_lo = −t_hi), so one
+// division per side of t serves both.
+void box_lines(const ArcAxis& x, double rho, double c, double k2, ArcAxisBound& b) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  b.p_up = b.p_down = {kInf, kInf};
+  b.q_up = b.q_down = {0.0, 0.0};
+  const double q_hi = std::max(0.0, x.n_hi) * c, q_lo = -std::min(0.0, x.n_lo) * c;
+  if (x.t_hi > 1e-15) {  // speeding up: its first line; slowing down: its second
+    const double per = 1.0 / (rho * x.t_hi * k2);
+    b.p_up[0] = b.p_down[1] = x.a_axis * per;
+    b.q_up[0] = q_hi * per;
+    b.q_down[1] = q_lo * per;
   }
-  if (x_lo < -1e-15) {
-    const double per = 1.0 / (rho * -x_lo * k2);
-    p[1] = x.a_axis * per;
-    q[1] = -std::min(0.0, x.n_lo) * c * per;
+  if (x.t_lo < -1e-15) {  // speeding up: its second line; slowing down: its first
+    const double per = 1.0 / (rho * -x.t_lo * k2);
+    b.p_up[1] = b.p_down[0] = x.a_axis * per;
+    b.q_up[1] = q_lo * per;
+    b.q_down[0] = q_hi * per;
   }
 }
 
@@ -148,9 +152,8 @@ void segment_limits(const Segment& seg, const SegmentGeometry& geo, const Machin
   for (int j = 0; j < arc_axis_count; ++j) {
     const ArcAxis& x = arc_axes[j];
     ArcAxisBound& ax = lim.axes[lim.axis_count++];
-    box_lines(x, rho, c, k2, true, ax.p_up, ax.q_up);
-    box_lines(x, rho, c, k2, false, ax.p_down, ax.q_down);
-    const double by_norm = x.a_axis / x.g / (rho * k2);
+    box_lines(x, rho, c, k2, ax);
+    const double by_norm = x.a_axis / (x.g * rho * k2);
     ax.b = by_norm * by_norm;
     ax.cap = by_norm;
   }
