@@ -19,7 +19,10 @@ Trapezoid Trapezoid::plan(double length, double accel, double decel, double v0, 
       v_target <= plan::kMinVelocity) {
     return p;  // nothing to move
   }
-  p.vc = std::min(v_target, std::sqrt(peak_sqr(length, accel, decel, v0, v1)));
+  // min(v_target, sqrt(peak²)), the root taken only when the target is out
+  // of reach (sqrt(fl(v²)) = v exactly: the same result either way)
+  const double peak2 = peak_sqr(length, accel, decel, v0, v1);
+  p.vc = v_target * v_target <= peak2 ? v_target : std::sqrt(peak2);
   p.vc = std::max({p.vc, v0, v1});
   p.t_acc = (p.vc - v0) / accel;
   p.t_dec = (p.vc - v1) / decel;
