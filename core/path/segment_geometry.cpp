@@ -112,24 +112,25 @@ SegmentGeometry::SegmentGeometry(const Segment& seg) : start_(seg.start), end_(s
   inv_length_ = length_ > 0.0 ? 1.0 / length_ : 0.0;
 }
 
-SegmentGeometry SegmentGeometry::circular_arc(const Pose& start, const Pose& end,
-                                              const Vec3& center, const Vec3& u, const Vec3& w,
-                                              double radius, double sin_sweep, double cos_sweep) {
-  double sweep = atan2_small(sin_sweep, cos_sweep);
-  if (sweep <= 0.0) sweep += 2.0 * std::numbers::pi;
-  SegmentGeometry g{start, end};
-  g.arc_ = true;
-  g.center_ = center;
-  g.u_ = u;
-  g.w_ = w;
-  g.radius_ = radius;
-  g.sweep_ = sweep;
-  g.sin_sweep_ = sin_sweep;
-  g.cos_sweep_ = cos_sweep;
-  g.length_ = radius * sweep;
-  g.plane_ratio_ = g.length_ > 0.0 ? 1.0 : 0.0;
-  g.inv_length_ = g.length_ > 0.0 ? 1.0 / g.length_ : 0.0;
-  return g;
+void SegmentGeometry::set_circular_arc(const Pose& start, const Pose& end, const Vec3& center,
+                                       const Vec3& u, const Vec3& w, double radius,
+                                       double sin_sweep, double cos_sweep) {
+  start_ = start;
+  end_ = end;
+  arc_ = true;
+  center_ = center;
+  u_ = u;
+  w_ = w;
+  axis_n_ = Vec3::Zero();
+  helix_h_ = 0.0;
+  radius_ = radius;
+  sweep_ = atan2_small(sin_sweep, cos_sweep);
+  if (sweep_ <= 0.0) sweep_ += 2.0 * std::numbers::pi;
+  sin_sweep_ = sin_sweep;
+  cos_sweep_ = cos_sweep;
+  length_ = radius * sweep_;
+  plane_ratio_ = length_ > 0.0 ? 1.0 : 0.0;
+  inv_length_ = length_ > 0.0 ? 1.0 / length_ : 0.0;
 }
 
 void SegmentGeometry::set_sin_cos_sweep(double y, double x) noexcept {

@@ -39,10 +39,9 @@ class SegmentGeometry {
   // start to end about `center`, turning by the angle whose sine and cosine
   // are given (0 < sweep < 2π) from unit u toward unit w (w ⊥ u); rotary
   // axes linear from start to end.
-  [[nodiscard]] static SegmentGeometry circular_arc(const Pose& start, const Pose& end,
-                                                    const Vec3& center, const Vec3& u,
-                                                    const Vec3& w, double radius,
-                                                    double sin_sweep, double cos_sweep);
+  // (Set in place: a blend's geometry goes straight where it is kept.)
+  void set_circular_arc(const Pose& start, const Pose& end, const Vec3& center, const Vec3& u,
+                        const Vec3& w, double radius, double sin_sweep, double cos_sweep);
 
   [[nodiscard]] double length() const noexcept { return length_; }
   [[nodiscard]] bool is_arc() const noexcept { return arc_; }
@@ -71,7 +70,6 @@ class SegmentGeometry {
   [[nodiscard]] double distance_xyz(const Vec3& p) const;
 
  private:
-  SegmentGeometry(const Pose& start, const Pose& end) : start_(start), end_(end) {}
   [[nodiscard]] double angle_at(double s) const noexcept;
   // sin and cos of the sweep, from the end point's coordinates (y, x) about the centre
   void set_sin_cos_sweep(double y, double x) noexcept;

@@ -19,15 +19,15 @@ void set_blend_arc(const Segment& a, const Segment& b, const Pose& q0, const Pos
   arc.line = b.line;
 }
 
-ArcTransition arc_transition(const Segment& a, const Segment& b, double tolerance_mm,
-                             double max_trim_a, double max_trim_b) {
-  ArcTransition t;
+bool arc_transition(const Segment& a, const Segment& b, double tolerance_mm, double max_trim_a,
+                    double max_trim_b, ArcTransition& t, Segment& arc, SegmentGeometry& geo) {
+  t.blended = false;
   const Vec3 p = b.start.head<3>();
   const Vec3 da = a.end.head<3>() - a.start.head<3>();
   const Vec3 db = b.end.head<3>() - b.start.head<3>();
   const double la = da.norm(), lb = db.norm();
   if (la <= plan::kMinSegmentLength || lb <= plan::kMinSegmentLength || tolerance_mm <= 0.0)
-    return t;
+    return false;
   const Vec3 d1 = da / la, d2 = db / lb;
   const Vec3 cross = d1.cross(d2);
   // the turning angle θ by its sine and cosine, and the half angle's from
@@ -38,7 +38,7 @@ ArcTransition arc_transition(const Segment& a, const Segment& b, double toleranc
   const double sin_t = s_raw / n, cos_t = c_raw / n;
   if (cos_t > 0.0 ? sin_t < std::sin(plan::kMinBlendAngle)
                   : sin_t < std::sin(std::numbers::pi - plan::kMaxBlendAngle))
-    return t;  // (nearly) straight on, or (nearly) reversed
+    return false;  // (nearly) straight on, or (nearly) reversed
   double sin_h, cos_h;
   if (cos_t > 0.0) {
     cos_h = std::sqrt(0.5 * (1.0 + cos_t));
@@ -50,7 +50,7 @@ ArcTransition arc_transition(const Segment& a, const Segment& b, double toleranc
   // l_c = E·sin(θ/2) / (1 − cos(θ/2)) = E·(1 + cos(θ/2)) / sin(θ/2)
   const double l_c = tolerance_mm * (1.0 + cos_h) / sin_h;
   const double l = std::min({l_c, max_trim_a, max_trim_b});
-  if (l <= plan::kMinSegmentLength) return t;
+  if (l <= plan::kMinSegmentLength) return false;
   const double r = l * cos_h / sin_h;
 
   t.blended = true;
@@ -60,13 +60,20 @@ ArcTransition arc_transition(const Segment& a, const Segment& b, double toleranc
   t.q0.head<3>() = p - l * d1;  // exact on the line, whatever the rounding above
   t.q2.head<3>() = p + l * d2;
 
-  set_blend_arc(a, b, t.q0, t.q2, t.arc);
-  t.arc.plane = Plane::Free;
-  t.arc.normal = cross / s_raw;
-  t.arc.center = p + (d2 - d1).normalized() * (r / cos_h);
+  set_blend_arc(a, b, t.q0, t.q2, arc);
+  arc.plane = Plane::Free;
+  arc.normal = cross / s_raw;
+  arc.center = p + (d2 - d1).normalized() * (r / cos_h);
   // it starts along d1, about the centre at u = d1 × n from it (w = n × u = d1)
-  t.geo = SegmentGeometry::circular_arc(t.q0, t.q2, t.arc.center, d1.cross(t.arc.normal), d1, r,
-                                        sin_t, cos_t);
+  geo.set_circular_arc(t.q0, t.q2, arc.center, d1.cross(arc.normal), d1, r, sin_t, cos_t);
+  return true;
+}
+
+ArcTransition arc_transition(const Segment& a, const Segment& b, double tolerance_mm,
+                             double max_trim_a, double max_trim_b) {
+  ArcTransition t;
+  SegmentGeometry geo{Segment{}};
+  if (arc_transition(a, b, tolerance_mm, max_trim_a, max_trim_b, t, t.arc, geo)) t.geo = geo;
   return t;
 }
 

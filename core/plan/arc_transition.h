@@ -41,6 +41,11 @@ void set_blend_arc(const Segment& a, const Segment& b, const Pose& q0, const Pos
 // collinear (nothing to blend), reversed, or the tolerance leaves no length.
 [[nodiscard]] ArcTransition arc_transition(const Segment& a, const Segment& b, double tolerance_mm,
                                            double max_trim_a, double max_trim_b);
+// The same in place (the blender's, per corner): t's blended, trim, q0 and
+// q2 are set, and when blended the arc and its geometry go to `arc` and
+// `geo` (t.arc and t.geo are not touched). Returns t.blended.
+bool arc_transition(const Segment& a, const Segment& b, double tolerance_mm, double max_trim_a,
+                    double max_trim_b, ArcTransition& t, Segment& arc, SegmentGeometry& geo);
 
 }  // namespace lcnc
 

@@ -74,20 +74,22 @@ SourceStatus PathBlender::next(const IndexedSegment*& out) {
       const double share_a = a.kind == MotionKind::Arc ? 0.45 : 0.5;
       const double share_b = cur.seg.kind == MotionKind::Arc ? 0.45 : 0.5;
       const double max_a = std::min(pending_full_length_ * share_a, len_a);
-      const ArcTransition t =
-          a.kind == MotionKind::Linear && cur.seg.kind == MotionKind::Linear
-              ? arc_transition(a, cur.seg, tol, max_a, len_b * share_b)
-              : fillet_transition(a, cur.seg, tol, max_a, len_b * share_b);
+      // A line–line blend goes straight into arc_, its geometry as built
+      // (a fillet's is computed as any arc's).
+      ArcTransition& t = corner_;
+      const bool line_line = a.kind == MotionKind::Linear && cur.seg.kind == MotionKind::Linear;
+      if (line_line) {
+        (void)arc_transition(a, cur.seg, tol, max_a, len_b * share_b, t, arc_.seg, arc_.geo);
+      } else {
+        t = fillet_transition(a, cur.seg, tol, max_a, len_b * share_b);
+        if (t.blended) arc_.seg = t.arc;
+      }
       if (t.blended) {
         pending.seg.end = t.q0;
         emit(pending);
-        arc_.seg = t.arc;
         arc_.index = cur.index;
-        // A line–line blend's geometry is known (a fillet's is computed as
-        // any arc's). It is tangent to both lines by construction — in X Y Z:
-        // with rotary axes moving, their rates per mm jump at its ends.
-        const bool line_line = t.geo.has_value();
-        if (line_line) arc_.geo = *t.geo;
+        // A line–line blend is tangent to both lines by construction — in
+        // X Y Z: with rotary axes moving, their rates per mm jump at its ends.
         const bool tangent = line_line && (a.end - a.start).tail<3>().isZero() &&
                              (cur.seg.end - cur.seg.start).tail<3>().isZero();
         arc_.tangent_in = tangent;

@@ -22,6 +22,7 @@
 #include <cstdint>
 
 #include "machine/machine_config.h"
+#include "plan/arc_transition.h"
 #include "plan/line_merger.h"
 #include "plan/planned_segment.h"
 
@@ -58,7 +59,8 @@ class PathBlender {
   std::array<IndexedSegment, 2> slots_;
   std::size_t pending_slot_ = 0;
   double pending_full_length_ = 0;  // its length as programmed
-  IndexedSegment arc_;  // the blend arc of the last corner
+  IndexedSegment arc_;     // the blend arc of the last corner
+  ArcTransition corner_;  // and the rest of what its transition found
   // Segments ready to hand out, oldest first, where they are (a slot or
   // arc_): one step of next() emits at most two (a trimmed line and its
   // blend arc), and next() hands them out before it takes another step —
