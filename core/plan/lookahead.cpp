@@ -117,7 +117,7 @@ bool Lookahead::fill() {
       p.profile = Trapezoid::hold(p.seg.dwell_s);
     } else {
       // one evaluation: the tangential limits are functions of the speed
-      segment_limits(p.seg, p.geo, machine_, n.lim);
+      segment_limits(p.geo, machine_, n.lim);
       p.programmed_speed = target_speed(p.seg, p.geo, n.lim);
       n.x_max = p.programmed_speed * p.programmed_speed;
       braking_length_ = std::max(braking_length_, braking_length(n.x_max));

@@ -92,8 +92,7 @@ void box_lines(const ArcAxis& x, double rho, double c, double k2, ArcAxisBound& 
 
 }  // namespace
 
-void segment_limits(const Segment& seg, const SegmentGeometry& geo, const MachineConfig& machine,
-                    SegmentLimits& lim) {
+void segment_limits(const SegmentGeometry& geo, const MachineConfig& machine, SegmentLimits& lim) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   lim.v_max = 0.0;  // until known: no motion (as for the segments rejected below)
   lim.a_linear = 0.0;
@@ -103,16 +102,30 @@ void segment_limits(const Segment& seg, const SegmentGeometry& geo, const Machin
   if (L <= plan::kMinSegmentLength) return;
   double v_max = kInf, a_linear = kInf;
   // Linearly moving part of every axis (whole line; helix normal and rotary axes of an arc).
-  Pose lin = (seg.end - seg.start) * (1.0 / L);
-  if (geo.is_arc()) lin.head<3>() = geo.start_tangent().head<3>() -
-                                    geo.plane_speed_ratio() * geo.w();
+  Pose lin = geo.start_tangent();
+  if (geo.is_arc()) lin.head<3>() -= geo.plane_speed_ratio() * geo.w();
+  // min over axes of max_velocity / k and max_acceleration / k: the axes
+  // that bind found by comparing the ratios cross-multiplied, one division each
+  const AxisConfig* v_axis = nullptr;
+  const AxisConfig* a_axis = nullptr;
+  double v_k = 0.0, a_k = 0.0;
   for (int i = 0; i < kAxisCount; ++i) {
     const double k = std::abs(lin[i]);
     if (k <= 1e-15) continue;
     const AxisConfig& ax = machine.axes[i];
     if (!ax.present) return;  // the reader rejects such moves first
-    v_max = std::min(v_max, ax.max_velocity / k);
-    a_linear = std::min(a_linear, ax.max_acceleration / k);
+    if (v_axis == nullptr || k * v_axis->max_velocity > v_k * ax.max_velocity) {
+      v_axis = &ax;
+      v_k = k;
+    }
+    if (a_axis == nullptr || k * a_axis->max_acceleration > a_k * ax.max_acceleration) {
+      a_axis = &ax;
+      a_k = k;
+    }
+  }
+  if (v_axis != nullptr) {
+    v_max = v_axis->max_velocity / v_k;
+    a_linear = a_axis->max_acceleration / a_k;
   }
   std::array<ArcAxis, 3> arc_axes;
   int arc_axis_count = 0;

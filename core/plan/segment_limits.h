@@ -139,12 +139,11 @@ struct SegmentLimits {
 // Limits of the segment, written into `lim` (the look-ahead's node: no copy
 // of a few hundred bytes per segment). No motion (v_max 0) for a segment of
 // no length or one that moves an absent axis.
-void segment_limits(const Segment& seg, const SegmentGeometry& geo, const MachineConfig& machine,
-                    SegmentLimits& lim);
-[[nodiscard]] inline SegmentLimits segment_limits(const Segment& seg, const SegmentGeometry& geo,
+void segment_limits(const SegmentGeometry& geo, const MachineConfig& machine, SegmentLimits& lim);
+[[nodiscard]] inline SegmentLimits segment_limits(const SegmentGeometry& geo,
                                                   const MachineConfig& machine) {
   SegmentLimits lim;
-  segment_limits(seg, geo, machine, lim);
+  segment_limits(geo, machine, lim);
   return lim;
 }
 

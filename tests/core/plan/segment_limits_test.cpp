@@ -120,7 +120,7 @@ Pose pose(const Vec3& p) {
 // past v_max says that v_max is reachable.
 void expect_same_limits(const Segment& seg, const MachineConfig& m, std::mt19937& rng) {
   const SegmentGeometry geo(seg);
-  const SegmentLimits lim = segment_limits(seg, geo, m);
+  const SegmentLimits lim = segment_limits(geo, m);
   const ReferenceLimits ref(seg, geo, m);
   ASSERT_NEAR(lim.v_max, ref.v_max, 1e-12 * ref.v_max);
   // rounding of the two forms: far below any acceleration that matters
