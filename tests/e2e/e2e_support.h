@@ -113,6 +113,15 @@ class Daemon {
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   }
   [[nodiscard]] std::string log() const { return slurp(log_); }
+  // Waits up to 2 s for `text` in the log: what the daemon prints after its
+  // segment is up may come after ready() (which only sees the segment).
+  [[nodiscard]] bool logged(const std::string& text) const {
+    for (int i = 0; i < 200; ++i) {
+      if (log().find(text) != std::string::npos) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return false;
+  }
 
  private:
   static inline int count_ = 0;
