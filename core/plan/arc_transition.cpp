@@ -28,42 +28,45 @@ bool arc_transition(const Segment& a, const Segment& b, double tolerance_mm, dou
   const double la = da.norm(), lb = db.norm();
   if (la <= plan::kMinSegmentLength || lb <= plan::kMinSegmentLength || tolerance_mm <= 0.0)
     return false;
-  const Vec3 d1 = da / la, d2 = db / lb;
+  const double inv_la = 1.0 / la, inv_lb = 1.0 / lb;
+  const Vec3 d1 = da * inv_la, d2 = db * inv_lb;
   const Vec3 cross = d1.cross(d2);
-  // the turning angle θ by its sine and cosine, and the half angle's from
-  // them without trigonometric calls: each formula where it is well
-  // conditioned (θ near 0 and near π)
-  const double s_raw = cross.norm(), c_raw = d1.dot(d2);
-  const double n = std::sqrt(s_raw * s_raw + c_raw * c_raw);
-  const double sin_t = s_raw / n, cos_t = c_raw / n;
+  // The turning angle θ by its sine and cosine (of unit vectors: no
+  // normalising), and the half angle's from them without trigonometric
+  // calls: each formula where it is well conditioned (θ near 0 and near π).
+  // Divisions are by sin θ and sin(θ/2) once each, off the roots' path.
+  const double sin_t = cross.norm(), cos_t = d1.dot(d2);
   if (cos_t > 0.0 ? sin_t < std::sin(plan::kMinBlendAngle)
                   : sin_t < std::sin(std::numbers::pi - plan::kMaxBlendAngle))
     return false;  // (nearly) straight on, or (nearly) reversed
-  double sin_h, cos_h;
+  const double inv_sin_t = 1.0 / sin_t;
+  double cos_h, inv_sin_h;
   if (cos_t > 0.0) {
     cos_h = std::sqrt(0.5 * (1.0 + cos_t));
-    sin_h = sin_t / (2.0 * cos_h);
+    inv_sin_h = 2.0 * cos_h * inv_sin_t;  // sin(θ/2) = sin θ / (2·cos(θ/2))
   } else {
-    sin_h = std::sqrt(0.5 * (1.0 - cos_t));
-    cos_h = sin_t / (2.0 * sin_h);
+    inv_sin_h = 1.0 / std::sqrt(0.5 * (1.0 - cos_t));
+    cos_h = 0.5 * sin_t * inv_sin_h;
   }
   // l_c = E·sin(θ/2) / (1 − cos(θ/2)) = E·(1 + cos(θ/2)) / sin(θ/2)
-  const double l_c = tolerance_mm * (1.0 + cos_h) / sin_h;
+  const double l_c = tolerance_mm * (1.0 + cos_h) * inv_sin_h;
   const double l = std::min({l_c, max_trim_a, max_trim_b});
   if (l <= plan::kMinSegmentLength) return false;
-  const double r = l * cos_h / sin_h;
+  const double r = l * cos_h * inv_sin_h;
 
   t.blended = true;
   t.trim = l;
-  t.q0 = a.start + (a.end - a.start) * ((la - l) / la);
-  t.q2 = b.start + (b.end - b.start) * (l / lb);
+  t.q0 = a.start + (a.end - a.start) * ((la - l) * inv_la);
+  t.q2 = b.start + (b.end - b.start) * (l * inv_lb);
   t.q0.head<3>() = p - l * d1;  // exact on the line, whatever the rounding above
   t.q2.head<3>() = p + l * d2;
 
   set_blend_arc(a, b, t.q0, t.q2, arc);
   arc.plane = Plane::Free;
-  arc.normal = cross / s_raw;
-  arc.center = p + (d2 - d1).normalized() * (r / cos_h);
+  arc.normal = cross * inv_sin_t;
+  // the centre lies r / cos(θ/2) from P along d2 − d1, whose length is
+  // 2·sin(θ/2): (d2 − d1)·r / (2·sin(θ/2)·cos(θ/2)) = (d2 − d1)·r / sin θ
+  arc.center = p + (d2 - d1) * (r * inv_sin_t);
   // it starts along d1, about the centre at u = d1 × n from it (w = n × u = d1)
   geo.set_circular_arc(t.q0, t.q2, arc.center, d1.cross(arc.normal), d1, r, sin_t, cos_t);
   return true;

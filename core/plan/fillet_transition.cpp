@@ -159,7 +159,8 @@ ArcTransition fillet_transition(const Segment& a, const Segment& b, double toler
     hi = r;
   }
   if (!best) return t;
-  for (int it = 0; it < 60 && hi - lo > 1e-12 * hi; ++it) {
+  // to 1e-9 of the radius: the speed it allows, sqrt(a·r), within 5e-10 of the best
+  for (int it = 0; it < 60 && hi - lo > 1e-9 * hi; ++it) {
     const double mid = 0.5 * (lo + hi);
     if (auto f = feasible(mid)) {
       lo = mid;
