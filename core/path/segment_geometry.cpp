@@ -33,12 +33,15 @@ double line_length(const Pose& d) {
 
 // sin φ and cos φ; small angles (every sample of a corner blend) by their
 // series: for |φ| ≤ 1/64 the terms left out are below 1e-20 of the result,
-// far under a double's rounding, and there is no library call.
+// far under a double's rounding, and there is no library call. (Factors,
+// not divisions: the coarse interpolator asks every period.)
 void sin_cos(double phi, double& s, double& c) noexcept {
   if (std::abs(phi) <= 0.015625) {
+    constexpr double k6 = 1.0 / 6.0, k20 = 1.0 / 20.0, k42 = 1.0 / 42.0;
+    constexpr double k12 = 1.0 / 12.0, k30 = 1.0 / 30.0, k56 = 1.0 / 56.0;
     const double p2 = phi * phi;
-    s = phi * (1.0 - p2 / 6.0 * (1.0 - p2 / 20.0 * (1.0 - p2 / 42.0)));
-    c = 1.0 - p2 / 2.0 * (1.0 - p2 / 12.0 * (1.0 - p2 / 30.0 * (1.0 - p2 / 56.0)));
+    s = phi * (1.0 - p2 * k6 * (1.0 - p2 * k20 * (1.0 - p2 * k42)));
+    c = 1.0 - p2 * 0.5 * (1.0 - p2 * k12 * (1.0 - p2 * k30 * (1.0 - p2 * k56)));
     return;
   }
   s = std::sin(phi);
