@@ -7,15 +7,19 @@ Planner::Planner(const MachineConfig& machine, SegmentSource source)
       planned_(planned_machine(machine, jerk_)),
       blender_(machine, std::move(source), jerk_.error_mm),
       lookahead_(planned_, [this](const IndexedSegment*& s) { return blender_.next(s); }),
-      holds_(
-          [this](const PlannedSegment*& p) {
-            const SourceStatus st = lookahead_.next(p);
-            if (st == SourceStatus::Item && on_planned_) on_planned_(*p);
-            return st;
-          },
-          jerk_, machine.period_s()),
-      interp_(machine, [this](const PlannedSegment*& p) { return holds_.next(p); }),
+      holds_([this](const PlannedSegment*& p) { return planned(p); }, jerk_, machine.period_s()),
+      // without a jerk limit the holds pass everything through: skip them
+      interp_(machine,
+              [this](const PlannedSegment*& p) {
+                return jerk_.enabled() ? holds_.next(p) : planned(p);
+              }),
       filter_(jerk_.taps) {}
+
+SourceStatus Planner::planned(const PlannedSegment*& out) {
+  const SourceStatus st = lookahead_.next(out);
+  if (st == SourceStatus::Item && on_planned_) on_planned_(*out);
+  return st;
+}
 
 SourceStatus Planner::next_filtered(PeriodSample& out) {
   const SourceStatus st = interp_.next(out);

@@ -51,6 +51,8 @@ class Planner {
   std::function<void(const PlannedSegment&)> on_planned_;
 
   [[nodiscard]] SourceStatus next_filtered(PeriodSample& out);
+  // The look-ahead's next segment, shown to on_planned_.
+  [[nodiscard]] SourceStatus planned(const PlannedSegment*& out);
 };
 
 }  // namespace lcnc
