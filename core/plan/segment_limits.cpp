@@ -12,44 +12,33 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-enum class Within : std::uint8_t { No, Yes, Unsure };
-
-// Whether the angle of (a, b) lies in [0, sweep], decided without atan2 where
-// the answer is certain: short sweeps (the blend arcs) by the signs of a and
-// b and the cross product a·sin(sweep) − b·cos(sweep) = |(a, b)|·sin(sweep −
-// angle), when it is further from 0 than kSure·(|a| + |b|), far beyond the
-// rounding of atan2, sin and cos. Unsure otherwise: the caller asks atan2.
-Within quick_within(double a, double b, double sweep, double cos_sweep, double sin_sweep) {
-  constexpr double kSure = 1e-9;
-  const double size = std::abs(a) + std::abs(b);
-  if (!(sweep < 1.5) || size == 0.0 || (b != 0.0 && std::abs(b) < 1e-300)) return Within::Unsure;
-  if (b < 0.0 || a <= 0.0) return Within::No;  // angle in (π/2, 2π): beyond the sweep
-  const double cross = a * sin_sweep - b * cos_sweep;
-  if (cross > kSure * size) return Within::Yes;
-  if (cross < -kSure * size) return Within::No;
-  return Within::Unsure;
-}
-
-// Range [lo, hi] of a·cos φ + b·sin φ for φ in [0, sweep].
-void sinusoid_range(double a, double b, const SegmentGeometry& geo, double& lo, double& hi) {
-  const double sweep = geo.sweep_rad();
-  auto f = [&](double cos_phi, double sin_phi) { return a * cos_phi + b * sin_phi; };
-  lo = std::min(f(1.0, 0.0), f(geo.cos_sweep(), geo.sin_sweep()));
-  hi = std::max(f(1.0, 0.0), f(geo.cos_sweep(), geo.sin_sweep()));
-  // maximum at atan2(b, a) + 2kπ, minimum half a turn later
-  Within max_in = quick_within(a, b, sweep, geo.cos_sweep(), geo.sin_sweep());
-  Within min_in = quick_within(-a, -b, sweep, geo.cos_sweep(), geo.sin_sweep());
-  if (max_in == Within::Unsure || min_in == Within::Unsure) {
-    double phi = std::atan2(b, a);
-    if (phi < 0.0) phi += 2 * kPi;
-    const double phi_min = phi >= kPi ? phi - kPi : phi + kPi;
-    max_in = phi <= sweep ? Within::Yes : Within::No;
-    min_in = phi_min <= sweep ? Within::Yes : Within::No;
+// Range [lo, hi] of a·cos φ + b·sin φ for φ in [0, sweep] (amp = sqrt(a² +
+// b²)): the values at the two ends, widened to amp where the maximum (at
+// the angle α of (a, b)) lies inside, to −amp where the minimum (α + π)
+// does. For sweep < π (every blend) that is decided without atan2 and
+// without branching on the data (lines and arcs alternate, the signs are
+// anyone's): α ∈ [0, sweep] ⇔ b ≥ 0 and a·sin(sweep) − b·cos(sweep) ≥ 0.
+// Within 1e-9·(|a| + |b|) of either boundary it counts as inside — the
+// extremum is then that close to an end, so the range widens by a relative
+// 1e-18 at most, to the safe side.
+void sinusoid_range(double a, double b, double amp, const SegmentGeometry& geo, double& lo,
+                    double& hi) {
+  const double cs = geo.cos_sweep(), sn = geo.sin_sweep();
+  const double end = a * cs + b * sn;
+  lo = std::min(a, end);
+  hi = std::max(a, end);
+  if (geo.sweep_rad() < kPi) {
+    const double tol = 1e-9 * (std::abs(a) + std::abs(b));
+    const double cross = a * sn - b * cs;
+    hi = (b >= -tol && cross >= -tol) ? amp : hi;
+    lo = (b <= tol && cross <= tol) ? -amp : lo;
+    return;
   }
-  if (max_in == Within::No && min_in == Within::No) return;
-  const double amp = std::sqrt(a * a + b * b);  // a, b: components of unit vectors
-  if (max_in == Within::Yes) hi = amp;
-  if (min_in == Within::Yes) lo = -amp;
+  double phi = std::atan2(b, a);
+  if (phi < 0.0) phi += 2 * kPi;
+  const double phi_min = phi >= kPi ? phi - kPi : phi + kPi;
+  if (phi <= geo.sweep_rad()) hi = amp;
+  if (phi_min <= geo.sweep_rad()) lo = -amp;
 }
 
 }  // namespace
@@ -141,8 +130,8 @@ void segment_limits(const SegmentGeometry& geo, const MachineConfig& machine, Se
       ArcAxis& x = arc_axes[arc_axis_count++];
       x.a_axis = ax.max_acceleration;
       x.g = g;
-      sinusoid_range(wi, -ui, geo, x.t_lo, x.t_hi);   // t = −sin φ·u + cos φ·w
-      sinusoid_range(-ui, -wi, geo, x.n_lo, x.n_hi);  // n = −cos φ·u − sin φ·w
+      sinusoid_range(wi, -ui, g, geo, x.t_lo, x.t_hi);   // t = −sin φ·u + cos φ·w
+      sinusoid_range(-ui, -wi, g, geo, x.n_lo, x.n_hi);  // n = −cos φ·u − sin φ·w
       const double t_abs = std::max(std::abs(x.t_lo), std::abs(x.t_hi));
       const double n_abs = std::max(std::abs(x.n_lo), std::abs(x.n_hi));
       v_max = std::min(v_max, ax.max_velocity / (rho * t_abs + std::abs(lin[i])));
