@@ -19,13 +19,13 @@ void set_blend_arc(const Segment& a, const Segment& b, const Pose& q0, const Pos
   arc.line = b.line;
 }
 
-bool arc_transition(const Segment& a, const Segment& b, double tolerance_mm, double max_trim_a,
-                    double max_trim_b, ArcTransition& t, Segment& arc, SegmentGeometry& geo) {
+bool arc_transition(const Segment& a, const Segment& b, double la, double lb, double tolerance_mm,
+                    double max_trim_a, double max_trim_b, ArcTransition& t, Segment& arc,
+                    SegmentGeometry& geo) {
   t.blended = false;
   const Vec3 p = b.start.head<3>();
   const Vec3 da = a.end.head<3>() - a.start.head<3>();
   const Vec3 db = b.end.head<3>() - b.start.head<3>();
-  const double la = da.norm(), lb = db.norm();
   if (la <= plan::kMinSegmentLength || lb <= plan::kMinSegmentLength || tolerance_mm <= 0.0)
     return false;
   const double inv_la = 1.0 / la, inv_lb = 1.0 / lb;
@@ -76,7 +76,10 @@ ArcTransition arc_transition(const Segment& a, const Segment& b, double toleranc
                              double max_trim_a, double max_trim_b) {
   ArcTransition t;
   SegmentGeometry geo{Segment{}};
-  if (arc_transition(a, b, tolerance_mm, max_trim_a, max_trim_b, t, t.arc, geo)) t.geo = geo;
+  const double la = (a.end.head<3>() - a.start.head<3>()).norm();
+  const double lb = (b.end.head<3>() - b.start.head<3>()).norm();
+  if (arc_transition(a, b, la, lb, tolerance_mm, max_trim_a, max_trim_b, t, t.arc, geo))
+    t.geo = geo;
   return t;
 }
 

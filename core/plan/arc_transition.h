@@ -43,9 +43,11 @@ void set_blend_arc(const Segment& a, const Segment& b, const Pose& q0, const Pos
                                            double max_trim_a, double max_trim_b);
 // The same in place (the blender's, per corner): t's blended, trim, q0 and
 // q2 are set, and when blended the arc and its geometry go to `arc` and
-// `geo` (t.arc and t.geo are not touched). Returns t.blended.
-bool arc_transition(const Segment& a, const Segment& b, double tolerance_mm, double max_trim_a,
-                    double max_trim_b, ArcTransition& t, Segment& arc, SegmentGeometry& geo);
+// `geo` (t.arc and t.geo are not touched). la and lb are the lines' X Y Z
+// lengths, as the caller has them already. Returns t.blended.
+bool arc_transition(const Segment& a, const Segment& b, double la, double lb, double tolerance_mm,
+                    double max_trim_a, double max_trim_b, ArcTransition& t, Segment& arc,
+                    SegmentGeometry& geo);
 
 }  // namespace lcnc
 

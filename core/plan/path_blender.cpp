@@ -79,7 +79,9 @@ SourceStatus PathBlender::next(const IndexedSegment*& out) {
       ArcTransition& t = corner_;
       const bool line_line = a.kind == MotionKind::Linear && cur.seg.kind == MotionKind::Linear;
       if (line_line) {
-        (void)arc_transition(a, cur.seg, tol, max_a, len_b * share_b, t, arc_.seg, arc_.geo);
+        // (a line's path length is its X Y Z length: blendable lines have one)
+        (void)arc_transition(a, cur.seg, len_a, len_b, tol, max_a, len_b * share_b, t, arc_.seg,
+                             arc_.geo);
       } else {
         t = fillet_transition(a, cur.seg, tol, max_a, len_b * share_b);
         if (t.blended) arc_.seg = t.arc;
