@@ -78,8 +78,7 @@ ArcTransition arc_transition(const Segment& a, const Segment& b, double toleranc
   SegmentGeometry geo{Segment{}};
   const double la = (a.end.head<3>() - a.start.head<3>()).norm();
   const double lb = (b.end.head<3>() - b.start.head<3>()).norm();
-  if (arc_transition(a, b, la, lb, tolerance_mm, max_trim_a, max_trim_b, t, t.arc, geo))
-    t.geo = geo;
+  (void)arc_transition(a, b, la, lb, tolerance_mm, max_trim_a, max_trim_b, t, t.arc, geo);
   return t;
 }
 

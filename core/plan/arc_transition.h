@@ -13,8 +13,6 @@
 // n = d1 × d2. Rotary axes move linearly from their value at Q0 to that at Q2.
 #pragma once
 
-#include <optional>
-
 #include "path/segment.h"
 #include "path/segment_geometry.h"
 
@@ -25,9 +23,6 @@ struct ArcTransition {
   double trim = 0.0;  // l: length cut off the end of the first and the start of the second line
   Pose q0 = Pose::Zero(), q2 = Pose::Zero();
   Segment arc;        // Plane::Free arc from q0 to q2
-  // arc_transition: the arc's geometry as constructed (SegmentGeometry(arc)
-  // up to rounding, without recomputing it); fillet_transition leaves it.
-  std::optional<SegmentGeometry> geo;
 };
 
 // Sets `arc` to the blend arc's segment from q0 to q2: feed, laser and modes
@@ -42,8 +37,9 @@ void set_blend_arc(const Segment& a, const Segment& b, const Pose& q0, const Pos
 [[nodiscard]] ArcTransition arc_transition(const Segment& a, const Segment& b, double tolerance_mm,
                                            double max_trim_a, double max_trim_b);
 // The same in place (the blender's, per corner): t's blended, trim, q0 and
-// q2 are set, and when blended the arc and its geometry go to `arc` and
-// `geo` (t.arc and t.geo are not touched). la and lb are the lines' X Y Z
+// q2 are set, and when blended the arc goes to `arc` and its geometry as
+// constructed (SegmentGeometry(arc) up to rounding, without deriving it
+// again) to `geo`; t.arc is not touched. la and lb are the lines' X Y Z
 // lengths, as the caller has them already. Returns t.blended.
 bool arc_transition(const Segment& a, const Segment& b, double la, double lb, double tolerance_mm,
                     double max_trim_a, double max_trim_b, ArcTransition& t, Segment& arc,

@@ -61,13 +61,6 @@ class Lookahead {
   // The next planned segment, valid until next() is called again (it stays
   // in the window's ring).
   [[nodiscard]] SourceStatus next(const PlannedSegment*& out);
-  // The same, copied out.
-  [[nodiscard]] SourceStatus next(PlannedSegment& out) {
-    const PlannedSegment* p = nullptr;
-    const SourceStatus st = next(p);
-    if (st == SourceStatus::Item) out = *p;
-    return st;
-  }
 
   [[nodiscard]] std::size_t max_window_seen() const noexcept { return max_window_; }
 

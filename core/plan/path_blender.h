@@ -35,13 +35,6 @@ class PathBlender {
   PathBlender(const MachineConfig& machine, SegmentSource source, double filter_error_mm = 0.0);
   // The next segment, valid until next() is called again.
   [[nodiscard]] SourceStatus next(const IndexedSegment*& out);
-  // The same, copied out.
-  [[nodiscard]] SourceStatus next(IndexedSegment& out) {
-    const IndexedSegment* p = nullptr;
-    const SourceStatus st = next(p);
-    if (st == SourceStatus::Item) out = *p;
-    return st;
-  }
 
   // Half a step on every linear axis, as a distance (mm).
   [[nodiscard]] double quantization_margin_mm() const noexcept { return margin_mm_; }

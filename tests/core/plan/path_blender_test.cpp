@@ -32,8 +32,8 @@ std::vector<IndexedSegment> blend(const std::vector<Segment>& segs) {
     return SourceStatus::Item;
   });
   std::vector<IndexedSegment> out;
-  IndexedSegment s;
-  while (b.next(s) == SourceStatus::Item) out.push_back(s);
+  const IndexedSegment* s = nullptr;
+  while (b.next(s) == SourceStatus::Item) out.push_back(*s);
   return out;
 }
 
