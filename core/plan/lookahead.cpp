@@ -125,12 +125,10 @@ bool Lookahead::fill() {
     if (k > 0) {
       Node& before = node(k - 1);
       const PlannedSegment& a = segment(k - 1);
-      double v = std::min(a.programmed_speed, p.programmed_speed);
-      if (in->tangent_in) {
-        back_end_tangent_.reset();  // not looked at
-      } else {
-        v = junction_limit(a, a.programmed_speed, p, p.programmed_speed);
-      }
+      if (in->tangent_in) back_end_tangent_.reset();  // not looked at
+      const double v = in->tangent_in
+                           ? std::min(a.programmed_speed, p.programmed_speed)
+                           : junction_limit(a, a.programmed_speed, p, p.programmed_speed);
       before.x_junction = v * v;
       tail_length_ += n.length;
     }

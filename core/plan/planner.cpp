@@ -8,11 +8,7 @@ Planner::Planner(const MachineConfig& machine, SegmentSource source)
       blender_(machine, std::move(source), jerk_.error_mm),
       lookahead_(planned_, [this](const IndexedSegment*& s) { return blender_.next(s); }),
       holds_([this](const PlannedSegment*& p) { return planned(p); }, jerk_, machine.period_s()),
-      // without a jerk limit the holds pass everything through: skip them
-      interp_(machine,
-              [this](const PlannedSegment*& p) {
-                return jerk_.enabled() ? holds_.next(p) : planned(p);
-              }),
+      interp_(machine, [this](const PlannedSegment*& p) { return holds_.next(p); }),
       filter_(jerk_.taps) {}
 
 SourceStatus Planner::planned(const PlannedSegment*& out) {
