@@ -21,28 +21,22 @@ bool CoarseInterpolator::pull() {
     if (next->profile.duration() > 0.0) {
       cur_ = next;
       duration_ = next->profile.duration();
-      end_ = End{next->seg.end, next->profile.v1, next->seg.line, next->index, next->seg.kind};
+      const Segment& s = next->seg;
+      end_ = End{s.end, next->profile.v1, s.line, next->index, s.kind};
+      const bool cut = s.kind == MotionKind::Linear || s.kind == MotionKind::Arc;
+      dwell_ = s.kind == MotionKind::Dwell;
+      // M4 on a cut: power follows speed; at no programmed speed, none
+      dynamic_ = cut && s.laser == LaserMode::Dynamic && next->programmed_speed > plan::kMinVelocity;
+      power_pct_ = s.power_pct;
+      programmed_speed_ = next->programmed_speed;
+      // otherwise constant: M3 on cuts and dwells, nothing on rapids or with the laser off
+      power_ = (s.laser == LaserMode::Constant && s.kind != MotionKind::Rapid)
+                   ? static_cast<float>(s.power_pct)
+                   : 0.0f;
+      power_cap_ = cut && s.laser == LaserMode::Dynamic ? static_cast<float>(s.power_pct) : 0.0f;
       return true;
     }
   }
-}
-
-float CoarseInterpolator::laser_power(double speed) const {
-  const Segment& s = cur_->seg;
-  if (s.kind == MotionKind::Rapid) return 0.0f;
-  if (s.kind == MotionKind::Dwell) {
-    return s.laser == LaserMode::Constant ? static_cast<float>(s.power_pct) : 0.0f;
-  }
-  switch (s.laser) {
-    case LaserMode::Off: return 0.0f;
-    case LaserMode::Constant: return static_cast<float>(s.power_pct);
-    case LaserMode::Dynamic: {
-      if (cur_->programmed_speed <= plan::kMinVelocity) return 0.0f;
-      const double k = std::clamp(speed / cur_->programmed_speed, 0.0, 1.0);
-      return static_cast<float>(s.power_pct * k);
-    }
-  }
-  return 0.0f;
 }
 
 SourceStatus CoarseInterpolator::next(PeriodSample& out) {
@@ -76,16 +70,13 @@ SourceStatus CoarseInterpolator::next(PeriodSample& out) {
   const PlannedSegment& c = *cur_;
   double s, v;
   c.profile.sample(tau_, s, v);
-  out.pose = c.seg.kind == MotionKind::Dwell ? c.seg.end : c.geo.at(s);
+  out.pose = dwell_ ? end_.pose : c.geo.at(s);
   out.speed = v;
   out.power_pct = laser_power(v);
-  out.power_cap_pct = c.seg.laser == LaserMode::Dynamic &&
-                              (c.seg.kind == MotionKind::Linear || c.seg.kind == MotionKind::Arc)
-                          ? static_cast<float>(c.seg.power_pct)
-                          : 0.0f;
-  out.line = c.seg.line;
-  out.segment = c.index;
-  out.kind = c.seg.kind;
+  out.power_cap_pct = power_cap_;
+  out.line = end_.line;
+  out.segment = end_.segment;
+  out.kind = end_.kind;
   out.end_of_program = false;
   return SourceStatus::Item;
 }

@@ -14,6 +14,7 @@
 // equals the commanded position in steps exactly, whatever the program.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 
@@ -50,7 +51,11 @@ class CoarseInterpolator {
   // end or on an error (the current one is then no longer valid: the last
   // sample comes from its end, kept apart).
   bool pull();
-  [[nodiscard]] float laser_power(double speed) const;
+  [[nodiscard]] float laser_power(double speed) const noexcept {
+    if (!dynamic_) return power_;
+    const double k = std::clamp(speed / programmed_speed_, 0.0, 1.0);
+    return static_cast<float>(power_pct_ * k);
+  }
 
   double period_s_;
   PlannedSource source_;
@@ -58,6 +63,13 @@ class CoarseInterpolator {
   // source is asked again), and its duration.
   const PlannedSegment* cur_ = nullptr;
   double duration_ = 0.0;
+  // What every period of the current segment reports alike, read from it
+  // once (not from its few hundred bytes each period): the laser power (a
+  // constant, or M4's scaled by speed), the power cap, where it came from.
+  bool dwell_ = false;
+  bool dynamic_ = false;  // M4 on a cut: power_pct_ scaled by speed / programmed_speed_
+  float power_ = 0.0f, power_cap_ = 0.0f;
+  double power_pct_ = 0.0, programmed_speed_ = 0.0;
   // Where the current segment ends: the program's last sample.
   struct End {
     Pose pose = Pose::Zero();
