@@ -31,23 +31,6 @@ double line_length(const Pose& d) {
   return lin > 0.0 ? lin : d.tail<3>().norm();
 }
 
-// sin φ and cos φ; small angles (every sample of a corner blend) by their
-// series: for |φ| ≤ 1/64 the terms left out are below 1e-20 of the result,
-// far under a double's rounding, and there is no library call. (Factors,
-// not divisions: the coarse interpolator asks every period.)
-void sin_cos(double phi, double& s, double& c) noexcept {
-  if (std::abs(phi) <= 0.015625) {
-    constexpr double k6 = 1.0 / 6.0, k20 = 1.0 / 20.0, k42 = 1.0 / 42.0;
-    constexpr double k12 = 1.0 / 12.0, k30 = 1.0 / 30.0, k56 = 1.0 / 56.0;
-    const double p2 = phi * phi;
-    s = phi * (1.0 - p2 * k6 * (1.0 - p2 * k20 * (1.0 - p2 * k42)));
-    c = 1.0 - p2 * 0.5 * (1.0 - p2 * k12 * (1.0 - p2 * k30 * (1.0 - p2 * k56)));
-    return;
-  }
-  s = std::sin(phi);
-  c = std::cos(phi);
-}
-
 // atan2(y, x); for x > 0 and |y| ≤ x/64 (every corner blend's sweep) by the
 // series of atan(y/x): the terms left out are below 1e-19 of the result.
 double atan2_small(double y, double x) noexcept {
@@ -150,19 +133,6 @@ void SegmentGeometry::set_sin_cos_sweep(double y, double x) noexcept {
 
 double SegmentGeometry::angle_at(double s) const noexcept {
   return length_ > 0.0 ? sweep_ * std::clamp(s / length_, 0.0, 1.0) : 0.0;
-}
-
-Pose SegmentGeometry::at(double s) const {
-  if (length_ <= 0.0 || s >= length_) return end_;
-  const double f = std::clamp(s * inv_length_, 0.0, 1.0);
-  if (f >= 1.0) return end_;
-  Pose p = start_ + (end_ - start_) * f;
-  if (arc_) {
-    double sin_phi, cos_phi;
-    sin_cos(sweep_ * f, sin_phi, cos_phi);
-    p.head<3>() = center_ + radius_ * (cos_phi * u_ + sin_phi * w_) + (f * helix_h_) * axis_n_;
-  }
-  return p;
 }
 
 Pose SegmentGeometry::tangent_at_angle(double sin_phi, double cos_phi) const {

@@ -11,12 +11,35 @@
 // move linearly with s.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "geom/pose.h"
 #include "path/segment.h"
 
 namespace lcnc {
+
+namespace detail {
+
+// sin φ and cos φ; small angles (every sample of a corner blend) by their
+// series: for |φ| ≤ 1/64 the terms left out are below 1e-20 of the result,
+// far under a double's rounding, and there is no library call. (Factors,
+// not divisions: the coarse interpolator asks every period.)
+inline void sin_cos(double phi, double& s, double& c) noexcept {
+  if (std::abs(phi) <= 0.015625) {
+    constexpr double k6 = 1.0 / 6.0, k20 = 1.0 / 20.0, k42 = 1.0 / 42.0;
+    constexpr double k12 = 1.0 / 12.0, k30 = 1.0 / 30.0, k56 = 1.0 / 56.0;
+    const double p2 = phi * phi;
+    s = phi * (1.0 - p2 * k6 * (1.0 - p2 * k20 * (1.0 - p2 * k42)));
+    c = 1.0 - p2 * 0.5 * (1.0 - p2 * k12 * (1.0 - p2 * k30 * (1.0 - p2 * k56)));
+    return;
+  }
+  s = std::sin(phi);
+  c = std::cos(phi);
+}
+
+}  // namespace detail
 
 // Indices (0..2) of the first, second and normal axis of a named arc plane.
 struct PlaneAxes {
@@ -55,6 +78,7 @@ class SegmentGeometry {
   [[nodiscard]] const Vec3& u() const noexcept { return u_; }
   [[nodiscard]] const Vec3& w() const noexcept { return w_; }
   // Position at path length s (clamped to [0, L]).
+  // (Inline: the coarse interpolator asks every period.)
   [[nodiscard]] Pose at(double s) const;
   // dp/ds: per-axis rate of change (the unit tangent in path units).
   [[nodiscard]] Pose tangent(double s) const;
@@ -86,6 +110,23 @@ class SegmentGeometry {
   double inv_length_ = 0.0;  // 1/length_ (0 for no length): at() is asked every period
   double sin_sweep_ = 0.0, cos_sweep_ = 1.0;  // of sweep_ (arcs): the end tangent, the limits
 };
+
+inline Pose SegmentGeometry::at(double s) const {
+  if (length_ <= 0.0 || s >= length_) return end_;
+  const double f = std::max(0.0, s * inv_length_);
+  if (f >= 1.0) return end_;
+  Pose p;
+  if (!arc_) {
+    p = start_ + (end_ - start_) * f;
+    return p;
+  }
+  // the rotary axes linearly, X Y Z on the circle (the helix along its axis)
+  p.tail<3>() = start_.tail<3>() + (end_.tail<3>() - start_.tail<3>()) * f;
+  double sin_phi, cos_phi;
+  detail::sin_cos(sweep_ * f, sin_phi, cos_phi);
+  p.head<3>() = center_ + radius_ * (cos_phi * u_ + sin_phi * w_) + (f * helix_h_) * axis_n_;
+  return p;
+}
 
 // The chord end points of an arc (its end included, its start not) whose
 // sag r·(1 − cos(Δφ/2)) is at most sag_mm (> 0): where an arc is replaced by
