@@ -4,13 +4,21 @@
 # (BENCHMARKS.md quotes these).
 #
 #   bench/ab_throughput.sh OLD/planner_bench NEW/planner_bench PROGRAM.ngc [PAIRS]
+#   FIELD=2 bench/ab_throughput.sh ...   # with step quantization (default 1: through
+#                                        # coarse interpolation, the goal's stages)
 set -euo pipefail
 if [[ $# -lt 3 ]]; then
   echo "usage: $0 A/planner_bench B/planner_bench PROGRAM.ngc [PAIRS]" >&2
   exit 2
 fi
 a=$1 b=$2 program=$3 pairs=${4:-9}
-rate() { "$1" --throughput-only "$program" 1 | sed -n 's/.*median: \([0-9]*\) segments.*/\1/p'; }
+# field 1: through coarse interpolation (the goal's stages); 2: with step quantization
+field=${FIELD:-1}
+rate() {
+  "$1" --throughput-only "$program" 1 |
+    sed -n 's/.*median: \([0-9]*\) segments.*quantization \([0-9]*\) segments.*/\1 \2/p' |
+    cut -d' ' -f"$field"
+}
 for ((i = 1; i <= pairs; ++i)); do
   ra=$(rate "$a")
   rb=$(rate "$b")

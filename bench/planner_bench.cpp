@@ -273,35 +273,48 @@ std::unique_ptr<ProgramReader> open_program(const std::string& file, const Machi
   return std::move(*reader);
 }
 
-// False when the program cannot be read.
+// Planner throughput: the goal's four stages (parse + blend + look-ahead +
+// coarse interpolation: one pose per period) and, in runs alternating with
+// those, the same with the poses quantized to steps (the position buffer's
+// increments). False when the program cannot be read.
 bool throughput(const std::string& file, const MachineConfig& m, int runs) {
-  std::vector<double> rates;
+  std::vector<double> rates[2];
   for (int r = 0; r < runs; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const std::unique_ptr<ProgramReader> reader = open_program(file, m);
-    if (!reader) return false;
-    const SegmentSource source = reader_source(*reader);
-    std::uint64_t segs = 0;
-    Planner ci(m, [&](Segment& s) {
-      const SourceStatus st = source(s);
-      if (st == SourceStatus::Item) ++segs;
-      return st;
-    });
-    StepQuantizer q(m, Pose::Zero());
-    PeriodSample s;
-    std::int64_t checksum = 0;
-    while (ci.next(s) == SourceStatus::Item) checksum += q.quantize(s).steps[0];
-    const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    rates.push_back(segs / sec);
-    std::printf("  run %d: %llu segments, %llu periods (%.0f s of motion) in %.3f s = %.0f segments/s "
-                "(window max %zu, checksum %lld)\n",
-                r + 1, static_cast<unsigned long long>(segs),
-                static_cast<unsigned long long>(ci.periods()), ci.periods() * m.period_s(), sec,
-                segs / sec, ci.max_window(), static_cast<long long>(checksum));
+    for (int steps = 0; steps < 2; ++steps) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const std::unique_ptr<ProgramReader> reader = open_program(file, m);
+      if (!reader) return false;
+      const SegmentSource source = reader_source(*reader);
+      std::uint64_t segs = 0;
+      Planner ci(m, [&](Segment& s) {
+        const SourceStatus st = source(s);
+        if (st == SourceStatus::Item) ++segs;
+        return st;
+      });
+      StepQuantizer q(m, Pose::Zero());
+      PeriodSample s;
+      std::int64_t checksum = 0;
+      double last_x = 0.0;
+      if (steps == 1) {
+        while (ci.next(s) == SourceStatus::Item) checksum += q.quantize(s).steps[0];
+      } else {
+        while (ci.next(s) == SourceStatus::Item) last_x = s.pose[0];
+      }
+      const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      rates[steps].push_back(segs / sec);
+      std::printf("  run %d%s: %llu segments, %llu periods (%.0f s of motion) in %.3f s = %.0f "
+                  "segments/s (window max %zu, %s %lld)\n",
+                  r + 1, steps == 1 ? " with steps" : "", static_cast<unsigned long long>(segs),
+                  static_cast<unsigned long long>(ci.periods()), ci.periods() * m.period_s(), sec,
+                  segs / sec, ci.max_window(), steps == 1 ? "checksum" : "last X [µm]",
+                  steps == 1 ? static_cast<long long>(checksum)
+                             : static_cast<long long>(std::llround(last_x * 1000.0)));
+    }
   }
-  std::sort(rates.begin(), rates.end());
-  std::printf("  median: %.0f segments/s; peak memory (max RSS) %ld MB\n", rates[rates.size() / 2],
-              peak_rss_mb());
+  for (auto& v : rates) std::sort(v.begin(), v.end());
+  std::printf("  median: %.0f segments/s through coarse interpolation; with step quantization "
+              "%.0f segments/s; peak memory (max RSS) %ld MB\n",
+              rates[0][rates[0].size() / 2], rates[1][rates[1].size() / 2], peak_rss_mb());
   return true;
 }
 
