@@ -48,9 +48,20 @@ double path_length(const Segment& seg) {
   return SegmentGeometry(seg).length();
 }
 
-SegmentGeometry::SegmentGeometry(const Segment& seg) : start_(seg.start), end_(seg.end) {
+void SegmentGeometry::set(const Segment& seg) {
+  start_ = seg.start;
+  end_ = seg.end;
   const Pose d = end_ - start_;
   if (seg.kind != MotionKind::Arc) {
+    // every member as a default-constructed line's
+    arc_ = false;
+    center_ = Vec3::Zero();
+    u_ = Vec3::UnitX();
+    w_ = Vec3::UnitY();
+    axis_n_ = Vec3::Zero();
+    helix_h_ = radius_ = sweep_ = plane_ratio_ = 0.0;
+    sin_sweep_ = 0.0;
+    cos_sweep_ = 1.0;
     length_ = line_length(d);
     inv_length_ = length_ > 0.0 ? 1.0 / length_ : 0.0;
     return;
@@ -61,6 +72,8 @@ SegmentGeometry::SegmentGeometry(const Segment& seg) : start_(seg.start), end_(s
   const double two_pi = 2.0 * std::numbers::pi;
   if (seg.plane == Plane::Free) {
     // Corner blend: start and end lie in the plane through the centre.
+    axis_n_ = Vec3::Zero();
+    helix_h_ = 0.0;
     const Vec3 n = seg.normal.normalized();
     const Vec3 ra = a - center_, rb = b - center_;
     radius_ = ra.norm();

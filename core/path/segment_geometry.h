@@ -56,7 +56,10 @@ struct PlaneAxes {
 
 class SegmentGeometry {
  public:
-  explicit SegmentGeometry(const Segment& seg);
+  explicit SegmentGeometry(const Segment& seg) { set(seg); }
+  // The same, in place: *this = SegmentGeometry(seg) without a temporary (a
+  // few hundred bytes built on the stack and copied again, per segment).
+  void set(const Segment& seg);
   // A circular arc (no helix) whose parts are already known — a corner
   // blend's, from its construction: as SegmentGeometry(seg) of the arc from
   // start to end about `center`, turning by the angle whose sine and cosine

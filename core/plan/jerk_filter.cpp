@@ -71,7 +71,7 @@ PlannedSegment StopHolds::half(const PlannedSegment& neighbour, bool stand, cons
   s.start = s.end = at;
   s.dwell_s = stand ? half_s_ : 0.0;
   if (stand) s.laser = LaserMode::Off;
-  h.geo = SegmentGeometry(s);
+  h.geo.set(s);
   h.profile = Trapezoid::hold(half_s_);
   return h;
 }
