@@ -40,10 +40,13 @@ PathBlender::PathBlender(const MachineConfig& machine, SegmentSource source,
 }
 
 void PathBlender::emit(IndexedSegment& s, bool with_geometry) {
+  if (!with_geometry) s.geo.set(s.seg);
   // Lines used up entirely by their two blends carry no motion: drop them.
-  if (s.seg.kind == MotionKind::Linear && (s.seg.end - s.seg.start).norm() <= plan::kMinSegmentLength)
+  // (Their path length is at most their travel in all axes: only a short
+  // one needs that.)
+  if (s.seg.kind == MotionKind::Linear && s.geo.length() <= plan::kMinSegmentLength &&
+      (s.seg.end - s.seg.start).norm() <= plan::kMinSegmentLength)
     return;
-  if (!with_geometry) s.geo = SegmentGeometry(s.seg);
   ready_[(ready_front_ + ready_count_++) % ready_.size()] = &s;
 }
 
@@ -62,12 +65,13 @@ SourceStatus PathBlender::next(const IndexedSegment*& out) {
       end_status_ = st;
       continue;
     }
-    if (have_pending_ && blendable(cur.seg)) {
+    const bool cur_blendable = blendable(cur.seg);
+    if (have_pending_ && cur_blendable) {
       const Segment& a = pending.seg;
       const double tol = std::min(a.blend_tolerance_mm, cur.seg.blend_tolerance_mm) -
                          std::max(merge_tolerance(a), merge_tolerance(cur.seg)) - margin_mm_ -
                          filter_error_mm_;
-      const double len_a = path_length(a);
+      const double len_a = pending_length_;
       const double len_b = path_length(cur.seg);
       // A corner takes at most half of a line and 45 % of an arc (an arc
       // trimmed to nothing would read as a full circle).
@@ -99,15 +103,16 @@ SourceStatus PathBlender::next(const IndexedSegment*& out) {
         cur.tangent_in = tangent;
         pending_full_length_ = len_b;
         cur.seg.start = t.q2;
+        pending_length_ = path_length(cur.seg);
         pending_slot_ = 1 - pending_slot_;
         continue;
       }
     }
     if (have_pending_) emit(pending);
-    have_pending_ = blendable(cur.seg);
+    have_pending_ = cur_blendable;
     if (have_pending_) {
       pending_slot_ = 1 - pending_slot_;
-      pending_full_length_ = path_length(cur.seg);
+      pending_full_length_ = pending_length_ = path_length(cur.seg);
     } else {
       emit(cur);
     }

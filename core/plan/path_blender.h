@@ -52,6 +52,7 @@ class PathBlender {
   std::array<IndexedSegment, 2> slots_;
   std::size_t pending_slot_ = 0;
   double pending_full_length_ = 0;  // its length as programmed
+  double pending_length_ = 0;       // and as it is now (its start may be trimmed)
   IndexedSegment arc_;     // the blend arc of the last corner
   ArcTransition corner_;  // and the rest of what its transition found
   // Segments ready to hand out, oldest first, where they are (a slot or
