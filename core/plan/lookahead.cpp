@@ -19,7 +19,8 @@ namespace {
 // the peak at the accelerations of max(v0, v1) overshoots (they are the
 // largest); the peak at the accelerations of that overshoot is safe (theirs
 // are no larger than at the final speed) and within a hair of the optimum.
-Trapezoid fit_profile(const SegmentLimits& lim, double v_max, double L, double v0, double v1) {
+void fit_profile(const SegmentLimits& lim, double v_max, double L, double v0, double v1,
+                 Trapezoid& out) {
   auto fits = [&](double vc, const Accel& a) {
     return (vc * vc - v0 * v0) / a.accel + (vc * vc - v1 * v1) / a.decel <= 2.0 * L * (1.0 + 1e-12);
   };
@@ -38,7 +39,7 @@ Trapezoid fit_profile(const SegmentLimits& lim, double v_max, double L, double v
       at_vc = lim.at(vc);
     }
   }
-  return Trapezoid::plan(L, at_vc.accel, at_vc.decel, v0, vc, v1);
+  out.set(L, at_vc.accel, at_vc.decel, v0, vc, v1);
 }
 
 }  // namespace
@@ -105,8 +106,7 @@ bool Lookahead::fill() {
     PlannedSegment& p = segment(k);
     p.seg = in->seg;
     p.geo = in->geo;
-    p.profile = Trapezoid{};
-    p.programmed_speed = 0.0;
+    p.programmed_speed = 0.0;  // (the profile is set when the segment is handed out)
     p.index = in->index;
     Node& n = node(k);
     n = Node{};
@@ -215,14 +215,14 @@ SourceStatus Lookahead::next(const PlannedSegment*& out) {
   const double v_entry = std::sqrt(s.x_entry), v_exit = std::sqrt(s.x_exit);
   switch (s.shape) {
     case Node::Shape::Fit:
-      p.profile = fit_profile(s.lim, p.programmed_speed, s.length, v_entry, v_exit);
+      fit_profile(s.lim, p.programmed_speed, s.length, v_entry, v_exit, p.profile);
       break;
     case Node::Shape::SpeedUp:
     case Node::Shape::SlowDown: {
       // v_exit (v_entry) is the reach at the accelerations of that speed
       const double peak = std::max(v_entry, v_exit);
       const Accel a = s.lim.at(peak);
-      p.profile = Trapezoid::plan(s.length, a.accel, a.decel, v_entry, peak, v_exit);
+      p.profile.set(s.length, a.accel, a.decel, v_entry, peak, v_exit);
       break;
     }
   }

@@ -7,9 +7,9 @@
 
 namespace lcnc {
 
-Trapezoid Trapezoid::plan(double length, double accel, double decel, double v0, double v_target,
-                          double v1) {
-  Trapezoid p;
+void Trapezoid::set(double length, double accel, double decel, double v0, double v_target,
+                    double v1) {
+  Trapezoid& p = *this;
   p.length = length;
   p.accel = accel;
   p.decel = decel;
@@ -17,7 +17,8 @@ Trapezoid Trapezoid::plan(double length, double accel, double decel, double v0, 
   p.v1 = v1;
   if (length <= plan::kMinSegmentLength || accel <= 0.0 || decel <= 0.0 ||
       v_target <= plan::kMinVelocity) {
-    return p;  // nothing to move
+    p.vc = p.t_acc = p.t_cruise = p.t_dec = p.s_acc = p.s_cruise = 0.0;
+    return;  // nothing to move
   }
   // min(v_target, sqrt(peak²)), the root taken only when the target is out
   // of reach (sqrt(fl(v²)) = v exactly: the same result either way)
@@ -31,7 +32,6 @@ Trapezoid Trapezoid::plan(double length, double accel, double decel, double v0, 
   const double s_dec = p.t_dec * (p.vc + v1) * 0.5;
   p.s_cruise = std::max(0.0, length - p.s_acc - s_dec);
   p.t_cruise = p.vc > plan::kMinVelocity ? p.s_cruise / p.vc : 0.0;
-  return p;
 }
 
 Trapezoid Trapezoid::hold(double duration_s) {

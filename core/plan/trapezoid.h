@@ -33,7 +33,13 @@ struct Trapezoid {
     return plan(length, accel, accel, v0, v_target, v1);
   }
   [[nodiscard]] static Trapezoid plan(double length, double accel, double decel, double v0,
-                                      double v_target, double v1);
+                                      double v_target, double v1) {
+    Trapezoid p;
+    p.set(length, accel, decel, v0, v_target, v1);
+    return p;
+  }
+  // The same in place (the look-ahead's, per segment: no temporary copied).
+  void set(double length, double accel, double decel, double v0, double v_target, double v1);
   // The triangle's peak speed squared: (vc² − v0²)/2a + (vc² − v1²)/2d = L.
   [[nodiscard]] static double peak_sqr(double length, double accel, double decel, double v0,
                                        double v1) noexcept {
