@@ -81,8 +81,15 @@ class SegmentGeometry {
   [[nodiscard]] const Vec3& u() const noexcept { return u_; }
   [[nodiscard]] const Vec3& w() const noexcept { return w_; }
   // Position at path length s (clamped to [0, L]).
-  // (Inline: the coarse interpolator asks every period.)
-  [[nodiscard]] Pose at(double s) const;
+  [[nodiscard]] Pose at(double s) const {
+    Pose p;
+    at(s, p);
+    return p;
+  }
+  // The same, written into p (inline, in place: the coarse interpolator asks
+  // every period, and a pose built on the stack by parts and then copied
+  // whole makes the copy wait for the parts' stores).
+  void at(double s, Pose& p) const;
   // dp/ds: per-axis rate of change (the unit tangent in path units).
   [[nodiscard]] Pose tangent(double s) const;
   // dp/ds at the start and at the end: equal to tangent(0) and tangent(length()),
@@ -114,21 +121,21 @@ class SegmentGeometry {
   double sin_sweep_ = 0.0, cos_sweep_ = 1.0;  // of sweep_ (arcs): the end tangent, the limits
 };
 
-inline Pose SegmentGeometry::at(double s) const {
-  if (length_ <= 0.0 || s >= length_) return end_;
+inline void SegmentGeometry::at(double s, Pose& p) const {
   const double f = std::max(0.0, s * inv_length_);
-  if (f >= 1.0) return end_;
-  Pose p;
+  if (length_ <= 0.0 || s >= length_ || f >= 1.0) {
+    p = end_;
+    return;
+  }
   if (!arc_) {
     p = start_ + (end_ - start_) * f;
-    return p;
+    return;
   }
   // the rotary axes linearly, X Y Z on the circle (the helix along its axis)
   p.tail<3>() = start_.tail<3>() + (end_.tail<3>() - start_.tail<3>()) * f;
   double sin_phi, cos_phi;
   detail::sin_cos(sweep_ * f, sin_phi, cos_phi);
   p.head<3>() = center_ + radius_ * (cos_phi * u_ + sin_phi * w_) + (f * helix_h_) * axis_n_;
-  return p;
 }
 
 // The chord end points of an arc (its end included, its start not) whose

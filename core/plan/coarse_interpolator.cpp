@@ -70,7 +70,10 @@ SourceStatus CoarseInterpolator::next(PeriodSample& out) {
   const PlannedSegment& c = *cur_;
   double s, v;
   c.profile.sample(tau_, s, v);
-  out.pose = dwell_ ? end_.pose : c.geo.at(s);
+  if (dwell_)
+    out.pose = end_.pose;
+  else
+    c.geo.at(s, out.pose);
   out.speed = v;
   out.power_pct = laser_power(v);
   out.power_cap_pct = power_cap_;
