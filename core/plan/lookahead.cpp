@@ -104,20 +104,23 @@ bool Lookahead::fill() {
     if (size_ == nodes_.size()) grow();
     const std::size_t k = size_++;
     PlannedSegment& p = segment(k);
+    // The limits from the source's segment, before it is copied: the
+    // copy's loads would wait for the stores that made it.
+    Node& n = node(k);
+    n = Node{};
+    n.length = in->geo.length();
+    const bool dwell = in->seg.kind == MotionKind::Dwell;
+    if (!dwell) segment_limits(in->geo, machine_, n.lim);
     p.seg = in->seg;
     p.geo = in->geo;
     p.programmed_speed = 0.0;  // (the profile is set when the segment is handed out)
     p.index = in->index;
-    Node& n = node(k);
-    n = Node{};
     if (k == 0) back_end_tangent_.reset();  // belonged to a released segment
-    n.length = p.geo.length();
-    if (p.seg.kind == MotionKind::Dwell) {
+    if (dwell) {
       n.dwell = true;
       p.profile = Trapezoid::hold(p.seg.dwell_s);
     } else {
       // one evaluation: the tangential limits are functions of the speed
-      segment_limits(p.geo, machine_, n.lim);
       p.programmed_speed = target_speed(p.seg, p.geo, n.lim);
       n.x_max = p.programmed_speed * p.programmed_speed;
       braking_length_ = std::max(braking_length_, braking_length(n.x_max));
