@@ -26,14 +26,19 @@ constexpr std::uint32_t kFastDigits = 15;
 
 [[nodiscard]] constexpr bool is_digit(char c) noexcept { return c >= '0' && c <= '9'; }
 
-// What compact() does with each byte: keep it, upper-case it, drop it (blanks),
-// or look closer (comments).
-enum class CharClass : std::uint8_t { Keep, Lower, Blank, Special };
+// What compact() does with each byte: keep it (upper-cased), drop it
+// (blanks), or look closer (comments).
+enum class CharClass : std::uint8_t { Keep, Blank, Special };
 constexpr std::array<CharClass, 256> kCharClass = [] {
   std::array<CharClass, 256> t{};
-  for (int c = 'a'; c <= 'z'; ++c) t[c] = CharClass::Lower;
   t[' '] = t['\t'] = t['\r'] = CharClass::Blank;
   t['('] = t[')'] = t[';'] = CharClass::Special;
+  return t;
+}();
+// Each byte upper-cased (LinuxCNC close_and_downcase; other bytes as they are).
+constexpr std::array<char, 256> kUpper = [] {
+  std::array<char, 256> t{};
+  for (int c = 0; c < 256; ++c) t[c] = static_cast<char>(c >= 'a' && c <= 'z' ? c - 'a' + 'A' : c);
   return t;
 }();
 
@@ -102,19 +107,14 @@ bool BlockParser::compact(std::string_view line) {
   const auto len = static_cast<std::uint32_t>(line.size());
   for (std::uint32_t i = 0; i < len; ++i) {
     const auto c = static_cast<unsigned char>(line[i]);
-    switch (kCharClass[c]) {
-      case CharClass::Keep:
-        out[n] = static_cast<char>(c);
-        off[n++] = i;
-        continue;
-      case CharClass::Lower:
-        out[n] = static_cast<char>(c - 'a' + 'A');
-        off[n++] = i;
-        continue;
-      case CharClass::Blank:
-        continue;
-      case CharClass::Special:
-        break;
+    const CharClass k = kCharClass[c];
+    if (k != CharClass::Special) {
+      // written either way, kept only when not a blank: no branch on the
+      // blanks between words
+      out[n] = kUpper[c];
+      off[n] = i;
+      n += k == CharClass::Keep ? 1u : 0u;
+      continue;
     }
     if (c == ';') break;  // the rest of the line is a comment
     if (c == ')') {
