@@ -23,19 +23,28 @@ bool arc_transition(const Segment& a, const Segment& b, double la, double lb, do
                     double max_trim_a, double max_trim_b, ArcTransition& t, Segment& arc,
                     SegmentGeometry& geo) {
   t.blended = false;
-  const Vec3 p = b.start.head<3>();
-  const Vec3 da = a.end.head<3>() - a.start.head<3>();
-  const Vec3 db = b.end.head<3>() - b.start.head<3>();
   if (la <= plan::kMinSegmentLength || lb <= plan::kMinSegmentLength || tolerance_mm <= 0.0)
     return false;
+  const Vec3 p = b.start.head<3>();
   const double inv_la = 1.0 / la, inv_lb = 1.0 / lb;
-  const Vec3 d1 = da * inv_la, d2 = db * inv_lb;
-  const Vec3 cross = d1.cross(d2);
+  // The unit directions and their cross product coordinate by coordinate:
+  // Eigen's 3-vectors would go through memory in halves, and each whole
+  // read of them wait for both halves' stores.
+  double u1[3], u2[3];
+  for (int i = 0; i < 3; ++i) {
+    u1[i] = (a.end[i] - a.start[i]) * inv_la;
+    u2[i] = (b.end[i] - b.start[i]) * inv_lb;
+  }
+  const double cx = u1[1] * u2[2] - u1[2] * u2[1];
+  const double cy = u1[2] * u2[0] - u1[0] * u2[2];
+  const double cz = u1[0] * u2[1] - u1[1] * u2[0];
+  const Vec3 d1(u1[0], u1[1], u1[2]), d2(u2[0], u2[1], u2[2]), cross(cx, cy, cz);
   // The turning angle θ by its sine and cosine (of unit vectors: no
   // normalising), and the half angle's from them without trigonometric
   // calls: each formula where it is well conditioned (θ near 0 and near π).
   // Divisions are by sin θ and sin(θ/2) once each, off the roots' path.
-  const double sin_t = cross.norm(), cos_t = d1.dot(d2);
+  const double sin_t = std::sqrt(cx * cx + cy * cy + cz * cz);
+  const double cos_t = u1[0] * u2[0] + u1[1] * u2[1] + u1[2] * u2[2];
   if (cos_t > 0.0 ? sin_t < std::sin(plan::kMinBlendAngle)
                   : sin_t < std::sin(std::numbers::pi - plan::kMaxBlendAngle))
     return false;  // (nearly) straight on, or (nearly) reversed
