@@ -89,9 +89,9 @@ TEST(SegmentGeometry, DistanceToLineAndArc) {
   EXPECT_NEAR(ga.distance_xyz(Vec3(50, 50, 10)), 5.0, 1e-12);
 }
 
-// start_tangent(), end_tangent() and path_length() skip work (sin and cos of
-// the ends, the arc set-up of a line) but must give the same bits.
-TEST(SegmentGeometry, EndTangentsAndPathLengthMatchTheGeneralForms) {
+// One of each kind: arcs (whole turns, a helix, a quarter), a free-plane
+// arc as the blender makes them, a line with a rotary axis, a rotary-only move.
+std::vector<Segment> segments_of_every_kind() {
   std::vector<Segment> segs = {arc(5.0, false), arc(5.0, true, 1), arc(2.0, false, 2, 3.0)};
   Segment l;
   l.kind = MotionKind::Linear;
@@ -110,7 +110,13 @@ TEST(SegmentGeometry, EndTangentsAndPathLengthMatchTheGeneralForms) {
   blend.end << 50 + 3 * std::cos(0.3), 50 + 3 * std::sin(0.3), 10, 0, 0, 0;
   blend.normal = Vec3(0, 0, 1);
   segs.push_back(blend);
-  for (const Segment& s : segs) {
+  return segs;
+}
+
+// start_tangent(), end_tangent() and path_length() skip work (sin and cos of
+// the ends, the arc set-up of a line) but must give the same bits.
+TEST(SegmentGeometry, EndTangentsAndPathLengthMatchTheGeneralForms) {
+  for (const Segment& s : segments_of_every_kind()) {
     const SegmentGeometry g(s);
     EXPECT_EQ(g.start_tangent(), g.tangent(0.0));
     // the sweep's sine and cosine come from the end point, not from sin and
@@ -119,6 +125,37 @@ TEST(SegmentGeometry, EndTangentsAndPathLengthMatchTheGeneralForms) {
     EXPECT_EQ(path_length(s), g.length());
     EXPECT_NEAR(g.sin_sweep(), std::sin(g.sweep_rad()), 1e-15);
     EXPECT_NEAR(g.cos_sweep(), std::cos(g.sweep_rad()), 1e-15);
+  }
+}
+
+// set() reuses a geometry in place (the blender's slots hold lines, arcs and
+// blends in turn): whatever it held before, it becomes the fresh one's.
+TEST(SegmentGeometry, SetOverAUsedGeometryIsAFreshOne) {
+  const std::vector<Segment> segs = segments_of_every_kind();
+  for (const Segment& before : segs) {
+    for (const Segment& s : segs) {
+      SegmentGeometry g(before);
+      g.set(s);
+      const SegmentGeometry fresh(s);
+      ASSERT_EQ(g.is_arc(), fresh.is_arc());
+      EXPECT_EQ(g.length(), fresh.length());
+      EXPECT_EQ(g.radius(), fresh.radius());
+      EXPECT_EQ(g.sweep_rad(), fresh.sweep_rad());
+      EXPECT_EQ(g.sin_sweep(), fresh.sin_sweep());
+      EXPECT_EQ(g.cos_sweep(), fresh.cos_sweep());
+      EXPECT_EQ(g.plane_speed_ratio(), fresh.plane_speed_ratio());
+      EXPECT_EQ(g.start_tangent(), fresh.start_tangent());
+      EXPECT_EQ(g.end_tangent(), fresh.end_tangent());
+      for (int k = -1; k <= 8; ++k) {
+        const double at_s = fresh.length() * k / 7.0;
+        EXPECT_EQ(g.at(at_s), fresh.at(at_s)) << k;
+        Pose in_place = Pose::Constant(-1.0);
+        g.at(at_s, in_place);
+        EXPECT_EQ(in_place, fresh.at(at_s)) << k;
+      }
+      EXPECT_EQ(g.tangent(fresh.length() / 3), fresh.tangent(fresh.length() / 3));
+      EXPECT_EQ(g.curvature(fresh.length() / 3), fresh.curvature(fresh.length() / 3));
+    }
   }
 }
 

@@ -52,6 +52,35 @@ TEST(Trapezoid, SampleIsPositionAndSpeedTogether) {
   }
 }
 
+// set() replans a profile in place (the look-ahead's ring reuses them):
+// every field as plan() gives it, whatever the profile held before —
+// nothing to move after a cruise included.
+TEST(Trapezoid, SetOverAUsedProfileIsAFreshOne) {
+  struct Args {
+    double length, accel, decel, v0, v_target, v1;
+  };
+  const Args cases[] = {{10.0, 100.0, 60.0, 10.0, 20.0, 5.0},
+                        {0.5, 100.0, 60.0, 10.0, 50.0, 5.0},
+                        {0.0, 100.0, 60.0, 0.0, 50.0, 0.0},
+                        {3.0, 100.0, 100.0, 0.0, 0.0, 0.0}};
+  for (const Args& before : cases) {
+    for (const Args& a : cases) {
+      Trapezoid p = Trapezoid::plan(before.length, before.accel, before.decel, before.v0,
+                                    before.v_target, before.v1);
+      p.set(a.length, a.accel, a.decel, a.v0, a.v_target, a.v1);
+      const Trapezoid q = Trapezoid::plan(a.length, a.accel, a.decel, a.v0, a.v_target, a.v1);
+      for (const auto f : {&Trapezoid::length, &Trapezoid::accel, &Trapezoid::decel, &Trapezoid::v0,
+                           &Trapezoid::vc, &Trapezoid::v1, &Trapezoid::t_acc, &Trapezoid::t_cruise,
+                           &Trapezoid::t_dec, &Trapezoid::s_acc, &Trapezoid::s_cruise})
+        EXPECT_EQ(p.*f, q.*f);
+    }
+  }
+  // nothing to move: no time, no path
+  const Trapezoid none = Trapezoid::plan(0.0, 100.0, 60.0, 0.0, 50.0, 0.0);
+  EXPECT_EQ(none.duration(), 0.0);
+  EXPECT_EQ(none.vc, 0.0);
+}
+
 TEST(Trapezoid, HoldHasDurationAndNoPath) {
   const Trapezoid p = Trapezoid::hold(0.25);
   EXPECT_DOUBLE_EQ(p.duration(), 0.25);
