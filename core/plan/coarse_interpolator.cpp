@@ -94,52 +94,6 @@ StepQuantizer::StepQuantizer(const MachineConfig& machine, const Pose& start)
   }
 }
 
-namespace {
-
-// std::llround without the library call (which was most of the quantizer's
-// time): truncate toward zero, then round the remainder half away from zero.
-// Same result: x − trunc(x) is exact in doubles.
-std::int64_t round_half_away(double x) noexcept {
-  if (!(std::abs(x) < 0x1p62)) return std::llround(x);  // huge or NaN: as before
-  std::int64_t i = static_cast<std::int64_t>(x);
-  const double rest = x - static_cast<double>(i);
-  if (rest >= 0.5) ++i;
-  if (rest <= -0.5) --i;
-  return i;
-}
-
-}  // namespace
-
-std::int64_t StepQuantizer::to_steps(int axis, double pos) const noexcept {
-  return round_half_away(pos * steps_per_unit_[axis]);
-}
-
-PeriodIncrement StepQuantizer::emit(const PeriodSample& s) {
-  PeriodIncrement inc;  // absent axes: 0
-  for (int k = 0; k < present_count_; ++k) {
-    const int i = present_[k];
-    const std::int64_t owed = target_[i] - emitted_[i];
-    const std::int64_t step = std::clamp<std::int64_t>(owed, -max_pulses_, max_pulses_);
-    inc.steps[i] = static_cast<std::int32_t>(step);
-    emitted_[i] += step;
-  }
-  inc.power_pct = s.power_pct;
-  inc.power_cap_pct = s.power_cap_pct;
-  inc.line = s.line;
-  inc.segment = s.segment;
-  inc.kind = s.kind;
-  inc.end_of_program = s.end_of_program && !owed();
-  return inc;
-}
-
-PeriodIncrement StepQuantizer::quantize(const PeriodSample& s) {
-  for (int k = 0; k < present_count_; ++k) {
-    const int i = present_[k];
-    target_[i] = to_steps(i, s.pose[i]);
-  }
-  return emit(s);
-}
-
 bool StepQuantizer::owed() const noexcept {
   for (int i = 0; i < kAxisCount; ++i)
     if (target_[i] != emitted_[i]) return true;
