@@ -24,7 +24,6 @@ bool CoarseInterpolator::pull() {
       const Segment& s = next->seg;
       end_ = End{s.end, next->profile.v1, s.line, next->index, s.kind};
       const bool cut = s.kind == MotionKind::Linear || s.kind == MotionKind::Arc;
-      dwell_ = s.kind == MotionKind::Dwell;
       // M4 on a cut: power follows speed; at no programmed speed, none
       dynamic_ = cut && s.laser == LaserMode::Dynamic && next->programmed_speed > plan::kMinVelocity;
       power_pct_ = s.power_pct;
@@ -70,7 +69,7 @@ SourceStatus CoarseInterpolator::next(PeriodSample& out) {
   const PlannedSegment& c = *cur_;
   double s, v;
   c.profile.sample(tau_, s, v);
-  if (dwell_)
+  if (end_.kind == MotionKind::Dwell)
     out.pose = end_.pose;
   else
     c.geo.at(s, out.pose);

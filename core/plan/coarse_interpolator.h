@@ -66,8 +66,8 @@ class CoarseInterpolator {
   double duration_ = 0.0;
   // What every period of the current segment reports alike, read from it
   // once (not from its few hundred bytes each period): the laser power (a
-  // constant, or M4's scaled by speed), the power cap, where it came from.
-  bool dwell_ = false;
+  // constant, or M4's scaled by speed), the power cap; where it came from
+  // and whether it is a dwell are in end_.
   bool dynamic_ = false;  // M4 on a cut: power_pct_ scaled by speed / programmed_speed_
   float power_ = 0.0f, power_cap_ = 0.0f;
   double power_pct_ = 0.0, programmed_speed_ = 0.0;
