@@ -81,6 +81,20 @@ TEST(Trapezoid, SetOverAUsedProfileIsAFreshOne) {
   EXPECT_EQ(none.vc, 0.0);
 }
 
+// A move whose target speed is at or below standing still (a feed of
+// 1e-9 mm/min, or none) still takes time for its length: dropping it as
+// "nothing to move" made the next move start a whole length away, a jump.
+TEST(Trapezoid, AMoveWithLengthNeverTakesNoTime) {
+  for (const double v_target : {0.0, 1e-20, 1.0 / 6e10, -1.0, std::nan("")}) {
+    const Trapezoid p = Trapezoid::plan(10.0, 5000.0, 0.0, v_target, 0.0);
+    EXPECT_GT(p.duration(), 1e9) << v_target;  // 10 mm at no more than 1e-9 mm/s
+    EXPECT_TRUE(std::isfinite(p.duration())) << v_target;
+    EXPECT_LE(p.vc, 1e-9) << v_target;
+    EXPECT_NEAR(p.position(p.duration()), 10.0, 1e-9) << v_target;
+    EXPECT_LT(p.position(1.0), 1e-8) << v_target;  // a second moves it no more than the crawl
+  }
+}
+
 TEST(Trapezoid, HoldHasDurationAndNoPath) {
   const Trapezoid p = Trapezoid::hold(0.25);
   EXPECT_DOUBLE_EQ(p.duration(), 0.25);
