@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "plan/tolerances.h"
+
 namespace lcnc {
 
 PlaneAxes plane_axes(Plane plane) noexcept {
@@ -25,10 +27,14 @@ double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) noexcept
 
 namespace {
 
-// Linear axes if they move, else rotary (as RS274NGC measures feed).
+// Linear axes if they move, else rotary (as RS274NGC measures feed). Linear
+// travel the planner takes as none (plan::kMinSegmentLength) is none here
+// too: otherwise a rotary swing with a nanometre of X Y Z would have the
+// nanometre as its length, be planned as no motion and skipped while its
+// rotary axes still count as moved — the next move would jump.
 double line_length(const Pose& d) {
   const double lin = d.head<3>().norm();
-  return lin > 0.0 ? lin : d.tail<3>().norm();
+  return lin > plan::kMinSegmentLength ? lin : d.tail<3>().norm();
 }
 
 // atan2(y, x); for x > 0 and |y| ≤ x/64 (every corner blend's sweep) by the
@@ -184,15 +190,40 @@ double SegmentGeometry::distance_xyz(const Vec3& p) const {
   const Vec3 b = end_.head<3>();
   if (!arc_) return distance_to_segment(p, a, b);
   // Candidate parameters: the point's polar angle in every turn of the sweep,
-  // plus both ends; the nearest is the closest point for any helix whose
-  // pitch is small against its radius (all real arcs).
+  // plus both ends. On a circle the polar angle is the closest point; on a
+  // helix it is only near it (the rise moves the closest point along the
+  // turn, by up to the point's height off the helix over its pitch: on a
+  // steep helix of a small radius, far), so there each candidate is refined
+  // by Newton's method on the squared distance:
+  //   P(φ) = c + r(cos φ·u + sin φ·w) + φ·k·n,  k = rise / sweep
+  //   f'(φ) = (P − p)·P',  f''(φ) = |P'|² + (P − p)·P'',  P'' = −r(cos φ·u + sin φ·w)
   const Vec3 q = p - center_;
   const double two_pi = 2.0 * std::numbers::pi;
   double best = std::min((a - p).norm(), (b - p).norm());
   double rel = std::atan2(q.dot(w_), q.dot(u_));
   if (rel < 0.0) rel += two_pi;
-  for (double ang = rel; ang <= sweep_; ang += two_pi)
-    best = std::min(best, (at(ang / sweep_ * length_).head<3>() - p).norm());
+  const bool helix = helix_h_ != 0.0;
+  const double k = helix ? helix_h_ / sweep_ : 0.0;
+  // a candidate turn before the first and after the last, for Newton to
+  // walk in from (the closest point may lie a turn from the polar angle)
+  for (double ang = helix ? rel - two_pi : rel; ang <= sweep_ + (helix ? two_pi : 0.0); ang += two_pi) {
+    double phi = std::clamp(ang, 0.0, sweep_);
+    if (helix) {
+      for (int it = 0; it < kHelixNewtonSteps; ++it) {
+        const double c = std::cos(phi), sn = std::sin(phi);
+        const Vec3 radial = radius_ * (c * u_ + sn * w_);
+        const Vec3 d = center_ + radial + (phi * k) * axis_n_ - p;
+        const Vec3 d1 = radius_ * (-sn * u_ + c * w_) + k * axis_n_;
+        const double f1 = d.dot(d1);
+        const double f2 = d1.squaredNorm() - d.dot(radial);
+        if (!(f2 > 0.0)) break;
+        const double next = std::clamp(phi - f1 / f2, 0.0, sweep_);
+        if (next == phi) break;
+        phi = next;
+      }
+    }
+    best = std::min(best, (at(phi / sweep_ * length_).head<3>() - p).norm());
+  }
   return best;
 }
 

@@ -102,6 +102,9 @@ class SegmentGeometry {
   [[nodiscard]] double plane_speed_ratio() const noexcept { return plane_ratio_; }
   // Closest distance from a linear-axes point to this segment's XYZ path (mm).
   [[nodiscard]] double distance_xyz(const Vec3& p) const;
+  // Newton steps that refine a helix's closest point (distance_xyz):
+  // quadratic convergence from the polar angle, a few are exact to rounding.
+  static constexpr int kHelixNewtonSteps = 8;
 
  private:
   [[nodiscard]] double angle_at(double s) const noexcept;

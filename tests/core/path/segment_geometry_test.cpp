@@ -89,6 +89,34 @@ TEST(SegmentGeometry, DistanceToLineAndArc) {
   EXPECT_NEAR(ga.distance_xyz(Vec3(50, 50, 10)), 5.0, 1e-12);
 }
 
+// A steep helix of a small radius: the polar angle of a point is far from
+// its closest point on the helix (the rise moves it along the turn). Points
+// on the helix are at distance 0, points off it at their true distance.
+TEST(SegmentGeometry, DistanceToASteepHelixIsTheTrueDistance) {
+  const SegmentGeometry g(arc(0.03, true, 0, 1.9));  // r 30 µm, 1.9 mm up in one turn
+  for (int k = 0; k <= 100; ++k) {
+    const Pose p = g.at(g.length() * k / 100.0);
+    EXPECT_LT(g.distance_xyz(p.head<3>()), 1e-9) << k;
+    // half a micron off along the radius: half a micron away (within the
+    // curvature's share, far under the rise)
+    const Vec3 c(50, 50, p[2]);
+    const Vec3 off = p.head<3>() + 0.0005 * (p.head<3>() - c).normalized();
+    EXPECT_NEAR(g.distance_xyz(off), 0.0005, 2e-5) << k;
+  }
+}
+
+// A rotary swing with a nanometre of X Y Z: its length is the rotary
+// travel, not the nanometre (which the planner would take as no motion and
+// skip, the next move then starting 16° away).
+TEST(SegmentGeometry, LinearTravelBelowAnyMotionLeavesTheRotaryLength) {
+  Segment l;
+  l.kind = MotionKind::Rapid;
+  l.start << 169.177048399, 188.863663934, 144.934388443, 0, 0, 28.6326095181;
+  l.end << 169.177048399, 188.863663933, 144.934388443, 0, 0, 44.8805314402;
+  EXPECT_NEAR(SegmentGeometry(l).length(), 44.8805314402 - 28.6326095181, 1e-9);
+  EXPECT_NEAR(path_length(l), 44.8805314402 - 28.6326095181, 1e-9);
+}
+
 // One of each kind: arcs (whole turns, a helix, a quarter), a free-plane
 // arc as the blender makes them, a line with a rotary axis, a rotary-only move.
 std::vector<Segment> segments_of_every_kind() {
