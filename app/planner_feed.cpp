@@ -14,14 +14,7 @@ namespace lcnc::app {
 
 PlannerFeed::PlannerFeed(const MachineConfig& machine, rt::PositionBuffer& buffer,
                          rt::RtKernel& kernel)
-    : machine_(machine), buffer_(buffer), kernel_(kernel) {
-  for (int i = 0; i < kAxisCount; ++i) {
-    const AxisConfig& ax = machine.axes[i];
-    const bool limited = ax.present && !ax.wrap;
-    min_steps_[i] = limited ? std::llround(ax.min * ax.steps_per_unit) : INT64_MIN / 2;
-    max_steps_[i] = limited ? std::llround(ax.max * ax.steps_per_unit) : INT64_MAX / 2;
-  }
-}
+    : machine_(machine), buffer_(buffer), kernel_(kernel) {}
 
 PlannerFeed::~PlannerFeed() { abort(); }
 
@@ -84,28 +77,16 @@ void PlannerFeed::join() {
   if (thread_.joinable()) thread_.join();
 }
 
-bool PlannerFeed::within_limits(const PeriodIncrement& inc) {
-  for (int i = 0; i < kAxisCount; ++i) {
-    const std::int64_t next = at_[i] + inc.steps[i];
-    if (inc.steps[i] == 0 || (next >= min_steps_[i] && next <= max_steps_[i])) continue;
-    const AxisConfig& ax = machine_.axes[i];
-    char msg[200];
-    std::snprintf(msg, sizeof msg,
-                  "soft limit: axis %c would reach %.4f, outside its travel %g … %g; the job "
-                  "stops short along the path",
-                  kAxisLetters[i], static_cast<double>(next) / ax.steps_per_unit, ax.min, ax.max);
-    result_.limit = true;
-    result_.limit_error = Diagnostic{ErrorCode::RtSoftLimit, program_, inc.line, 0, msg};
-    return false;
-  }
-  for (int i = 0; i < kAxisCount; ++i) at_[i] += inc.steps[i];
-  return true;
-}
-
 bool PlannerFeed::push(const PeriodIncrement& inc) {
   // An aborted job plans no further: the kernel discards what it is sent
   // after a stop faster than it can be planned, so the buffer never fills.
-  if (abort_.load(std::memory_order_relaxed) || !within_limits(inc)) return false;
+  if (abort_.load(std::memory_order_relaxed)) return false;
+  if (!guard_->admit(inc)) {
+    result_.limit = true;
+    result_.limit_error = guard_->error();
+    result_.limit_error.file = program_;
+    return false;
+  }
   while (result_.increments >= stall_after_.load(std::memory_order_relaxed)) {  // fault injection
     if (abort_.load(std::memory_order_relaxed)) return false;
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
@@ -120,7 +101,8 @@ bool PlannerFeed::push(const PeriodIncrement& inc) {
 
 void PlannerFeed::run(const std::string& name, const Pose& start, const OpenSource& open) {
   StepQuantizer quant(machine_, start);
-  for (int i = 0; i < kAxisCount; ++i) result_.start_steps[i] = at_[i] = quant.commanded(i);
+  for (int i = 0; i < kAxisCount; ++i) result_.start_steps[i] = quant.commanded(i);
+  guard_ = std::make_unique<IncrementGuard>(machine_, result_.start_steps);
   program_ = name;
   MotionStats stats(machine_.period_s(), start);
   SegmentSource source;

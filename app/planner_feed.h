@@ -16,6 +16,7 @@
 #include "common/result.h"
 #include "gcode/program_reader.h"
 #include "machine/machine_config.h"
+#include "plan/increment_guard.h"
 #include "plan/planner.h"
 #include "plan/program_source.h"
 #include "rt/rt_kernel.h"
@@ -31,9 +32,10 @@ struct PlannedJob {
   std::array<double, kAxisCount> peak_v{};              // per axis, at the nominal period
   std::array<double, kAxisCount> peak_a{};
   std::uint64_t increments = 0;                         // entries pushed
-  // An increment that would have crossed a soft limit: the planner stopped
-  // queueing before it (limit_hit()); says the axis, the position and the
-  // line. Code RtSoftLimit.
+  // An increment that would have crossed a soft limit (code RtSoftLimit) or
+  // broken an axis' velocity or acceleration limit (PlanBeyondLimit;
+  // plan/increment_guard.h): the planner stopped queueing before it
+  // (stopped_short()); says the axis, what it would have done and the line.
   bool limit = false;
   Diagnostic limit_error;
 };
@@ -97,9 +99,6 @@ class PlannerFeed {
   void launch(std::string name, Pose start, OpenSource open);
   void run(const std::string& name, const Pose& start, const OpenSource& open);
   bool push(const PeriodIncrement& inc);
-  // Checks inc against the soft limits from the position so far; false (and
-  // the fault recorded) if it would cross one.
-  bool within_limits(const PeriodIncrement& inc);
 
   const MachineConfig& machine_;
   rt::PositionBuffer& buffer_;
@@ -113,8 +112,7 @@ class PlannerFeed {
   std::string program_;
   std::unique_ptr<ProgramSource> program_source_;  // a program job's source (planner thread)
   Diagnostic source_error_;                // why the source failed
-  std::array<std::int64_t, kAxisCount> at_{};       // position after the queued entries, steps
-  std::array<std::int64_t, kAxisCount> min_steps_{}, max_steps_{};
+  std::unique_ptr<IncrementGuard> guard_;  // every entry passes it before the buffer
   std::thread thread_;
 };
 
