@@ -266,7 +266,7 @@ int drill_main(int argc, char** argv) {
                   static_cast<unsigned long long>(head_counters.requests),
                   static_cast<unsigned long long>(head_counters.failed));
   }
-  const bool ok = report->steps_match && report->bad_frames == 0 && report->fault.empty() && head_failures == 0;
+  const bool ok = run_succeeded(*report) && head_failures == 0;
   return ok ? 0 : 3;
 }
 

@@ -2,7 +2,8 @@
 // simulated machine and print the report.
 //
 // Exit codes: 0 done, 1 bad input (program, config), 2 bad command line,
-// 3 the run finished but failed its own checks (steps, pulses).
+// 3 the run finished but failed its own checks (steps, pulses, an axis past
+// its velocity or acceleration limit, the path past its tolerance).
 #include <unistd.h>
 
 #include <cstdio>
@@ -219,5 +220,5 @@ int main(int argc, char** argv) {
   } else {
     std::fputs(lcnc::app::format_report(*report).c_str(), stdout);
   }
-  return (report->steps_match && report->bad_frames == 0 && report->fault.empty()) ? 0 : 3;
+  return lcnc::app::run_succeeded(*report) ? 0 : 3;
 }

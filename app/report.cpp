@@ -44,6 +44,20 @@ std::string format_report(const RunReport& r) {
                        static_cast<long long>(a.steps_commanded),
                        a.steps_sent == a.steps_commanded ? "=" : "MISMATCH");
   }
+  const double window_ms = r.period_s * 1e3;
+  s += printf_string("  measured from the RT trace: velocity over %d periods (%.2f ms), "
+                     "acceleration over %d (%.2f ms)\n",
+                     r.velocity_window, r.velocity_window * window_ms, r.acceleration_window,
+                     r.acceleration_window * window_ms);
+  for (int i = 0; i < kAxisCount; ++i) {
+    const AxisReport& a = r.axes[i];
+    if (!a.present) continue;
+    const bool rot = is_rotary(static_cast<Axis>(i));
+    s += printf_string("  %c     %10.3f %-6s %12.1f %-7s   limits %g %s, %g %s\n", kAxisLetters[i],
+                       a.measured_velocity, rot ? "deg/s" : "mm/s", a.measured_acceleration,
+                       rot ? "deg/s2" : "mm/s2", a.velocity_limit, rot ? "deg/s" : "mm/s",
+                       a.acceleration_limit, rot ? "deg/s2" : "mm/s2");
+  }
   s += printf_string("  steps            %s\n", r.steps_match ? "sent = commanded on every axis"
                                                               : "MISMATCH between sent and commanded");
   s += printf_string("  underruns        %llu   overruns %llu   trace drops %llu   bad frames %llu\n",
@@ -55,6 +69,11 @@ std::string format_report(const RunReport& r) {
     s += printf_string("  planner behind   %llu times: decelerated along the path to refill the buffer\n",
                        static_cast<unsigned long long>(r.starvations));
   if (!r.fault.empty()) s += "  FAULT            " + r.fault + " (stopped before the end)\n";
+  if (r.breaches.empty()) {
+    s += "  check            passed: every axis within its limits, the path within its tolerance\n";
+  } else {
+    for (const std::string& b : r.breaches) s += "  CHECK FAILED     " + b + "\n";
+  }
   s += printf_string("  RT latency       p50 %.0f us, p99 %.0f us, max %.1f us (%s)\n",
                      r.latency_p50_us, r.latency_p99_us, r.latency_max_us, r.schedule.c_str());
   if (!r.rt_warning.empty()) s += "  warning          " + r.rt_warning + "\n";
@@ -101,6 +120,10 @@ std::string report_json(const RunReport& r) {
         {"peak_acceleration", a.peak_acceleration},
         {"steps_sent", a.steps_sent},
         {"steps_commanded", a.steps_commanded},
+        {"measured_velocity", a.measured_velocity},
+        {"measured_acceleration", a.measured_acceleration},
+        {"velocity_limit", a.velocity_limit},
+        {"acceleration_limit", a.acceleration_limit},
     };
   }
   j["axes"] = axes;
@@ -108,6 +131,11 @@ std::string report_json(const RunReport& r) {
   j["underruns"] = r.underruns;
   j["starvations"] = r.starvations;
   j["fault"] = r.fault;
+  j["check"] = {{"passed", r.breaches.empty()},
+                {"breaches", r.breaches},
+                {"velocity_window_periods", r.velocity_window},
+                {"acceleration_window_periods", r.acceleration_window}};
+  j["succeeded"] = run_succeeded(r);
   j["overruns"] = r.overruns;
   j["trace_drops"] = r.trace_drops;
   j["bad_frames"] = r.bad_frames;

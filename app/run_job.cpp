@@ -1,6 +1,7 @@
 #include "app/run_job.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -13,6 +14,7 @@
 #include "drivers/sim_machine.h"
 #include "gcode/program_reader.h"
 #include "path/deviation_meter.h"
+#include "plan/motion_check.h"
 #include "plan/program_source.h"
 #include "app/planner_feed.h"
 #include "rt/rt_kernel.h"
@@ -201,6 +203,71 @@ Status check_feed_override(double pct, const MachineConfig& machine) {
   return make_error(ErrorCode::Usage, msg);
 }
 
+bool run_succeeded(const RunReport& report) {
+  return report.steps_match && report.bad_frames == 0 && report.fault.empty() &&
+         report.breaches.empty();
+}
+
+namespace {
+
+// Relative slack on the plan's own peaks (sampled without quantization):
+// floating-point rounding of the profile, nothing more.
+constexpr double kPlannedPeakSlack = 1e-6;
+
+// The run's own check (RunReport::breaches): the plan's peaks at the run's
+// override and the trace's measured motion against every axis limit, and
+// the executed path against its tolerance.
+void check_run(RunReport& report, const MotionCheck& motion, const DeviationMeter& deviation) {
+  report.velocity_window = motion.velocity_window();
+  report.acceleration_window = motion.acceleration_window();
+  for (int i = 0; i < kAxisCount; ++i) {
+    AxisReport& a = report.axes[i];
+    const AxisMotionCheck& m = motion.axes()[i];
+    if (!a.present) continue;
+    a.measured_velocity = m.peak_velocity;
+    a.measured_acceleration = m.peak_acceleration;
+    a.velocity_limit = m.velocity_limit;
+    a.acceleration_limit = m.acceleration_limit;
+    const bool rot = is_rotary(static_cast<Axis>(i));
+    char msg[200];
+    if (a.peak_velocity > a.velocity_limit * (1.0 + kPlannedPeakSlack)) {
+      std::snprintf(msg, sizeof msg, "axis %c planned velocity %.3f %s, above its limit %g",
+                    kAxisLetters[i], a.peak_velocity, rot ? "deg/s" : "mm/s", a.velocity_limit);
+      report.breaches.emplace_back(msg);
+    }
+    if (a.peak_acceleration > a.acceleration_limit * (1.0 + kPlannedPeakSlack)) {
+      std::snprintf(msg, sizeof msg, "axis %c planned acceleration %.1f %s, above its limit %g",
+                    kAxisLetters[i], a.peak_acceleration, rot ? "deg/s2" : "mm/s2",
+                    a.acceleration_limit);
+      report.breaches.emplace_back(msg);
+    }
+  }
+  for (std::string& b : motion.breaches()) report.breaches.push_back(std::move(b));
+  if (motion.gaps() > 0)
+    report.breaches.push_back("the RT trace lost records " + std::to_string(motion.gaps()) +
+                              " times: the executed motion could not be checked whole");
+  if (deviation.excess_mm() > 0.0) {
+    char msg[200];
+    std::snprintf(msg, sizeof msg,
+                  "path deviation %.4f mm, beyond its tolerance %.4f mm at line %u",
+                  deviation.excess_tolerance_mm() + deviation.excess_mm(),
+                  deviation.excess_tolerance_mm(), deviation.excess_line());
+    report.breaches.emplace_back(msg);
+  }
+}
+
+// Half a step on each of X Y Z: the most a point's rounding to steps moves it.
+double xyz_rounding_mm(const MachineConfig& machine) {
+  double sq = 0.0;
+  for (Axis a : {Axis::X, Axis::Y, Axis::Z}) {
+    const AxisConfig& ax = machine.axis(a);
+    if (ax.present) sq += 0.25 / (ax.steps_per_unit * ax.steps_per_unit);
+  }
+  return std::sqrt(sq);
+}
+
+}  // namespace
+
 // The figures of a finished run: from the kernel's counters, the simulated
 // drives and what the planner queued.
 void fill_run_figures(RunReport& report, const rt::RtKernel& kernel, const drivers::SimMachine& sim,
@@ -335,12 +402,16 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
                                    out = (*options.segments)[ref_index++];
                                    return SourceStatus::Item;
                                  })
-                               : (*ref_reader)->source());
+                               : (*ref_reader)->source(),
+                           machine.path_tolerance_mm, xyz_rounding_mm(machine));
+  MotionCheck motion(machine, start_steps);
+  std::uint64_t next_period = 0;  // the RT numbers its periods from 0
   std::uint32_t segment_seen = UINT32_MAX;
   const double total_segments = std::max<double>(1.0, static_cast<double>(summary->segments));
   auto last_progress = std::chrono::steady_clock::now();
   rt::TraceRecord rec;
   bool stop_sent = false;
+  std::string laser_fault;  // why the laser source failed during the job
   float power_now = 0.0f;  // the commanded laser power of the latest period, %
   for (;;) {
     bool got = false;
@@ -351,9 +422,21 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
       for (int i = 0; i < kAxisCount; ++i) p[i] = static_cast<double>(rec.pos_steps[i]) / spu[i];
       trace_out.write(static_cast<double>(rec.t_ns) * 1e-9, p, rec.power_pct);
       deviation.add(p.head<3>(), rec.segment);
+      if (rec.period != next_period) motion.gap();
+      next_period = rec.period + 1;
+      motion.add(rec.t_ns, rec.pos_steps, rec.line);
       power_now = rec.power_pct;
     }
-    if (laser) laser->follow(power_now);
+    if (laser) {
+      laser->follow(power_now);
+      // a lost or alarming source: the beam off at once, the job stops
+      // along the path (the run then fails with the reason)
+      if (laser_fault.empty()) {
+        laser_fault = laser->fault();
+        if (!laser_fault.empty()) kernel.laser_inhibit();
+      }
+      if (!laser_fault.empty() && !stop_sent) stop_sent = kernel.command({rt::RtCommandType::Stop, 0, 0.0});
+    }
     if (options.on_segment && kernel.current_segment() != segment_seen) {
       segment_seen = kernel.current_segment();
       options.on_segment(segment_seen, static_cast<double>(kernel.machine_time_ns()) * 1e-9);
@@ -383,7 +466,10 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   if (planned.failed) return planned.error;
 
   fill_run_figures(report, kernel, sim, planned, machine, start_steps);
+  if (!laser_fault.empty() && report.fault.empty()) report.fault = "laser source: " + laser_fault;
   report.max_deviation_mm = deviation.max_mm();
+  motion.finish();
+  check_run(report, motion, deviation);
   return report;
 }
 

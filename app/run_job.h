@@ -54,6 +54,10 @@ struct AxisReport {
   // (sampled at T) times K and K².
   double peak_velocity = 0.0;      // mm/s or deg/s
   double peak_acceleration = 0.0;  // mm/s² or deg/s²
+  // Measured from the RT trace's step positions over the check's windows
+  // (plan/motion_check.h), and the limits they are held to.
+  double measured_velocity = 0.0, measured_acceleration = 0.0;
+  double velocity_limit = 0.0, acceleration_limit = 0.0;
   std::int64_t steps_sent = 0;     // net pulses the machine received
   std::int64_t steps_commanded = 0;
 };
@@ -72,6 +76,11 @@ struct RunReport {
   double feed_length_mm = 0.0;
   double max_deviation_mm = 0.0;
   std::array<AxisReport, kAxisCount> axes{};
+  // The run's own check: every way the executed motion left an axis limit
+  // or the path's tolerance, in words; empty when it kept them all. The
+  // windows the trace was measured over, in periods of T.
+  std::vector<std::string> breaches;
+  int velocity_window = 0, acceleration_window = 0;
   bool steps_match = false;
   std::uint64_t underruns = 0;
   std::uint64_t overruns = 0;
@@ -106,6 +115,10 @@ struct RtLogLine {
 [[nodiscard]] RtLogLine describe_rt_log(const rt::RtLogRecord& r, const MachineConfig& machine);
 [[nodiscard]] const char* state_name(rt::MachineState s);
 [[nodiscard]] const char* rt_command_name(rt::RtCommandType t);
+
+// The run did what was commanded and kept every limit: the steps match, no
+// bad frame, no fault, no breach of its own check. Otherwise the CLI exits 3.
+[[nodiscard]] bool run_succeeded(const RunReport& report);
 
 [[nodiscard]] std::string format_report(const RunReport& report);
 [[nodiscard]] std::string report_json(const RunReport& report);

@@ -14,16 +14,29 @@ double DeviationMeter::add(const Vec3& point, std::uint32_t index) {
       source_done_ = true;
       break;
     }
-    window_.push_back(Entry{loaded_++, SegmentGeometry(seg)});
+    const double tol = seg.path_mode != PathMode::Blend ? 0.0
+                       : seg.blend_tolerance_mm > 0.0 ? seg.blend_tolerance_mm
+                                                      : default_tolerance_mm_;
+    window_.push_back(Entry{loaded_++, SegmentGeometry(seg), tol, seg.line});
   }
   const std::uint32_t low = index > kWindowBack ? index - kWindowBack : 0;
   while (!window_.empty() && window_.front().index < low) window_.pop_front();
   double best = std::numeric_limits<double>::infinity();
+  double tol = 0.0;
+  std::uint32_t line = 0;
   for (const Entry& e : window_) {
     if (e.index > index + kWindowAhead) break;
     best = std::min(best, e.geo.distance_xyz(point));
+    tol = std::max(tol, e.tolerance_mm);
+    if (e.index <= index) line = e.line;
   }
   if (!std::isfinite(best)) best = 0.0;  // no programmed segment: nothing to compare
+  const double allowed = std::max(tol, rounding_mm_) + kDeviationSlackMm;
+  if (best - allowed > excess_) {
+    excess_ = best - allowed;
+    excess_tolerance_ = allowed;
+    excess_line_ = line;
+  }
   max_ = std::max(max_, best);
   ++points_;
   return best;

@@ -3,6 +3,13 @@
 // around the one the point was executed for. The programmed segments come
 // from an independent reading of the program (a SegmentSource), so the
 // measurement checks the output against the input it was made from.
+//
+// It also checks each point against the tolerance in effect: G64 P (the
+// machine's default where P is not given) for blended segments, none for
+// G61/G61.1 (exact path), never less than the rounding of a point to steps
+// (half a step on each of X Y Z). A point is judged against the largest
+// tolerance of the segments it is compared with: a blend between two
+// segments may use either's.
 #pragma once
 
 #include <cstdint>
@@ -21,21 +28,40 @@ class DeviationMeter {
   // the run before it: 16 + 16 + 2 covers both.
   static constexpr std::uint32_t kWindowBack = 34;
   static constexpr std::uint32_t kWindowAhead = 1;
+  // Floating-point slack on the tolerance (the distance computation's own
+  // rounding), far below a step.
+  static constexpr double kDeviationSlackMm = 1e-9;
 
-  explicit DeviationMeter(SegmentSource source) : source_(std::move(source)) {}
+  // default_tolerance_mm: G64 without P (MachineConfig::path_tolerance_mm);
+  // rounding_mm: the distance a point's rounding to steps may add.
+  explicit DeviationMeter(SegmentSource source, double default_tolerance_mm = 0.0,
+                          double rounding_mm = 0.0)
+      : source_(std::move(source)), default_tolerance_mm_(default_tolerance_mm),
+        rounding_mm_(rounding_mm) {}
 
   // Adds an executed point that belongs to segment `index`; returns its deviation.
   double add(const Vec3& point, std::uint32_t index);
 
   [[nodiscard]] double max_mm() const noexcept { return max_; }
   [[nodiscard]] std::uint64_t points() const noexcept { return points_; }
+  // The worst point beyond its tolerance: by how much (mm; 0 when every
+  // point kept it), the tolerance it had and the program line.
+  [[nodiscard]] double excess_mm() const noexcept { return excess_; }
+  [[nodiscard]] double excess_tolerance_mm() const noexcept { return excess_tolerance_; }
+  [[nodiscard]] std::uint32_t excess_line() const noexcept { return excess_line_; }
 
  private:
   struct Entry {
     std::uint32_t index;
     SegmentGeometry geo;
+    double tolerance_mm;
+    std::uint32_t line;
   };
   SegmentSource source_;
+  double default_tolerance_mm_;
+  double rounding_mm_;
+  double excess_ = 0.0, excess_tolerance_ = 0.0;
+  std::uint32_t excess_line_ = 0;
   std::deque<Entry> window_;
   std::uint32_t loaded_ = 0;  // segments read from the source so far
   bool source_done_ = false;
