@@ -6,6 +6,15 @@
 #include "drivers/modbus/register_map.h"
 
 namespace lcnc::app {
+namespace {
+
+std::string alarm_text(double code) {
+  return (static_cast<int>(code) & drivers::kAlarmOverTemperature) != 0
+             ? "over-temperature"
+             : "alarm code " + std::to_string(static_cast<int>(code));
+}
+
+}  // namespace
 
 Result<std::unique_ptr<LaserLink>> LaserLink::simulated() {
   Result<drivers::DeviceMap> laser_map = drivers::shipped_device("laser_source");
@@ -71,10 +80,31 @@ LaserLink::~LaserLink() {
   if (laser_sim_) laser_sim_->stop();
 }
 
-void LaserLink::note_failure(const Status& s) {
-  if (s.ok()) return;
+void LaserLink::note_result(const Status& s) {
   std::lock_guard lock(mutex_);
+  if (s.ok()) {
+    failures_in_row_ = 0;
+    return;
+  }
   if (report_.error.empty()) report_.error = s.error().message;
+  if (finished_) return;
+  // a reading its register cannot hold (a sensor open or shorted reads as
+  // the word's end, 3276.7 °C): the device and its map disagree, and no
+  // value of it can be trusted
+  if (s.error().code == ErrorCode::PeripheralValueOutOfRange)
+    set_fault(s.error().message + ": taken as a failed sensor");
+  if (++failures_in_row_ >= kFailuresToFault)
+    set_fault(laser_->who() + " lost: " + std::to_string(failures_in_row_) +
+              " requests in a row failed (" + s.error().message + ")");
+}
+
+void LaserLink::set_fault(std::string why) {
+  if (fault_.empty()) fault_ = std::move(why);
+}
+
+std::string LaserLink::fault() {
+  std::lock_guard lock(mutex_);
+  return fault_;
 }
 
 Status LaserLink::enable() {
@@ -89,7 +119,7 @@ Status LaserLink::enable() {
   if (!rated) return rated.error();
   report_.rated_power_w = *rated;
   const auto now = std::chrono::steady_clock::now();
-  next_setpoint_ = next_meter_ = next_temp_ = now;
+  next_setpoint_ = next_meter_ = next_health_ = now;
   return {};
 }
 
@@ -100,14 +130,22 @@ void LaserLink::follow(double commanded_pct) {
     next_setpoint_ = now + kSetpointInterval;
     sent_pct_ = commanded_pct_;
     ++report_.setpoint_writes;
-    laser_->write_async("power_setpoint_pct", sent_pct_, [this](Status s) { note_failure(s); });
+    laser_->write_async("power_setpoint_pct", sent_pct_, [this](Status s) { note_result(s); });
   }
-  if (now >= next_temp_) {
-    next_temp_ = now + std::chrono::milliseconds(200);
+  if (now >= next_health_) {
+    next_health_ = now + kHealthInterval;
     laser_->read_async("temperature_c", [this](Result<double> t) {
-      if (!t) return note_failure(t.error());
+      if (!t) return note_result(t.error());
+      note_result({});
       std::lock_guard lock(mutex_);
       report_.peak_temperature_c = std::max(report_.peak_temperature_c, *t);
+    });
+    laser_->read_async("alarm_code", [this](Result<double> a) {
+      if (!a) return note_result(a.error());
+      note_result({});
+      if (*a == 0.0) return;
+      std::lock_guard lock(mutex_);
+      set_fault(laser_->who() + " alarm: " + alarm_text(*a));
     });
   }
   if (meter_ && now >= next_meter_) {
@@ -135,16 +173,17 @@ void LaserLink::follow(double commanded_pct) {
 }
 
 PeripheralReport LaserLink::finish() {
-  finished_ = true;
-  note_failure(laser_->write("power_setpoint_pct", 0).get());
-  note_failure(laser_->write("enable", 0).get());
+  {
+    std::lock_guard lock(mutex_);
+    finished_ = true;  // failures from here on are the link's end, not a fault
+  }
+  note_result(laser_->write("power_setpoint_pct", 0).get());
+  note_result(laser_->write("enable", 0).get());
   if (Result<double> alarm = laser_->read("alarm_code").get(); !alarm) {
-    note_failure(alarm.error());
+    note_result(alarm.error());
   } else if (*alarm != 0.0) {
     std::lock_guard lock(mutex_);
-    report_.alarm = (static_cast<int>(*alarm) & drivers::kAlarmOverTemperature) != 0
-                        ? "over-temperature"
-                        : "alarm code " + std::to_string(static_cast<int>(*alarm));
+    report_.alarm = alarm_text(*alarm);
   }
   // the masters are done: every callback has run
   laser_->stop();

@@ -10,7 +10,11 @@
 // output, DESIGN §2) whenever it changes by more than kSetpointDeadband,
 // at most every kSetpointInterval, and the meter is read every
 // kMeterInterval — all asynchronous (ModbusMaster's worker), so the job's
-// drain loop never waits on the wire. After the job (or on any fault): the
+// drain loop never waits on the wire. The source's alarm and temperature
+// are read every kHealthInterval: a latched alarm, any reading outside its
+// register's range (a failed sensor), or kFailuresToFault requests in a row
+// without an answer make fault() say so, and the job stops along the path
+// with the beam off (app/run_job.cpp). After the job (or on any fault): the
 // setpoint goes to 0 and emission is disabled.
 #pragma once
 
@@ -49,6 +53,11 @@ class LaserLink {
   static constexpr std::chrono::milliseconds kSetpointInterval{20};
   static constexpr std::chrono::milliseconds kMeterInterval{50};
   static constexpr double kSetpointDeadband = 0.5;  // % of rated power
+  static constexpr std::chrono::milliseconds kHealthInterval{200};
+  // Failed requests to the source in a row that make it lost: one lost
+  // frame is retried by the next request; three (~0.6 s of the health
+  // polls, or each waiting out its timeout) is a link that is gone.
+  static constexpr int kFailuresToFault = 3;
 
   // Starts a simulated laser source and a power meter in its beam on free
   // loopback ports, and links to them.
@@ -64,6 +73,9 @@ class LaserLink {
   // From the job's drain loop, with the commanded power now (% of rated).
   // Never blocks.
   void follow(double commanded_pct);
+  // Why the source can no longer be trusted during the job (lost, alarm,
+  // an implausible reading); empty while it is well. From any thread.
+  [[nodiscard]] std::string fault();
   // Setpoint 0, emission off, the last status read; the report. (Without
   // it, the destructor still switches emission off.)
   [[nodiscard]] PeripheralReport finish();
@@ -71,7 +83,10 @@ class LaserLink {
  private:
   LaserLink() = default;
   [[nodiscard]] Status open(const drivers::Endpoint& laser, const std::optional<drivers::Endpoint>& meter);
-  void note_failure(const Status& s);
+  // Every answer of the source (and every failure) passes here: failures in
+  // a row count toward fault().
+  void note_result(const Status& s);
+  void set_fault(std::string why);  // the first one stays (mutex_ held)
 
   std::unique_ptr<drivers::LaserSourceSim> laser_sim_;
   std::unique_ptr<drivers::PowerMeterSim> meter_sim_;
@@ -80,9 +95,11 @@ class LaserLink {
   PeripheralReport report_;
   double sent_pct_ = 0.0;
   double commanded_pct_ = 0.0;
-  std::chrono::steady_clock::time_point next_setpoint_{}, next_meter_{}, next_temp_{};
+  std::chrono::steady_clock::time_point next_setpoint_{}, next_meter_{}, next_health_{};
+  int failures_in_row_ = 0;  // guarded by mutex_
+  std::string fault_;        // guarded by mutex_
   bool enabled_ = false;   // enable() wrote enable = 1
-  bool finished_ = false;  // finish() has switched it off
+  bool finished_ = false;  // finish() has switched it off (guarded by mutex_)
   bool meter_busy_ = false;  // one read outstanding at a time (guarded by mutex_)
   std::mutex mutex_;         // the callbacks (master's worker) ↔ the drain loop
   double meter_sum_w_ = 0.0, commanded_sum_w_ = 0.0;

@@ -543,6 +543,7 @@ void RtKernel::cycle(const Motion& m, double length_ns, std::int64_t end_ns) noe
   float power = m.on_path ? m.inc.power_pct : 0.0f;
   if (m.on_path && m.inc.power_cap_pct > 0.0f)
     power = std::min(m.inc.power_cap_pct, power * static_cast<float>(k_));
+  if (laser_inhibit_.load(std::memory_order_relaxed)) power = 0.0f;
   frame_.power_pct = power;
   power_now_ = power;
   sink_.emit(frame_);

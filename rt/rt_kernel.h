@@ -177,6 +177,11 @@ class RtKernel {
   // stopped job's flush completes.
   void stream_begin() noexcept { streaming_.store(true, std::memory_order_release); }
   void stream_end() noexcept { streaming_.store(false, std::memory_order_release); }
+  // Laser output off from the next period, whatever the job commands (a
+  // lost or alarming laser source: the job then stops along the path with
+  // the beam off), until laser_release(). From any thread.
+  void laser_inhibit() noexcept { laser_inhibit_.store(true, std::memory_order_relaxed); }
+  void laser_release() noexcept { laser_inhibit_.store(false, std::memory_order_relaxed); }
   // Entries the kernel keeps in the buffer to brake from K to 0 along the
   // path at the override ramp: K²/(2ρT) plus a margin.
   [[nodiscard]] std::size_t braking_reserve(double k) const noexcept;
@@ -362,6 +367,9 @@ class RtKernel {
 
   std::atomic<bool> shutdown_requested_{false};
   std::atomic<bool> streaming_{false};
+  // laser_inhibit(): relaxed on both sides — one flag, read once a period,
+  // ordering nothing else.
+  std::atomic<bool> laser_inhibit_{false};
   std::atomic<MachineState> state_{MachineState::Idle};
   std::atomic<std::uint32_t> homed_{0};
   std::atomic<std::uint16_t> fault_code_{0};

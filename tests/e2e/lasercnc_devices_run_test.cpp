@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <fstream>
 #include <string>
 #include <thread>
 
@@ -103,6 +104,109 @@ TEST(LasercncRunDevices, NoDeviceAtTheEndpointIsAClearErrorWithinTheTimeouts) {
   EXPECT_NE(r.err.find("laser_source"), std::string::npos) << r.err;
   EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(10));
   EXPECT_EQ(lasercnc("run " + job(kCut).string() + " --laser udp:1").exit_code, 2);
+}
+
+// About 6.5 s of cutting at 60 %: time for the source to fail in the middle.
+const char* kLongCut =
+    "G21 G90\nG0 X10 Y10\nM3 S60\nG1 X160 F3000\nG1 Y20\nG1 X10\nM5\nG0 X0 Y0\nM2\n";
+constexpr double kLongCutS = 6.3;  // at least, without a fault
+
+// Runs kLongCut against `laser` (a source this test holds) while `fail`
+// breaks it 0.8 s in; the report and the trace's laser column after.
+struct FailedRun {
+  CmdResult r;
+  nlohmann::json j;
+  double last_lasing_t = -1.0;  // the last period with laser output, s
+  double end_t = 0.0;           // the trace's last period, s
+};
+template <typename Fail>
+FailedRun run_while_failing(lcnc::drivers::LaserSourceSim& laser, Fail fail) {
+  FailedRun out;
+  const fs::path trace = temp_dir() / "fail_trace.csv";
+  std::thread breaker([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(800));
+    fail();
+  });
+  out.r = lasercnc("run " + job(kLongCut).string() + " --laser tcp:127.0.0.1:" +
+                   std::to_string(laser.endpoint().port) + " --trace " + trace.string() +
+                   " --json --no-realtime");
+  breaker.join();
+  out.j = nlohmann::json::parse(out.r.out, nullptr, false);
+  std::ifstream csv(trace);
+  std::string row;
+  std::getline(csv, row);  // header
+  while (std::getline(csv, row)) {
+    const double t = std::stod(row);
+    const double power = std::stod(row.substr(row.rfind(',') + 1));
+    if (power > 0.0) out.last_lasing_t = t;
+    out.end_t = t;
+  }
+  return out;
+}
+
+// A source that goes silent mid-job (its server gone): a controlled stop
+// along the path with the beam off, and the run fails naming it.
+TEST(LasercncRunDevices, ALaserSourceLostMidJobStopsTheJobWithTheBeamOff) {
+  auto map = lcnc::drivers::shipped_device("laser_source");
+  ASSERT_TRUE(static_cast<bool>(map));
+  auto laser = lcnc::drivers::LaserSourceSim::create(*map);
+  ASSERT_TRUE(static_cast<bool>(laser));
+  ASSERT_TRUE((*laser)->start().ok());
+  const FailedRun f = run_while_failing(**laser, [&] { (*laser)->stop(); });
+  EXPECT_EQ(f.r.exit_code, 3) << f.r.err << f.r.out;
+  ASSERT_TRUE(f.j.is_object()) << f.r.out;
+  const std::string fault = f.j["fault"].get<std::string>();
+  EXPECT_NE(fault.find("laser source: laser_source (unit 2"), std::string::npos) << fault;
+  EXPECT_NE(fault.find("lost"), std::string::npos) << fault;
+  EXPECT_FALSE(f.j["succeeded"].get<bool>());
+  EXPECT_LT(f.end_t, kLongCutS - 2.0);  // stopped well short of the end
+  EXPECT_GT(f.last_lasing_t, 0.5);              // it was cutting …
+  EXPECT_LT(f.last_lasing_t, f.end_t);          // … and the beam was off before the stop ended
+  EXPECT_TRUE(f.j["check"]["passed"].get<bool>()) << f.j["check"];  // a controlled stop
+}
+
+// The source latches its over-temperature alarm mid-job.
+TEST(LasercncRunDevices, ALaserAlarmMidJobStopsTheJobWithTheBeamOff) {
+  auto map = lcnc::drivers::shipped_device("laser_source");
+  ASSERT_TRUE(static_cast<bool>(map));
+  lcnc::drivers::LaserSourceParams p;
+  p.thermal_tau_s = 0.5;  // heats fast: 60 % of 30 °C rise trips 35 °C within a second
+  p.alarm_c = 35.0;
+  p.reset_below_c = 30.0;
+  auto laser = lcnc::drivers::LaserSourceSim::create(*map, {}, p);
+  ASSERT_TRUE(static_cast<bool>(laser));
+  ASSERT_TRUE((*laser)->start().ok());
+  const FailedRun f = run_while_failing(**laser, [] {});
+  (*laser)->stop();
+  EXPECT_EQ(f.r.exit_code, 3) << f.r.err << f.r.out;
+  ASSERT_TRUE(f.j.is_object()) << f.r.out;
+  EXPECT_NE(f.j["fault"].get<std::string>().find("alarm: over-temperature"), std::string::npos)
+      << f.j["fault"];
+  EXPECT_LT(f.end_t, kLongCutS - 2.0);
+  EXPECT_LT(f.last_lasing_t, f.end_t);
+}
+
+// A sensor that reads the register's end (3276.7 °C) is no temperature.
+TEST(LasercncRunDevices, AnImplausibleTemperatureStopsTheJob) {
+  auto shipped = lcnc::drivers::shipped_device("laser_source");
+  ASSERT_TRUE(static_cast<bool>(shipped));
+  lcnc::drivers::DeviceMap map = *shipped;  // the simulator may report the i16's end
+  for (auto& reg : map.registers)
+    if (reg.name == "temperature_c") reg.max = 3276.7;
+  lcnc::drivers::LaserSourceParams p;
+  p.ambient_c = 3276.7;
+  p.alarm_c = 1e6;
+  p.reset_below_c = 1e5;
+  auto laser = lcnc::drivers::LaserSourceSim::create(map, {}, p);
+  ASSERT_TRUE(static_cast<bool>(laser)) << laser.error().to_string();
+  ASSERT_TRUE((*laser)->start().ok());
+  const FailedRun f = run_while_failing(**laser, [] {});
+  (*laser)->stop();
+  EXPECT_EQ(f.r.exit_code, 3) << f.r.err << f.r.out;
+  ASSERT_TRUE(f.j.is_object()) << f.r.out;
+  EXPECT_NE(f.j["fault"].get<std::string>().find("temperature_c: device reported 3276.7 outside"),
+            std::string::npos)
+      << f.j["fault"];
 }
 
 }  // namespace
