@@ -24,6 +24,14 @@ std::string_view error_name(ErrorCode code) noexcept {
   return "Unknown";
 }
 
+namespace {
+
+// Codes that report something the program or file is still used despite:
+// they print as warnings (their summaries in share/errors.def say so).
+bool is_warning(ErrorCode code) noexcept { return code == ErrorCode::GcodeLinesAfterEnd; }
+
+}  // namespace
+
 std::string Diagnostic::to_string() const {
   std::string out;
   if (!file.empty()) {
@@ -34,7 +42,8 @@ std::string Diagnostic::to_string() const {
     }
     out += ": ";
   }
-  out += "error E" + std::to_string(static_cast<unsigned>(code)) + " (" +
+  out += is_warning(code) ? "warning E" : "error E";
+  out += std::to_string(static_cast<unsigned>(code)) + " (" +
          std::string(error_name(code)) + "): ";
   out += message.empty() ? std::string(error_summary(code)) : message;
   return out;

@@ -1,7 +1,11 @@
 #include "dxf/dxf_reader.h"
 
+#include <sys/stat.h>
+
+#include <cerrno>
 #include <cmath>
-#include <fstream>
+#include <cstdio>
+#include <cstring>
 #include <map>
 #include <memory>
 #include <numbers>
@@ -580,15 +584,72 @@ Result<ReadResult> read_dxf_text(std::string_view text, const std::string& file,
   return out;
 }
 
+// Reads the file in chunks, bounded: a regular file larger than
+// kMaxDxfFileBytes is refused before reading; any other file (a pipe, a
+// device such as /dev/zero) is read only until it passes that size or a line
+// passes kMaxDxfLine, so nothing is read or held without end.
 Result<ReadResult> read_dxf_file(const std::string& path, const ReadOptions& opt) {
-  std::ifstream f(path, std::ios::binary);
+  struct FileCloser {
+    void operator()(std::FILE* f) const noexcept { std::fclose(f); }
+  };
+  const std::unique_ptr<std::FILE, FileCloser> f(std::fopen(path.c_str(), "rb"));
   if (!f) {
     return make_error(ErrorCode::FileNotFound,
-                      "cannot open '" + path + "'; expected a readable DXF file", path);
+                      "cannot open '" + path + "': " + std::strerror(errno) +
+                          "; expected a readable DXF file",
+                      path);
   }
-  std::ostringstream ss;
-  ss << f.rdbuf();
-  return read_dxf_text(ss.str(), path, opt);
+  const std::string bound = std::to_string(kMaxDxfFileBytes) + " bytes (" +
+                            std::to_string(kMaxDxfFileBytes >> 20) + " MiB)";
+  std::string text;
+  struct stat st {};
+  if (::fstat(::fileno(f.get()), &st) == 0 && S_ISREG(st.st_mode)) {
+    if (static_cast<std::uint64_t>(st.st_size) > kMaxDxfFileBytes) {
+      return make_error(ErrorCode::DxfUnsupported,
+                        "a file of " + std::to_string(st.st_size) +
+                            " bytes; expected a DXF file of at most " + bound,
+                        path);
+    }
+    text.reserve(static_cast<std::size_t>(st.st_size));
+  }
+  constexpr std::size_t kChunk = 1u << 16;
+  std::unique_ptr<char[]> chunk(new char[kChunk]);
+  std::size_t line_bytes = 0;  // of the line being read, '\r' included
+  std::uint32_t line = 1;
+  for (;;) {
+    const std::size_t got = std::fread(chunk.get(), 1, kChunk, f.get());
+    if (got == 0) break;
+    for (const char* p = chunk.get(); p < chunk.get() + got;) {
+      const char* end = chunk.get() + got;
+      const auto* nl = static_cast<const char*>(std::memchr(p, '\n', static_cast<std::size_t>(end - p)));
+      line_bytes += static_cast<std::size_t>((nl != nullptr ? nl : end) - p);
+      if (line_bytes > kMaxDxfLine + 1) {
+        return make_error(ErrorCode::DxfSyntax,
+                          "a line of more than " + std::to_string(kMaxDxfLine) +
+                              " characters (no line end within them); expected at most " +
+                              std::to_string(kMaxDxfLine) + " (a group code or value)",
+                          path, line);
+      }
+      if (nl == nullptr) break;
+      line_bytes = 0;
+      ++line;
+      p = nl + 1;
+    }
+    if (text.size() + got > kMaxDxfFileBytes) {
+      return make_error(ErrorCode::DxfUnsupported,
+                        "more than " + bound + " read and no end of file; expected a DXF "
+                        "file of at most " + bound,
+                        path);
+    }
+    text.append(chunk.get(), got);
+  }
+  if (std::ferror(f.get()) != 0) {
+    return make_error(ErrorCode::FileNotFound,
+                      "reading '" + path + "' stopped: " + std::strerror(errno) +
+                          "; expected to read the whole DXF file",
+                      path);
+  }
+  return read_dxf_text(text, path, opt);
 }
 
 }  // namespace lcnc::dxf

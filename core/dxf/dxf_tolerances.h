@@ -56,6 +56,13 @@ inline constexpr std::size_t kMaxDeclaredCount = 10'000'000;
 // a longer one leaves its stream failed but not at the end, and its reading
 // loop never ends — found by fuzzing. The scanner refuses longer lines first.
 inline constexpr std::size_t kMaxDxfLine = 1023;
+
+// Largest DXF file read: 128 MiB, a million entities (kMaxPlacedEntities) as
+// CAD programs write them (~100 bytes each) with room to spare. A larger
+// regular file is refused before reading; a pipe or device is read only up
+// to this, so a stream without end (/dev/zero, /dev/urandom) fails instead
+// of filling the memory.
+inline constexpr std::size_t kMaxDxfFileBytes = std::size_t{128} << 20;
 inline constexpr std::size_t kMaxInsertCopies = 100'000;
 
 // Affine maps of arcs (INSERT scale, OCS) must be similarities: |M^T M − s² I|

@@ -87,11 +87,62 @@ bool BlockParser::fail(ErrorCode code, std::uint32_t byte_pos, std::string messa
   return false;
 }
 
-std::string BlockParser::quoted(Span s) const {
-  std::string q = "'";
-  q += text_.text(s);
+std::string quote(std::string_view text) {
+  static constexpr char kHex[] = "0123456789ABCDEF";
+  std::string q;
+  q.reserve(text.size() + 2);
+  q += '\'';
+  for (const char ch : text) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c < 0x20 || c == 0x7F) {
+      q += "\\x";
+      q += kHex[c >> 4];
+      q += kHex[c & 0xF];
+    } else {
+      q += ch;
+    }
+  }
   q += '\'';
   return q;
+}
+
+std::string BlockParser::quoted(Span s) const { return quote(text_.text(s)); }
+
+// Compact chars [begin, end), at most 24 of them (with "..." when cut).
+std::string BlockParser::quoted(std::uint32_t begin, std::uint32_t end) const {
+  constexpr std::uint32_t kShown = 24;
+  const bool cut = end - begin > kShown;
+  std::string q = quote(std::string_view(text_.compact.data() + begin, cut ? kShown : end - begin));
+  if (cut) q.insert(q.size() - 1, "...");
+  return q;
+}
+
+// Start (compact index) of the word whose number ends just before `end`:
+// back over digits, points and signs, then its letter.
+std::uint32_t BlockParser::word_before(std::uint32_t end) const {
+  const char* c = text_.compact.data();
+  std::uint32_t at = end;
+  while (at > words_begin_ &&
+         (is_digit(c[at - 1]) || c[at - 1] == '.' || c[at - 1] == '+' || c[at - 1] == '-')) {
+    --at;
+  }
+  return at > words_begin_ ? at - 1 : at;
+}
+
+// A number that runs on at compact index i (a second '.', a sign after digits).
+bool BlockParser::malformed_number(std::uint32_t i) {
+  const char* c = text_.compact.data();
+  const std::uint32_t n = text_.size;
+  const std::uint32_t word = word_before(i);
+  std::uint32_t end = i;
+  while (end < n && (is_digit(c[end]) || c[end] == '.' || c[end] == '+' || c[end] == '-')) ++end;
+  const char letter = c[word];
+  return fail(ErrorCode::GcodeBadNumber, text_.offset[word],
+              "found " + quoted(word, end) + ": malformed number " + quoted(word + 1, end) +
+                  (c[i] == '.' ? " (more than one decimal point)"
+                               : " (a sign inside the number)") +
+                  "; expected one number: [+-] digits with at most one decimal point, such "
+                  "as " + std::string(1, letter) + "1.25");
 }
 
 // Drops comments and blanks, upper-cases letters (LinuxCNC close_and_downcase).
@@ -184,10 +235,9 @@ bool BlockParser::read_number(std::uint32_t& i, std::uint32_t letter_at_pos, dou
                       "[': expressions ([ ]) are not supported; expected a plain number after " +
                       letter);
     }
-    std::string found(1, letter);
-    if (start < n) found.append(c + start, std::min<std::uint32_t>(n - start, 8));
     return fail(ErrorCode::GcodeBadNumber, letter_pos,
-                "found '" + found + "' with no number after " + letter +
+                "found " + quoted(letter_at_pos, std::min(n, start + 8)) +
+                    " with no number after " + letter +
                     "; expected a number such as " + letter + "10, " + letter + "-0.5 or " +
                     letter + ".5");
   }
@@ -324,19 +374,27 @@ bool BlockParser::read_word(std::uint32_t& i, Block& out) {
         return fail(ErrorCode::GcodeSyntax, pos,
                     "found '/' inside the block; expected block delete '/' only as the first "
                     "character of a line");
-      default: {
-        // Quote the whole UTF-8 character when it is one.
-        std::string_view orig = text_.original.substr(pos);
-        std::size_t len = 1;
-        while (len < orig.size() && len < 4 && (static_cast<unsigned char>(orig[len]) & 0xC0) == 0x80) {
-          ++len;
+      case '.':
+      case '+':
+      case '-':
+        // Right after a word's number ("X1.2.3", "X1-2"): that number ran on.
+        // Checked here, off the path of well-formed words.
+        if (i > words_begin_ && (is_digit(c[i - 1]) || c[i - 1] == '.')) {
+          return malformed_number(i);
         }
-        return fail(ErrorCode::GcodeSyntax, pos,
-                    "found '" + std::string(orig.substr(0, len)) +
-                        "'; expected a word: a letter (" + kSupportedWords +
-                        ") followed by a number");
-      }
+        break;
+      default:
+        break;
     }
+    // Quote the whole UTF-8 character when it is one.
+    std::string_view orig = text_.original.substr(pos);
+    std::size_t len = 1;
+    while (len < orig.size() && len < 4 && (static_cast<unsigned char>(orig[len]) & 0xC0) == 0x80) {
+      ++len;
+    }
+    return fail(ErrorCode::GcodeSyntax, pos,
+                "found " + quote(orig.substr(0, len)) + "; expected a word: a letter (" +
+                    kSupportedWords + ") followed by a number");
   }
 
   // The span of an unsupported word, for its message: the letter and what
@@ -348,6 +406,14 @@ bool BlockParser::read_word(std::uint32_t& i, Block& out) {
   };
   switch (ch) {
     case 'O':
+      if (i != words_begin_) {
+        // An O-word can only open a block; after another word it is a stray
+        // letter, most often a zero typed as O ("X1O"). Name the word before.
+        return fail(ErrorCode::GcodeSyntax, pos,
+                    "found a letter 'O' after " + quoted(word_before(i), i) +
+                        ": unexpected 'O' inside the block (a zero typed as the letter O?); "
+                        "expected the digit 0 or a word letter (" + kSupportedWords + ")");
+      }
       return fail(ErrorCode::GcodeUnsupported, pos,
                   "found " + rough_word() +
                       ": O-word subroutines and control flow are not supported; expected "
@@ -443,8 +509,8 @@ bool BlockParser::parse(std::string_view line, Block& out) {
     out.percent = true;
     if (n > 1) {
       return fail(ErrorCode::GcodeSyntax, text_.offset[1],
-                  "found '" + std::string(c + 1, n - 1) +
-                      "' after '%'; expected nothing but a comment on a '%' program "
+                  "found " + quote(std::string_view(c + 1, n - 1)) +
+                      " after '%'; expected nothing but a comment on a '%' program "
                       "delimiter line");
     }
     return true;
@@ -465,6 +531,7 @@ bool BlockParser::parse(std::string_view line, Block& out) {
                   "found 'N' with no line number; expected N followed by digits, e.g. N10");
     }
   }
+  words_begin_ = i;
   while (i < n) {
     if (!read_word(i, out)) return false;
     out.empty = false;

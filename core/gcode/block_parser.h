@@ -119,15 +119,24 @@ class BlockParser {
   bool read_word(std::uint32_t& i, Block& out);
   bool read_g(Span w, double value, Block& out);
   bool read_m(Span w, double value, Block& out);
+  bool malformed_number(std::uint32_t i);
+  [[nodiscard]] std::uint32_t word_before(std::uint32_t end) const;
   bool fail(ErrorCode code, std::uint32_t byte_pos, std::string message);
   [[nodiscard]] std::string quoted(Span s) const;
+  [[nodiscard]] std::string quoted(std::uint32_t begin, std::uint32_t end) const;
 
   std::uint8_t present_axes_;
   LineText text_;
+  std::uint32_t words_begin_ = 0;  // compact index of the first word (after '/' and N)
   Fault fault_;
 };
 
 // "G38.2" from a code stored ×10.
 [[nodiscard]] std::string g_code_name(int tenths);
+
+// `text` in single quotes for a message, each control byte (NUL, ESC, a stray
+// CR, DEL) written as \xNN: a message never carries them raw to a terminal
+// or a log. Other bytes, UTF-8 included, stay as they are.
+[[nodiscard]] std::string quote(std::string_view text);
 
 }  // namespace lcnc::gcode

@@ -26,6 +26,13 @@ std::string num(double v) {
   return s;
 }
 
+// A number for a bound or a value of any size: 6 significant digits.
+std::string gnum(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
 const char* plane_name(Plane p) {
   switch (p) {
     case Plane::ZX: return "ZX plane (G18)";
@@ -38,7 +45,14 @@ const char* plane_name(Plane p) {
 }  // namespace
 
 Interpreter::Interpreter(const MachineConfig& machine, const Pose& start)
-    : machine_(machine), pos_(start) {}
+    : machine_(machine), pos_(start) {
+  for (int a = 0; a < kAxisCount; ++a) {
+    const AxisConfig& ax = machine.axes[a];
+    if (ax.present && (ax.wrap || (machine.tcp.enabled && a < 3))) {
+      untraveled_axes_ = static_cast<std::uint8_t>(untraveled_axes_ | (1u << a));
+    }
+  }
+}
 
 // --- messages -------------------------------------------------------------
 
@@ -53,21 +67,16 @@ bool Interpreter::fail(ErrorCode code, Span at, std::string message) {
   return fail_at(code, t_->byte_pos(at), std::move(message));
 }
 
-std::string Interpreter::quoted(Span s) const { return "'" + std::string(t_->text(s)) + "'"; }
+std::string Interpreter::quoted(Span s) const { return quote(t_->text(s)); }
 
 // The line as written, trimmed (and shortened when long).
 std::string Interpreter::quoted_block() const {
   std::string_view l = t_->original;
   while (!l.empty() && (l.front() == ' ' || l.front() == '\t')) l.remove_prefix(1);
   while (!l.empty() && (l.back() == ' ' || l.back() == '\t')) l.remove_suffix(1);
-  std::string q = "'";
-  if (l.size() > kQuoteMaxChars) {
-    q += l.substr(0, kQuoteMaxChars);
-    q += "...";
-  } else {
-    q += l;
-  }
-  q += '\'';
+  if (l.size() <= kQuoteMaxChars) return quote(l);
+  std::string q = quote(l.substr(0, kQuoteMaxChars));
+  q.insert(q.size() - 1, "...");
   return q;
 }
 
@@ -188,6 +197,18 @@ bool Interpreter::set_feed_and_power() {
       block_has_f_ = true;
       block_f_ = f;
     } else {
+      // F0 stays "no feed" (refused on a feed move); others must be a speed.
+      const double scale = inch ? kMmPerInch : 1.0;
+      const double f_mm_min = f * scale;
+      if (f > 0.0 && (f_mm_min < kMinFeedPerMin || f_mm_min > kMaxFeedPerMin)) {
+        const char* unit = inch ? "in/min" : "mm/min";
+        return fail(ErrorCode::GcodeBadValue, b.span('F'),
+                    "found " + quoted(b.span('F')) + " (" + gnum(f) + " " + unit +
+                        "); expected a feed rate F from " + gnum(kMinFeedPerMin / scale) +
+                        " to " + gnum(kMaxFeedPerMin / scale) + " " + unit +
+                        " (or deg/min for rotary-only moves): slower never finishes a move, "
+                        "faster is no feed");
+      }
       feed_set_ = true;
       feed_raw_ = f;
       feed_mm_min_ = f * (inch ? kMmPerInch : 1.0);
@@ -229,6 +250,12 @@ bool Interpreter::dwell(SegmentBuffer& out) {
     return fail(ErrorCode::GcodeBadValue, b.span('P'),
                 "found " + quoted(b.span('P')) + " on G4; expected a dwell time P >= 0 seconds");
   }
+  if (p > kMaxBlockSeconds) {
+    return fail(ErrorCode::GcodeBadValue, b.span('P'),
+                "found " + quoted(b.span('P')) + " on G4 (" + gnum(p / 3600.0) +
+                    " hours); expected a dwell time P from 0 to " + gnum(kMaxBlockSeconds) +
+                    " seconds (one day)");
+  }
   Segment& s = out.push();
   fill_modal(s);
   s.kind = MotionKind::Dwell;
@@ -254,6 +281,11 @@ void Interpreter::set_modes() {
   if (dist >= 0) absolute_ = dist == 900;
   const int arc_dist = b.code(GGroup::ArcDistance);
   if (arc_dist >= 0) arc_absolute_ = arc_dist == 901;
+}
+
+// " mm", or " in (N mm)" in G20, after the largest path tolerance.
+std::string Interpreter::tolerance_unit() const {
+  return inch_ ? " in (" + gnum(kMaxPathToleranceMm) + " mm)" : std::string(" mm");
 }
 
 bool Interpreter::set_path_control() {
@@ -284,6 +316,12 @@ bool Interpreter::set_path_control() {
                   "found " + quoted(b.span('P')) + " on G64; expected a blend tolerance P >= 0");
     }
     p_mm = b['P'] * length_scale();
+    if (p_mm > kMaxPathToleranceMm) {
+      return fail(ErrorCode::GcodeBadValue, b.span('P'),
+                  "found " + quoted(b.span('P')) + " on G64; expected a blend tolerance P from "
+                  "0 to " + gnum(kMaxPathToleranceMm / length_scale()) +
+                      tolerance_unit());
+    }
   }
   double q_mm = 0.0;
   if (b.has('Q')) {
@@ -293,6 +331,12 @@ bool Interpreter::set_path_control() {
                       " on G64; expected a naive-CAM tolerance Q >= 0");
     }
     q_mm = b['Q'] * length_scale();
+    if (q_mm > kMaxPathToleranceMm) {
+      return fail(ErrorCode::GcodeBadValue, b.span('Q'),
+                  "found " + quoted(b.span('Q')) + " on G64; expected a naive-CAM tolerance Q "
+                  "from 0 to " + gnum(kMaxPathToleranceMm / length_scale()) +
+                      tolerance_unit());
+    }
   }
   path_mode_ = PathMode::Blend;
   blend_tolerance_mm_ = p_mm;
@@ -329,6 +373,14 @@ bool Interpreter::check_feed() {
                       " in inverse-time mode (G93) with F0; expected a positive F word (F = "
                       "1 / minutes the move takes)");
     }
+    if (block_f_ < kMinInverseTimeF || block_f_ > kMaxFeedPerMin) {
+      return fail(ErrorCode::GcodeBadValue, b_->span('F'),
+                  "found " + quoted(b_->span('F')) +
+                      " in inverse-time mode (G93): a move of " + gnum(1.0 / block_f_) +
+                      " minutes; expected F from " + gnum(kMinInverseTimeF) + " to " +
+                      gnum(kMaxFeedPerMin) + " (F = 1 / minutes the move takes: at most " +
+                      gnum(kMaxBlockSeconds / 60.0) + " minutes, one day)");
+    }
     return true;
   }
   if (!feed_set_) {
@@ -341,6 +393,51 @@ bool Interpreter::check_feed() {
     return fail(ErrorCode::GcodeNoFeed, motion_word_,
                 "found " + quoted_block() + " with feed rate F0 in effect; expected a positive F "
                 "word (feed in " + feed_unit() + ") before or on this line");
+  }
+  return true;
+}
+
+// G94: the move at its feed must end within kMaxBlockSeconds (G93's F bound
+// says the same for inverse time). A product, not a quotient, on the path
+// every feed move takes; the message is built apart.
+bool Interpreter::check_duration(double linear_mm, double rotary_deg) {
+  if (inverse_time_) return true;
+  constexpr double kMaxMinutes = kMaxBlockSeconds / 60.0;
+  if (linear_mm > 0.0 ? linear_mm <= feed_mm_min_ * kMaxMinutes
+                      : rotary_deg <= feed_raw_ * kMaxMinutes) {
+    return true;
+  }
+  return fail_duration(linear_mm, rotary_deg);
+}
+
+bool Interpreter::fail_duration(double linear_mm, double rotary_deg) {
+  const bool rotary_only = !(linear_mm > 0.0);
+  const double length = rotary_only ? rotary_deg : linear_mm;
+  const double minutes = length / (rotary_only ? feed_raw_ : feed_mm_min_);
+  const double scale = rotary_only ? 1.0 : length_scale();
+  const char* unit = rotary_only ? "deg" : (inch_ ? "in" : "mm");
+  return fail(ErrorCode::GcodeBadValue, b_->has('F') ? b_->span('F') : motion_word_,
+              "found " + quoted_block() + ": a move of " + gnum(length / scale) + " " + unit +
+                  " at F" + gnum(feed_raw_) + " takes " + gnum(minutes) +
+                  " minutes; expected a move of at most " + gnum(kMaxBlockSeconds / 60.0) +
+                  " minutes (one day): a higher F");
+}
+
+// Axes no travel check covers (continuous rotary axes; X Y Z under
+// tool-centre-point control, checked on the joints later) must still stay
+// within sane magnitudes.
+bool Interpreter::check_magnitude(const Pose& end) {
+  const unsigned mask = b_->axis_mask & untraveled_axes_;
+  for (int a = 0; a < kAxisCount; ++a) {
+    if (((mask >> a) & 1u) == 0) continue;
+    const double bound = a < 3 ? kMaxLinearPositionMm : kMaxRotaryPositionDeg;
+    if (std::fabs(end[a]) <= bound) continue;
+    const char l = kAxisLetters[a];
+    const char* unit = a < 3 ? "mm" : "deg";
+    return fail(ErrorCode::GcodeBadValue, b_->span(l),
+                "found " + quoted(b_->span(l)) + " moving " + std::string(1, l) + " to " +
+                    gnum(end[a]) + " " + unit + " in machine coordinates; expected |" +
+                    std::string(1, l) + "| <= " + gnum(bound) + " " + unit);
   }
   return true;
 }
@@ -394,6 +491,7 @@ bool Interpreter::move(SegmentBuffer& out) {
     const double v = b[kAxisLetters[a]] * (a < 3 ? length_scale() : 1.0);
     end[a] = absolute_ ? v + offset[a] : pos_[a] + v;
   }
+  if ((b.axis_mask & untraveled_axes_) != 0 && !check_magnitude(end)) return false;
   if (block_motion_ == MotionMode::ArcCw || block_motion_ == MotionMode::ArcCcw) {
     return arc(end, out);
   }
@@ -410,8 +508,10 @@ bool Interpreter::move(SegmentBuffer& out) {
     s.laser = LaserMode::Off;
   } else {
     s.kind = MotionKind::Linear;
-    set_segment_feed(s, (end.head<3>() - pos_.head<3>()).norm(),
-                     (end.tail<3>() - pos_.tail<3>()).norm());
+    const double linear_mm = (end.head<3>() - pos_.head<3>()).norm();
+    const double rotary_deg = (end.tail<3>() - pos_.tail<3>()).norm();
+    if (!check_duration(linear_mm, rotary_deg)) return false;
+    set_segment_feed(s, linear_mm, rotary_deg);
   }
   pos_ = end;
   return true;
@@ -542,7 +642,18 @@ bool Interpreter::arc(const Pose& end_in, SegmentBuffer& out) {
   for (int a = 3; a < kAxisCount; ++a) lo[a] = hi[a] = end[a];  // rotary: end points only
   if (!check_travel(lo, hi, end)) return false;
 
-  set_segment_feed(s, arc_length_mm(s), (end.tail<3>() - pos_.tail<3>()).norm());
+  const double length_mm = arc_length_mm(s);
+  if (length_mm > kMaxArcLengthMm) {
+    return fail(ErrorCode::GcodeBadValue, b.has('P') ? b.span('P') : motion_word_,
+                "found " + quoted_block() + ": an arc of " + gnum(length_mm) +
+                    " mm (radius " + gnum(std::hypot(sa - c[ia], sb - c[ib])) + " mm" +
+                    (extra_turns > 0 ? ", " + std::to_string(extra_turns + 1) + " turns" : "") +
+                    "); expected an arc of at most " + gnum(kMaxArcLengthMm) +
+                    " mm (1 km): fewer turns or a smaller radius");
+  }
+  const double rotary_deg = (end.tail<3>() - pos_.tail<3>()).norm();
+  if (!check_duration(length_mm, rotary_deg)) return false;
+  set_segment_feed(s, length_mm, rotary_deg);
   pos_ = end;
   return true;
 }

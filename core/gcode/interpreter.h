@@ -28,6 +28,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 
 #include "gcode/block_parser.h"
 #include "machine/machine_config.h"
@@ -74,6 +75,9 @@ class Interpreter {
   bool move(SegmentBuffer& out);
   bool arc(const Pose& end_in, SegmentBuffer& out);
   bool check_feed();
+  bool check_duration(double linear_mm, double rotary_deg);
+  bool fail_duration(double linear_mm, double rotary_deg);
+  bool check_magnitude(const Pose& end);
   bool check_travel(const Pose& lo, const Pose& hi, const Pose& end);
   void fill_modal(Segment& s) const;
   void set_segment_feed(Segment& s, double linear_mm, double rotary_deg) const;
@@ -84,9 +88,13 @@ class Interpreter {
   [[nodiscard]] std::string quoted_block() const;
   [[nodiscard]] double length_scale() const noexcept;  // mm per program length unit
   [[nodiscard]] const char* feed_unit() const noexcept;
+  [[nodiscard]] std::string tolerance_unit() const;
 
   const MachineConfig& machine_;
   Pose pos_;  // machine coordinates
+  // bit index(Axis) for each axis check_travel does not bound: continuous
+  // rotary axes, and X Y Z under tool-centre-point control
+  std::uint8_t untraveled_axes_ = 0;
 
   // Modal state (initially G17 G21 G90 G91.1 G94 G54 G61 M5 M9, F unset, S0).
   MotionMode motion_ = MotionMode::None;

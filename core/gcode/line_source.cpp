@@ -3,7 +3,14 @@
 #include <cerrno>
 #include <cstring>
 
+#include "gcode/gcode_tolerances.h"
+
 namespace lcnc::gcode {
+
+// The unread tail moved to the front by refill() is shorter than a line
+// (else reading stopped), so a chunk always has room for more.
+static_assert(kMaxLineBytes + 2 < LineSource::kChunkBytes,
+              "a whole line and its end must fit one read chunk");
 
 LineSource::LineSource(std::string text)
     : buf_(std::move(text)), end_(buf_.size()), eof_(true) {}
@@ -20,43 +27,63 @@ std::unique_ptr<LineSource> LineSource::open_file(const std::string& path, std::
   return src;
 }
 
-bool LineSource::refill() {
-  if (eof_) return false;
+void LineSource::refill() {
   const std::size_t unread = end_ - begin_;
   if (begin_ > 0 && unread > 0) std::memmove(buf_.data(), buf_.data() + begin_, unread);
   begin_ = 0;
   end_ = unread;
-  // A line longer than the buffer: grow it (rare; the buffer is then kept).
-  if (end_ == buf_.size()) buf_.resize(buf_.size() * 2);
+  cr_valid_ = false;  // the bytes moved
   const std::size_t got = std::fread(buf_.data() + end_, 1, buf_.size() - end_, file_.get());
   end_ += got;
   if (got == 0) {  // std::fread returns 0 only at end of file or on an error
     eof_ = true;
     if (std::ferror(file_.get()) != 0) read_error_ = std::strerror(errno);
   }
-  return got > 0;
 }
 
 bool LineSource::next(std::string_view& line) {
+  if (too_long_) return false;
   for (;;) {
     const char* base = buf_.data();
-    const void* nl = std::memchr(base + begin_, '\n', end_ - begin_);
+    const char* p = base + begin_;
+    // The first '\n', and the first '\r' (kept from an earlier search while
+    // still ahead: a file without any costs one search per chunk, not per
+    // line). "\r\n" or a lone '\r' before the '\n' ends the line there.
+    const auto* nl = static_cast<const char*>(std::memchr(p, '\n', end_ - begin_));
+    if (!cr_valid_ || cr_at_ < begin_) {
+      const auto* r = static_cast<const char*>(std::memchr(p, '\r', end_ - begin_));
+      cr_at_ = r != nullptr ? static_cast<std::size_t>(r - base) : end_;
+      cr_valid_ = true;
+    }
+    const char* stop = nl != nullptr ? nl : base + end_;
+    const char* cr = cr_at_ < static_cast<std::size_t>(stop - base) ? base + cr_at_ : nullptr;
     std::size_t line_end = 0;
     std::size_t next_begin = 0;
-    if (nl != nullptr) {
-      line_end = static_cast<std::size_t>(static_cast<const char*>(nl) - base);
+    if (cr != nullptr && (cr + 1 < base + end_ || eof_)) {
+      // a '\r' whose next byte is known (or that ends the input)
+      line_end = static_cast<std::size_t>(cr - base);
+      next_begin = line_end + (cr + 1 == nl ? 2 : 1);
+    } else if (nl != nullptr) {
+      line_end = static_cast<std::size_t>(nl - base);
       next_begin = line_end + 1;
-    } else if (refill()) {
+    } else if (static_cast<std::size_t>((cr != nullptr ? cr : stop) - p) > kMaxLineBytes) {
+      too_long_ = true;  // no line end within the bound: stop before reading more
+      return false;
+    } else if (!eof_) {
+      refill();
       continue;
-    } else if (begin_ < end_) {  // last line without '\n'
+    } else if (begin_ < end_) {  // last line without a line end
       line_end = end_;
       next_begin = end_;
     } else {
       return false;
     }
+    if (line_end - begin_ > kMaxLineBytes) {
+      too_long_ = true;
+      return false;
+    }
     std::size_t line_begin = begin_;
     begin_ = next_begin;
-    if (line_end > line_begin && buf_[line_end - 1] == '\r') --line_end;
     if (first_line_) {
       first_line_ = false;
       if (line_end - line_begin >= 3 && std::memcmp(base + line_begin, "\xEF\xBB\xBF", 3) == 0) {

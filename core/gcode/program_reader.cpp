@@ -8,6 +8,7 @@
 
 #include "gcode/arc_geometry.h"
 #include "gcode/block_parser.h"
+#include "gcode/gcode_tolerances.h"
 #include "gcode/interpreter.h"
 #include "gcode/line_source.h"
 
@@ -120,6 +121,16 @@ ProgramReader::Next ProgramReader::Impl::read(Segment& out) {
     }
     std::string_view text;
     if (!source->next(text)) {
+      if (source->too_long()) {
+        error = make_error(ErrorCode::GcodeSyntax,
+                           "found a line longer than " + std::to_string(gcode::kMaxLineBytes) +
+                               " bytes (no line end within it); expected program lines of at "
+                               "most " + std::to_string(gcode::kMaxLineBytes) +
+                               " bytes ending in a line feed: is this a G-code text file?",
+                           file, line + 1, 0);
+        state = State::Failed;
+        return Next::Error;
+      }
       if (!source->read_error().empty()) {
         error = make_error(ErrorCode::FileNotFound,
                            "reading stopped after line " + std::to_string(line) + ": " +
@@ -177,18 +188,28 @@ void ProgramReader::Impl::warn_lines_after_end() {
     if (count++ == 0) {
       first_line = line;
       first_col = column_of(text, static_cast<std::uint32_t>(at));
-      first_text = std::string(text.substr(at, 60));
-      while (!first_text.empty() && (first_text.back() == ' ' || first_text.back() == '\t')) {
-        first_text.pop_back();
+      std::string_view excerpt = text.substr(at, 60);
+      while (!excerpt.empty() && (excerpt.back() == ' ' || excerpt.back() == '\t')) {
+        excerpt.remove_suffix(1);
       }
+      first_text = gcode::quote(excerpt);
     }
   }
-  if (count == 0) return;
+  if (count == 0 && !source->too_long()) return;
+  if (source->too_long()) {
+    // Not run either; but a file that goes on without line ends is worth a word.
+    ++line;
+    if (count++ == 0) {
+      first_line = line;
+      first_col = 1;
+      first_text = "longer than " + std::to_string(gcode::kMaxLineBytes) + " bytes";
+    }
+  }
   warnings.push_back(make_error(
       ErrorCode::GcodeLinesAfterEnd,
       "found " + std::to_string(count) + " line" + (count == 1 ? "" : "s") +
-          " after the program end (" + end_what + "), the first '" + first_text +
-          "'; they are not run: expected only blank lines, comments or '%' after the end",
+          " after the program end (" + end_what + "), the first " + first_text +
+          "; they are not run: expected only blank lines, comments or '%' after the end",
       file, first_line, first_col));
 }
 

@@ -1,8 +1,10 @@
 // The DXF reader: every entity kind, blocks, units, mirrored OCS, and every
 // kind of malformed file — a clear error with file and line, never a crash.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <fstream>
 #include <numbers>
@@ -13,6 +15,7 @@
 
 #include "core/dxf/dxf_test_util.h"
 #include "dxf/contour_chain.h"
+#include "dxf/dxf_tolerances.h"
 #include "dxf/spline_curve.h"
 #include "common/error.h"
 
@@ -379,6 +382,50 @@ TEST(DxfReader, ALineLongerThanTheReaderTakesIsAnErrorNotAHang) {
   const std::string found((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   ASSERT_FALSE(found.empty());
   EXPECT_FALSE(read_dxf_text(found, "hang.dxf").ok());
+}
+
+// A file read from a device without end (/dev/zero) stops at the first line
+// longer than the scanner takes, on line 1, instead of reading until the
+// memory runs out.
+TEST(DxfReader, EndlessDeviceIsAnErrorNotAnEndlessRead) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Result<ReadResult> r = read_dxf_file("/dev/zero");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().code, ErrorCode::DxfSyntax);
+  EXPECT_EQ(r.error().line, 1u);
+  EXPECT_MENTIONS(r.error(), "a line of more than 1023 characters");
+  EXPECT_EQ(r.error().to_string().rfind("/dev/zero:1: error E601", 0), 0u) << r.error().to_string();
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(5));
+}
+
+// Lines counted across read chunks name the right line.
+TEST(DxfReader, OverlongLineInAFileNamesItsLine) {
+  const std::string path = ::testing::TempDir() + "dxf_long_line.dxf";
+  {
+    std::ofstream out(path, std::ios::binary);
+    for (int i = 0; i < 40000; ++i) out << "999\ncomment\r\n";  // 80,000 lines, > one chunk
+    out << std::string(5000, 'x') << "\n0\nEOF\n";
+  }
+  Result<ReadResult> r = read_dxf_file(path);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().code, ErrorCode::DxfSyntax);
+  EXPECT_EQ(r.error().line, 80001u);
+  std::remove(path.c_str());
+}
+
+// A regular file beyond the bound is refused before it is read (a sparse
+// file: no disk space taken).
+TEST(DxfReader, FileLargerThanTheBoundIsRefusedUpFront) {
+  const std::string path = ::testing::TempDir() + "dxf_too_large.dxf";
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  ASSERT_NE(f, nullptr);
+  ASSERT_EQ(::ftruncate(::fileno(f), static_cast<off_t>(kMaxDxfFileBytes + 1)), 0);
+  std::fclose(f);
+  Result<ReadResult> r = read_dxf_file(path);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().code, ErrorCode::DxfUnsupported);
+  EXPECT_MENTIONS(r.error(), "a file of 134217729 bytes; expected a DXF file of at most 134217728 bytes (128 MiB)");
+  std::remove(path.c_str());
 }
 
 TEST(DxfReader, ArcOfZeroRadiusIsAnError) {

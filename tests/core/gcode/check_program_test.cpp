@@ -106,5 +106,26 @@ TEST_F(GcodeCheckProgram, MissingFileIsFileNotFound) {
   EXPECT_EQ(sum.error().code, ErrorCode::FileNotFound);
 }
 
+// A file with no line ends (/dev/zero, a binary dropped in by mistake) is an
+// error on its first line naming the limit, read no further than the bound.
+TEST_F(GcodeCheckProgram, FileWithoutLineEndsIsAnErrorNotAnEndlessRead) {
+  const std::string path = write(std::string(10u << 20, '\0'));
+  auto sum = check_program(path, test::test_machine(), start_at());
+  ASSERT_FALSE(sum.ok());
+  EXPECT_EQ(sum.error().code, ErrorCode::GcodeSyntax);
+  EXPECT_EQ(sum.error().line, 1u);
+  EXPECT_NE(sum.error().message.find("longer than 65536 bytes"), std::string::npos)
+      << sum.error().message;
+}
+
+TEST(GcodeCheckProgramDevice, DevZeroIsAnErrorOnLineOne) {
+  auto sum = check_program("/dev/zero", test::test_machine(), start_at());
+  ASSERT_FALSE(sum.ok());
+  EXPECT_EQ(sum.error().to_string().rfind("/dev/zero:1: error E201 (GcodeSyntax): found a line "
+                                          "longer than 65536 bytes", 0),
+            0u)
+      << sum.error().to_string();
+}
+
 }  // namespace
 }  // namespace lcnc
