@@ -13,8 +13,9 @@
 //   * a value outside its register's range (or a malformed count) → 03;
 //   * the owner's write hook may refuse a valid write (e.g. 04 or 06).
 // A refused request changes nothing: a block with one bad value leaves every
-// register of the block as it was. Libmodbus frames and answers (RTU CRC,
-// TCP MBAP); requests with a bad CRC are dropped and counted.
+// register of the block as it was. Libmodbus frames RTU (requests with a
+// bad CRC are dropped and counted) and builds every answer; TCP frames are
+// cut by their MBAP header and checked (slave_request.h).
 //
 // The owner publishes status with set()/with_bank() (input registers,
 // discrete inputs) and receives parameter writes and commands through the
@@ -22,6 +23,15 @@
 // thread. Both hooks run under the bank's lock, so a hook sees the registers
 // consistent and must be quick (no blocking I/O). stop() is prompt: the
 // thread polls an eventfd next to its sockets.
+//
+// TCP clients are served fairly: one poll loop reads whatever bytes each
+// connection has into that connection's buffer and answers only whole
+// frames, so a client trickling its request byte by byte, or sending half
+// a frame and going quiet, delays nobody else. A connection is closed when
+// its frame stalls (kTcpByteTimeout between bytes, kTcpFrameTimeout from
+// the first byte) or when it stays silent for the idle timeout; at the
+// connection limit a new client replaces the connection silent the
+// longest, so idle connections cannot lock the slave.
 #pragma once
 
 #include <chrono>
@@ -40,10 +50,26 @@
 
 namespace lcnc::drivers {
 
+// A master writes each request (at most 260 bytes) in one go, so its bytes
+// arrive together; a pause this long inside a frame means the sender
+// stalled or is not speaking Modbus. The same bound as libmodbus's byte
+// timeout on the RTU line.
+inline constexpr std::chrono::milliseconds kTcpByteTimeout{100};
+// A frame must be whole this long after its first byte: bounds how long a
+// client sending a byte just inside kTcpByteTimeout holds its connection.
+inline constexpr std::chrono::milliseconds kTcpFrameTimeout{1000};
+// A PLC, MES or ModbusMaster polls far more often than this; a connection
+// silent for a minute is abandoned. Closing it costs a live master only a
+// reconnect on its next request (ModbusMaster retries after a lost link).
+inline constexpr std::chrono::milliseconds kTcpIdleTimeout{60'000};
+// Connections served at once: a PLC, an MES, an HMI and some spare.
+inline constexpr int kTcpMaxClients = 8;
+
 struct SlaveConfig {
   Endpoint endpoint;           // TCP 127.0.0.1:0 (any free port) by default
-  int unit_id = -1;            // −1: the map's unit_id (RTU answers only it)
-  int max_clients = 8;         // TCP connections served at once
+  int unit_id = -1;            // −1: the map's unit_id (RTU answers only it; TCP it, 0 and 255)
+  int max_clients = kTcpMaxClients;  // TCP connections served at once (≥ 1)
+  std::chrono::milliseconds idle_timeout = kTcpIdleTimeout;  // TCP: a silent connection is closed
   std::chrono::milliseconds tick_period{0};  // 0: no tick hook calls
 };
 
@@ -53,6 +79,10 @@ struct SlaveCounters {
   std::uint64_t refused_writes = 0;  // writes refused (exceptions 02/03/hook)
   std::uint64_t crc_errors = 0;   // RTU frames dropped for a bad CRC
   std::uint64_t connections = 0;  // TCP connections accepted
+  std::uint64_t malformed = 0;    // TCP frames refused for their MBAP header (slave_request.h)
+  std::uint64_t idle_closed = 0;  // TCP connections closed after the idle timeout
+  std::uint64_t frame_timeouts = 0;  // TCP connections closed for a frame left unfinished
+  std::uint64_t evicted = 0;      // TCP connections dropped for a new client at the limit
 };
 
 // Called every tick_period with the seconds since the last call.

@@ -25,6 +25,29 @@ bool is_write(std::uint8_t fc) noexcept { return fc == 5 || fc == 6 || fc == 15 
 
 }  // namespace
 
+TcpFrameCut cut_tcp_frame(std::span<const std::uint8_t> bytes) noexcept {
+  constexpr std::size_t kLengthEnd = 6;  // transaction id, protocol id, length
+  if (bytes.size() < kLengthEnd) return {};
+  const std::size_t length = be16(bytes.data() + 4);
+  if (length > kMaxMbapLength) return {TcpFrameCut::Kind::Unframeable, 0};
+  const std::size_t size = kLengthEnd + length;
+  if (bytes.size() < size) return {};
+  const bool modbus = be16(bytes.data() + 2) == 0 && length >= 2;  // unit id and a function code
+  return {modbus ? TcpFrameCut::Kind::Frame : TcpFrameCut::Kind::Foreign, size};
+}
+
+std::size_t request_pdu_length(std::span<const std::uint8_t> pdu) noexcept {
+  if (pdu.empty()) return 1;
+  switch (pdu[0]) {
+    case 1: case 2: case 3: case 4: case 5: case 6:
+      return 5;  // fc, address, count or value
+    case 15: case 16:
+      return pdu.size() < 6 ? 6 : 6 + std::size_t{pdu[5]};  // fc, address, count, byte count, data
+    default:
+      return 0;
+  }
+}
+
 ModbusException check_slave_request(const DeviceMap& map, int header_length, const std::uint8_t* q,
                                     int len, std::vector<RegisterWrite>& writes) {
   const int o = header_length;
@@ -111,7 +134,7 @@ ModbusException check_slave_request(const DeviceMap& map, int header_length, con
 struct SlaveRequestHandler::Impl {
   RegisterBank bank;
   modbus_mapping_t mapping{};
-  std::atomic<std::uint64_t> requests{0}, exceptions{0}, refused{0}, crc_errors{0};
+  std::atomic<std::uint64_t> requests{0}, exceptions{0}, refused{0}, crc_errors{0}, malformed{0};
 
   explicit Impl(DeviceMap map) : bank(std::move(map)) {
     mapping.nb_bits = static_cast<int>(bank.bits(Table::Coil).size());
@@ -130,7 +153,8 @@ SlaveRequestHandler::~SlaveRequestHandler() = default;
 RegisterBank& SlaveRequestHandler::bank() noexcept { return impl_->bank; }
 
 SlaveRequestHandler::Counts SlaveRequestHandler::counts() const noexcept {
-  return {impl_->requests.load(), impl_->exceptions.load(), impl_->refused.load(), impl_->crc_errors.load()};
+  return {impl_->requests.load(), impl_->exceptions.load(), impl_->refused.load(), impl_->crc_errors.load(),
+          impl_->malformed.load()};
 }
 const RegisterBank& SlaveRequestHandler::bank() const noexcept { return impl_->bank; }
 
@@ -148,6 +172,50 @@ Received SlaveRequestHandler::receive_and_answer(modbus_t* ctx, const WriteHook&
     if (out.kind == Received::Kind::BadCrc) impl_->crc_errors.fetch_add(1, std::memory_order_relaxed);
     return out;
   }
+  return take(ctx, q, rc, hook, bank_lock);
+}
+
+void SlaveRequestHandler::count_malformed() noexcept {
+  impl_->malformed.fetch_add(1, std::memory_order_relaxed);
+}
+
+Received SlaveRequestHandler::answer_tcp_frame(modbus_t* ctx, std::span<const std::uint8_t> adu,
+                                               std::uint8_t unit, const WriteHook& hook,
+                                               std::mutex* bank_lock) noexcept {
+  constexpr std::size_t kHeader = 7;  // MBAP: transaction id, protocol id, length, unit id
+  Received out;
+  if (adu.size() <= kHeader || adu.size() > kMaxTcpAdu) {  // not a cut_tcp_frame Frame
+    count_malformed();
+    out.kind = Received::Kind::Malformed;
+    return out;
+  }
+  const std::uint8_t to = adu[kHeader - 1];
+  if (to != unit && to != 0 && to != 0xFF) {
+    out.kind = Received::Kind::OtherUnit;
+    return out;
+  }
+  const std::span<const std::uint8_t> pdu = adu.subspan(kHeader);
+  const std::size_t need = request_pdu_length(pdu);
+  if ((pdu[0] & 0x80u) == 0 && need != 0 && need != pdu.size()) {
+    // The length and the function disagree: whatever the frame holds
+    // beyond (or short of) the function's fields is no part of a request.
+    impl_->requests.fetch_add(1, std::memory_order_relaxed);
+    impl_->exceptions.fetch_add(1, std::memory_order_relaxed);
+    impl_->malformed.fetch_add(1, std::memory_order_relaxed);
+    out.kind = Received::Kind::Answered;
+    out.exception = ModbusException::IllegalDataValue;
+    out.write = is_write(pdu[0]);
+    if (out.write) impl_->refused.fetch_add(1, std::memory_order_relaxed);
+    if (modbus_reply_exception(ctx, adu.data(), static_cast<unsigned>(out.exception)) < 0)
+      out.kind = Received::Kind::Broken;
+    return out;
+  }
+  return take(ctx, adu.data(), static_cast<int>(adu.size()), hook, bank_lock);
+}
+
+Received SlaveRequestHandler::take(modbus_t* ctx, const std::uint8_t* q, int rc, const WriteHook& hook,
+                                   std::mutex* bank_lock) noexcept {
+  Received out;
   impl_->requests.fetch_add(1, std::memory_order_relaxed);
   const int hl = modbus_get_header_length(ctx);
   if (rc <= hl || (q[hl] & 0x80u) != 0) {
@@ -167,9 +235,9 @@ Received SlaveRequestHandler::receive_and_answer(modbus_t* ctx, const WriteHook&
   if (ex != ModbusException::None) {
     impl_->exceptions.fetch_add(1, std::memory_order_relaxed);
     if (out.write) impl_->refused.fetch_add(1, std::memory_order_relaxed);
-    modbus_reply_exception(ctx, q, static_cast<unsigned>(ex));
-  } else {
-    modbus_reply(ctx, q, rc, &impl_->mapping);  // applies the (checked) write and answers
+    if (modbus_reply_exception(ctx, q, static_cast<unsigned>(ex)) < 0) out.kind = Received::Kind::Broken;
+  } else if (modbus_reply(ctx, q, rc, &impl_->mapping) < 0) {  // applies the (checked) write and answers
+    out.kind = Received::Kind::Broken;
   }
   return out;
 }
@@ -182,6 +250,8 @@ Result<std::unique_ptr<RawFrameLoop>> RawFrameLoop::open(Transport framing, int 
   if (loop->ctx_ == nullptr)
     return make_error(ErrorCode::PeripheralSetup, std::string("libmodbus: ") + modbus_strerror(errno));
   modbus_set_slave(loop->ctx_, unit_id);
+  loop->framing_ = framing;
+  loop->unit_ = static_cast<std::uint8_t>(unit_id);
   modbus_set_error_recovery(loop->ctx_, MODBUS_ERROR_RECOVERY_PROTOCOL);  // as the slave
   return loop;
 }
@@ -206,7 +276,24 @@ RawFrameLoop::Exchange RawFrameLoop::deliver(SlaveRequestHandler& handler,
   // once, not at libmodbus's byte timeout.
   ::shutdown(fds[1], SHUT_WR);
   modbus_set_socket(ctx_, fds[0]);
-  x.received = handler.receive_and_answer(ctx_, hook);
+  if (framing_ == Transport::Rtu) {
+    x.received = handler.receive_and_answer(ctx_, hook);
+  } else {  // as ModbusSlave takes a connection's bytes
+    const TcpFrameCut cut = cut_tcp_frame(frame);
+    switch (cut.kind) {
+      case TcpFrameCut::Kind::NeedMore:  // and the stream has ended
+        x.received.kind = Received::Kind::Broken;
+        break;
+      case TcpFrameCut::Kind::Foreign:
+      case TcpFrameCut::Kind::Unframeable:
+        handler.count_malformed();
+        x.received.kind = Received::Kind::Malformed;
+        break;
+      case TcpFrameCut::Kind::Frame:
+        x.received = handler.answer_tcp_frame(ctx_, frame.first(cut.size), unit_, hook);
+        break;
+    }
+  }
   std::uint8_t buf[512];
   for (;;) {  // the answer
     const ssize_t n = ::recv(fds[1], buf, sizeof buf, MSG_DONTWAIT);

@@ -5,11 +5,20 @@
 // write hook, then answered by libmodbus — all before anything changes, so
 // a refused block leaves every register as it was.
 //
+// Over TCP the slave cuts frames itself (cut_tcp_frame: the MBAP header's
+// length delimits each frame) and hands whole ones to answer_tcp_frame,
+// which checks the header before anything is taken: protocol id 0, the
+// unit, and a PDU exactly as long as its function needs — no more bytes
+// hidden behind it (Modbus Application Protocol 1.1b3 §7: exception 03 "the
+// implied length is incorrect"). Over RTU libmodbus receives and frames
+// (CRC, silence between frames).
+//
 // ModbusSlave serves its connections with this; RawFrameLoop feeds it raw
 // bytes through a socket pair (the fuzz target of the slave's request
 // handling, and tests of malformed frames).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -42,16 +51,45 @@ using WriteHook = std::function<ModbusException(std::span<const RegisterWrite>, 
                                                   const std::uint8_t* q, int len,
                                                   std::vector<RegisterWrite>& writes);
 
+// The largest Modbus TCP frame: a 7-byte MBAP header and a 253-byte PDU, so
+// an MBAP length (unit id + PDU) of at most 254.
+inline constexpr std::size_t kMaxTcpAdu = 260;
+inline constexpr std::size_t kMaxMbapLength = 254;
+
+// Where the next Modbus TCP frame ends in the bytes a connection has
+// received: 6 + the MBAP length.
+struct TcpFrameCut {
+  enum class Kind : std::uint8_t {
+    NeedMore,     // the frame is not all in yet
+    Frame,        // `size` bytes: a Modbus frame (protocol id 0, a function code)
+    Foreign,      // `size` bytes that are no Modbus request (protocol id ≠ 0, or
+                  // no function code): dropped, the next frame follows them
+    Unframeable,  // a length beyond the largest frame: the stream holds no
+                  // boundary to find the next frame by (close the connection)
+  };
+  Kind kind = Kind::NeedMore;
+  std::size_t size = 0;
+};
+[[nodiscard]] TcpFrameCut cut_tcp_frame(std::span<const std::uint8_t> bytes) noexcept;
+
+// The length a request's PDU must have by its function (function code and
+// fields, plus the byte count's data for 15 and 16; a PDU too short to hold
+// the byte count needs at least 6), or 0 for a function the slave does not
+// implement (its answer, 01, needs no length).
+[[nodiscard]] std::size_t request_pdu_length(std::span<const std::uint8_t> pdu) noexcept;
+
 // What came of one receive on a connection.
 struct Received {
   enum class Kind : std::uint8_t {
     Answered,   // a request, answered (`exception` None) or refused
-    OtherUnit,  // RTU: a frame for another unit, ignored
+    OtherUnit,  // a frame for another unit, ignored
+    Malformed,  // TCP: dropped for its MBAP header (no answer), counted
     NotARequest,  // a function code ≥ 0x80 (an exception response's): not
                   // answered — libmodbus would echo it as fc + 0x80 mod 256,
                   // which reads as a normal answer of another function
     BadCrc,     // RTU: dropped
-    Broken,     // the peer closed or broke the framing (TCP: close it)
+    Broken,     // the peer closed or broke the framing, or the answer could
+                // not be sent (TCP: close it)
   };
   Kind kind = Kind::Broken;
   ModbusException exception = ModbusException::None;
@@ -73,6 +111,9 @@ class SlaveRequestHandler {
     std::uint64_t exceptions = 0;  // answered with an exception, or not a request
     std::uint64_t refused = 0;     // writes refused (exceptions 02/03/hook)
     std::uint64_t crc_errors = 0;  // RTU frames dropped for a bad CRC
+    std::uint64_t malformed = 0;   // TCP frames refused for their header: protocol id ≠ 0,
+                                   // no function code or a length beyond the largest frame
+                                   // (dropped), a PDU not the function's length (answered 03)
   };
   [[nodiscard]] Counts counts() const noexcept;
 
@@ -86,16 +127,29 @@ class SlaveRequestHandler {
   Received receive_and_answer(modbus_t* ctx, const WriteHook& hook,
                               std::mutex* bank_lock = nullptr) noexcept;
 
+  // Answers one whole TCP frame (cut_tcp_frame's Frame) on `ctx`'s socket
+  // (a TCP context; the socket set). Units other than `unit`, 0 and 255
+  // (Modbus TCP's "this server") are ignored, as on a serial line; a PDU
+  // not exactly its function's length is exception 03 and nothing of it
+  // is taken; the rest as receive_and_answer.
+  Received answer_tcp_frame(modbus_t* ctx, std::span<const std::uint8_t> adu, std::uint8_t unit,
+                            const WriteHook& hook, std::mutex* bank_lock = nullptr) noexcept;
+
+  // Counts a TCP frame dropped for its header (Foreign, Unframeable).
+  void count_malformed() noexcept;
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
+  Received take(modbus_t* ctx, const std::uint8_t* q, int len, const WriteHook& hook,
+                std::mutex* bank_lock) noexcept;
 };
 
 // Raw bytes to the slave's request handling, in-process: the bytes are
 // written into one end of a fresh socket pair and that end shut for
-// writing (a peer that sends and hangs up), the handler receives from the
-// other through libmodbus exactly as from a connection, and its answer is
-// read back.
+// writing (a peer that sends and hangs up), the handler takes the first
+// frame exactly as from a connection (TCP: cut by cut_tcp_frame; RTU:
+// received through libmodbus), and its answer is read back.
 class RawFrameLoop {
  public:
   [[nodiscard]] static Result<std::unique_ptr<RawFrameLoop>> open(Transport framing, int unit_id);
@@ -119,6 +173,8 @@ class RawFrameLoop {
  private:
   RawFrameLoop() = default;
   modbus_t* ctx_ = nullptr;
+  Transport framing_ = Transport::Tcp;
+  std::uint8_t unit_ = 1;
 };
 
 }  // namespace lcnc::drivers

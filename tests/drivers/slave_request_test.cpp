@@ -100,6 +100,42 @@ TEST(SlaveRequest, AFrameCutShortChangesNothingAndGetsNoAnswer) {
   EXPECT_EQ(l.get("feed_override_set_pct"), 0.0);
 }
 
+// The MBAP length delimits a TCP frame; what the function needs is
+// checked against it when the frame is answered.
+TEST(SlaveRequest, ATcpFrameIsCutWhereItsMbapLengthSays) {
+  using K = TcpFrameCut::Kind;
+  const Bytes read = tcp(1, {3, 0, 25, 0, 1});
+  EXPECT_EQ(cut_tcp_frame(Bytes(read.begin(), read.end() - 1)).kind, K::NeedMore);
+  Bytes two = read;
+  two.insert(two.end(), read.begin(), read.end());
+  EXPECT_EQ(cut_tcp_frame(two).kind, K::Frame);
+  EXPECT_EQ(cut_tcp_frame(two).size, read.size());
+  Bytes foreign = read;
+  foreign[3] = 1;  // protocol id 1
+  EXPECT_EQ(cut_tcp_frame(foreign).kind, K::Foreign);
+  EXPECT_EQ(cut_tcp_frame(foreign).size, read.size());
+  EXPECT_EQ(cut_tcp_frame(Bytes{0, 1, 0, 0, 0, 1, 1}).kind, K::Foreign);  // no function code
+  EXPECT_EQ(cut_tcp_frame(Bytes{0, 1, 0, 0, 0, 255}).kind, K::Unframeable);
+  EXPECT_EQ(request_pdu_length(Bytes{3, 0, 25, 0, 1}), 5u);
+  EXPECT_EQ(request_pdu_length(Bytes{16, 0, 0, 0, 2, 4, 0, 1, 0, 2}), 10u);
+  EXPECT_EQ(request_pdu_length(Bytes{16, 0, 0}), 6u);
+  EXPECT_EQ(request_pdu_length(Bytes{0x2B, 0x0E}), 0u);  // not implemented: 01 needs no length
+}
+
+// Through the frame loop (the fuzz target's path): a read whose length
+// hides a write behind it is exception 03, and the write is not done.
+TEST(SlaveRequest, AReadWithTrailingBytesIsException03) {
+  Loop l;
+  Bytes pdu = {3, 0, 25, 0, 1};
+  const Bytes hidden = tcp(2, {6, 0, 25, 0, 77});
+  pdu.insert(pdu.end(), hidden.begin(), hidden.end());
+  const auto x = l.tcp_loop->deliver(l.handler, tcp(1, pdu));
+  EXPECT_EQ(x.received.exception, ModbusException::IllegalDataValue);
+  EXPECT_EQ(x.reply, (Bytes{0, 1, 0, 0, 0, 3, 1, 0x83, 3}));
+  EXPECT_EQ(l.get("feed_override_set_pct"), 0.0);
+  EXPECT_EQ(l.handler.counts().malformed, 1u);
+}
+
 // A slave configured with nothing but a port listens on the loopback
 // interface only: from this host's own outside address nothing answers.
 TEST(SlaveSecurity, ATcpSlaveListensOnLoopbackUnlessConfigured) {
