@@ -3,13 +3,14 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
+#include <ostream>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "app/decompose_run.h"
+#include "app/output_file.h"
 #include "app/run_job.h"
 #include "decompose/decompose_svg.h"
 #include "decompose/part_decomposition.h"
@@ -97,11 +98,39 @@ std::optional<double> parse_plain(std::string_view s) {
   return v;
 }
 
-bool write_file(const std::string& path, const std::string& text) {
-  std::ofstream f(path, std::ios::binary);
-  f << text;
-  return static_cast<bool>(f);
-}
+// The outputs of one command: each written to its temporary file as it is
+// made, all renamed over their targets by commit_all() once the command has
+// done its work; a refused or failed command leaves every target as it was.
+class Outputs {
+ public:
+  explicit Outputs(std::vector<std::string> inputs) : inputs_(std::move(inputs)) {}
+  // Opens `path`, `fill` writes it; false (and the message printed) when it
+  // cannot be opened.
+  template <typename Fill>
+  bool add(const std::string& path, Fill fill) {
+    Result<OutputFile> f = OutputFile::open(path, inputs_);
+    if (!f) {
+      std::fprintf(stderr, "%s\n", f.error().to_string().c_str());
+      return false;
+    }
+    fill(*f);
+    files_.push_back(std::move(f).value());
+    return true;
+  }
+  bool commit_all() {
+    for (OutputFile& f : files_) {
+      if (Status s = f.commit(); !s) {
+        std::fprintf(stderr, "%s\n", s.error().to_string().c_str());
+        return false;
+      }
+    }
+    return true;
+  }
+
+ private:
+  std::vector<std::string> inputs_;
+  std::vector<OutputFile> files_;
+};
 
 void print_group(const GroupReport& g) {
   const bool exact = g.steps_sent == g.steps_commanded;
@@ -119,9 +148,12 @@ void print_group(const GroupReport& g) {
               g.latency_max_us);
 }
 
-int run_part(const decompose::PartResult& res, const MachineConfig& main_m,
-             const MachineConfig& aux_m, const DecomposeRunOptions& run_opt, const std::string& part,
-             const std::string& svg_path) {
+// The run's outcome: nullopt when it was refused (nothing ran) or its picture
+// cannot be written, else whether it passed its own checks.
+std::optional<bool> run_part(const decompose::PartResult& res, const MachineConfig& main_m,
+                             const MachineConfig& aux_m, const DecomposeRunOptions& run_opt,
+                             const std::string& part, const std::string& svg_path,
+                             Outputs& outputs) {
   std::printf("running on the simulated machine: main X, Y ('%s'), auxiliary P, Q ('%s'), "
               "period %u us, origin %.3f, %.3f mm\n",
               main_m.name.c_str(), aux_m.name.c_str(), main_m.period_ns / 1000, run_opt.origin_x_mm,
@@ -132,7 +164,7 @@ int run_part(const decompose::PartResult& res, const MachineConfig& main_m,
     Diagnostic e = r.error();
     if (e.file.empty()) e.file = part;
     std::fprintf(stderr, "%s\n", e.to_string().c_str());
-    return 1;
+    return std::nullopt;
   }
   if (!r->warning.empty()) std::printf("  warning: %s\n", r->warning.c_str());
   std::printf("  %llu periods, cycle %.4f s, cutting %.4f s; beam X+P, Y+Q vs the contour at "
@@ -142,16 +174,16 @@ int run_part(const decompose::PartResult& res, const MachineConfig& main_m,
   print_group(r->main);
   print_group(r->aux);
   if (!svg_path.empty()) {
-    if (!write_file(svg_path, decompose::axes_svg(r->curves, part + " — run on the simulated machine"))) {
-      std::fprintf(stderr, "lasercnc decompose: cannot write %s\n", svg_path.c_str());
-      return 1;
-    }
+    if (!outputs.add(svg_path, [&](OutputFile& f) {
+          f.write(decompose::axes_svg(r->curves, part + " — run on the simulated machine"));
+        }))
+      return std::nullopt;
     std::printf("axis curves: %s\n", svg_path.c_str());
   }
   const bool ok = r->main.steps_sent == r->main.steps_commanded &&
                   r->aux.steps_sent == r->aux.steps_commanded && !r->main.fault && !r->aux.fault &&
                   r->main.underruns == 0 && r->aux.underruns == 0;
-  return ok ? 0 : 1;
+  return ok;
 }
 
 }  // namespace
@@ -264,13 +296,25 @@ int decompose_main(int argc, char** argv) {
   if (!run && (!run_svg_path.empty() || !main_file.empty() || !aux_file.empty()))
     return usage_error("--machine, --aux-machine and --run-svg go with --run");
 
+  // The outputs are checked before any work: none may be an input or
+  // another output (nothing is written until the command has done its work).
+  if (run) {
+    if (main_file.empty()) main_file = shipped_machine_file("default");
+    if (aux_file.empty()) aux_file = shipped_machine_file("aux_stage");
+  }
+  std::vector<std::string> inputs{part};
+  if (run) inputs.insert(inputs.end(), {main_file, aux_file});
+  if (Status s = check_outputs({csv_path, svg_path, accel_svg_path, run_svg_path}, inputs); !s) {
+    std::fprintf(stderr, "lasercnc decompose: %s\n", s.error().to_string().c_str());
+    return 2;
+  }
+  Outputs outputs(inputs);
+
   // --run: the groups' configs give the limits the user did not.
   MachineConfig main_m, aux_m;
   if (run) {
     for (auto [file, m] : {std::pair{&main_file, &main_m}, std::pair{&aux_file, &aux_m}}) {
-      const std::string path = file->empty()
-                                   ? shipped_machine_file(m == &main_m ? "default" : "aux_stage")
-                                   : *file;
+      const std::string& path = *file;
       Result<MachineConfig> loaded = load_machine_config(path);
       if (!loaded) {
         std::fprintf(stderr, "%s\n", loaded.error().to_string().c_str());
@@ -346,32 +390,38 @@ int decompose_main(int argc, char** argv) {
   const std::string title = part + " — " + (seed ? "seed mode" : "sync mode") + ", " +
                             std::to_string(opt.speed_mm_s * 0.06).substr(0, 5) + " m/min";
   if (!csv_path.empty()) {
-    std::ofstream f(csv_path, std::ios::binary);
     std::vector<const decompose::KinematicsTable*> tables;
     for (const decompose::ContourResult& c : res->contours) tables.push_back(&c.table);
-    decompose::write_csv(f, tables);
-    if (!f) {
-      std::fprintf(stderr, "lasercnc decompose: cannot write %s\n", csv_path.c_str());
+    if (!outputs.add(csv_path, [&](OutputFile& f) {
+          OutputStreamBuf buf(f);
+          std::ostream out(&buf);
+          decompose::write_csv(out, tables);
+        }))
       return 1;
-    }
     std::printf("kinematics table: %s\n", csv_path.c_str());
   }
   if (!svg_path.empty()) {
-    if (!write_file(svg_path, decompose::paths_svg(*res, opt, title))) {
-      std::fprintf(stderr, "lasercnc decompose: cannot write %s\n", svg_path.c_str());
+    if (!outputs.add(svg_path, [&](OutputFile& f) { f.write(decompose::paths_svg(*res, opt, title)); }))
       return 1;
-    }
     std::printf("picture: %s\n", svg_path.c_str());
   }
   if (!accel_svg_path.empty()) {
-    if (!write_file(accel_svg_path, decompose::accel_svg(*res, opt, title))) {
-      std::fprintf(stderr, "lasercnc decompose: cannot write %s\n", accel_svg_path.c_str());
+    if (!outputs.add(accel_svg_path,
+                     [&](OutputFile& f) { f.write(decompose::accel_svg(*res, opt, title)); }))
       return 1;
-    }
     std::printf("acceleration plot: %s\n", accel_svg_path.c_str());
   }
-  if (run) return run_part(*res, main_m, aux_m, run_opt, part, run_svg_path);
-  return 0;
+  // The run's own checks failing still leaves a complete run: its outputs
+  // are kept (they show what went wrong); a refused run keeps none.
+  bool checks_passed = true;
+  if (run) {
+    const std::optional<bool> ran =
+        run_part(*res, main_m, aux_m, run_opt, part, run_svg_path, outputs);
+    if (!ran) return 1;
+    checks_passed = *ran;
+  }
+  if (!outputs.commit_all()) return 1;
+  return checks_passed ? 0 : 1;
 }
 
 }  // namespace lcnc::app

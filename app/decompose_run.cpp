@@ -255,6 +255,39 @@ Result<DecomposeRunReport> run_decomposition(const decompose::PartResult& part,
   rep.aux.speed_limit = la.v;
   rep.aux.accel_limit = la.a;
 
+  // The periods the run will take, counted (traverses and cuts as below)
+  // before any is computed.
+  {
+    double periods = 0.0;
+    Vec2 m_at = origin, a_at(0, 0);
+    auto traverse_periods = [&](const Vec2& m_to, const Vec2& a_to) {
+      const double t = std::max(Trapezoid((m_to - m_at).norm(), lm.v, lm.a).t_total,
+                                Trapezoid((a_to - a_at).norm(), la.v, la.a).t_total);
+      periods += std::ceil(t / T);
+      m_at = m_to;
+      a_at = a_to;
+    };
+    for (const decompose::ContourResult& c : part.contours) {
+      const KinematicsTable& tab = c.table;
+      if (tab.size() < 2) continue;
+      traverse_periods(origin + tab.main.front(), tab.aux(0));
+      periods += std::ceil(tab.t_s.back() / T);
+      m_at = origin + tab.main.back();
+      a_at = tab.aux(tab.size() - 1);
+    }
+    traverse_periods(m_at, Vec2(0, 0));
+    if (!(periods <= static_cast<double>(kMaxRunPeriods))) {
+      char msg[320];
+      std::snprintf(msg, sizeof msg,
+                    "the run would take %.0f periods (%.1f s of machine time at %.0f us), more "
+                    "than the %llu allowed (%.0f s); expected a faster contour speed or a "
+                    "smaller part",
+                    periods, periods * T, T * 1e6, static_cast<unsigned long long>(kMaxRunPeriods),
+                    static_cast<double>(kMaxRunPeriods) * T);
+      return make_error(ErrorCode::DecomposeTooLarge, msg);
+    }
+  }
+
   // The targets of every period, checked against both groups' travel.
   std::vector<Target> targets;
   Vec2 main_at = origin, aux_at(0, 0);

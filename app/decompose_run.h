@@ -34,6 +34,10 @@ namespace lcnc::app {
 
 inline constexpr int kSpeedWindow = 4;   // periods: 0.3 ms at 75 µs
 inline constexpr int kAccelWindow = 64;  // periods: 4.8 ms at 75 µs
+// The most RT periods a run may take: every period's targets are computed
+// before the run (about 150 B a period for the two groups), and the run
+// takes its machine time in real time. 4 M periods: 5 min at 75 µs, 0.6 GB.
+inline constexpr std::uint64_t kMaxRunPeriods = 4'000'000;
 
 struct GroupReport {
   std::string name;                      // "main" / "aux"
@@ -80,9 +84,10 @@ struct DecomposeRunOptions {
                                                       const MachineConfig& aux,
                                                       decompose::Options opt);
 
-// Runs the part. Fails before anything moves when the groups' periods differ
-// or the part leaves a group's travel (DecomposeBeyondTravel, naming the
-// contour and the point).
+// Runs the part. Fails before anything moves when the groups' periods differ,
+// the part leaves a group's travel (DecomposeBeyondTravel, naming the
+// contour and the point) or the run would take more than kMaxRunPeriods
+// (DecomposeTooLarge, counted before any period is computed).
 [[nodiscard]] Result<DecomposeRunReport> run_decomposition(const decompose::PartResult& part,
                                                            const MachineConfig& main,
                                                            const MachineConfig& aux,

@@ -228,7 +228,8 @@ int drill_main(int argc, char** argv) {
   Result<RunReport> report = run_job(opt, progress);
   if (!report) {
     std::fprintf(stderr, "%s\n", report.error().to_string().c_str());
-    return report.error().code == ErrorCode::Usage ? 2 : 1;
+    const ErrorCode code = report.error().code;
+    return code == ErrorCode::Usage || code == ErrorCode::OutputIsInput ? 2 : 1;
   }
   take(moments.finish(), report->cycle_time_s);
   drivers::MasterCounters head_counters;

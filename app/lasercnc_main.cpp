@@ -213,7 +213,7 @@ int main(int argc, char** argv) {
   if (!report) {
     if (report.error().code == lcnc::ErrorCode::Usage) return usage_error(report.error().message);
     std::fprintf(stderr, "%s\n", report.error().to_string().c_str());
-    return 1;
+    return report.error().code == lcnc::ErrorCode::OutputIsInput ? 2 : 1;
   }
   if (json) {
     std::printf("%s\n", lcnc::app::report_json(*report).c_str());

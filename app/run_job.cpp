@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <optional>
 #include <thread>
+#include <vector>
 
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
@@ -16,6 +18,7 @@
 #include "path/deviation_meter.h"
 #include "plan/motion_check.h"
 #include "plan/program_source.h"
+#include "app/output_file.h"
 #include "app/planner_feed.h"
 #include "rt/rt_kernel.h"
 #include "rt/rt_log.h"
@@ -23,34 +26,30 @@
 namespace lcnc::app {
 namespace {
 
+// The trace CSV: an OutputFile (app/output_file.h), so the old file stays
+// until the job has run to its end and nothing half-written replaces it.
 class TraceWriter {
  public:
-  explicit TraceWriter(const std::string& path) {
-    if (path.empty()) return;
-    file_ = std::fopen(path.c_str(), "w");
-    if (file_ != nullptr) {
-      std::setvbuf(file_, nullptr, _IOFBF, 1 << 20);
-      std::fputs("t,x,y,z,a,b,c,power\n", file_);
-    }
-  }
-  ~TraceWriter() {
-    if (file_ != nullptr) std::fclose(file_);
-  }
-  TraceWriter(const TraceWriter&) = delete;
-  TraceWriter& operator=(const TraceWriter&) = delete;
-  [[nodiscard]] bool failed_to_open(const std::string& path) const {
-    return !path.empty() && file_ == nullptr;
+  // `inputs`: the job's files, which the trace must not be.
+  [[nodiscard]] Status open(const std::string& path, const std::vector<std::string>& inputs) {
+    if (path.empty()) return {};
+    Result<OutputFile> f = OutputFile::open(path, inputs);
+    if (!f) return f.error();
+    file_.emplace(std::move(f).value());
+    file_->write("t,x,y,z,a,b,c,power\n");
+    return {};
   }
   // t: machine time at the end of the period (s); p: commanded pose (mm,
   // deg); power: laser output (% of rated).
   void write(double t, const Pose& p, double power_pct) {
-    if (file_ == nullptr) return;
-    std::fprintf(file_, "%.9f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.3f\n", t, p[0], p[1], p[2], p[3],
-                 p[4], p[5], power_pct);
+    if (!file_ || file_->failed()) return;
+    file_->printf("%.9f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.3f\n", t, p[0], p[1], p[2], p[3], p[4],
+                  p[5], power_pct);
   }
+  [[nodiscard]] Status commit() { return file_ ? file_->commit() : Status{}; }
 
  private:
-  std::FILE* file_ = nullptr;
+  std::optional<OutputFile> file_;
 };
 
 // The RT thread's log records, written out here on a normal thread (the RT
@@ -335,10 +334,13 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   report.feed_length_mm = summary->feed_length_mm;
   report.period_s = machine.period_s();
 
-  TraceWriter trace_out(options.trace_file);
-  if (trace_out.failed_to_open(options.trace_file))
-    return make_error(ErrorCode::FileNotFound,
-                      "cannot write trace file '" + options.trace_file + "'", options.trace_file);
+  TraceWriter trace_out;
+  if (Status s = trace_out.open(options.trace_file,
+                                {options.program, options.machine_file.empty()
+                                                      ? default_machine_file()
+                                                      : options.machine_file});
+      !s)
+    return s.error();
 
   std::array<double, kAxisCount> spu{};
   std::array<std::int64_t, kAxisCount> start_steps{};
@@ -470,6 +472,9 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   report.max_deviation_mm = deviation.max_mm();
   motion.finish();
   check_run(report, motion, deviation);
+  // The job ran to its end (its checks may still fail: then the trace is
+  // what shows why), so its trace replaces the old file.
+  if (Status s = trace_out.commit(); !s) return s.error();
   return report;
 }
 

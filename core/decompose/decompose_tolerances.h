@@ -36,6 +36,22 @@ inline constexpr double kSpeedSearchRel = 1e-3;
 // this (beyond it the main axes stand still and the aux does everything).
 inline constexpr double kMaxFilterToContourTime = 1.0;
 
+// Work bounds, checked before anything is allocated: a drawing read in the
+// wrong units ($INSUNITS metres for a part drawn in mm) or a step far finer
+// than the part would otherwise take gigabytes and minutes. The memory of a
+// decomposition grows with its points (the polylines, the table's 2 Vec2 +
+// 8 doubles per row, the filter's work rows; about 0.2 kB a point at the
+// peak), so the points of all contours of a part, estimated from their
+// lengths / the step, are bounded: 2 M points is 20 m of contour at the
+// default step 0.01 mm, about 0.5 GB at the peak.
+inline constexpr std::size_t kMaxPartPoints = 2'000'000;
+// Sync mode: the largest filter half-width m (samples) the τ search tries.
+// Each trial walks n + 4m rows in three arrays (~50 B a row): m beyond this
+// is only asked for by contour speeds near the sum of the axis groups' speed
+// limits at a fine step, and is then taken as infeasible (the highest
+// feasible speed below it is reported).
+inline constexpr std::size_t kMaxFilterSamples = 2'000'000;
+
 // The running window sums of the filter are recomputed from scratch this
 // often, so rounding never accumulates over millions of points.
 inline constexpr std::size_t kResumEvery = 1u << 14;

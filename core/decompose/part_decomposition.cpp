@@ -1,5 +1,6 @@
 #include "decompose/part_decomposition.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -7,6 +8,7 @@
 #include "decompose/sync_decomposition.h"
 #include "dxf/contour_chain.h"
 #include "dxf/contour_check.h"
+#include "dxf/dxf_tolerances.h"
 #include "common/error.h"
 
 namespace lcnc::decompose {
@@ -20,6 +22,26 @@ std::string over(const char* what, double value, double limit, const char* unit)
 
 }  // namespace
 
+Status check_part_size(const dxf::Drawing& d, const std::vector<dxf::Contour>& contours,
+                       double step_mm) {
+  if (!(step_mm > 0.0)) return {};  // discretize_all names a bad step
+  double length_mm = 0.0, points = 0.0;
+  for (const dxf::Contour& c : contours) {
+    const double l = c.length();
+    length_mm += l;
+    points += std::max(static_cast<double>(dxf::kMinContourPoints), std::ceil(l / step_mm));
+  }
+  if (points <= static_cast<double>(kMaxPartPoints)) return {};
+  char buf[480];
+  std::snprintf(buf, sizeof buf,
+                "the part's %zu contours are %.1f mm long at step %g mm: %.1f M points, more "
+                "than the %.1f M allowed; the drawing is read in %s (%g mm per unit): check "
+                "$INSUNITS (or --units) and --step",
+                contours.size(), length_mm, step_mm, points * 1e-6,
+                static_cast<double>(kMaxPartPoints) * 1e-6, d.units.c_str(), d.unit_mm);
+  return make_error(ErrorCode::DecomposeTooLarge, buf, d.file);
+}
+
 Status check_options(const Options& opt) {
   auto positive = [](double v, const char* what, const char* unit) -> Status {
     if (std::isfinite(v) && v > 0.0) return {};
@@ -32,6 +54,21 @@ Status check_options(const Options& opt) {
   if (Status s = positive(opt.main_speed_mm_s, "main-axis speed limit", "mm/s"); !s) return s;
   if (Status s = positive(opt.aux_speed_mm_s, "auxiliary speed limit", "mm/s"); !s) return s;
   if (Status s = positive(opt.aux_half_field_mm, "auxiliary half field", "mm"); !s) return s;
+  // The beam is the sum of the two groups (S = S1 + S2), so in sync mode,
+  // which keeps every limit, it cannot run faster than their speed limits
+  // added: refused before any work (the search for the highest feasible
+  // speed from far above it would take minutes).
+  if (opt.mode == Mode::Sync && opt.speed_mm_s > opt.main_speed_mm_s + opt.aux_speed_mm_s) {
+    const double sum = opt.main_speed_mm_s + opt.aux_speed_mm_s;
+    char buf[320];
+    std::snprintf(buf, sizeof buf,
+                  "contour speed %.1f mm/s (%.2f m/min) is more than the main and auxiliary "
+                  "axes reach together: %.1f + %.1f = %.1f mm/s (%.2f m/min); expected a contour "
+                  "speed at most that",
+                  opt.speed_mm_s, opt.speed_mm_s * 0.06, opt.main_speed_mm_s, opt.aux_speed_mm_s,
+                  sum, sum * 0.06);
+    return make_error(ErrorCode::DecomposeInfeasible, buf);
+  }
   if (!(opt.critical_angle_deg > 0.0 && opt.critical_angle_deg < 180.0)) {
     return make_error(ErrorCode::DecomposeBadOption,
                       "critical angle " + std::to_string(opt.critical_angle_deg) +
@@ -48,6 +85,7 @@ Result<PreparedPart> prepare_part(const dxf::Drawing& d, double step_mm) {
                       "the drawing has no contours; expected at least one closed contour",
                       d.file);
   }
+  if (Status s = check_part_size(d, *cs, step_mm); !s) return s.error();
   Result<std::vector<dxf::Polyline>> pl = dxf::discretize_all(*cs, step_mm, d.file);
   if (!pl) return pl.error();
   if (Status s = dxf::check_crossings(*cs, *pl, d.file); !s) return s.error();

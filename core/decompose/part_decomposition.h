@@ -35,9 +35,16 @@ struct PartResult {
 [[nodiscard]] Result<PartResult> decompose_part(const dxf::Drawing& d, double step_mm,
                                                 const Options& opt);
 
-// Checks the options (speeds, limits, field, angle > 0); the error names the
+// Checks the options (speeds, limits, field, angle > 0; in sync mode a
+// contour speed the two axis groups can reach together); the error names the
 // first bad one.
 [[nodiscard]] Status check_options(const Options& opt);
+
+// DecomposeTooLarge when the contours at `step_mm` would make more than
+// kMaxPartPoints points (estimated from their lengths, before anything is
+// allocated); the message gives the length, the points and the units.
+[[nodiscard]] Status check_part_size(const dxf::Drawing& d,
+                                     const std::vector<dxf::Contour>& contours, double step_mm);
 
 // The part's contours prepared for decomposition (chained, discretized,
 // checked) — decompose_part's first half, for callers that time the halves.

@@ -147,7 +147,9 @@ std::size_t choose_m(const dxf::Polyline& s, const Options& opt, double vk, Fail
   // their limits (the bound 2vk/τ ≤ a guarantees the acceleration at m_acc),
   // if the auxiliary motion still fits there.
   const double m_acc = std::ceil(2.0 * vk / (opt.main_accel_mm_s2 * kMargin * dt));
-  std::size_t lo = m_f, hi = static_cast<std::size_t>(std::min<double>(m_acc, 1e12));
+  // (bounded: every trial allocates n + 4m rows, see kMaxFilterSamples)
+  std::size_t lo = m_f, hi = static_cast<std::size_t>(
+                            std::min<double>(m_acc, static_cast<double>(kMaxFilterSamples)));
   if (at_f == Fail::None) {  // ShortestLeadIn: the smallest m ≤ m_f that keeps them
     lo = 0;
     hi = m_f;

@@ -1,0 +1,154 @@
+// End to end: the CLI's output files (app/output_file.h) — an output that is
+// an input or another output is refused, a refused or failed run leaves every
+// target as it was and creates nothing, a write error is an error exit.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+
+#include "e2e_support.h"
+
+namespace {
+
+using namespace e2e;
+
+const std::string kShare = std::string(LCNC_SOURCE_DIR) + "/share";
+const std::string kPlate = kShare + "/examples/plate_decompose.dxf";
+// A short job: a few millimetres, well inside the default machine's travel.
+const std::string kProgram = "G21 G90\nG1 X2 Y1 F1200\nG1 X0 Y0\nM30\n";
+const std::string kRun = " --no-progress --no-realtime";
+
+fs::path write(const fs::path& p, const std::string& text) {
+  std::ofstream(p, std::ios::binary) << text;
+  return p;
+}
+
+// The names in `dir` (the CLI's own stdout/stderr captures left out).
+std::set<std::string> listing(const fs::path& dir) {
+  std::set<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string n = e.path().filename().string();
+    if (n != "stdout.txt" && n != "stderr.txt") names.insert(n);
+  }
+  return names;
+}
+
+TEST(OutputFiles, RunRefusesATraceThatIsTheProgramItselfOrALinkToIt) {
+  const fs::path dir = temp_dir();
+  const fs::path prog = write(dir / "p.ngc", kProgram);
+  fs::create_symlink(prog, dir / "sym.ngc");
+  fs::create_hard_link(prog, dir / "hard.ngc");
+  for (const fs::path& trace : {prog, dir / "sym.ngc", dir / "hard.ngc", dir / "." / "p.ngc"}) {
+    const CmdResult r = lasercnc("run " + prog.string() + kRun + " --trace " + trace.string());
+    EXPECT_EQ(r.exit_code, 2) << trace << "\n" << r.err;
+    EXPECT_NE(r.err.find("E102"), std::string::npos) << r.err;
+    EXPECT_EQ(slurp(prog), kProgram) << "the program was overwritten through " << trace;
+  }
+  EXPECT_EQ(listing(dir), (std::set<std::string>{"p.ngc", "sym.ngc", "hard.ngc"}));
+  // the machine file is an input as well
+  const fs::path machine = dir / "m.toml";
+  fs::copy_file(kShare + "/machines/default.toml", machine);
+  const std::string before = slurp(machine);
+  const CmdResult r = lasercnc("run " + prog.string() + kRun + " --machine " + machine.string() +
+                               " --trace " + machine.string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(slurp(machine), before);
+}
+
+TEST(OutputFiles, ARefusedRunLeavesTheOldTraceByteIdenticalAndCreatesNothing) {
+  const fs::path dir = temp_dir();
+  const fs::path prog = write(dir / "p.ngc", kProgram);
+  const std::string old = "t,x,y,z,a,b,c,power\nthe previous run's trace\n";
+  const fs::path trace = write(dir / "x.csv", old);
+  // no laser source on that port: refused before anything moves
+  CmdResult r = lasercnc("run " + prog.string() + kRun + " --trace " + trace.string() +
+                         " --laser tcp:127.0.0.1:1");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(slurp(trace), old);
+  // a new target is not created either
+  r = lasercnc("run " + prog.string() + kRun + " --trace " + (dir / "new.csv").string() +
+               " --laser tcp:127.0.0.1:1");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(listing(dir), (std::set<std::string>{"p.ngc", "x.csv"}));
+}
+
+TEST(OutputFiles, ARunThatEndsReplacesTheTraceWholeAndLeavesNoTemporaryFile) {
+  const fs::path dir = temp_dir();
+  const fs::path prog = write(dir / "p.ngc", kProgram);
+  const fs::path trace = write(dir / "x.csv", "old\n");
+  fs::permissions(trace, fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
+  const fs::path link = dir / "link.csv";
+  fs::create_symlink(trace, link);
+  const CmdResult r = lasercnc("run " + prog.string() + kRun + " --trace " + link.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string t = slurp(trace);
+  EXPECT_EQ(t.rfind("t,x,y,z,a,b,c,power\n", 0), 0u) << t.substr(0, 80);
+  EXPECT_GT(t.size(), 100u);
+  EXPECT_TRUE(fs::is_symlink(link)) << "the link is kept, the file it names replaced";
+  EXPECT_EQ(fs::status(trace).permissions() & fs::perms::all,
+            fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
+  EXPECT_EQ(listing(dir), (std::set<std::string>{"p.ngc", "x.csv", "link.csv"}));
+}
+
+TEST(OutputFiles, ATraceThatCannotBeWrittenIsAnErrorNamingTheFileAndTheCause) {
+  const fs::path dir = temp_dir();
+  const fs::path prog = write(dir / "p.ngc", kProgram);
+  const CmdResult r = lasercnc("run " + prog.string() + kRun + " --trace /dev/full");
+  EXPECT_NE(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.err.find("/dev/full"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("E103"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
+  // a directory that cannot be written: refused before anything moves
+  const CmdResult r2 =
+      lasercnc("run " + prog.string() + kRun + " --trace /proc/no_such_dir/trace.csv");
+  EXPECT_EQ(r2.exit_code, 1);
+  EXPECT_NE(r2.err.find("trace.csv"), std::string::npos) << r2.err;
+}
+
+TEST(OutputFiles, DrillRefusesATraceThatIsItsTable) {
+  const fs::path dir = temp_dir();
+  const fs::path table = dir / "holes.csv";
+  fs::copy_file(kShare + "/examples/holes.csv", table);
+  const std::string before = slurp(table);
+  const CmdResult r =
+      lasercnc("drill " + table.string() + kRun + " --trace " + table.string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("E102"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(table), before);
+}
+
+TEST(OutputFiles, DecomposeRefusesAnOutputThatIsTheDrawingOrAnotherOutput) {
+  const fs::path dir = temp_dir();
+  const fs::path part = dir / "part.dxf";
+  fs::copy_file(kPlate, part);
+  const std::string before = slurp(part);
+  CmdResult r = lasercnc("decompose " + part.string() + " --step 0.05 --svg " + part.string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("E102"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(part), before);
+  r = lasercnc("decompose " + part.string() + " --step 0.05 --csv " + (dir / "a").string() +
+               " --svg " + (dir / "." / "a").string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("E102"), std::string::npos) << r.err;
+  EXPECT_EQ(listing(dir), (std::set<std::string>{"part.dxf"}));
+}
+
+TEST(OutputFiles, ARefusedDecomposeRunWritesNoneOfItsOutputs) {
+  const fs::path dir = temp_dir();
+  const std::string old = "an older table\n";
+  const fs::path csv = write(dir / "a.csv", old);
+  // the part at the machine's origin corner leaves the main axes' travel:
+  // refused before anything moves
+  const CmdResult r = lasercnc("decompose " + kPlate + " --step 0.05 --csv " + csv.string() +
+                               " --svg " + (dir / "a.svg").string() + " --run --origin -1000,-1000");
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_NE(r.err.find("E612"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(csv), old);
+  EXPECT_EQ(listing(dir), (std::set<std::string>{"a.csv"}));
+}
+
+}  // namespace
