@@ -1,12 +1,16 @@
 #include "app/control_client.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <random>
 #include <thread>
 
 #include <nlohmann/json.hpp>
@@ -61,6 +65,43 @@ std::optional<double> number(const std::string& s) {
   return v;
 }
 
+// What the sender can say of a program file before the daemon reads it: it
+// exists, this user can read it, it is a regular file. Opened without
+// blocking, so a FIFO is told apart, not waited on. Empty if fine.
+std::string local_file_problem(const std::string& path) {
+  const int fd = open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+  if (fd < 0) return std::strerror(errno);
+  struct stat st {};
+  const bool stat_ok = fstat(fd, &st) == 0;
+  close(fd);
+  if (!stat_ok) return std::strerror(errno);
+  if (S_ISREG(st.st_mode)) return {};
+  if (S_ISDIR(st.st_mode)) return "it is a directory";
+  if (S_ISFIFO(st.st_mode)) return "it is a named pipe (FIFO)";
+  if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode)) return "it is a device";
+  return "it is not a regular file";
+}
+
+const char* outcome_name(shm::JobOutcome o) {
+  switch (o) {
+    case shm::JobOutcome::None: return "";
+    case shm::JobOutcome::Done: return "done";
+    case shm::JobOutcome::Stopped: return "stopped";
+    case shm::JobOutcome::EStopped: return "e-stopped";
+    case shm::JobOutcome::Failed: return "failed";
+  }
+  return "";
+}
+
+// This request's own id: the same in every retry of it, unlike anyone
+// else's (the process id, and random bits for the rest).
+std::uint64_t new_request_id() {
+  std::random_device rd;
+  const std::uint64_t r = (std::uint64_t{rd()} << 16) ^ rd();
+  const std::uint64_t id = (static_cast<std::uint64_t>(getpid()) << 40) ^ r;
+  return id == 0 ? 1 : id;
+}
+
 }  // namespace
 
 std::string format_status(const shm::Status& st, const shm::JobStatus& job, bool json) {
@@ -89,6 +130,8 @@ std::string format_status(const shm::Status& st, const shm::JobStatus& job, bool
     j["jobs_ended"] = job.jobs_ended;
     j["last_cycle_time_s"] = job.last_cycle_time_s;
     j["last_fault"] = job.last_fault;
+    j["last_outcome"] = outcome_name(job.last_outcome);
+    j["last_line"] = job.last_line;
     j["message"] = job.message;
     return json_text(j) + "\n";
   }
@@ -155,6 +198,11 @@ int client_send(const std::vector<std::string>& args, const ClientOptions& optio
       std::fprintf(stderr, "lasercnc send load: path longer than %zu bytes\n", sizeof c.text - 1);
       return 2;
     }
+    if (const std::string why = local_file_problem(path); !why.empty()) {
+      std::fprintf(stderr, "lasercnc send load: cannot load '%s': %s; expected a readable regular file\n",
+                   path.c_str(), why.c_str());
+      return 1;
+    }
     c.type = shm::CommandType::Load;
     std::snprintf(c.text, sizeof c.text, "%s", path.c_str());
   } else if (cmd == "start" || cmd == "hold" || cmd == "resume" || cmd == "stop" ||
@@ -205,30 +253,59 @@ int client_send(const std::vector<std::string>& args, const ClientOptions& optio
   auto client = connect(options);
   if (!client) return 1;
   shm::ShmBlock& b = client->block();
+  const auto deadline = std::chrono::steady_clock::now() +
+                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                            std::chrono::duration<double>(options.timeout_s));
+  const auto left = [&] {
+    return std::max(std::chrono::steady_clock::duration::zero(), deadline - std::chrono::steady_clock::now());
+  };
   shm::Status st;
   shm::JobStatus job;
+  if (c.type == shm::CommandType::EStop) {
+    // its own path: the e-stop word, read by the RT kernel every period —
+    // neither the senders' lock nor the daemon's command thread in between
+    client->request_estop();
+    for (;;) {
+      if (b.status.load(st) && st.state == shm::MachineState::EStop) break;
+      if (left() == std::chrono::steady_clock::duration::zero() || !client->owner_alive()) {
+        std::fprintf(stderr, "lasercnc send estop: requested, but the kernel's status does not show it\n");
+        return 1;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    std::printf("e-stop\n");
+    return 0;
+  }
   if (!read_both(b, st, job)) return 1;
   const std::uint32_t ended_before = job.jobs_ended;
-  c.seq = client->send(c);  // a number unique among all senders
-  if (c.seq == 0) {
-    std::fprintf(stderr, "lasercnc send: the daemon's command queue is full\n");
-    return 1;
+  c.request_id = new_request_id();
+  c.sender_uid = static_cast<std::uint32_t>(getuid());
+  c.sender_gid = static_cast<std::uint32_t>(getgid());
+  // a full queue or a busy lock: tried again with the same request id until
+  // the deadline (a request that got through is not executed twice)
+  while ((c.seq = client->send(c, std::min<std::chrono::nanoseconds>(left(), shm::ShmClient::kDefaultLockTimeout))) == 0) {
+    if (left() == std::chrono::steady_clock::duration::zero()) {
+      std::fprintf(stderr,
+                   "lasercnc send %s: not sent within %g s: the daemon's command queue is full or "
+                   "another sender holds the senders' lock\n",
+                   cmd.c_str(), options.timeout_s);
+      return 1;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
-  const auto deadline = std::chrono::steady_clock::now() +
-                        std::chrono::milliseconds(static_cast<int>(options.timeout_s * 1000));
-  for (;;) {
-    if (read_both(b, st, job) && job.ack_seq == c.seq) break;
-    if (std::chrono::steady_clock::now() > deadline || !client->owner_alive()) {
+  shm::Answer answer;
+  while (!client->answer(c.seq, answer)) {
+    if (left() == std::chrono::steady_clock::duration::zero() || !client->owner_alive()) {
       std::fprintf(stderr, "lasercnc send %s: no answer from the daemon\n", cmd.c_str());
       return 1;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
-  if (job.ack_code != 0) {
-    std::fprintf(stderr, "lasercnc: %s\n", job.message);
+  if (answer.code != 0) {
+    std::fprintf(stderr, "lasercnc: %s\n", answer.message);
     return 1;
   }
-  std::printf("%s\n", job.message);
+  std::printf("%s\n", answer.message);
   if (options.wait && c.type == shm::CommandType::Start) {
     while (!(read_both(b, st, job) && job.jobs_ended != ended_before && !job.job_active)) {
       if (!client->owner_alive()) {
@@ -238,7 +315,8 @@ int client_send(const std::vector<std::string>& args, const ClientOptions& optio
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
     std::printf("%s\n", job.message);
-    return job.last_fault == 0 ? 0 : 3;
+    // 3: the job did not run to its end (stopped, e-stopped, failed)
+    return job.last_outcome == shm::JobOutcome::Done && job.last_fault == 0 ? 0 : 3;
   }
   return 0;
 }

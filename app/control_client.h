@@ -11,10 +11,14 @@
 
 namespace lcnc::app {
 
+// The longest --timeout: an hour (a longer one is a typing error, and would
+// overflow the clocks' arithmetic).
+inline constexpr double kMaxTimeoutS = 3600.0;
+
 struct ClientOptions {
   std::string shm_name;  // empty: shm::kDefaultName
   bool json = false;     // status as one JSON object
-  double timeout_s = 5.0;
+  double timeout_s = 5.0;  // 0 < t ≤ kMaxTimeoutS: the wait for the lock and for the answer
   bool wait = false;     // send start: wait for the job to end, print its result
 };
 

@@ -4,13 +4,16 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <thread>
+#include <unistd.h>
 
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include "app/cnc_modbus_host.h"
 #include "app/planner_feed.h"
+#include "app/program_snapshot.h"
 #include "app/run_job.h"
 #include "drivers/sim_machine.h"
 #include "gcode/program_reader.h"
@@ -62,9 +65,10 @@ struct Daemon::Impl {
   std::unique_ptr<PlannerFeed> feed;
   std::unique_ptr<CncModbusHost> modbus;  // the PLC/MES slave, when asked for
   bool realtime = true;
+  std::vector<std::string> program_dirs;  // canonical; empty: anywhere
 
   // the job
-  std::string program;  // loaded, checked
+  std::shared_ptr<const ProgramSnapshot> program;  // loaded, checked; null if none
   bool job_active = false;
   bool start_pending = false;  // planning ahead, the kernel not yet started
   bool stop_sent = false;      // the planner stopped short of a soft limit
@@ -83,13 +87,44 @@ struct Daemon::Impl {
     return p;
   }
 
-  // The answer to a command of the shm ring, where its sender waits for it.
+  // The answer to a command of the shm ring, in the slot its sender polls
+  // (and, for the HMIs that read it, as the job status's last answer).
   void ack(const shm::Command& c, const Ack& a) {
+    shm::Answer ans;
+    ans.seq = c.seq;
+    ans.code = a.ok ? 0 : static_cast<std::uint16_t>(a.code);
+    copy_text(ans.message, a.message);
+    shm.block().answers[c.seq % shm::kAnswerSlots].store(ans);
     job.ack_seq = c.seq;
-    job.ack_code = a.ok ? 0 : static_cast<std::uint16_t>(a.code);
+    job.ack_code = ans.code;
     copy_text(job.message, a.message);
     shm.block().job.store(job);
     log_ack(a);
+    remember(c, a);
+  }
+
+  // The requests executed lately, by their sender's id: a sender that sends
+  // one again (a retry after no answer) gets the first answer, and the
+  // request is not executed twice.
+  struct Recent {
+    std::uint64_t id = 0;
+    Ack ack;
+  };
+  static constexpr std::size_t kRecentRequests = 256;
+  std::array<Recent, kRecentRequests> recent{};
+  std::size_t recent_next = 0;
+  void remember(const shm::Command& c, const Ack& a) {
+    if (c.request_id == 0) return;
+    for (const Recent& r : recent)
+      if (r.id == c.request_id) return;
+    recent[recent_next] = Recent{c.request_id, a};
+    recent_next = (recent_next + 1) % kRecentRequests;
+  }
+  const Ack* already_answered(const shm::Command& c) const {
+    if (c.request_id == 0) return nullptr;
+    for (const Recent& r : recent)
+      if (r.id == c.request_id) return &r.ack;
+    return nullptr;
   }
   static void log_ack(const Ack& a) {
     if (a.ok) {
@@ -124,24 +159,93 @@ struct Daemon::Impl {
     std::shared_ptr<const std::vector<Segment>> drill_segments;  // empty for G-code
   };
   CheckedJob loaded;  // the program loaded (`program`), as last checked
+  Pose loaded_from = Pose::Zero();  // where the machine stood for that check
 
-  // Checks the program (or builds and checks the drilling job) from where
-  // the machine stands now; changes nothing of what is loaded.
-  Result<CheckedJob> check(const std::string& path) const {
+  // Checks the program's copy (or builds and checks the drilling job) from
+  // `start`; changes nothing of what is loaded. Any thread: reads only the
+  // machine.
+  Result<CheckedJob> check(const ProgramSnapshot& p, const Pose& start) const {
     ReaderOptions ropt;
-    ropt.start = position();
+    ropt.start = start;
     CheckedJob out;
-    if (!is_hole_table(path)) {
-      Result<ProgramSummary> s = check_job_program(path, machine, ropt);
-      if (!s) return s.error();
+    if (!is_hole_table(p.name())) {
+      Result<ProgramSummary> s = check_job_program(p.path(), machine, ropt);
+      if (!s) return p.rename(s.error());
       out.summary = *s;
       return out;
     }
-    Result<PreparedDrill> d = prepare_drill_job(path, machine, ropt.start);
-    if (!d) return d.error();
+    Result<PreparedDrill> d = prepare_drill_job(p.path(), machine, ropt.start);
+    if (!d) return p.rename(d.error());
     out.summary = d->summary;
     out.drill_segments = std::make_shared<const std::vector<Segment>>(std::move(d->job.segments));
     return out;
+  }
+
+  // A load in progress on the loader thread: the file copied, then checked.
+  // At most one; the command thread answers it once done (finish_load).
+  struct PendingLoad {
+    shm::Command cmd;
+    std::vector<shm::Command> repeats;  // the same request sent again meanwhile
+    Pose start = Pose::Zero();
+    std::shared_ptr<const ProgramSnapshot> snapshot;  // valid once done
+    std::optional<Result<CheckedJob>> checked;        // valid once done
+    std::atomic<bool> done{false};  // release by the loader, acquire by the command thread
+    std::thread thread;
+  };
+  std::unique_ptr<PendingLoad> pending;
+
+  void begin_load(const shm::Command& c) {
+    auto p = std::make_unique<PendingLoad>();
+    p->cmd = c;
+    p->start = position();
+    SnapshotRequest req;
+    req.path = c.text;
+    req.sender_uid = c.sender_uid;
+    req.sender_gid = c.sender_gid;
+    req.hole_table = is_hole_table(req.path);
+    req.program_dirs = program_dirs;
+    PendingLoad& l = *p;
+    l.thread = std::thread([this, &l, req = std::move(req)] {
+      Result<std::shared_ptr<const ProgramSnapshot>> snap = ProgramSnapshot::take(req);
+      if (!snap) {
+        l.checked.emplace(snap.error());
+      } else {
+        l.snapshot = *snap;
+        l.checked.emplace(check(*l.snapshot, l.start));
+      }
+      l.done.store(true, std::memory_order_release);
+    });
+    pending = std::move(p);
+  }
+
+  // The load done: what it checked becomes the program (or, refused, what
+  // was loaded before stays loaded); its sender gets the answer.
+  void finish_load(bool wait) {
+    if (!pending) return;
+    if (!wait && !pending->done.load(std::memory_order_acquire)) return;
+    pending->thread.join();
+    std::unique_ptr<PendingLoad> l = std::move(pending);
+    Ack a;
+    Result<CheckedJob>& checked = *l->checked;
+    if (!checked) {
+      a = Ack{false, checked.error().code, "load: " + checked.error().to_string()};
+    } else {
+      program = l->snapshot;
+      loaded = std::move(checked).value();
+      loaded_from = l->start;
+      const ProgramSummary& s = loaded.summary;
+      copy_text(job.program, program->name());
+      job.lines = s.lines;
+      job.segments = s.segments;
+      job.progress = 0.0;
+      char msg[256];
+      std::snprintf(msg, sizeof msg, "loaded %s: %u lines, %llu segments, path %.3f mm",
+                    program->name().c_str(), s.lines, static_cast<unsigned long long>(s.segments),
+                    s.path_length_mm);
+      a = Ack{true, ErrorCode::Internal, msg};
+    }
+    ack(l->cmd, a);
+    for (const shm::Command& r : l->repeats) ack(r, a);
   }
 
   // Executes a command (from the shm ring or the Modbus slave) and says what
@@ -153,42 +257,29 @@ struct Daemon::Impl {
     if (lcnc::Status f = shm::check_command_frame(c, limits); !f) return refuse(f.error().message);
     const std::string axis_text(1, kAxisLetters[c.axis < kAxisCount ? c.axis : 0]);
     switch (c.type) {
-      case shm::CommandType::Load: {
-        if (job_active) {
-          return refuse("load refused: a job is running (stop it first)");
-        }
-        Result<CheckedJob> checked = check(c.text);
-        if (!checked) {  // what was loaded before stays loaded
-          return Ack{false, checked.error().code, "load: " + checked.error().to_string()};
-        }
-        program = c.text;
-        loaded = std::move(checked).value();
-        const ProgramSummary& s = loaded.summary;
-        copy_text(job.program, program);
-        job.lines = s.lines;
-        job.segments = s.segments;
-        job.progress = 0.0;
-        char msg[256];
-        std::snprintf(msg, sizeof msg, "loaded %s: %u lines, %llu segments, path %.3f mm",
-                      program.c_str(), s.lines, static_cast<unsigned long long>(s.segments),
-                      s.path_length_mm);
-        return Ack{true, ErrorCode::Internal, msg};
-      }
+      case shm::CommandType::Load:
+        // the shm ring's loads go to the loader thread (drain_commands);
+        // the Modbus slave has none
+        return refuse("load refused: a load comes through the command ring");
       case shm::CommandType::Start: {
-        if (program.empty()) return refuse("start refused: no program loaded");
+        if (pending) return refuse("start refused: a program is being loaded");
+        if (!program) return refuse("start refused: no program loaded");
         if (job_active || st != shm::MachineState::Idle)
           return refuse(std::string("start refused: the machine is ") + state_name(st));
-        // checked again: the machine may have moved (jog, home) since the
-        // load, or the file changed
-        Result<CheckedJob> checked = check(program);
-        if (!checked) return Ack{false, checked.error().code, "start: " + checked.error().to_string()};
-        loaded = std::move(checked).value();
+        // the copy that was checked runs; checked again from here if the
+        // machine has moved (jog, home) since
         ReaderOptions ropt;
         ropt.start = position();
+        if (ropt.start != loaded_from) {
+          Result<CheckedJob> checked = check(*program, ropt.start);
+          if (!checked) return Ack{false, checked.error().code, "start: " + checked.error().to_string()};
+          loaded = std::move(checked).value();
+          loaded_from = ropt.start;
+        }
         if (loaded.drill_segments) {
-          feed->start(loaded.drill_segments, ropt.start, program);
+          feed->start(loaded.drill_segments, ropt.start, program->name());
         } else {
-          feed->start(program, ropt);
+          feed->start(program->path(), ropt);
         }
         job_active = true;
         start_pending = true;
@@ -197,7 +288,7 @@ struct Daemon::Impl {
         job.progress = 0.0;
         job_time_start_ns = kernel->machine_time_ns();
         job_underruns_start = kernel->underruns();
-        return Ack{true, ErrorCode::Internal, "started " + program};
+        return Ack{true, ErrorCode::Internal, "started " + program->name()};
       }
       case shm::CommandType::Hold:
         kernel->command({rt::RtCommandType::Hold, 0, 0.0});
@@ -240,6 +331,16 @@ struct Daemon::Impl {
     return refuse("bad command frame");
   }
 
+  // Why a load may not begin now; nothing if it may.
+  std::optional<Ack> refuse_load(const shm::Command& c) {
+    follow_job();
+    const auto refuse = [](const std::string& why) { return Ack{false, ErrorCode::RtRefused, why}; };
+    if (lcnc::Status f = shm::check_command_frame(c, limits); !f) return refuse(f.error().message);
+    if (job_active) return refuse("load refused: a job is running (stop it first)");
+    if (pending) return refuse("load refused: another load is in progress (" + std::string(pending->cmd.text) + ")");
+    return std::nullopt;
+  }
+
   // The HMIs' and the CLI's commands: at most a ring's worth per tick (the
   // ring is in shared memory; a sender can keep it full, not keep the
   // daemon from its other work). A ring found corrupt is dropped by the
@@ -247,7 +348,25 @@ struct Daemon::Impl {
   void drain_commands() {
     auto& ring = shm.block().commands;
     shm::Command c;
-    for (std::size_t n = 0; n < ring.kCapacity && ring.try_pop(c); ++n) ack(c, handle(c));
+    for (std::size_t n = 0; n < ring.kCapacity && ring.try_pop(c); ++n) {
+      if (pending && c.request_id != 0 && c.request_id == pending->cmd.request_id) {
+        pending->repeats.push_back(c);  // answered with the load it repeats
+        continue;
+      }
+      if (const Ack* first = already_answered(c)) {  // a retry: answered, not executed again
+        ack(c, *first);
+        continue;
+      }
+      if (c.type == shm::CommandType::Load) {
+        if (std::optional<Ack> refused = refuse_load(c)) {
+          ack(c, *refused);
+        } else {
+          begin_load(c);  // answered when done
+        }
+        continue;
+      }
+      ack(c, handle(c));
+    }
     if (ring.resyncs() != command_resyncs) {
       command_resyncs = ring.resyncs();
       const std::string why = "the command ring's indices were corrupt (a sender wrote past its turn): "
@@ -313,19 +432,36 @@ struct Daemon::Impl {
     job.last_cycle_time_s = static_cast<double>(kernel->machine_time_ns() - job_time_start_ns) * 1e-9;
     job.last_underruns = kernel->underruns() - job_underruns_start;
     job.last_fault = f.active ? static_cast<std::uint16_t>(f.code) : 0;
+    shm::Status rt_status;
+    job.last_line = f.active && f.line != 0 ? f.line
+                    : shm.block().status.load(rt_status) ? rt_status.line
+                                                          : 0;
+    // where it stopped: "at line 12, 37 %"
+    char where[64];
+    std::snprintf(where, sizeof where, "at line %u, %.0f %%", job.last_line, job.progress * 100.0);
     char msg[256];
     if (planned.failed) {
+      job.last_outcome = shm::JobOutcome::Failed;
       job.last_fault = static_cast<std::uint16_t>(planned.error.code);
-      std::snprintf(msg, sizeof msg, "job stopped: %s", planned.error.to_string().c_str());
+      std::snprintf(msg, sizeof msg, "job failed %s: %s", where,
+                    program->rename(planned.error).to_string().c_str());
     } else if (planned.limit) {
+      job.last_outcome = shm::JobOutcome::Stopped;
       job.last_fault = static_cast<std::uint16_t>(ErrorCode::RtSoftLimit);
-      std::snprintf(msg, sizeof msg, "job stopped: %s", planned.limit_error.to_string().c_str());
+      std::snprintf(msg, sizeof msg, "job stopped %s: %s", where,
+                    program->rename(planned.limit_error).to_string().c_str());
     } else if (f.active) {
-      std::snprintf(msg, sizeof msg, "job stopped: %s", describe_fault(f, machine).c_str());
+      job.last_outcome = estopped ? shm::JobOutcome::EStopped : shm::JobOutcome::Stopped;
+      std::snprintf(msg, sizeof msg, "job %s %s: %s", estopped ? "e-stopped" : "stopped", where,
+                    describe_fault(f, machine).c_str());
+    } else if (!kernel->last_job_completed()) {
+      job.last_outcome = shm::JobOutcome::Stopped;
+      std::snprintf(msg, sizeof msg, "job stopped %s: the operator's stop", where);
     } else {
+      job.last_outcome = shm::JobOutcome::Done;
       job.progress = 1.0;
       std::snprintf(msg, sizeof msg, "job done: %s, cycle %.3f s, %llu underruns",
-                    program.c_str(), job.last_cycle_time_s,
+                    program->name().c_str(), job.last_cycle_time_s,
                     static_cast<unsigned long long>(job.last_underruns));
     }
     copy_text(job.message, msg);
@@ -345,6 +481,14 @@ Result<std::unique_ptr<Daemon>> Daemon::create(const DaemonOptions& options) {
   auto impl = std::make_unique<Impl>(std::move(machine).value(), std::move(owner).value());
   Impl& d = *impl;
   d.realtime = options.realtime;
+  for (const std::string& dir : options.program_dirs) {
+    std::error_code ec;
+    const std::filesystem::path canon = std::filesystem::canonical(dir, ec);
+    if (ec || !std::filesystem::is_directory(canon))
+      return make_error(ErrorCode::FileNotFound, "program folder '" + dir + "': not a directory" +
+                                                     (ec ? " (" + ec.message() + ")" : std::string()));
+    d.program_dirs.push_back(canon.string());
+  }
   StepQuantizer q(d.machine, Pose::Zero());
   for (int i = 0; i < kAxisCount; ++i) d.start_steps[i] = q.commanded(i);
   // the simulated machine wired as a real one: hard limits beyond the soft
@@ -353,6 +497,7 @@ Result<std::unique_ptr<Daemon>> Daemon::create(const DaemonOptions& options) {
   d.kernel = std::make_unique<rt::RtKernel>(d.machine, *d.buffer, *d.sim, nullptr, d.start_steps);
   d.kernel->set_log(d.rt_log.get());
   d.kernel->set_status(&d.shm.block().status);
+  d.kernel->set_estop_word(&d.shm.block().estop.requests);
   d.feed = std::make_unique<PlannerFeed>(d.machine, *d.buffer, *d.kernel);
   d.shm.block().job.store(d.job);
   if (options.modbus) {
@@ -383,6 +528,7 @@ int Daemon::run(const std::atomic<bool>& quit) {
   while (!quit.load()) {
     block.header.heartbeat.fetch_add(1, std::memory_order_relaxed);
     d.drain_commands();
+    d.finish_load(false);
     if (d.modbus) d.serve_modbus();
     d.follow_job();
     d.drain_rt_log();
@@ -399,6 +545,7 @@ int Daemon::run(const std::atomic<bool>& quit) {
            d.kernel->state() != shm::MachineState::EStop && std::chrono::steady_clock::now() < until)
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
+  d.finish_load(true);  // a regular file's read ends: the loader is joined
   d.feed->abort();
   d.kernel->shutdown();
   d.kernel->join();

@@ -2,13 +2,18 @@
 // planner and RT threads on the simulated machine and publishes them in
 // POSIX shared memory (rt/shm_interface.h): the RT kernel writes the status,
 // this control thread takes the commands of the HMI and `lasercnc send`,
-// answers each in the job status, and turns the kernel's log into events.
+// answers each in its own answer slot, and turns the kernel's log into
+// events. A load is read and checked on a loader thread (the command thread
+// answers the other commands meanwhile) into a private copy that the job
+// then runs (app/program_snapshot.h); an e-stop does not pass through the
+// daemon at all (rt/shm_interface.h EStopWord).
 #pragma once
 
 #include <atomic>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "common/result.h"
 #include "drivers/modbus/modbus_types.h"
@@ -21,6 +26,9 @@ struct DaemonOptions {
   bool realtime = true;      // try SCHED_FIFO + mlockall
   // The Modbus slave for a PLC or MES (app/cnc_modbus_host.h); none if unset.
   std::optional<drivers::Endpoint> modbus;
+  // Folders a `load` may take programs from (any depth); empty: anywhere
+  // the sender may read (app/program_snapshot.h).
+  std::vector<std::string> program_dirs;
 };
 
 class Daemon {

@@ -114,7 +114,9 @@ int main(int argc, char** argv) {
         co.wait = true;
       } else if (a == "--timeout" && i + 1 < argc) {
         const auto t = parse_number(argv[++i]);
-        if (!t || *t <= 0) return usage_error("--timeout needs a number of seconds");
+        if (!t || !(*t > 0) || *t > lcnc::app::kMaxTimeoutS)
+          return usage_error("--timeout needs a number of seconds, more than 0 and at most " +
+                             std::to_string(static_cast<int>(lcnc::app::kMaxTimeoutS)));
         co.timeout_s = *t;
       } else if (a.size() > 2 && a.substr(0, 2) == "--") {
         return usage_error("unknown option '" + std::string(a) + "'");

@@ -20,12 +20,15 @@ extern "C" void on_signal(int) { g_quit.store(true); }
 
 constexpr const char* kUsage =
     "usage: lasercncd [--machine FILE] [--shm NAME] [--no-realtime] [--modbus ENDPOINT]\n"
+    "                 [--programs DIR]...\n"
     "  --machine      machine config (default: share/machines/default.toml)\n"
     "  --shm          shared-memory segment name (default /lasercnc)\n"
     "  --no-realtime  do not ask for SCHED_FIFO / mlockall\n"
     "  --modbus       serve the register map's cnc device to a PLC or MES:\n"
     "                 tcp:HOST:PORT (port 0: any free one; bind 127.0.0.1 unless\n"
-    "                 another address is given) or rtu:DEVICE[:BAUD[:PARITY]]\n";
+    "                 another address is given) or rtu:DEVICE[:BAUD[:PARITY]]\n"
+    "  --programs     a folder `load` may take programs from (repeatable; default:\n"
+    "                 any regular file the sender may read)\n";
 
 }  // namespace
 
@@ -42,6 +45,8 @@ int main(int argc, char** argv) {
         return 2;
       }
       opt.modbus = *ep;
+    } else if (a == "--programs" && i + 1 < argc) {
+      opt.program_dirs.emplace_back(argv[++i]);
     } else if (a == "--no-realtime") {
       opt.realtime = false;
     } else if (a == "--help" || a == "-h") {

@@ -104,6 +104,8 @@ void RtKernel::start(const RtOptions& options) {
   k_now_.store(k_, std::memory_order_relaxed);
   state_now_ = options.start_running ? MachineState::Running : MachineState::Idle;
   state_.store(state_now_, std::memory_order_release);
+  // requests made before the kernel ran are not this run's
+  if (estop_word_ != nullptr) estop_seen_ = estop_word_->load(std::memory_order_acquire);
   if (!options.try_realtime) {
     warning_ = "real-time scheduling not requested: normal scheduling";
   } else if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
@@ -197,6 +199,7 @@ void RtKernel::run(const RtOptions& options) noexcept {
     compute_.add(to_ns(done) - to_ns(now));
     if (end_seen_) {
       end_seen_ = false;
+      last_job_completed_.store(true, std::memory_order_relaxed);
       jobs_ended_.fetch_add(1, std::memory_order_release);
       if (options.exit_at_end) break;
       set_state(MachineState::Idle);
@@ -243,6 +246,16 @@ void RtKernel::set_state(MachineState s) noexcept {
 }
 
 void RtKernel::take_commands() noexcept {
+  // The e-stop word: acquire pairs with ShmClient::request_estop's release
+  // add. One load per period; a changed count is an e-stop now, however
+  // many requests it counts.
+  if (estop_word_ != nullptr) {
+    const std::uint32_t n = estop_word_->load(std::memory_order_acquire);
+    if (n != estop_seen_) {
+      estop_seen_ = n;
+      enter_estop(ErrorCode::RtEstop, -1, line_);
+    }
+  }
   RtCommand c;
   const MachineState s = state_now_;
   while (commands_.try_pop(c)) {
@@ -360,6 +373,7 @@ void RtKernel::enter_estop(ErrorCode code, int axis, std::uint32_t line) noexcep
   if (on_path_state() || stopping_) {
     flushing_ = true;
     job_aborted_ = true;
+    last_job_completed_.store(false, std::memory_order_relaxed);
     jobs_ended_.fetch_add(1, std::memory_order_release);
   }
   hold_ = stopping_ = starving_ = false;
@@ -398,6 +412,7 @@ void RtKernel::path_motion(Motion& m) noexcept {
       stopping_ = false;
       flushing_ = true;
       job_aborted_ = true;
+      last_job_completed_.store(false, std::memory_order_relaxed);
       jobs_ended_.fetch_add(1, std::memory_order_release);
       set_state(MachineState::Idle);
     }

@@ -8,8 +8,10 @@
 //   1. sleep to the absolute deadline (clock_nanosleep, TIMER_ABSTIME)
 //   2. record wake-up latency (of periods that slept; one already due, the
 //      machine catching up after a stall, starts at once and is counted)
-//   3. commands (a lock-free ring from one control thread): start, hold,
-//      resume, stop, e-stop, reset, jog, home — an e-stop acts in this period
+//   3. commands: the e-stop word first (an atomic counter any process bumps,
+//      rt/shm_interface.h EStopWord), then the lock-free ring from one
+//      control thread: start, hold, resume, stop, e-stop, reset, jog, home —
+//      an e-stop acts in this period
 //   4. inputs (e-stop, hard limits, home switches) from the pulse sink
 //   5. the period's motion, by state:
 //        Running/FeedHold/Stopping: held (K < K_min) → none; else pop one
@@ -156,6 +158,12 @@ class RtKernel {
   // before start(). Null: none.
   void set_status(Seqlock<shm::Status>* status) noexcept { status_ = status; }
 
+  // The e-stop word the RT thread polls every period (the shm block's
+  // EStopWord): a count that differs from the one last seen is an e-stop,
+  // this period, whatever the control thread is doing. Set before start();
+  // null: none.
+  void set_estop_word(const std::atomic<std::uint32_t>* word) noexcept { estop_word_ = word; }
+
   // Starts the RT thread. Where SCHED_FIFO or mlockall is not permitted it
   // runs anyway; warning() then says so.
   void start(const RtOptions& options = {});
@@ -193,6 +201,11 @@ class RtKernel {
   [[nodiscard]] std::uint32_t homed_mask() const noexcept { return homed_.load(std::memory_order_relaxed); }
   // Jobs that have ended (at their end, by a stop or by an e-stop).
   [[nodiscard]] std::uint32_t jobs_ended() const noexcept { return jobs_ended_.load(std::memory_order_acquire); }
+  // The last job ended ran to its end (not stopped, not e-stopped). Written
+  // before jobs_ended() counts it: read after seeing that count.
+  [[nodiscard]] bool last_job_completed() const noexcept {
+    return last_job_completed_.load(std::memory_order_relaxed);
+  }
 
   // Feed override K (1 = 100 %), from any thread, lock-free. Clamped to
   // 0 … K_max (FeedOverrideRamp::clamp_target); 0 is a feed hold. While
@@ -319,6 +332,8 @@ class RtKernel {
   std::uint32_t axes_mask_ = 0;  // bit per axis present
   RtCommandRing commands_;
   Seqlock<shm::Status>* status_ = nullptr;
+  const std::atomic<std::uint32_t>* estop_word_ = nullptr;
+  std::uint32_t estop_seen_ = 0;  // the word's count at start or at the last e-stop taken
   RtOptions options_;
   // RT thread's state (the atomics below publish it).
   MachineState state_now_ = MachineState::Idle;
@@ -377,6 +392,8 @@ class RtKernel {
   std::atomic<std::uint32_t> fault_line_{0};
   std::atomic<std::uint64_t> starvations_{0};
   std::atomic<std::uint32_t> jobs_ended_{0};
+  // relaxed: ordered by jobs_ended_'s release increment after it
+  std::atomic<bool> last_job_completed_{false};
   std::array<std::atomic<std::int64_t>, kAxisCount> pos_pub_{};
   std::array<std::atomic<std::int64_t>, kAxisCount> emitted_pub_{};
   std::atomic<bool> finished_{false};

@@ -1,11 +1,13 @@
 #include "rt/shm_interface.h"
 
 #include <fcntl.h>
+#include <time.h>
 #include <signal.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <new>
@@ -128,15 +130,45 @@ ShmClient::~ShmClient() {
   if (block_ != nullptr) munmap(block_, sizeof(ShmBlock));
 }
 
-std::uint32_t ShmClient::send(Command c) {
+std::uint32_t ShmClient::send(Command c, std::chrono::nanoseconds lock_timeout) {
+  if (c.type == CommandType::EStop) request_estop();  // acts even if the lock is never had
   CommandSenders& s = block_->senders;
-  const int r = pthread_mutex_lock(&s.lock);
+  // The robust mutex times out against CLOCK_REALTIME (glibc has no
+  // monotonic timedlock for robust mutexes): a clock step during the wait
+  // only lengthens or shortens this one wait.
+  timespec until{};
+  clock_gettime(CLOCK_REALTIME, &until);
+  const std::int64_t ns = std::max<std::int64_t>(0, lock_timeout.count());
+  until.tv_sec += static_cast<time_t>(ns / 1'000'000'000);
+  until.tv_nsec += static_cast<long>(ns % 1'000'000'000);
+  if (until.tv_nsec >= 1'000'000'000) {
+    until.tv_nsec -= 1'000'000'000;
+    ++until.tv_sec;
+  }
+  const int r = pthread_mutex_timedlock(&s.lock, &until);
   if (r == EOWNERDEAD) pthread_mutex_consistent(&s.lock);  // its push was whole or not begun
   else if (r != 0) return 0;
   c.seq = ++s.next_seq == 0 ? ++s.next_seq : s.next_seq;
   const bool pushed = block_->commands.try_push(c);
   pthread_mutex_unlock(&s.lock);
   return pushed ? c.seq : 0;
+}
+
+void ShmClient::request_estop() noexcept {
+  // release pairs with the RT kernel's acquire load of the word: nothing
+  // else is published with it, the order only keeps the add from moving
+  // after what the sender does next.
+  block_->estop.requests.fetch_add(1, std::memory_order_release);
+}
+
+bool ShmClient::answer(std::uint32_t seq, Answer& out) const noexcept {
+  if (seq == 0) return false;
+  Answer a;
+  if (!block_->answers[seq % kAnswerSlots].load(a)) return false;
+  if (a.seq != seq) return false;
+  sanitize(a);
+  out = a;
+  return true;
 }
 
 bool ShmClient::owner_alive() const noexcept { return process_alive(block_->header.owner_pid); }
@@ -151,8 +183,13 @@ void sanitize(JobStatus& j) noexcept {
   std::uint8_t active = 0;  // the byte as written: a bool of any other value is undefined
   std::memcpy(&active, &j.job_active, 1);
   j.job_active = active != 0;
+  std::uint8_t outcome = 0;  // likewise an enum byte out of its range
+  std::memcpy(&outcome, &j.last_outcome, 1);
+  if (outcome > static_cast<std::uint8_t>(JobOutcome::Failed)) j.last_outcome = JobOutcome::None;
 }
 
 void sanitize(Event& e) noexcept { e.text[sizeof e.text - 1] = '\0'; }
+
+void sanitize(Answer& a) noexcept { a.message[sizeof a.message - 1] = '\0'; }
 
 }  // namespace lcnc::shm

@@ -5,12 +5,22 @@
 //   ShmHeader   magic, version, size, owner pid, heartbeat (stale detection)
 //   status      Seqlock<Status>: written by the RT kernel every few periods,
 //               read by any number of HMIs without blocking the kernel
-//   job         Seqlock<JobStatus>: the daemon's answers to commands, jobs
+//   estop       EStopWord: a counter any process bumps with one atomic add
+//               (ShmClient::request_estop), no lock; the RT kernel polls it
+//               every period — an e-stop waits behind nothing
+//   job         Seqlock<JobStatus>: the daemon's jobs and its last answer
+//   answers     Seqlock<Answer>[kAnswerSlots]: the answer to command seq s in
+//               slot s % kAnswerSlots, where its own sender looks for it
 //   commands    SpscRing<Command>: HMIs and `lasercnc send` → the daemon;
 //               its senders take turns under a process-shared robust mutex
-//               (ShmClient::send), which also hands out unique sequence
-//               numbers — the daemon's control thread pops without it
+//               (ShmClient::send, a timed lock), which also hands out unique
+//               sequence numbers — the daemon's control thread pops without it
 //   events      SpscRing<Event>:   kernel → HMI (faults, state changes)
+//
+// Trust: the segment is the group's (mode 0660); a frame's sender uid/gid
+// are what the sending process wrote, checked by the daemon like any other
+// field, not proof of identity — they keep an honest client from loading a
+// file its user cannot read, not a hostile member of the group.
 #pragma once
 
 #include <pthread.h>
@@ -18,6 +28,7 @@
 
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <string>
 
@@ -28,7 +39,7 @@
 namespace lcnc::shm {
 
 inline constexpr std::uint32_t kMagic = 0x434E434Cu;  // "LCNC" in memory
-inline constexpr std::uint32_t kVersion = 4;
+inline constexpr std::uint32_t kVersion = 5;
 inline constexpr const char* kDefaultName = "/lasercnc";
 
 enum class MachineState : std::uint8_t { Idle, Running, FeedHold, Stopping, EStop, Jog, Homing };
@@ -50,10 +61,24 @@ enum class CommandType : std::uint8_t {
 struct Command {
   CommandType type = CommandType::Stop;
   std::uint8_t axis = 0;
-  std::uint32_t seq = 0;  // the HMI's running number, echoed in events
+  std::uint32_t seq = 0;  // unique among senders (ShmClient::send), keys the answer slot
   double value = 0.0;
+  // The sender's own id of this request (0: none). A sender that sends the
+  // same request again (a retry after no answer) keeps the id: the daemon
+  // executes it once and answers the repeat with the first answer.
+  std::uint64_t request_id = 0;
+  std::uint32_t sender_uid = 0;  // whose rights a load is read with (see Trust above)
+  std::uint32_t sender_gid = 0;
   char text[240] = {};
 };
+
+// The answer to one command, in slot seq % kAnswerSlots.
+struct Answer {
+  std::uint32_t seq = 0;   // the command's seq; 0: the slot is empty
+  std::uint16_t code = 0;  // 0: accepted; else the ErrorCode why not
+  char message[256] = {};
+};
+inline constexpr std::size_t kAnswerSlots = 256;
 
 struct Event {
   std::uint64_t period = 0;
@@ -84,9 +109,20 @@ struct Status {
   float latency_p50_us = 0.0f, latency_p99_us = 0.0f, latency_max_us = 0.0f;
 };
 
+// How the last job ended.
+enum class JobOutcome : std::uint8_t {
+  None,      // no job has ended yet
+  Done,      // ran to its end
+  Stopped,   // the operator's stop (or the planner's, short of a soft limit)
+  EStopped,  // an e-stop: the command, the input or a limit
+  Failed,    // the program could not be read or planned to its end
+};
+
 // What the daemon says of jobs and commands (written by its control thread,
 // a second seqlock beside the kernel's Status): the answer to the last
 // command — any number of `lasercnc send` and HMIs read it, none consumes it.
+// A sender waits for its own answer in ShmBlock::answers instead: with
+// several senders, this one is overwritten by the next answer.
 struct JobStatus {
   std::uint32_t ack_seq = 0;   // seq of the last command taken
   std::uint16_t ack_code = 0;  // 0: accepted; else the ErrorCode why not
@@ -100,6 +136,8 @@ struct JobStatus {
   double last_cycle_time_s = 0.0;
   std::uint64_t last_underruns = 0;
   std::uint16_t last_fault = 0;  // ErrorCode that ended the last job, 0 if it ran to the end
+  JobOutcome last_outcome = JobOutcome::None;
+  std::uint32_t last_line = 0;   // program line where the last job ended
 };
 
 // Blocks copied out of the segment, made safe to use: any process of the
@@ -109,6 +147,7 @@ struct JobStatus {
 void sanitize(Status& s) noexcept;
 void sanitize(JobStatus& j) noexcept;
 void sanitize(Event& e) noexcept;
+void sanitize(Answer& a) noexcept;
 
 struct ShmHeader {
   std::uint32_t magic = 0;
@@ -124,10 +163,22 @@ struct CommandSenders {
   std::uint32_t next_seq = 0;   // guarded by lock
 };
 
+// The e-stop's own path: a request counter, bumped by any process with one
+// atomic add and no lock (ShmClient::request_estop); the RT kernel compares
+// it with the count it last saw every period (RtKernel::set_estop_word), so
+// an e-stop acts within a period whatever the daemon's control thread or
+// the senders' lock are doing. On a cache line of its own.
+struct alignas(rt::kCacheLine) EStopWord {
+  std::atomic<std::uint32_t> requests{0};
+};
+static_assert(std::atomic<std::uint32_t>::is_always_lock_free);
+
 struct ShmBlock {
   ShmHeader header;
+  EStopWord estop;
   rt::Seqlock<Status> status;
   rt::Seqlock<JobStatus> job;
+  std::array<rt::Seqlock<Answer>, kAnswerSlots> answers;
   CommandSenders senders;
   rt::SpscRing<Command, 64> commands;
   rt::SpscRing<Event, 256> events;
@@ -164,9 +215,18 @@ class ShmClient {
   [[nodiscard]] ShmBlock& block() noexcept { return *block_; }
   // Puts `c` into the command ring with the next sequence number of the
   // segment (unique among all senders); the number, or 0 when the ring is
-  // full. Takes the senders' lock: never from an RT thread. A sender that
-  // died holding it does not block the others (robust mutex).
-  std::uint32_t send(Command c);
+  // full or the senders' lock was not had within `lock_timeout`. Takes the
+  // senders' lock: never from an RT thread. A sender that died holding it
+  // does not block the others (robust mutex); a live one that holds it
+  // delays them by `lock_timeout` at most. An e-stop is requested through
+  // the e-stop word first (request_estop), lock or no lock.
+  std::uint32_t send(Command c, std::chrono::nanoseconds lock_timeout = kDefaultLockTimeout);
+  static constexpr std::chrono::nanoseconds kDefaultLockTimeout = std::chrono::seconds(1);
+  // Asks the RT kernel for an e-stop: one atomic add, no lock, no wait.
+  void request_estop() noexcept;
+  // The answer to command `seq`, once the daemon has written it (and no
+  // kAnswerSlots later commands have taken its slot since).
+  [[nodiscard]] bool answer(std::uint32_t seq, Answer& out) const noexcept;
   // The owner process still exists.
   [[nodiscard]] bool owner_alive() const noexcept;
 

@@ -63,6 +63,46 @@ inline CmdResult run_program(const std::string& exe, const std::string& args) {
 
 inline CmdResult lasercnc(const std::string& args) { return run_program(LASERCNC_EXE, args); }
 
+// A shared-memory segment name of the test's own, removed when the guard
+// goes, whatever happened to the daemon that made it (killed, crashed, the
+// test failed half-way).
+class ShmGuard {
+ public:
+  explicit ShmGuard(std::string name) : name_(std::move(name)) {}
+  ~ShmGuard() { shm_unlink(name_.c_str()); }
+  ShmGuard(const ShmGuard&) = delete;
+  ShmGuard& operator=(const ShmGuard&) = delete;
+  [[nodiscard]] const std::string& name() const noexcept { return name_; }
+  operator const std::string&() const noexcept { return name_; }  // NOLINT: stands for the name
+
+ private:
+  std::string name_;
+};
+
+// Segments this test process left in /dev/shm: names that begin with "lcnc"
+// and carry "_<pid>" (the tests' naming).
+inline std::vector<std::string> leaked_segments() {
+  std::vector<std::string> out;
+  const std::string mark = "_" + std::to_string(::getpid());
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator("/dev/shm", ec)) {
+    const std::string n = e.path().filename().string();
+    const std::size_t at = n.find(mark);
+    if (n.starts_with("lcnc") && at != std::string::npos &&
+        (at + mark.size() == n.size() || n[at + mark.size()] == '_'))
+      out.push_back(n);
+  }
+  return out;
+}
+
+// Fails the run if a test left a segment behind.
+class NoLeakedSegments : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    for (const std::string& n : leaked_segments()) ADD_FAILURE() << "shared memory left behind: /dev/shm/" << n;
+  }
+};
+
 // A lasercncd child process on its own segment (LASERCNCD_EXE), its stderr
 // in a log file of the test's folder; `extra` are further arguments.
 class Daemon {
@@ -98,11 +138,14 @@ class Daemon {
     return false;
   }
   // Sends a signal and waits for the exit; returns the exit code (-1: killed).
-  int stop(int sig) {
+  // The segment is then removed — a daemon killed outright cannot — unless
+  // the test wants what a crash leaves behind (keep_segment).
+  int stop(int sig, bool keep_segment = false) {
     kill(pid_, sig);
     int status = 0;
     waitpid(pid_, &status, 0);
     pid_ = -1;
+    if (!keep_segment) shm_unlink(shm_.c_str());
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   }
   // Waits for the exit of a daemon that ends by itself.

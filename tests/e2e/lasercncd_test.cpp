@@ -10,8 +10,14 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <pthread.h>
+#include <sys/stat.h>
+
 #include <atomic>
 #include <chrono>
+#include <future>
+#include <set>
+#include <vector>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -209,7 +215,7 @@ TEST(Lasercncd, SecondDaemonRefusedStaleSegmentRecovered) {
     EXPECT_EQ(second.wait_exit(), 1);
     EXPECT_NE(second.log().find("already owned by running process"), std::string::npos)
         << second.log();
-    EXPECT_EQ(first.stop(SIGKILL), -1);  // crashes: the segment stays behind
+    EXPECT_EQ(first.stop(SIGKILL, true), -1);  // crashes: the segment stays behind
   }
   ASSERT_TRUE(fs::exists("/dev/shm" + shm));
   const CmdResult r = lasercnc("status --shm " + shm);
@@ -236,7 +242,7 @@ TEST(Lasercncd, KilledMidJobTheRestartedDaemonComesUpAtRest) {
     for (int i = 0; i < 300 && status(shm)["position"][0].get<double>() < 2.0; ++i)
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     EXPECT_EQ(status(shm)["state"], "running");
-    EXPECT_EQ(first.stop(SIGKILL), -1);
+    EXPECT_EQ(first.stop(SIGKILL, true), -1);
     const auto killed = std::chrono::steady_clock::now();
     const CmdResult r = lasercnc("status --shm " + shm);
     EXPECT_EQ(r.exit_code, 1);
@@ -295,6 +301,313 @@ TEST(Lasercncd, ACorruptCommandRingIsDroppedAndTheDaemonAnswersOn) {
   EXPECT_NE(d.log().find("command ring's indices were corrupt"), std::string::npos) << d.log();
   EXPECT_EQ(d.stop(SIGTERM), 0) << d.log();
 }
+
+// ---- the e-stop's own path, loads off the command thread ----------------
+
+// The segment as a client process maps it (the test is one more sender).
+lcnc::shm::ShmClient client(const std::string& shm) {
+  auto c = lcnc::shm::ShmClient::open(shm);
+  EXPECT_TRUE(static_cast<bool>(c)) << c.error().to_string();
+  return std::move(c).value();
+}
+
+// Sends a raw command frame as a sender that bypasses `lasercnc send`'s own
+// checks would; its seq.
+std::uint32_t send_frame(lcnc::shm::ShmClient& c, lcnc::shm::CommandType type, const std::string& text = {},
+                         double value = 0.0, std::uint8_t axis = 0, std::uint64_t request_id = 0,
+                         std::uint32_t uid = 0) {
+  lcnc::shm::Command cmd;
+  cmd.type = type;
+  cmd.value = value;
+  cmd.axis = axis;
+  cmd.request_id = request_id;
+  cmd.sender_uid = uid;
+  cmd.sender_gid = uid;
+  std::snprintf(cmd.text, sizeof cmd.text, "%s", text.c_str());
+  return c.send(cmd);
+}
+
+lcnc::shm::Answer wait_answer(lcnc::shm::ShmClient& c, std::uint32_t seq, std::chrono::milliseconds t = 5000ms) {
+  lcnc::shm::Answer a;
+  const auto until = std::chrono::steady_clock::now() + t;
+  while (!c.answer(seq, a) && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(1ms);
+  return a;
+}
+
+// A jog of 200 mm (seconds at the jog speed) under way; then `lasercnc send
+// estop` must reach the RT kernel within kEStopWithin (a generous bound for
+// a loaded CI machine: the kernel itself takes it in the next period,
+// RtKernelControl.EStopWordActsInTheNextPeriod) and the axis stands still.
+constexpr auto kEStopWithin = 250ms;
+void expect_estop_stops_a_jog(const std::string& shm, const std::function<void()>& while_busy = {}) {
+  ASSERT_EQ(lasercnc("send jog X 200 --shm " + shm).exit_code, 0);
+  ASSERT_TRUE(wait_state(shm, "jog"));
+  if (while_busy) while_busy();
+  const auto t0 = std::chrono::steady_clock::now();
+  const CmdResult r = run_program("timeout 10 " LASERCNC_EXE, "send estop --shm " + shm);
+  const auto took = std::chrono::steady_clock::now() - t0;
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json s = status(shm);
+  EXPECT_EQ(s["state"], "e-stop");
+  // the CLI's own start-up counts in `took`: the bound is for all of it
+  EXPECT_LT(took, kEStopWithin + 500ms) << std::chrono::duration<double>(took).count() << " s";
+  const double x = s["position"][0].get<double>();
+  EXPECT_LT(x, 200.0);
+  std::this_thread::sleep_for(50ms);
+  EXPECT_EQ(status(shm)["position"][0].get<double>(), x);  // not moving
+}
+
+// (a) The daemon asked to load a FIFO nobody writes (a sender that skips
+// `lasercnc send`'s check): the FIFO is refused without blocking, and the
+// e-stop stops a running jog meanwhile.
+TEST(LasercncdEStop, ActsWhileALoadOfAFifoIsAsked) {
+  const e2e::ShmGuard shm(shm_name());
+  Daemon d(shm);
+  ASSERT_TRUE(d.ready()) << d.log();
+  const fs::path fifo = temp_dir() / "pipe.ngc";
+  fs::remove(fifo);
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  auto c = client(shm);
+  std::uint32_t seq = 0;
+  expect_estop_stops_a_jog(shm, [&] { seq = send_frame(c, lcnc::shm::CommandType::Load, fifo.string()); });
+  const lcnc::shm::Answer a = wait_answer(c, seq);
+  EXPECT_EQ(a.seq, seq);
+  EXPECT_NE(std::string(a.message).find("named pipe"), std::string::npos) << a.message;
+  // the CLI refuses it itself, without sending
+  const CmdResult r = run_program("timeout 10 " LASERCNC_EXE, "send load " + fifo.string() + " --shm " + shm.name());
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("named pipe"), std::string::npos) << r.err;
+  // a directory likewise
+  const lcnc::shm::Answer dir = wait_answer(c, send_frame(c, lcnc::shm::CommandType::Load, temp_dir().string()));
+  EXPECT_NE(std::string(dir.message).find("a directory"), std::string::npos) << dir.message;
+  EXPECT_EQ(d.stop(SIGTERM), 0) << d.log();
+}
+
+// (b) Another process holds the senders' lock (here: this test process, a
+// live one): the e-stop needs no lock; other commands give up after their
+// --timeout with a clear message instead of hanging.
+TEST(LasercncdEStop, ActsWhileAnotherProcessHoldsTheSendersLock) {
+  const e2e::ShmGuard shm(shm_name());
+  Daemon d(shm);
+  ASSERT_TRUE(d.ready()) << d.log();
+  auto c = client(shm);
+  pthread_mutex_t* lock = &c.block().senders.lock;
+  bool locked = false;
+  expect_estop_stops_a_jog(shm, [&] { locked = pthread_mutex_lock(lock) == 0; });
+  ASSERT_TRUE(locked);
+  const auto t0 = std::chrono::steady_clock::now();
+  const CmdResult r = run_program("timeout 10 " LASERCNC_EXE, "send override 50 --timeout 0.3 --shm " + shm.name());
+  const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("senders' lock"), std::string::npos) << r.err;
+  EXPECT_LT(took, 3.0);
+  pthread_mutex_unlock(lock);
+  EXPECT_EQ(lasercnc("send override 50 --shm " + shm.name()).exit_code, 0);
+  EXPECT_EQ(d.stop(SIGTERM), 0) << d.log();
+}
+
+// (c) A flood of commands from another sender while the e-stop is sent.
+TEST(LasercncdEStop, ActsDuringAFloodOfCommands) {
+  const e2e::ShmGuard shm(shm_name());
+  Daemon d(shm);
+  ASSERT_TRUE(d.ready()) << d.log();
+  auto c = client(shm);
+  std::atomic<bool> flooding{true};
+  std::thread flood;
+  expect_estop_stops_a_jog(shm, [&] {
+    flood = std::thread([&] {
+      while (flooding) (void)send_frame(c, lcnc::shm::CommandType::Override, {}, 1.0);
+    });
+    std::this_thread::sleep_for(50ms);
+  });
+  flooding = false;
+  flood.join();
+  EXPECT_EQ(d.stop(SIGTERM), 0) << d.log();
+}
+
+// (d) A big program being loaded: the e-stop acts, and the command thread
+// answers other commands meanwhile.
+TEST(LasercncdEStop, ActsWhileABigProgramLoads) {
+  const e2e::ShmGuard shm(shm_name());
+  Daemon d(shm);
+  ASSERT_TRUE(d.ready()) << d.log();
+  const fs::path big = temp_dir() / "big.ngc";
+  {
+    std::ofstream out(big);
+    out << "G21 G90\nG1 F3000\n";
+    for (int i = 0; i < 400000; ++i) out << "G1 X" << (10 + i % 50) << " Y" << (10 + (i / 50) % 50) << "\n";
+    out << "M2\n";
+  }
+  auto c = client(shm);
+  std::uint32_t seq = 0;
+  expect_estop_stops_a_jog(shm, [&] { seq = send_frame(c, lcnc::shm::CommandType::Load, big.string()); });
+  const CmdResult r = lasercnc("send override 80 --shm " + shm.name());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const lcnc::shm::Answer a = wait_answer(c, seq, 60s);
+  EXPECT_EQ(a.code, 0) << a.message;
+  EXPECT_NE(std::string(a.message).find("400003 lines"), std::string::npos) << a.message;
+  EXPECT_EQ(d.stop(SIGTERM), 0) << d.log();
+}
+
+// --timeout: more than 0, at most an hour; 1e10 used to overflow into an
+// instant "no answer".
+TEST(Lasercncd, TimeoutOutOfRangeIsAUsageError) {
+  for (const char* t : {"1e10", "0", "-1", "nan", "3601"}) {
+    const CmdResult r = lasercnc(std::string("send stop --timeout ") + t + " --shm /lcnc_e2e_nobody_here");
+    EXPECT_EQ(r.exit_code, 2) << t << ": " << r.err;
+    EXPECT_NE(r.err.find("at most 3600"), std::string::npos) << r.err;
+  }
+}
+
+// ---- what a load reads, what a job runs --------------------------------
+
+// The job runs the program as it was checked at its load: the file
+// rewritten afterwards (here: beyond the travel) changes nothing.
+TEST(Lasercncd, RunsTheProgramAsLoadedWhateverTheFileBecomes) {
+  const e2e::ShmGuard shm(shm_name());
+  Daemon d(shm);
+  ASSERT_TRUE(d.ready()) << d.log();
+  const fs::path prog = write_program("edited.ngc", kShortJob);
+  ASSERT_EQ(lasercnc("send load " + prog.string() + " --shm " + shm.name()).exit_code, 0);
+  std::ofstream(prog) << "G21 G90\nG1 X5 F3000\nG1 X9999\nM2\n";  // E304 at line 3
+  CmdResult r = lasercnc("send start --wait --shm " + shm.name());
+  EXPECT_EQ(r.exit_code, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("job done"), std::string::npos) << r.out;
+  nlohmann::json s = status(shm);
+  EXPECT_NEAR(s["position"][0].get<double>(), 12.0, 1e-9);  // kShortJob's end
+  // replaced while it runs: the same
+  ASSERT_EQ(lasercnc("send jog X -2 --shm " + shm.name()).exit_code, 0);
+  ASSERT_TRUE(wait_state(shm, "idle"));
+  auto job = std::async(std::launch::async, [&] { return lasercnc("send start --wait --shm " + shm.name()); });
+  std::ofstream(prog.string() + ".new") << "G21 G90\nG1 X9999 F3000\nM2\n";
+  fs::rename(prog.string() + ".new", prog);
+  r = job.get();
+  EXPECT_EQ(r.exit_code, 0) << r.err << r.out;
+  EXPECT_NEAR(status(shm)["position"][0].get<double>(), 12.0, 1e-9);
+  EXPECT_EQ(d.stop(SIGTERM), 0) << d.log();
+}
+
+// A file that is not a program is refused without its bytes in the answer
+// (the daemon may read what its sender may not); the sender's uid, the
+// program folders limit what may be loaded.
+TEST(Lasercncd, LoadsOnlyProgramsTheSenderMayReadAndNeverEchoesOtherFiles) {
+  const e2e::ShmGuard shm(shm_name());
+  const fs::path dir = temp_dir() / "programs";
+  fs::create_directories(dir);
+  Daemon d(shm, {"--programs", dir.string()});
+  ASSERT_TRUE(d.ready()) << d.log();
+  // shadow-like text, and binary
+  const fs::path secret = write_program("programs/shadow.ngc", "root:$6$s3cr3tHASH:19000:0:99999:7:::\n");
+  CmdResult r = lasercnc("send load " + secret.string() + " --shm " + shm.name());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("not a G-code program"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("s3cr3t"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("root"), std::string::npos) << r.err;
+  const fs::path bin = dir / "blob.ngc";
+  std::ofstream(bin, std::ios::binary) << std::string("G1\x7f" "ELF\x02\x01\x01\x00s3cr3t", 16);
+  r = lasercnc("send load " + bin.string() + " --shm " + shm.name());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("not a G-code program"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("s3cr3t"), std::string::npos) << r.err;
+  // outside the program folders
+  const fs::path outside = write_program("outside.ngc", kShortJob);
+  r = lasercnc("send load " + outside.string() + " --shm " + shm.name());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("outside the program folders"), std::string::npos) << r.err;
+  // a file its sender may not read (mode 0600, root's; the sender uid 65534)
+  const fs::path mine = write_program("programs/root_only.ngc", kShortJob);
+  fs::permissions(mine, fs::perms::owner_read | fs::perms::owner_write);
+  auto c = client(shm);
+  lcnc::shm::Answer a =
+      wait_answer(c, send_frame(c, lcnc::shm::CommandType::Load, mine.string(), 0.0, 0, 0, 65534));
+  EXPECT_NE(a.code, 0);
+  EXPECT_NE(std::string(a.message).find("may not read"), std::string::npos) << a.message;
+  // and a program in the folder loads
+  r = lasercnc("send load " + mine.string() + " --shm " + shm.name());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(d.stop(SIGTERM), 0) << d.log();
+}
+
+// ---- answers ---------------------------------------------------------------
+
+// Twenty senders at once: each gets its own answer.
+TEST(Lasercncd, ConcurrentSendersEachGetTheirOwnAnswer) {
+  const e2e::ShmGuard shm(shm_name());
+  Daemon d(shm);
+  ASSERT_TRUE(d.ready()) << d.log();
+  std::vector<std::future<CmdResult>> clients;
+  const fs::path dir = temp_dir();
+  for (int i = 0; i < 20; ++i)
+    clients.push_back(std::async(std::launch::async, [&, i] {
+      // each its own output files (run_program's are the test's, one set)
+      const fs::path out = dir / ("out_" + std::to_string(i)), err = dir / ("err_" + std::to_string(i));
+      const std::string cmd = std::string("timeout 20 ") + LASERCNC_EXE + " send override " +
+                              std::to_string(100 + i) + " --shm " + shm.name() + " >" + out.string() + " 2>" +
+                              err.string() + " </dev/null";
+      const int st = std::system(cmd.c_str());
+      return CmdResult{WIFEXITED(st) ? WEXITSTATUS(st) : -1, slurp(out), slurp(err)};
+    }));
+  for (int i = 0; i < 20; ++i) {
+    const CmdResult r = clients[i].get();
+    EXPECT_EQ(r.exit_code, 0) << i << ": " << r.err;
+    EXPECT_NE(r.out.find("override " + std::to_string(100 + i) + " %"), std::string::npos) << i << ": " << r.out;
+  }
+  EXPECT_EQ(d.stop(SIGTERM), 0) << d.log();
+}
+
+// A request sent again with its id (a retry after no answer) is answered,
+// not executed again: one jog, not two.
+TEST(Lasercncd, ARetriedRequestIsExecutedOnce) {
+  const e2e::ShmGuard shm(shm_name());
+  Daemon d(shm);
+  ASSERT_TRUE(d.ready()) << d.log();
+  auto c = client(shm);
+  const std::uint64_t id = 0x5eed0000'00000001ull;
+  const lcnc::shm::Answer first = wait_answer(c, send_frame(c, lcnc::shm::CommandType::Jog, {}, 1.0, 0, id));
+  ASSERT_EQ(first.code, 0) << first.message;
+  ASSERT_TRUE(wait_state(shm, "idle"));
+  const lcnc::shm::Answer again = wait_answer(c, send_frame(c, lcnc::shm::CommandType::Jog, {}, 1.0, 0, id));
+  EXPECT_EQ(again.code, 0);
+  EXPECT_STREQ(again.message, first.message);
+  std::this_thread::sleep_for(100ms);
+  ASSERT_TRUE(wait_state(shm, "idle"));
+  EXPECT_NEAR(status(shm)["position"][0].get<double>(), 1.0, 1e-9);
+  EXPECT_EQ(d.stop(SIGTERM), 0) << d.log();
+}
+
+// A stopped job is no job done: `send start --wait` exits 3 and says where
+// it stopped; the status says "stopped", not 100 %.
+TEST(Lasercncd, AStoppedJobIsReportedStopped) {
+  const e2e::ShmGuard shm(shm_name());
+  Daemon d(shm);
+  ASSERT_TRUE(d.ready()) << d.log();
+  const fs::path prog = write_program("long.ngc", "G21 G90\nM3 S50\nG1 X300 F1200\nM5\nM2\n");
+  ASSERT_EQ(lasercnc("send load " + prog.string() + " --shm " + shm.name()).exit_code, 0);
+  auto job = std::async(std::launch::async, [&] { return lasercnc("send start --wait --shm " + shm.name()); });
+  ASSERT_TRUE(wait_state(shm, "running"));
+  std::this_thread::sleep_for(200ms);
+  ASSERT_EQ(lasercnc("send stop --shm " + shm.name()).exit_code, 0);
+  const CmdResult r = job.get();
+  EXPECT_EQ(r.exit_code, 3) << r.out << r.err;
+  EXPECT_NE(r.out.find("job stopped at line 3"), std::string::npos) << r.out;
+  const nlohmann::json s = status(shm);
+  EXPECT_EQ(s["last_outcome"], "stopped");
+  EXPECT_LT(s["progress"].get<double>(), 1.0);
+  EXPECT_EQ(d.stop(SIGTERM), 0) << d.log();
+}
+
+// Every test removes the segments it made, also when a daemon is killed.
+TEST(Lasercncd, AKilledDaemonsSegmentIsRemovedByTheTest) {
+  const std::string shm = shm_name();
+  {
+    Daemon d(shm);
+    ASSERT_TRUE(d.ready()) << d.log();
+    EXPECT_EQ(d.stop(SIGKILL), -1);
+  }
+  EXPECT_FALSE(fs::exists("/dev/shm" + shm));
+}
+
+const auto* const kNoLeaks = ::testing::AddGlobalTestEnvironment(new e2e::NoLeakedSegments);
 
 TEST(Lasercncd, StatusWithoutDaemonSaysSo) {
   const CmdResult r = lasercnc("status --shm /lcnc_e2e_nobody_here");

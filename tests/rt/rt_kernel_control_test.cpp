@@ -163,6 +163,60 @@ TEST(RtKernelControl, EStopStopsMotionAndLaserFromTheNextPeriod) {
   r.kernel->shutdown();
 }
 
+// The e-stop word (any process bumps it, no lock, no daemon in between):
+// the kernel takes it in the period after the request, counted by the
+// kernel itself — the StateChange log record carries its period index.
+TEST(RtKernelControl, EStopWordActsInTheNextPeriod) {
+  Rig r;
+  for (int i = 0; i < 12000; ++i) ASSERT_TRUE(r.buffer->try_push(step_x(20)));
+  std::atomic<std::uint32_t> word{7};  // requests before the start are not this run's
+  r.kernel->set_estop_word(&word);
+  r.start_idle();
+  r.send(RtCommandType::StartJob);
+  ASSERT_TRUE(wait_for([&] { return r.kernel->periods() > 200; }));
+  EXPECT_EQ(r.kernel->state(), MachineState::Running);  // the old count was no e-stop
+  (void)r.logs();
+  // the periods completed at the request lie between these two
+  const std::uint64_t before = r.kernel->periods();
+  word.fetch_add(1, std::memory_order_release);
+  const std::uint64_t after = r.kernel->periods();
+  ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::EStop; }));
+  std::uint64_t at = 0;
+  for (const RtLogRecord& l : r.logs())
+    if (l.code == RtLogCode::StateChange && l.value == static_cast<std::int64_t>(MachineState::EStop)) at = l.period;
+  // the period under way at the request may have read the word already; the
+  // next one takes it
+  EXPECT_GE(at, before);
+  EXPECT_LE(at, after + 1);
+  EXPECT_EQ(r.kernel->fault().code, ErrorCode::RtEstop);
+  EXPECT_FALSE(r.kernel->last_job_completed());
+  // reset, and the same word again: a second e-stop
+  r.send(RtCommandType::Reset);
+  ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::Idle; }));
+  word.fetch_add(1, std::memory_order_release);
+  EXPECT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::EStop; }));
+}
+
+// A job that ran to its end is told apart from a stopped one.
+TEST(RtKernelControl, LastJobCompletedSaysWhetherTheJobRanToItsEnd) {
+  Rig r;
+  for (int i = 0; i < 100; ++i) {
+    PeriodIncrement inc = step_x(5);
+    inc.end_of_program = i == 99;
+    ASSERT_TRUE(r.buffer->try_push(inc));
+  }
+  r.start_idle();
+  r.send(RtCommandType::StartJob);
+  ASSERT_TRUE(wait_for([&] { return r.kernel->jobs_ended() == 1 && r.kernel->state() == MachineState::Idle; }));
+  EXPECT_TRUE(r.kernel->last_job_completed());
+  for (int i = 0; i < 12000; ++i) ASSERT_TRUE(r.buffer->try_push(step_x(20)));
+  r.send(RtCommandType::StartJob);
+  ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::Running; }));
+  r.send(RtCommandType::Stop);
+  ASSERT_TRUE(wait_for([&] { return r.kernel->jobs_ended() == 2; }));
+  EXPECT_FALSE(r.kernel->last_job_completed());
+}
+
 TEST(RtKernelControl, StopRampsDownAlongThePathThenDiscardsTheJob) {
   Rig r;
   for (int i = 0; i < 12000; ++i) ASSERT_TRUE(r.buffer->try_push(step_x(20)));

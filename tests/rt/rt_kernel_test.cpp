@@ -543,6 +543,7 @@ TEST(RtKernel, MillionPeriodsWithoutAllocationOrLock) {
   RtKernel kernel{m, *buffer, sim, trace.get(), start};
   kernel.set_log(log.get());
   kernel.set_status(&block->status);
+  kernel.set_estop_word(&block->estop.requests);  // polled every period
   std::atomic<std::uint64_t> allocs_enter{0}, allocs_exit{0}, locks_enter{0}, locks_exit{0};
   RtOptions opt{false, 0,
                 [&] {
@@ -679,6 +680,8 @@ TEST(RtKernel, LoopMakesNoSyscallButTheClockSleep) {
   ASSERT_EQ(sigaction(SIGSYS, &sa, nullptr), 0);
   Rig r;
   fill(*r.buffer, 3000, 3);
+  std::atomic<std::uint32_t> estop_word{0};  // polled every period: an atomic load, no syscall
+  r.kernel.set_estop_word(&estop_word);
   std::atomic<bool> filtered{false};
   std::atomic<int> bad_at_exit{-1};
   RtOptions opt{false, 0,

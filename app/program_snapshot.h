@@ -1,0 +1,71 @@
+// What lasercncd runs of a `load`: a private copy of the file taken once,
+// when it is loaded, so the job runs exactly the content that was checked —
+// editing or replacing the file afterwards changes nothing of the job.
+//
+// The file is opened without blocking (O_NONBLOCK: a FIFO nobody writes
+// opens at once) and refused unless it is a regular file, readable by the
+// sender (its uid/gid as the command frame carries them: the group's trust,
+// rt/shm_interface.h), inside the configured program folders when there are
+// any, at most kMaxProgramBytes long, and text that looks like a program:
+// a file that is not is refused without quoting its bytes. The copy lives in
+// an anonymous memory file (memfd) that the reader and the planner open
+// through /proc/self/fd, like any program file.
+#pragma once
+
+#include <sys/types.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/result.h"
+
+namespace lcnc::app {
+
+// The largest program a load takes (its copy is held in memory).
+inline constexpr std::uint64_t kMaxProgramBytes = 64ull << 20;  // 64 MiB
+// The bytes looked at to tell a program from another file.
+inline constexpr std::size_t kSniffBytes = 4096;
+
+struct SnapshotRequest {
+  std::string path;            // absolute, as the sender named it
+  std::uint32_t sender_uid = 0;
+  std::uint32_t sender_gid = 0;
+  bool hole_table = false;     // a .csv hole table, not G-code
+  // Canonical folders a program must lie in; empty: anywhere.
+  std::vector<std::string> program_dirs;
+};
+
+class ProgramSnapshot {
+ public:
+  // Copies the file; FileNotFound (or GcodeSyntax for a file that is not a
+  // program) with a message naming the path and what is allowed.
+  [[nodiscard]] static Result<std::shared_ptr<const ProgramSnapshot>> take(const SnapshotRequest& r);
+  ~ProgramSnapshot();
+  ProgramSnapshot(const ProgramSnapshot&) = delete;
+  ProgramSnapshot& operator=(const ProgramSnapshot&) = delete;
+
+  // The file as the sender named it: what messages say.
+  [[nodiscard]] const std::string& name() const noexcept { return name_; }
+  // Where the copy reads from (/proc/self/fd/N).
+  [[nodiscard]] const std::string& path() const noexcept { return path_; }
+  [[nodiscard]] std::uint64_t bytes() const noexcept { return bytes_; }
+  // A diagnostic of the copy, told of the file it was taken from.
+  [[nodiscard]] Diagnostic rename(Diagnostic d) const;
+
+ private:
+  ProgramSnapshot(std::string name, int fd, std::uint64_t bytes);
+  std::string name_;
+  std::string path_;
+  int fd_ = -1;
+  std::uint64_t bytes_ = 0;
+};
+
+// True if `head` (a file's first bytes) may be a program: no control bytes
+// but tab, CR, LF, and for G-code a first non-blank line that begins with a
+// word (a letter and a number), a comment, '%' or '/'; for a hole table a
+// first line that begins with its header's "hole".
+[[nodiscard]] bool looks_like_program(const std::string& head, bool hole_table);
+
+}  // namespace lcnc::app
