@@ -18,6 +18,7 @@
 #include "drivers/sim_machine.h"
 #include "gcode/program_reader.h"
 #include "holes/drill_job.h"
+#include "plan/motion_check.h"
 #include "plan/program_source.h"
 #include "rt/rt_kernel.h"
 #include "rt/shm_command.h"
@@ -60,6 +61,7 @@ struct Daemon::Impl {
   std::array<std::int64_t, kAxisCount> start_steps{};
   std::unique_ptr<rt::PositionBuffer> buffer = std::make_unique<rt::PositionBuffer>();
   std::unique_ptr<rt::RtLogRing> rt_log = std::make_unique<rt::RtLogRing>();
+  std::unique_ptr<rt::TraceRing> trace = std::make_unique<rt::TraceRing>();  // the RT's, for the job's check
   std::unique_ptr<drivers::SimMachine> sim;
   std::unique_ptr<rt::RtKernel> kernel;
   std::unique_ptr<PlannerFeed> feed;
@@ -74,6 +76,11 @@ struct Daemon::Impl {
   bool stop_sent = false;      // the planner stopped short of a soft limit
   std::uint32_t jobs_ended_seen = 0;
   std::int64_t job_time_start_ns = 0;
+  // The job's own check (plan/motion_check.h): every period the RT traced
+  // from the job's start, measured against the axis limits; a job that
+  // breaks one has failed, whatever else it did.
+  std::unique_ptr<MotionCheck> motion;
+  std::uint64_t next_period = 0;  // the trace's next record, to see lost ones
   std::uint64_t job_underruns_start = 0;
   shm::JobStatus job{};
 
@@ -288,6 +295,12 @@ struct Daemon::Impl {
         job.progress = 0.0;
         job_time_start_ns = kernel->machine_time_ns();
         job_underruns_start = kernel->underruns();
+        drain_trace();  // what came before the job is not the job's
+        {
+          std::array<std::int64_t, kAxisCount> at{};
+          for (int i = 0; i < kAxisCount; ++i) at[i] = kernel->position_steps(i);
+          motion = std::make_unique<MotionCheck>(machine, at);
+        }
         return Ack{true, ErrorCode::Internal, "started " + program->name()};
       }
       case shm::CommandType::Hold:
@@ -407,6 +420,19 @@ struct Daemon::Impl {
     }
   }
 
+  // The RT's trace: into the job's check while a job runs (times from the
+  // job's start; idle periods before it are skipped), else dropped.
+  void drain_trace() {
+    rt::TraceRecord r;
+    while (trace->try_pop(r)) {
+      if (motion && r.t_ns > job_time_start_ns) {
+        if (r.period != next_period) motion->gap();
+        motion->add(r.t_ns - job_time_start_ns, r.pos_steps, r.line);
+      }
+      next_period = r.period + 1;
+    }
+  }
+
   // Starts the kernel on a job once it is planned far enough ahead; ends the
   // job when the kernel says so.
   void follow_job() {
@@ -422,6 +448,15 @@ struct Daemon::Impl {
     const bool estopped = kernel->state() == shm::MachineState::EStop;
     if (ended == jobs_ended_seen && !estopped) return;
     jobs_ended_seen = ended;
+    drain_trace();
+    std::vector<std::string> breaches;
+    if (motion) {
+      motion->finish();
+      breaches = motion->breaches();
+      if (motion->gaps() > 0)
+        breaches.push_back("the RT trace lost records: the motion could not be checked whole");
+      motion.reset();
+    }
     feed->abort();  // a stopped job: the planner stops; a finished one has
     const PlannedJob& planned = feed->result();
     job_active = false;
@@ -447,7 +482,7 @@ struct Daemon::Impl {
                     program->rename(planned.error).to_string().c_str());
     } else if (planned.limit) {
       job.last_outcome = shm::JobOutcome::Stopped;
-      job.last_fault = static_cast<std::uint16_t>(ErrorCode::RtSoftLimit);
+      job.last_fault = static_cast<std::uint16_t>(planned.limit_error.code);
       std::snprintf(msg, sizeof msg, "job stopped %s: %s", where,
                     program->rename(planned.limit_error).to_string().c_str());
     } else if (f.active) {
@@ -457,10 +492,16 @@ struct Daemon::Impl {
     } else if (!kernel->last_job_completed()) {
       job.last_outcome = shm::JobOutcome::Stopped;
       std::snprintf(msg, sizeof msg, "job stopped %s: the operator's stop", where);
+    } else if (!breaches.empty()) {
+      job.last_outcome = shm::JobOutcome::Failed;
+      job.last_fault = static_cast<std::uint16_t>(ErrorCode::PlanBeyondLimit);
+      std::snprintf(msg, sizeof msg, "job failed its check: %s%s", breaches.front().c_str(),
+                    breaches.size() > 1 ? " (and more, in the log)" : "");
+      for (const std::string& b : breaches) logger()->error("job check: {}", b);
     } else {
       job.last_outcome = shm::JobOutcome::Done;
       job.progress = 1.0;
-      std::snprintf(msg, sizeof msg, "job done: %s, cycle %.3f s, %llu underruns",
+      std::snprintf(msg, sizeof msg, "job done: %s, cycle %.3f s, %llu underruns, every axis within its limits",
                     program->name().c_str(), job.last_cycle_time_s,
                     static_cast<unsigned long long>(job.last_underruns));
     }
@@ -494,7 +535,7 @@ Result<std::unique_ptr<Daemon>> Daemon::create(const DaemonOptions& options) {
   // the simulated machine wired as a real one: hard limits beyond the soft
   // ones, a home switch per axis (drivers/sim_machine.h)
   d.sim = std::make_unique<drivers::SimMachine>(d.start_steps, drivers::wired_switches(d.machine));
-  d.kernel = std::make_unique<rt::RtKernel>(d.machine, *d.buffer, *d.sim, nullptr, d.start_steps);
+  d.kernel = std::make_unique<rt::RtKernel>(d.machine, *d.buffer, *d.sim, d.trace.get(), d.start_steps);
   d.kernel->set_log(d.rt_log.get());
   d.kernel->set_status(&d.shm.block().status);
   d.kernel->set_estop_word(&d.shm.block().estop.requests);
@@ -530,6 +571,7 @@ int Daemon::run(const std::atomic<bool>& quit) {
     d.drain_commands();
     d.finish_load(false);
     if (d.modbus) d.serve_modbus();
+    d.drain_trace();
     d.follow_job();
     d.drain_rt_log();
     block.job.store(d.job);

@@ -52,7 +52,7 @@ constexpr const char* kUsage =
     "  --vmax/--amax   max velocity (mm/s) / acceleration (mm/s^2) of every linear axis\n"
     "  --tolerance     path tolerance (mm)\n"
     "  --feed-override feed override for the whole run, %: every move runs at PCT/100\n"
-    "                  of its planned speed; 0 < PCT <= 100 x machine.max_feed_override\n"
+    "                  of its planned speed; 1 <= PCT <= 100 x machine.max_feed_override\n"
     "                  (150 on the default machine); default 100\n"
     "  --trace         commanded position and laser power every RT period as CSV\n"
     "                  t,x,y,z,a,b,c,power (s of machine time, mm, deg, % of rated)\n"

@@ -9,11 +9,24 @@
 #include <array>
 #include <cctype>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <utility>
 
 namespace lcnc::app {
 namespace {
+
+// The copy's home: an unlinked file in the temporary folder ($TMPDIR,
+// /var/tmp, /tmp: on disk, so a program of any length costs page cache that
+// the kernel can drop, not memory), else an anonymous memory file.
+int open_copy() {
+  for (const char* dir : {std::getenv("TMPDIR"), "/var/tmp", "/tmp"}) {
+    if (dir == nullptr || *dir == '\0') continue;
+    const int fd = open(dir, O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
+    if (fd >= 0) return fd;
+  }
+  return memfd_create("lasercncd-program", MFD_CLOEXEC);
+}
 
 // Closes a descriptor on every way out.
 struct Fd {
@@ -141,8 +154,8 @@ Result<std::shared_ptr<const ProgramSnapshot>> ProgramSnapshot::take(const Snaps
   // Reads block again from here: a regular file's read does not wait for a writer.
   const int flags = fcntl(in.fd, F_GETFL);
   if (flags >= 0) (void)fcntl(in.fd, F_SETFL, flags & ~O_NONBLOCK);
-  Fd copy(memfd_create("lasercncd-program", MFD_CLOEXEC));
-  if (copy.fd < 0) return refused(path, std::string("no memory for its copy: ") + std::strerror(errno));
+  Fd copy(open_copy());
+  if (copy.fd < 0) return refused(path, std::string("no room for its copy: ") + std::strerror(errno));
   std::string head;
   std::uint64_t total = 0;
   std::array<char, 1 << 16> buf{};
@@ -157,7 +170,7 @@ Result<std::shared_ptr<const ProgramSnapshot>> ProgramSnapshot::take(const Snaps
     if (total > kMaxProgramBytes)  // it grew while being read
       return refused(path, "longer than " + std::to_string(kMaxProgramBytes) + " bytes, the most a program may have");
     if (!write_all(copy.fd, buf.data(), got))
-      return refused(path, std::string("no memory for its copy: ") + std::strerror(errno));
+      return refused(path, std::string("no room for its copy: ") + std::strerror(errno));
   }
   if (!looks_like_program(head, r.hole_table)) {
     // Its content is not shown: the daemon may read files its sender may not.

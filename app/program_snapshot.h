@@ -8,8 +8,10 @@
 // rt/shm_interface.h), inside the configured program folders when there are
 // any, at most kMaxProgramBytes long, and text that looks like a program:
 // a file that is not is refused without quoting its bytes. The copy lives in
-// an anonymous memory file (memfd) that the reader and the planner open
-// through /proc/self/fd, like any program file.
+// an unlinked temporary file on disk (an anonymous memory file where none
+// can be made) that the reader and the planner open through /proc/self/fd,
+// like any program file: streaming from it keeps the daemon's memory
+// bounded whatever the program's length.
 #pragma once
 
 #include <sys/types.h>
@@ -23,8 +25,9 @@
 
 namespace lcnc::app {
 
-// The largest program a load takes (its copy is held in memory).
-inline constexpr std::uint64_t kMaxProgramBytes = 64ull << 20;  // 64 MiB
+// The largest program a load takes: 4 GiB, some 100 million CAM lines (its
+// copy takes as much of the temporary folder's disk).
+inline constexpr std::uint64_t kMaxProgramBytes = 4ull << 30;
 // The bytes looked at to tell a program from another file.
 inline constexpr std::size_t kSniffBytes = 4096;
 

@@ -194,11 +194,11 @@ Result<MachineConfig> load_machine(const RunOptions& options) {
 
 Status check_feed_override(double pct, const MachineConfig& machine) {
   const double max_pct = 100.0 * machine.max_feed_override;
-  if (pct > 0.0 && pct <= max_pct) return {};
-  char msg[160];
+  if (pct >= kMinRunOverridePct && pct <= max_pct) return {};
+  char msg[200];
   std::snprintf(msg, sizeof msg,
-                "--feed-override %g: allowed 0 < PCT <= %g (%%, machine.max_feed_override = %g)", pct,
-                max_pct, machine.max_feed_override);
+                "--feed-override %g: allowed %g <= PCT <= %g (%%, machine.max_feed_override = %g)",
+                pct, kMinRunOverridePct, max_pct, machine.max_feed_override);
   return make_error(ErrorCode::Usage, msg);
 }
 

@@ -30,7 +30,7 @@ struct RunOptions {
   std::optional<double> tolerance_mm;   // path tolerance
   std::string trace_file;               // CSV t,x,y,z,a,b,c,power per RT period; empty: none
   bool realtime = true;                 // try SCHED_FIFO + mlockall
-  // Feed override for the whole run, % (DESIGN §5.5): 0 < pct ≤ 100·K_max
+  // Feed override for the whole run, % (rt/feed_override.h): 1 ≤ pct ≤ 100·K_max
   // (machine.max_feed_override), else a Usage error. Set before the RT
   // thread starts, so the run begins at it with no ramp.
   double feed_override_pct = 100.0;
@@ -99,7 +99,12 @@ struct RunReport {
 using ProgressFn = std::function<void(double fraction)>;
 
 [[nodiscard]] Result<MachineConfig> load_machine(const RunOptions& options);
-// A Usage error unless 0 < pct ≤ 100·machine.max_feed_override; names the range.
+// The lowest constant override a run takes, %: a whole run at 1 % of its
+// speed already takes 100 × its time; below, a period would last so long
+// that the run never ends (1e-300 % is 10^297 s a period).
+inline constexpr double kMinRunOverridePct = 1.0;
+// A Usage error unless kMinRunOverridePct ≤ pct ≤ 100·machine.max_feed_override;
+// names the range.
 [[nodiscard]] Status check_feed_override(double pct, const MachineConfig& machine);
 [[nodiscard]] Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress = {});
 

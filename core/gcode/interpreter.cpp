@@ -8,9 +8,15 @@
 
 #include "gcode/arc_geometry.h"
 #include "gcode/gcode_tolerances.h"
+#include "plan/tolerances.h"
 
 namespace lcnc::gcode {
 namespace {
+
+// Whether a move's feed is over its linear axes (RS274NGC: they move) or
+// its rotary ones. Linear travel the planner takes as none is none here too,
+// so the feed and the move's length (SegmentGeometry) measure the same.
+bool moves_linear(double linear_mm) { return linear_mm > plan::kMinSegmentLength; }
 
 constexpr char kCentreLetter[3] = {'I', 'J', 'K'};  // centre word of X, Y, Z
 constexpr std::size_t kQuoteMaxChars = 60;
@@ -403,7 +409,7 @@ bool Interpreter::check_feed() {
 bool Interpreter::check_duration(double linear_mm, double rotary_deg) {
   if (inverse_time_) return true;
   constexpr double kMaxMinutes = kMaxBlockSeconds / 60.0;
-  if (linear_mm > 0.0 ? linear_mm <= feed_mm_min_ * kMaxMinutes
+  if (moves_linear(linear_mm) ? linear_mm <= feed_mm_min_ * kMaxMinutes
                       : rotary_deg <= feed_raw_ * kMaxMinutes) {
     return true;
   }
@@ -411,7 +417,7 @@ bool Interpreter::check_duration(double linear_mm, double rotary_deg) {
 }
 
 bool Interpreter::fail_duration(double linear_mm, double rotary_deg) {
-  const bool rotary_only = !(linear_mm > 0.0);
+  const bool rotary_only = !moves_linear(linear_mm);
   const double length = rotary_only ? rotary_deg : linear_mm;
   const double minutes = length / (rotary_only ? feed_raw_ : feed_mm_min_);
   const double scale = rotary_only ? 1.0 : length_scale();
@@ -445,9 +451,9 @@ bool Interpreter::check_magnitude(const Pose& end) {
 void Interpreter::set_segment_feed(Segment& s, double linear_mm, double rotary_deg) const {
   if (inverse_time_) {
     s.duration_s = 60.0 / block_f_;
-    s.feed_mm_s = (linear_mm > 0.0 ? linear_mm : rotary_deg) / s.duration_s;
+    s.feed_mm_s = (moves_linear(linear_mm) ? linear_mm : rotary_deg) / s.duration_s;
   } else {
-    s.feed_mm_s = (linear_mm > 0.0 ? feed_mm_min_ : feed_raw_) / 60.0;
+    s.feed_mm_s = (moves_linear(linear_mm) ? feed_mm_min_ : feed_raw_) / 60.0;
   }
 }
 

@@ -99,6 +99,8 @@ TEST(Lasercncd, RunsAJobSentByTheCliAndReportsIt) {
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
   EXPECT_NE(r.out.find("job done"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("0 underruns"), std::string::npos) << r.out;
+  // the daemon checked the job's motion from the RT's trace
+  EXPECT_NE(r.out.find("every axis within its limits"), std::string::npos) << r.out;
   const nlohmann::json s = status(shm);
   EXPECT_EQ(s["state"], "idle");
   EXPECT_NEAR(s["position"][0].get<double>(), 12.0, 1e-9);
