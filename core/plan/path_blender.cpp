@@ -26,6 +26,10 @@ bool blendable_arc(const Segment& s) {
 
 bool blendable(const Segment& s) { return blendable_line(s) || blendable_arc(s); }
 
+// Whether any rotary axis moves at all: its rate per unit of path is then
+// not zero, and a join with a segment where it is zero is no tangent one.
+bool moves_rotary(const Segment& s) { return s.end.tail<3>() != s.start.tail<3>(); }
+
 }  // namespace
 
 PathBlender::PathBlender(const MachineConfig& machine, SegmentSource source,
@@ -47,6 +51,7 @@ void PathBlender::emit(IndexedSegment& s, bool with_geometry) {
   if (s.seg.kind == MotionKind::Linear && s.geo.length() <= plan::kMinSegmentLength &&
       (s.seg.end - s.seg.start).norm() <= plan::kMinSegmentLength)
     return;
+  rotary_out_ = moves_rotary(s.seg);
   ready_[(ready_front_ + ready_count_++) % ready_.size()] = &s;
 }
 
@@ -96,11 +101,15 @@ SourceStatus PathBlender::next(const IndexedSegment*& out) {
         arc_.index = cur.index;
         // A line–line blend is tangent to both lines by construction — in
         // X Y Z: with rotary axes moving, their rates per mm jump at its ends.
-        const bool tangent = line_line && (a.end - a.start).tail<3>().isZero() &&
-                             (cur.seg.end - cur.seg.start).tail<3>().isZero();
-        arc_.tangent_in = tangent;
+        // So the whole pose is tangent only where neither side moves one.
+        // The side before is what was queued last, not the pending line: one
+        // used up entirely by its two blends is dropped (and has no rotary
+        // travel left), and the arc then follows the previous blend, which
+        // still carries that line's rotary rate.
+        const bool arc_rotary = moves_rotary(arc_.seg);
+        arc_.tangent_in = line_line && !arc_rotary && !rotary_out_;
         emit(arc_, line_line);
-        cur.tangent_in = tangent;
+        cur.tangent_in = line_line && !arc_rotary && !moves_rotary(cur.seg);
         pending_full_length_ = len_b;
         cur.seg.start = t.q2;
         pending_length_ = path_length(cur.seg);

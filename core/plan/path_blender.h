@@ -53,6 +53,9 @@ class PathBlender {
   std::size_t pending_slot_ = 0;
   double pending_full_length_ = 0;  // its length as programmed
   double pending_length_ = 0;       // and as it is now (its start may be trimmed)
+  // Whether the last segment queued moves a rotary axis: the next one is
+  // marked tangent to it only if it does not (IndexedSegment::tangent_in).
+  bool rotary_out_ = false;
   IndexedSegment arc_;     // the blend arc of the last corner
   ArcTransition corner_;  // and the rest of what its transition found
   // Segments ready to hand out, oldest first, where they are (a slot or

@@ -278,5 +278,61 @@ TEST(Lookahead, DenseChordCircleRunsAtFeedWithBoundedWindow) {
   EXPECT_LT(o.max_window, 2000u);  // bounded by the braking distance, not the program
 }
 
+// The test machine with an A axis as the shipped machine's.
+MachineConfig with_a_axis() {
+  MachineConfig m = testing::test_machine(100.0, 2000.0);
+  AxisConfig& ax = m.axis(Axis::A);
+  ax.present = true;
+  ax.axis = Axis::A;
+  ax.min = -95.0;
+  ax.max = 95.0;
+  ax.max_velocity = 180.0;
+  ax.max_acceleration = 1800.0;
+  ax.steps_per_unit = 1000.0;
+  return m;
+}
+
+// Every axis within its limits (per period, from the unquantized poses),
+// every A step delivered, the path within P.
+void expect_within_limits(const MachineConfig& m, const Outcome& o) {
+  for (int a = 0; a < kAxisCount; ++a) {
+    if (!m.axes[a].present) continue;
+    EXPECT_LE(o.peak_v[a], m.axes[a].max_velocity * (1 + 1e-9)) << a;
+    EXPECT_LE(o.peak_a[a], m.axes[a].max_acceleration * (1 + 1e-6)) << a;
+    EXPECT_EQ(o.sum[a], o.commanded[a]) << a;
+  }
+  EXPECT_LE(o.max_dev, 0.01);
+}
+
+// A line that swings A, then a short line without A motion that its two
+// blends use up entirely, then another: the short line is dropped, and the
+// second blend (no A motion) follows the first (A moving at some deg/mm)
+// directly. That join is no tangent one: A must not jump in speed there.
+TEST(Lookahead, BlendAfterALineUsedUpKeepsTheRotaryRateOfTheOneBefore) {
+  const MachineConfig m = with_a_axis();
+  Pose swung = xyz(11, 10, 5);
+  swung[3] = 10.0;  // 10° of A over 1 mm of X
+  Pose corner = xyz(11, 10.001, 5);
+  corner[3] = 10.0;
+  Pose end = xyz(12, 10.001, 5);
+  end[3] = 10.0;
+  const std::vector<Segment> segs = {g1(xyz(10, 10, 5), swung, 50.0, 0.01),
+                                     g1(swung, corner, 50.0, 0.01), g1(corner, end, 50.0, 0.01)};
+  expect_within_limits(m, run(m, segs));
+}
+
+// The other way round: the short line used up by its blends is the one that
+// swings A (1° over 1 µm), its neighbours do not. Both blends carry part of
+// its swing, at different rates, and the line after the second has none:
+// neither join is tangent.
+TEST(Lookahead, BlendsOfALineUsedUpThatSwingsARotaryAxisAreNoTangentJoins) {
+  const MachineConfig m = with_a_axis();
+  Pose corner = xyz(11, 10, 5), swung = xyz(11, 10.001, 5), end = xyz(12, 10.001, 5);
+  swung[3] = end[3] = 1.0;
+  const std::vector<Segment> segs = {g1(xyz(10, 10, 5), corner, 50.0, 0.01),
+                                     g1(corner, swung, 50.0, 0.01), g1(swung, end, 50.0, 0.01)};
+  expect_within_limits(m, run(m, segs));
+}
+
 }  // namespace
 }  // namespace lcnc
