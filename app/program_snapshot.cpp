@@ -20,7 +20,7 @@ namespace {
 // /var/tmp, /tmp: on disk, so a program of any length costs page cache that
 // the kernel can drop, not memory), else an anonymous memory file.
 int open_copy() {
-  for (const char* dir : {std::getenv("TMPDIR"), "/var/tmp", "/tmp"}) {
+  for (const char* dir : {static_cast<const char*>(std::getenv("TMPDIR")), "/var/tmp", "/tmp"}) {
     if (dir == nullptr || *dir == '\0') continue;
     const int fd = open(dir, O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
     if (fd >= 0) return fd;
