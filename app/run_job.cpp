@@ -223,10 +223,10 @@ void check_run(RunReport& report, const MotionCheck& motion, const DeviationMete
     AxisReport& a = report.axes[i];
     const AxisMotionCheck& m = motion.axes()[i];
     if (!a.present) continue;
-    a.measured_velocity = m.peak_velocity;
-    a.measured_acceleration = m.peak_acceleration;
-    a.velocity_limit = m.velocity_limit;
-    a.acceleration_limit = m.acceleration_limit;
+    a.measured_velocity = m.velocity.peak;
+    a.measured_acceleration = m.acceleration.peak;
+    a.velocity_limit = m.velocity.limit;
+    a.acceleration_limit = m.acceleration.limit;
     const bool rot = is_rotary(static_cast<Axis>(i));
     char msg[200];
     if (a.peak_velocity > a.velocity_limit * (1.0 + kPlannedPeakSlack)) {

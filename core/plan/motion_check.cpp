@@ -25,8 +25,8 @@ MotionCheck::MotionCheck(const MachineConfig& machine,
     AxisMotionCheck& c = axes_[i];
     c.present = ax.present;
     if (!ax.present) continue;
-    c.velocity_limit = ax.max_velocity;
-    c.acceleration_limit = ax.max_acceleration;
+    c.velocity.limit = ax.max_velocity;
+    c.acceleration.limit = ax.max_acceleration;
     const double q = unit_[i] = 1.0 / ax.steps_per_unit;
     wv_ = std::max(wv_, window_for(period_s_, kVelocityQuantShare * ax.max_velocity, kMaxVelocityWindow,
                                    [q](double dt) { return q / dt; }));
@@ -85,20 +85,9 @@ void MotionCheck::measure() {
     const double dt = static_cast<double>(p1.t_ns - p0.t_ns) * 1e-9;
     if (dt > 0.0) {
       for (int i = 0; i < kAxisCount; ++i) {
-        AxisMotionCheck& c = axes_[i];
-        if (!c.present) continue;
+        if (!axes_[i].present) continue;
         const double v = std::abs(static_cast<double>(p1.pos[i] - p0.pos[i])) * unit_[i] / dt;
-        const double quant = unit_[i] / dt;
-        c.peak_velocity = std::max(c.peak_velocity, v);
-        c.velocity_quantization = std::max(c.velocity_quantization, quant);
-        const double excess = v - c.velocity_limit - quant;
-        if (excess > c.velocity_excess) {
-          c.velocity_excess = excess;
-          c.velocity_reading = v;
-          c.velocity_reading_quant = quant;
-          c.velocity_line = p1.line;
-          c.velocity_time_s = static_cast<double>(p1.t_ns) * 1e-9;
-        }
+        axes_[i].velocity.take(v, unit_[i] / dt, p1.line, p1.t_ns);
       }
     }
   }
@@ -112,55 +101,53 @@ void MotionCheck::measure() {
     if (h1 > 0.0 && h2 > 0.0) {
       const double quant_factor = 2.0 * (1.0 / h1 + 1.0 / h2) / (h1 + h2);
       for (int i = 0; i < kAxisCount; ++i) {
-        AxisMotionCheck& c = axes_[i];
-        if (!c.present) continue;
+        if (!axes_[i].present) continue;
         const double d2 = static_cast<double>(p2.pos[i] - p1.pos[i]) * unit_[i] / h2;
         const double d1 = static_cast<double>(p1.pos[i] - p0.pos[i]) * unit_[i] / h1;
         const double a = std::abs(2.0 * (d2 - d1) / (h1 + h2));
-        const double quant = quant_factor * unit_[i];
-        c.peak_acceleration = std::max(c.peak_acceleration, a);
-        c.acceleration_quantization = std::max(c.acceleration_quantization, quant);
-        const double excess = a - c.acceleration_limit - quant;
-        if (excess > c.acceleration_excess) {
-          c.acceleration_excess = excess;
-          c.acceleration_reading = a;
-          c.acceleration_reading_quant = quant;
-          c.acceleration_line = p1.line;
-          c.acceleration_time_s = static_cast<double>(p1.t_ns) * 1e-9;
-        }
+        axes_[i].acceleration.take(a, quant_factor * unit_[i], p1.line, p1.t_ns);
       }
     }
   }
 }
 
+void LimitReading::take(double value, double quant, std::uint32_t at_line, std::int64_t at_ns) noexcept {
+  peak = std::max(peak, value);
+  quantization = std::max(quantization, quant);
+  const double over = value - limit - quant;
+  if (over <= excess) return;
+  excess = over;
+  reading = value;
+  reading_quantization = quant;
+  line = at_line;
+  time_s = static_cast<double>(at_ns) * 1e-9;
+}
+
 bool MotionCheck::ok() const noexcept {
   return std::none_of(axes_.begin(), axes_.end(), [](const AxisMotionCheck& c) {
-    return c.velocity_excess > 0.0 || c.acceleration_excess > 0.0;
+    return c.velocity.excess > 0.0 || c.acceleration.excess > 0.0;
   });
 }
 
 std::vector<std::string> MotionCheck::breaches() const {
   std::vector<std::string> out;
   for (int i = 0; i < kAxisCount; ++i) {
-    const AxisMotionCheck& c = axes_[i];
     const bool rot = is_rotary(static_cast<Axis>(i));
-    char msg[256];
-    if (c.velocity_excess > 0.0) {
+    const struct {
+      const LimitReading& r;
+      const char* what;
+      const char* unit;
+      int window;
+    } quantities[] = {{axes_[i].velocity, "velocity", rot ? "deg/s" : "mm/s", wv_},
+                      {axes_[i].acceleration, "acceleration", rot ? "deg/s2" : "mm/s2", wa_}};
+    for (const auto& q : quantities) {
+      if (q.r.excess <= 0.0) continue;
+      char msg[256];
       std::snprintf(msg, sizeof msg,
-                    "axis %c velocity %.1f %s over %d periods, above its limit %g (+%.1f "
-                    "quantization) at line %u, t = %.4f s",
-                    kAxisLetters[i], c.velocity_reading, rot ? "deg/s" : "mm/s", wv_,
-                    c.velocity_limit, c.velocity_reading_quant, c.velocity_line,
-                    c.velocity_time_s);
-      out.emplace_back(msg);
-    }
-    if (c.acceleration_excess > 0.0) {
-      std::snprintf(msg, sizeof msg,
-                    "axis %c acceleration %.1f %s over %d periods, above its limit %g (+%.1f "
-                    "quantization) at line %u, t = %.4f s",
-                    kAxisLetters[i], c.acceleration_reading, rot ? "deg/s2" : "mm/s2", wa_,
-                    c.acceleration_limit, c.acceleration_reading_quant, c.acceleration_line,
-                    c.acceleration_time_s);
+                    "axis %c %s %.1f %s over %d periods, above its limit %g (+%.1f quantization) "
+                    "at line %u, t = %.4f s",
+                    kAxisLetters[i], q.what, q.r.reading, q.unit, q.window, q.r.limit,
+                    q.r.reading_quantization, q.r.line, q.r.time_s);
       out.emplace_back(msg);
     }
   }

@@ -48,20 +48,26 @@ inline constexpr double kAccelQuantShare = 0.05;
 inline constexpr int kMaxVelocityWindow = 64;
 inline constexpr int kMaxAccelWindow = 512;
 
-struct AxisMotionCheck {
-  bool present = false;
-  double peak_velocity = 0.0;      // mm/s or deg/s, measured
-  double peak_acceleration = 0.0;  // mm/s² or deg/s², measured
-  double velocity_limit = 0.0, acceleration_limit = 0.0;
+// One quantity (an axis's velocity or acceleration) as read over the run.
+struct LimitReading {
+  double limit = 0.0;         // mm/s (mm/s²) or deg/s (deg/s²)
+  double peak = 0.0;          // the largest reading
   // The largest quantization error of any window read (see above): a
   // reading within limit + this one keeps the limit.
-  double velocity_quantization = 0.0, acceleration_quantization = 0.0;
-  // The worst breach (reading − limit − its quantization error), and where.
-  double velocity_excess = 0.0, acceleration_excess = 0.0;
-  double velocity_reading = 0.0, acceleration_reading = 0.0;  // what read at the worst breach
-  double velocity_reading_quant = 0.0, acceleration_reading_quant = 0.0;  // and its window's error
-  std::uint32_t velocity_line = 0, acceleration_line = 0;
-  double velocity_time_s = 0.0, acceleration_time_s = 0.0;
+  double quantization = 0.0;
+  // The worst breach (reading − limit − its window's error; 0: none), what
+  // read then, its window's error, and where.
+  double excess = 0.0;
+  double reading = 0.0, reading_quantization = 0.0;
+  std::uint32_t line = 0;
+  double time_s = 0.0;
+
+  void take(double value, double quant, std::uint32_t at_line, std::int64_t at_ns) noexcept;
+};
+
+struct AxisMotionCheck {
+  bool present = false;
+  LimitReading velocity, acceleration;
 };
 
 class MotionCheck {

@@ -76,13 +76,13 @@ TEST(MotionCheck, MotionWithinItsLimitsPassesWhateverTheQuantizationAndOverride)
     const Move move{dist(rng), 500.0 / 1.5 * share(rng), 5000.0 / 2.25 * share(rng)};
     const MotionCheck c = run(m, move, rng);
     ASSERT_TRUE(c.ok()) << n << ": " << c.breaches().front();
-    EXPECT_LE(c.axes()[0].peak_velocity, 500.0 + c.axes()[0].velocity_quantization);
+    EXPECT_LE(c.axes()[0].velocity.peak, 500.0 + c.axes()[0].velocity.quantization);
   }
   // and at full limits without override: the peaks come close to them
   const MotionCheck c = run(m, Move{100.0, 500.0, 5000.0}, rng, false);
   EXPECT_TRUE(c.ok());
-  EXPECT_GT(c.axes()[0].peak_velocity, 490.0);
-  EXPECT_GT(c.axes()[0].peak_acceleration, 4500.0);
+  EXPECT_GT(c.axes()[0].velocity.peak, 490.0);
+  EXPECT_GT(c.axes()[0].acceleration.peak, 4500.0);
 }
 
 TEST(MotionCheck, ThreePercentTooFastIsAVelocityBreach) {
@@ -90,8 +90,8 @@ TEST(MotionCheck, ThreePercentTooFastIsAVelocityBreach) {
   std::mt19937 rng(1);
   const MotionCheck c = run(m, Move{200.0, 515.0, 4000.0}, rng, false);
   ASSERT_FALSE(c.ok());
-  EXPECT_GT(c.axes()[0].velocity_excess, 0.0);
-  EXPECT_EQ(c.axes()[0].acceleration_excess, 0.0);
+  EXPECT_GT(c.axes()[0].velocity.excess, 0.0);
+  EXPECT_EQ(c.axes()[0].acceleration.excess, 0.0);
   ASSERT_EQ(c.breaches().size(), 1u);
   EXPECT_NE(c.breaches()[0].find("axis X velocity 5"), std::string::npos) << c.breaches()[0];
   EXPECT_NE(c.breaches()[0].find("at line 3"), std::string::npos) << c.breaches()[0];
@@ -102,8 +102,8 @@ TEST(MotionCheck, TenPercentTooMuchAccelerationIsAnAccelerationBreach) {
   std::mt19937 rng(1);
   const MotionCheck c = run(m, Move{200.0, 400.0, 5500.0}, rng, false);
   ASSERT_FALSE(c.ok());
-  EXPECT_EQ(c.axes()[0].velocity_excess, 0.0);
-  EXPECT_GT(c.axes()[0].acceleration_excess, 0.0);
+  EXPECT_EQ(c.axes()[0].velocity.excess, 0.0);
+  EXPECT_GT(c.axes()[0].acceleration.excess, 0.0);
 }
 
 // What a dropped segment did: X from rest at 255 steps a period for 39
@@ -116,10 +116,10 @@ TEST(MotionCheck, AJumpIsABreachOfBoth) {
   for (int k = 40; k <= 200; ++k) c.add(k * 75'000, at_x(x), 2);
   c.finish();
   ASSERT_FALSE(c.ok());
-  EXPECT_GT(c.axes()[0].peak_velocity, 3000.0);
-  EXPECT_GT(c.axes()[0].velocity_excess, 0.0);
-  EXPECT_GT(c.axes()[0].acceleration_excess, 0.0);
-  EXPECT_EQ(c.axes()[0].velocity_line, 2u);
+  EXPECT_GT(c.axes()[0].velocity.peak, 3000.0);
+  EXPECT_GT(c.axes()[0].velocity.excess, 0.0);
+  EXPECT_GT(c.axes()[0].acceleration.excess, 0.0);
+  EXPECT_EQ(c.axes()[0].velocity.line, 2u);
 }
 
 // The first period far from where the job started: a jump at the start.
@@ -141,7 +141,7 @@ TEST(MotionCheck, EndingAtSpeedIsCaughtWhenTheAxesComeToRest) {
   EXPECT_TRUE(c.ok());
   c.finish();
   EXPECT_FALSE(c.ok());
-  EXPECT_GT(c.axes()[0].acceleration_excess, 0.0);
+  EXPECT_GT(c.axes()[0].acceleration.excess, 0.0);
 }
 
 // Lost records: no window spans the gap (it would read the motion in
