@@ -55,6 +55,12 @@ std::optional<shm::JobStatus> MachineLink::job() const {
   return j;
 }
 
+std::optional<shm::Answer> MachineLink::answer(std::uint32_t seq) const {
+  shm::Answer a;
+  if (!linked() || !client_->answer(seq, a)) return std::nullopt;
+  return a;
+}
+
 bool MachineLink::next_event(shm::Event& out) {
   if (!linked() || !client_->block().events.try_pop(out)) return false;
   shm::sanitize(out);

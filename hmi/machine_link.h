@@ -34,6 +34,9 @@ class MachineLink {
   // is full.
   std::uint32_t send(shm::CommandType type, double value = 0.0, std::uint8_t axis = 0,
                      const std::string& text = {});
+  // The daemon's answer to command `seq` (send()'s number), once written:
+  // each command has its own, so concurrent senders never take another's.
+  [[nodiscard]] std::optional<shm::Answer> answer(std::uint32_t seq) const;
   // The next of the kernel's events (faults, state changes, the daemon's
   // news), oldest first; false when there is none. The event ring has one
   // consumer: the machine screen's link (a workflow's link must not take

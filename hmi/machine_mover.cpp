@@ -30,10 +30,11 @@ Result<shm::JobStatus> MachineMover::command(shm::CommandType type, const std::s
   if (seq == 0) return fail("the daemon's command queue is full or the link is lost");
   for (;;) {
     if (!link_.poll()) return fail("link to lasercncd lost: " + link_.why());
-    const std::optional<shm::JobStatus> job = link_.job();
-    if (job && job->ack_seq == seq) {
-      if (job->ack_code != 0) return Diagnostic{static_cast<ErrorCode>(job->ack_code), {}, 0, 0, job->message};
-      return *job;
+    // its own answer slot: another sender's command in between never hides it
+    if (const std::optional<shm::Answer> a = link_.answer(seq)) {
+      if (a->code != 0) return Diagnostic{static_cast<ErrorCode>(a->code), {}, 0, 0, a->message};
+      const std::optional<shm::JobStatus> job = link_.job();
+      if (job) return *job;
     }
     if (std::chrono::steady_clock::now() > deadline) return fail("no answer from lasercncd");
     std::this_thread::sleep_for(kPoll);
