@@ -180,9 +180,26 @@ std::optional<bool> run_part(const decompose::PartResult& res, const MachineConf
       return std::nullopt;
     std::printf("axis curves: %s\n", svg_path.c_str());
   }
+  // the run's own check: each group's measured speed and acceleration
+  // within its limit plus what one step of quantization reads as over the
+  // windows (a reading beyond that is a real breach)
+  bool within = true;
+  for (const GroupReport* g : {&r->main, &r->aux}) {
+    if (g->peak_speed > g->speed_limit + g->speed_resolution) {
+      std::printf("  CHECK FAILED     %s speed %.1f mm/s above its limit %.1f (+%.1f quantization)\n",
+                  g->name.c_str(), g->peak_speed, g->speed_limit, g->speed_resolution);
+      within = false;
+    }
+    if (g->peak_accel > g->accel_limit + g->accel_resolution) {
+      std::printf("  CHECK FAILED     %s acceleration %.1f mm/s2 above its limit %.1f (+%.1f "
+                  "quantization)\n",
+                  g->name.c_str(), g->peak_accel, g->accel_limit, g->accel_resolution);
+      within = false;
+    }
+  }
   const bool ok = r->main.steps_sent == r->main.steps_commanded &&
                   r->aux.steps_sent == r->aux.steps_commanded && !r->main.fault && !r->aux.fault &&
-                  r->main.underruns == 0 && r->aux.underruns == 0;
+                  r->main.underruns == 0 && r->aux.underruns == 0 && within;
   return ok;
 }
 
@@ -421,7 +438,7 @@ int decompose_main(int argc, char** argv) {
     checks_passed = *ran;
   }
   if (!outputs.commit_all()) return 1;
-  return checks_passed ? 0 : 1;
+  return checks_passed ? 0 : 3;  // 3: the run failed its own checks, as `lasercnc run`
 }
 
 }  // namespace lcnc::app
