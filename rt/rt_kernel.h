@@ -185,11 +185,10 @@ class RtKernel {
   // stopped job's flush completes.
   void stream_begin() noexcept { streaming_.store(true, std::memory_order_release); }
   void stream_end() noexcept { streaming_.store(false, std::memory_order_release); }
-  // Laser output off from the next period, whatever the job commands (a
+  // Laser output off from the next period on, whatever the job commands (a
   // lost or alarming laser source: the job then stops along the path with
-  // the beam off), until laser_release(). From any thread.
+  // the beam off; a run's kernel is not used again). From any thread.
   void laser_inhibit() noexcept { laser_inhibit_.store(true, std::memory_order_relaxed); }
-  void laser_release() noexcept { laser_inhibit_.store(false, std::memory_order_relaxed); }
   // Entries the kernel keeps in the buffer to brake from K to 0 along the
   // path at the override ramp: K²/(2ρT) plus a margin.
   [[nodiscard]] std::size_t braking_reserve(double k) const noexcept;

@@ -117,6 +117,7 @@ struct FailedRun {
   CmdResult r;
   nlohmann::json j;
   double last_lasing_t = -1.0;  // the last period with laser output, s
+  double last_moving_t = 0.0;   // the last period whose position changed, s
   double end_t = 0.0;           // the trace's last period, s
 };
 template <typename Fail>
@@ -135,10 +136,15 @@ FailedRun run_while_failing(lcnc::drivers::LaserSourceSim& laser, Fail fail) {
   std::ifstream csv(trace);
   std::string row;
   std::getline(csv, row);  // header
+  std::string last_pos;
   while (std::getline(csv, row)) {
     const double t = std::stod(row);
-    const double power = std::stod(row.substr(row.rfind(',') + 1));
+    const std::size_t power_at = row.rfind(',');
+    const double power = std::stod(row.substr(power_at + 1));
+    const std::string pos = row.substr(row.find(',') + 1, power_at - row.find(','));
     if (power > 0.0) out.last_lasing_t = t;
+    if (pos != last_pos) out.last_moving_t = t;
+    last_pos = pos;
     out.end_t = t;
   }
   return out;
@@ -161,7 +167,10 @@ TEST(LasercncRunDevices, ALaserSourceLostMidJobStopsTheJobWithTheBeamOff) {
   EXPECT_FALSE(f.j["succeeded"].get<bool>());
   EXPECT_LT(f.end_t, kLongCutS - 2.0);  // stopped well short of the end
   EXPECT_GT(f.last_lasing_t, 0.5);              // it was cutting …
-  EXPECT_LT(f.last_lasing_t, f.end_t);          // … and the beam was off before the stop ended
+  // … and the beam went off at the fault, while the axes still braked
+  // along the path (without the RT's inhibit it would follow the job's
+  // power to rest)
+  EXPECT_LT(f.last_lasing_t, f.last_moving_t - 0.002);
   EXPECT_TRUE(f.j["check"]["passed"].get<bool>()) << f.j["check"];  // a controlled stop
 }
 
@@ -183,7 +192,7 @@ TEST(LasercncRunDevices, ALaserAlarmMidJobStopsTheJobWithTheBeamOff) {
   EXPECT_NE(f.j["fault"].get<std::string>().find("alarm: over-temperature"), std::string::npos)
       << f.j["fault"];
   EXPECT_LT(f.end_t, kLongCutS - 2.0);
-  EXPECT_LT(f.last_lasing_t, f.end_t);
+  EXPECT_LT(f.last_lasing_t, f.last_moving_t - 0.002);
 }
 
 // A sensor that reads the register's end (3276.7 °C) is no temperature.

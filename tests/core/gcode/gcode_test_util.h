@@ -10,6 +10,10 @@
 #include "gcode/program_reader.h"
 #include "machine/machine_config.h"
 
+// The diagnostic's message says `what` (shown whole when it does not).
+#define EXPECT_MENTIONS(diag, what) \
+  EXPECT_NE((diag).message.find(what), std::string::npos) << (diag).message
+
 namespace lcnc::test {
 
 inline Pose pose(double x, double y, double z, double a = 0, double b = 0, double c = 0) {

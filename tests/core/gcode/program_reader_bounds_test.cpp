@@ -18,9 +18,6 @@ using test::run;
 using test::segments;
 using test::start_at;
 
-#define EXPECT_MENTIONS(diag, what) \
-  EXPECT_NE((diag).message.find(what), std::string::npos) << (diag).message
-
 // --- feed (G94) -------------------------------------------------------------
 
 TEST(ProgramReaderBounds, FeedBelowOneMicronPerMinuteIsRefused) {

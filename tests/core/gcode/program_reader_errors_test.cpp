@@ -15,10 +15,6 @@ using test::expect_error;
 using test::run;
 using test::start_at;
 
-// The message mentions `what`.
-#define EXPECT_MENTIONS(diag, what) \
-  EXPECT_NE((diag).message.find(what), std::string::npos) << (diag).message
-
 // --- feed -----------------------------------------------------------------
 
 TEST(ProgramReader, FeedMoveWithoutFIsError) {

@@ -15,9 +15,6 @@ using test::run;
 using test::segments;
 using test::start_at;
 
-#define EXPECT_MENTIONS(diag, what) \
-  EXPECT_NE((diag).message.find(what), std::string::npos) << (diag).message
-
 // No byte below 0x20 (or DEL) in a message or its printed form.
 void expect_printable(const Diagnostic& d) {
   const std::string s = d.to_string();
