@@ -74,6 +74,9 @@ std::string format_report(const RunReport& r) {
   } else {
     for (const std::string& b : r.breaches) s += "  CHECK FAILED     " + b + "\n";
   }
+  if (r.trace_drops > 0)  // the reader starved of the CPU; every entry still passed the guard
+    s += "  warning          the RT trace lost records: those periods were held to the increment "
+         "guard only, not measured\n";
   s += printf_string("  RT latency       p50 %.0f us, p99 %.0f us, max %.1f us (%s)\n",
                      r.latency_p50_us, r.latency_p99_us, r.latency_max_us, r.schedule.c_str());
   if (!r.rt_warning.empty()) s += "  warning          " + r.rt_warning + "\n";

@@ -242,9 +242,7 @@ void check_run(RunReport& report, const MotionCheck& motion, const DeviationMete
     }
   }
   for (std::string& b : motion.breaches()) report.breaches.push_back(std::move(b));
-  if (motion.gaps() > 0)
-    report.breaches.push_back("the RT trace lost records " + std::to_string(motion.gaps()) +
-                              " times: the executed motion could not be checked whole");
+
   if (deviation.excess_mm() > 0.0) {
     char msg[200];
     std::snprintf(msg, sizeof msg,
