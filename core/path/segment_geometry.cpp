@@ -193,8 +193,9 @@ double SegmentGeometry::distance_xyz(const Vec3& p) const {
   // plus both ends. On a circle the polar angle is the closest point; on a
   // helix it is only near it (the rise moves the closest point along the
   // turn, by up to the point's height off the helix over its pitch: on a
-  // steep helix of a small radius, far), so there each candidate is refined
-  // by Newton's method on the squared distance:
+  // steep helix of a small radius, far), so there the nearest candidate and
+  // a turn either side of it are refined by Newton's method on the squared
+  // distance (a helix of many turns costs three walks, not one per turn):
   //   P(φ) = c + r(cos φ·u + sin φ·w) + φ·k·n,  k = rise / sweep
   //   f'(φ) = (P − p)·P',  f''(φ) = |P'|² + (P − p)·P'',  P'' = −r(cos φ·u + sin φ·w)
   const Vec3 q = p - center_;
@@ -203,24 +204,32 @@ double SegmentGeometry::distance_xyz(const Vec3& p) const {
   double rel = std::atan2(q.dot(w_), q.dot(u_));
   if (rel < 0.0) rel += two_pi;
   const bool helix = helix_h_ != 0.0;
-  const double k = helix ? helix_h_ / sweep_ : 0.0;
-  // a candidate turn before the first and after the last, for Newton to
-  // walk in from (the closest point may lie a turn from the polar angle)
-  for (double ang = helix ? rel - two_pi : rel; ang <= sweep_ + (helix ? two_pi : 0.0); ang += two_pi) {
-    double phi = std::clamp(ang, 0.0, sweep_);
-    if (helix) {
-      for (int it = 0; it < kHelixNewtonSteps; ++it) {
-        const double c = std::cos(phi), sn = std::sin(phi);
-        const Vec3 radial = radius_ * (c * u_ + sn * w_);
-        const Vec3 d = center_ + radial + (phi * k) * axis_n_ - p;
-        const Vec3 d1 = radius_ * (-sn * u_ + c * w_) + k * axis_n_;
-        const double f1 = d.dot(d1);
-        const double f2 = d1.squaredNorm() - d.dot(radial);
-        if (!(f2 > 0.0)) break;
-        const double next = std::clamp(phi - f1 / f2, 0.0, sweep_);
-        if (next == phi) break;
-        phi = next;
-      }
+  double best_ang = -1.0;
+  for (double ang = rel; ang <= sweep_; ang += two_pi) {
+    const double d = (at(ang / sweep_ * length_).head<3>() - p).norm();
+    if (d < best) {
+      best = d;
+      best_ang = ang;
+    }
+  }
+  if (!helix) return best;
+  // the polar angle's best turn (or the end nearest), and a turn either side
+  // of it, each walked in by Newton: a few steps each, whatever the turns
+  const double k = helix_h_ / sweep_;
+  const double from = best_ang >= 0.0 ? best_ang : ((a - p).norm() <= (b - p).norm() ? 0.0 : sweep_);
+  for (const double start : {from - two_pi, from, from + two_pi}) {
+    double phi = std::clamp(start, 0.0, sweep_);
+    for (int it = 0; it < kHelixNewtonSteps; ++it) {
+      const double c = std::cos(phi), sn = std::sin(phi);
+      const Vec3 radial = radius_ * (c * u_ + sn * w_);
+      const Vec3 d = center_ + radial + (phi * k) * axis_n_ - p;
+      const Vec3 d1 = radius_ * (-sn * u_ + c * w_) + k * axis_n_;
+      const double f1 = d.dot(d1);
+      const double f2 = d1.squaredNorm() - d.dot(radial);
+      if (!(f2 > 0.0)) break;
+      const double next = std::clamp(phi - f1 / f2, 0.0, sweep_);
+      if (next == phi) break;
+      phi = next;
     }
     best = std::min(best, (at(phi / sweep_ * length_).head<3>() - p).norm());
   }
