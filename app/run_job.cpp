@@ -253,6 +253,10 @@ void check_run(RunReport& report, const MotionCheck& motion, const DeviationMete
   }
 }
 
+// Trace records read between two looks at the kernel (segment, laser,
+// progress): 20 ms of periods at 75 µs.
+constexpr int kDrainChunk = 256;
+
 // Half a step on each of X Y Z: the most a point's rounding to steps moves it.
 double xyz_rounding_mm(const MachineConfig& machine) {
   double sq = 0.0;
@@ -416,7 +420,10 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   for (;;) {
     bool got = false;
     drain_rt_log(*rt_log, machine);
-    while (trace->try_pop(rec)) {
+    // in chunks: the segment, the laser and the progress below are followed
+    // between them however far the trace's reading lags (a slow machine, a
+    // sanitizer build)
+    for (int n = 0; n < kDrainChunk && trace->try_pop(rec); ++n) {
       got = true;
       Pose p = Pose::Zero();
       for (int i = 0; i < kAxisCount; ++i) p[i] = static_cast<double>(rec.pos_steps[i]) / spu[i];
