@@ -57,6 +57,7 @@ Interpreter::Interpreter(const MachineConfig& machine, const Pose& start)
     if (ax.present && (ax.wrap || (machine.tcp.enabled && a < 3))) {
       untraveled_axes_ = static_cast<std::uint8_t>(untraveled_axes_ | (1u << a));
     }
+    if (ax.present && ax.wrap) wrapping_axes_ = static_cast<std::uint8_t>(wrapping_axes_ | (1u << a));
   }
 }
 
@@ -498,6 +499,17 @@ bool Interpreter::move(SegmentBuffer& out) {
     end[a] = absolute_ ? v + offset[a] : pos_[a] + v;
   }
   if ((b.axis_mask & untraveled_axes_) != 0 && !check_magnitude(end)) return false;
+  if (absolute_ && (b.axis_mask & wrapping_axes_) != 0) {
+    // G90 on a continuous rotary axis names a position modulo 360: the axis
+    // turns the shorter way to it (+180 on a tie); G91 turns by what it says.
+    for (int a = 3; a < kAxisCount; ++a) {
+      if (((b.axis_mask & wrapping_axes_) >> a & 1u) == 0) continue;
+      double d = std::remainder(end[a] - pos_[a], 360.0);
+      if (d <= -180.0) d += 360.0;
+      end[a] = pos_[a] + d;
+    }
+    if (!check_magnitude(end)) return false;
+  }
   if (block_motion_ == MotionMode::ArcCw || block_motion_ == MotionMode::ArcCcw) {
     return arc(end, out);
   }

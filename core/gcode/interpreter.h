@@ -95,6 +95,7 @@ class Interpreter {
   // bit index(Axis) for each axis check_travel does not bound: continuous
   // rotary axes, and X Y Z under tool-centre-point control
   std::uint8_t untraveled_axes_ = 0;
+  std::uint8_t wrapping_axes_ = 0;    // continuous rotary axes: G90 takes the shorter turn
 
   // Modal state (initially G17 G21 G90 G91.1 G94 G54 G61 M5 M9, F unset, S0).
   MotionMode motion_ = MotionMode::None;

@@ -140,10 +140,40 @@ TEST(ProgramReader, WorkOffsetDoesNotApplyToIncrements) {
 }
 
 TEST(ProgramReader, ContinuousRotaryAxisHasNoTravelLimit) {
-  const auto segs = segments("G0 C720\nG0 C-30\n");
+  const auto segs = segments("G91 G0 C720\nG90 G0 C-30\n");
   ASSERT_EQ(segs.size(), 2u);
   EXPECT_DOUBLE_EQ(segs[0].end[5], 720.0);
-  EXPECT_DOUBLE_EQ(segs[1].end[5], -30.0);
+  EXPECT_DOUBLE_EQ(segs[1].end[5], 690.0);  // -30 = 330 (mod 360): 30 back from 720
+}
+
+// G90 on a continuous rotary axis names a position modulo 360; the axis takes
+// the shorter turn to it. The old reading took C 333 -> 10 the long way, -323.
+TEST(ProgramReader, AbsoluteMoveOnAContinuousAxisTakesTheShorterTurn) {
+  std::string program = "G1 F600";
+  for (int k = 0; k <= 12; ++k) program += "\nX" + std::to_string(11 + k) + " C" + std::to_string((37 * k) % 360);
+  const auto segs = segments(program + "\n");
+  ASSERT_EQ(segs.size(), 13u);
+  for (std::size_t i = 1; i < segs.size(); ++i) {
+    EXPECT_NEAR(segs[i].end[5] - segs[i].start[5], 37.0, 1e-9) << "move " << i;
+  }
+  EXPECT_NEAR(segs.back().end[5], 444.0, 1e-9);  // 12 x 37, shown as 84
+  EXPECT_DOUBLE_EQ(segs[0].end[5], 0.0);           // C 0 -> 0: X alone moves
+}
+
+TEST(ProgramReader, ShorterTurnCountsFromWhereTheMachineStands) {
+  ReaderOptions o = start_at();
+  o.start[5] = 350.0 + 720.0;  // two turns and 350
+  const auto segs = segments("G0 C10\nG0 C190\nG0 C-170\nG91 C-322\n", o);
+  ASSERT_EQ(segs.size(), 3u);  // C-170 is where C190 left it: no motion
+  EXPECT_NEAR(segs[0].end[5], 1090.0, 1e-9);          // +20, not -340
+  EXPECT_NEAR(segs[1].end[5], 1270.0, 1e-9);          // a half turn: the positive way
+  EXPECT_NEAR(segs[2].end[5], 1270.0 - 322.0, 1e-9);  // G91 turns by what it says
+}
+
+TEST(ProgramReader, AxisWithTravelLimitsIsNotWrapped) {
+  const auto segs = segments("G0 A80\nG0 A-80\n");
+  ASSERT_EQ(segs.size(), 2u);
+  EXPECT_DOUBLE_EQ(segs[1].end[3], -80.0);  // a tilt axis goes where it is told
 }
 
 TEST(ProgramReader, TravelToleranceIsOneNanometre) {
