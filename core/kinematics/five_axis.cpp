@@ -74,6 +74,11 @@ double nearest_turn(double c_deg, double ref_deg) noexcept {
   return c_deg - 360.0 * std::round((c_deg - ref_deg) / 360.0);
 }
 
+double tip_lever_mm(const FiveAxisGeometry& g) noexcept {
+  return g.variant == MachineVariant::HeadHead ? g.head_c_to_a_mm.norm() + g.head_pivot_length_mm
+                                               : kTableLeverMm;
+}
+
 double wrap_360(double c_deg) noexcept {
   double w = std::fmod(c_deg, 360.0);
   if (w < 0.0) w += 360.0;

@@ -127,6 +127,13 @@ class FiveAxisKinematics {
 // The machine's kinematics: its [kinematics] geometry, its A and C limits.
 [[nodiscard]] FiveAxisKinematics kinematics_from(const MachineConfig& config);
 
+// How far the tool tip may be from the rotary axes: a turn of A or C by δ
+// (rad) moves it by at most this × δ. Head-head: the A pivot's offset from
+// the C axis plus the pivot length. Table-table: a workpiece point up to
+// kTableLeverMm from the table's axes (the tip is anywhere on the part).
+inline constexpr double kTableLeverMm = 1000.0;
+[[nodiscard]] double tip_lever_mm(const FiveAxisGeometry& g) noexcept;
+
 // A pose's X Y Z under a rigid map (tip_to_joints), its rotary axes as they are.
 [[nodiscard]] inline Pose transformed(const Eigen::Isometry3d& t, const Pose& p) {
   Pose q = p;

@@ -30,4 +30,8 @@ inline constexpr int kCurveSamples = 4096;
 // TCP subdivision: most bisection levels (2^24 pieces) before giving up.
 inline constexpr int kMaxTcpDepth = 24;
 
+// The machine's A and C this close to a program's are the program's own
+// (rounding only): its move starts from them, deg.
+inline constexpr double kSameJointDeg = 1e-9;
+
 }  // namespace lcnc::kin

@@ -68,11 +68,15 @@ Result<std::vector<Segment>> tcp_line_segments(const FiveAxisKinematics& kin, co
       continue;
     }
     Segment s = prototype;
-    s.kind = MotionKind::Linear;
+    // a rapid stays a rapid (every joint at its own limit, no feed); a feed
+    // move or an arc's piece is a joint line at the feed that keeps the tip's
+    s.kind = prototype.kind == MotionKind::Rapid ? MotionKind::Rapid : MotionKind::Linear;
     s.start = j0;
     s.end = j1;
     const double tip_len = (p.u1 - p.u0) * (b - a).norm();
     if (tip_len > 0.0) s.feed_mm_s = prototype.feed_mm_s * joint_length(j1 - j0) / tip_len;
+    // G93: the move's time shared out as its length (each piece took all of it)
+    if (prototype.duration_s > 0.0) s.duration_s = prototype.duration_s * (p.u1 - p.u0);
     out.push_back(std::move(s));
   }
   return out;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "kinematics/kinematics_tolerances.h"
 #include "kinematics/orientation_interpolation.h"
 #include "kinematics/tcp_path.h"
 #include "path/segment_geometry.h"
@@ -45,12 +46,23 @@ Status TcpExpander::expand(const Segment& s) {
     emit(q);
     return {};
   }
+  // The tool orientation is the program's, the joints that give it are the
+  // machine's: (A, C) and (−A, C + 180°) point the tool alike, and the
+  // machine stays on the branch (and the turn of C) it stands on. Joint
+  // lines between branches would swing the tip off the path.
+  const RotaryJoints from = rotary_of(at_);
   if (!rotary_moves(s)) {
-    const Eigen::Isometry3d t = kin_.tip_to_joints(rotary_of(s.start));
+    const Eigen::Isometry3d t = kin_.tip_to_joints(from);
+    const auto joints = [&](const Pose& tip) {
+      Pose j = transformed(t, tip);
+      j[index(Axis::A)] = from.a_deg;
+      j[index(Axis::C)] = from.c_deg;
+      return j;
+    };
     const bool translation = (t.linear() - Eigen::Matrix3d::Identity()).norm() <= kIdentity;
     if (s.kind != MotionKind::Arc || translation) {
       Segment q = s;
-      q.end = transformed(t, s.end);
+      q.end = joints(s.end);
       if (s.kind == MotionKind::Arc) q.center = t * s.center;
       emit(q);
       return {};
@@ -60,7 +72,7 @@ Status TcpExpander::expand(const Segment& s) {
       Segment q = s;
       q.kind = MotionKind::Linear;
       q.extra_turns = 0;
-      q.end = transformed(t, p);
+      q.end = joints(p);
       emit(q);
     }
     return {};
@@ -68,8 +80,15 @@ Status TcpExpander::expand(const Segment& s) {
   if (s.kind == MotionKind::Arc)
     return fail("an arc along which A or C moves cannot be run under tool-centre-point control; "
                 "split it into lines");
-  Result<OrientationMove> move = OrientationMove::between_joints(
-      config_.orientation, rotary_of(s.start), rotary_of(s.end), kin_.limits(), config_.orientation_tolerance_deg);
+  const RotaryJoints written = rotary_of(s.start);
+  const double turns = std::round((from.c_deg - written.c_deg) / 360.0);
+  Result<OrientationMove> move =
+      (from.a_deg == written.a_deg && std::abs(from.c_deg - written.c_deg - 360.0 * turns) <= kin::kSameJointDeg)
+          ? OrientationMove::between_joints(config_.orientation, from,
+                                            RotaryJoints{s.end[index(Axis::A)], s.end[index(Axis::C)] + 360.0 * turns},
+                                            kin_.limits(), config_.orientation_tolerance_deg)
+          : OrientationMove::to_axis(config_.orientation, from, tool_axis(rotary_of(s.end)), kin_.limits(),
+                                     config_.orientation_tolerance_deg);
   if (!move) return fail(move.error().message);
   Result<std::vector<Segment>> pieces =
       tcp_line_segments(kin_, s.start.head<3>(), s.end.head<3>(), *move, s, config_.tip_tolerance_mm,

@@ -100,6 +100,66 @@ TEST(TcpProgram, TipFollowsTheLineWhileAAndCMove) {
   EXPECT_LT((kin.forward(end).tip_mm - b).norm(), 1e-9);
 }
 
+// A G0 that turns the tool is split like a G1, and each piece stays a rapid
+// (every joint at its own limit). Pieces made feed moves of feed 0 crawled:
+// the program never finished.
+TEST(TcpProgram, ARapidThatTurnsTheToolStaysARapidInEveryPiece) {
+  const MachineConfig m = tcp_machine(OrientationMethod::PoleSmoothed);
+  const FiveAxisKinematics kin = kinematics_from(m);
+  const Pose start = joints(300, 200, 300, 0, 0);
+  const Vec3 a = kin.forward(start).tip_mm;
+  const Vec3 b = a + Vec3(60, -20, 10);
+  char prog[200];
+  std::snprintf(prog, sizeof prog, "G21 G90\nG0 X%.6f Y%.6f Z%.6f A-30 C40\nM2\n", b.x(), b.y(), b.z());
+  Result<std::vector<Segment>> segs = expand(prog, m, start);
+  ASSERT_TRUE(static_cast<bool>(segs)) << segs.error().to_string();
+  ASSERT_GT(segs->size(), 3u);
+  double worst = 0.0;
+  for (const Segment& s : *segs) {
+    EXPECT_EQ(s.kind, MotionKind::Rapid);
+    EXPECT_EQ(s.laser, LaserMode::Off);
+    EXPECT_EQ(s.feed_mm_s, 0.0);
+    worst = std::max(worst, to_line(kin.forward(s.end).tip_mm, a, b));
+  }
+  EXPECT_LE(worst, m.tcp.tip_tolerance_mm + 1e-9);
+  EXPECT_NEAR(segs->back().end[3], -30.0, 1e-9);
+}
+
+// (A, C) and (−A, C + 180°) point the tool alike. A program that names the
+// other branch than the machine stands on (as one written after a vector
+// move may) must not flip the joints while cutting: on a table-table
+// machine the flip swung the tip 7.5 mm off the line. The machine stays on
+// its branch and the tip on the line.
+TEST(TcpProgram, TheMachineStaysOnItsBranchWhateverBranchTheProgramNames) {
+  for (OrientationMethod method : {OrientationMethod::Vector, OrientationMethod::PoleSmoothed}) {
+    MachineConfig m = tcp_machine(method);
+    m.kinematics.variant = MachineVariant::TableTable;
+    const FiveAxisKinematics kin = kinematics_from(m);
+    const Pose start = joints(450, 200, 200, -15, 20);
+    const Vec3 a = kin.forward(start).tip_mm;
+    const Vec3 b = a + Vec3(20, 5, 0);
+    const Vec3 c = b + Vec3(20, -5, 0);
+    char prog[300];
+    std::snprintf(prog, sizeof prog,
+                  "G21 G90\nG1 X%.6f Y%.6f Z%.6f A15 C200 F600\nG1 X%.6f Y%.6f Z%.6f\nM2\n", b.x(), b.y(),
+                  b.z(), c.x(), c.y(), c.z());
+    Result<std::vector<Segment>> segs = expand(prog, m, start);
+    ASSERT_TRUE(static_cast<bool>(segs)) << segs.error().to_string();
+    double worst = 0.0;
+    for (const Segment& s : *segs) {
+      EXPECT_NEAR(s.end[3], -15.0, 1e-9) << "line " << s.line;
+      EXPECT_NEAR(s.end[5], 20.0, 1e-9) << "line " << s.line;
+      const Vec3 p0 = s.line == 2 ? a : b, p1 = s.line == 2 ? b : c;
+      for (int k = 0; k <= 8; ++k) {
+        const Pose q = s.start + (s.end - s.start) * (k / 8.0);
+        worst = std::max(worst, to_line(kin.forward(q).tip_mm, p0, p1));
+      }
+    }
+    EXPECT_LE(worst, m.tcp.tip_tolerance_mm + 1e-9) << method_name(method);
+    EXPECT_LT((kin.forward(segs->back().end).tip_mm - c).norm(), 1e-6);
+  }
+}
+
 TEST(TcpProgram, ConstantOrientationArcIsTheSameArcOnAHeadHeadMachine) {
   const MachineConfig m = tcp_machine(OrientationMethod::PoleSmoothed);
   const FiveAxisKinematics kin = kinematics_from(m);
