@@ -216,7 +216,19 @@ constexpr double kPlannedPeakSlack = 1e-6;
 // The run's own check (RunReport::breaches): the plan's peaks at the run's
 // override and the trace's measured motion against every axis limit, and
 // the executed path against its tolerance.
-void check_run(RunReport& report, const MotionCheck& motion, const DeviationMeter& deviation) {
+void deviation_breach(RunReport& report, const DeviationMeter& meter, const char* what) {
+  if (meter.excess_mm() <= 0.0) return;
+  char msg[200];
+  std::snprintf(msg, sizeof msg, "%s %.4f mm, beyond its tolerance %.4f mm at line %u", what,
+                meter.excess_tolerance_mm() + meter.excess_mm(), meter.excess_tolerance_mm(),
+                meter.excess_line());
+  report.breaches.emplace_back(msg);
+}
+
+// tip: under tool-centre-point control, the tool tip measured against the
+// program as written (else null).
+void check_run(RunReport& report, const MotionCheck& motion, const DeviationMeter& deviation,
+               const DeviationMeter* tip) {
   report.velocity_window = motion.velocity_window();
   report.acceleration_window = motion.acceleration_window();
   for (int i = 0; i < kAxisCount; ++i) {
@@ -243,29 +255,13 @@ void check_run(RunReport& report, const MotionCheck& motion, const DeviationMete
   }
   for (std::string& b : motion.breaches()) report.breaches.push_back(std::move(b));
 
-  if (deviation.excess_mm() > 0.0) {
-    char msg[200];
-    std::snprintf(msg, sizeof msg,
-                  "path deviation %.4f mm, beyond its tolerance %.4f mm at line %u",
-                  deviation.excess_tolerance_mm() + deviation.excess_mm(),
-                  deviation.excess_tolerance_mm(), deviation.excess_line());
-    report.breaches.emplace_back(msg);
-  }
+  deviation_breach(report, deviation, "path deviation");
+  if (tip != nullptr) deviation_breach(report, *tip, "tool tip deviation");
 }
 
 // Trace records read between two looks at the kernel (segment, laser,
 // progress): 20 ms of periods at 75 µs.
 constexpr int kDrainChunk = 256;
-
-// Half a step on each of X Y Z: the most a point's rounding to steps moves it.
-double xyz_rounding_mm(const MachineConfig& machine) {
-  double sq = 0.0;
-  for (Axis a : {Axis::X, Axis::Y, Axis::Z}) {
-    const AxisConfig& ax = machine.axis(a);
-    if (ax.present) sq += 0.25 / (ax.steps_per_unit * ax.steps_per_unit);
-  }
-  return std::sqrt(sq);
-}
 
 }  // namespace
 
@@ -408,6 +404,26 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
                                  })
                                : (*ref_reader)->source(),
                            machine.path_tolerance_mm, xyz_rounding_mm(machine));
+  // Under tool-centre-point control the program is the tip's path: the
+  // joints' forward kinematics are held to it too.
+  const bool tip_check = machine.tcp.enabled && !options.segments;
+  Result<std::unique_ptr<ProgramReader>> tip_reader =
+      tip_check ? open_tip_program(options.program, machine, ropt)
+                : Result<std::unique_ptr<ProgramReader>>(std::unique_ptr<ProgramReader>());
+  if (!tip_reader) {
+    feed.abort();
+    kernel.shutdown();
+    kernel.join();
+    if (laser) (void)laser->finish();
+    return tip_reader.error();
+  }
+  std::optional<DeviationMeter> tip;
+  std::optional<FiveAxisKinematics> kin;
+  if (tip_check) {
+    tip.emplace(reader_source(**tip_reader), machine.path_tolerance_mm, tip_rounding_mm(machine),
+                machine.tcp.tip_tolerance_mm);
+    kin.emplace(kinematics_from(machine));
+  }
   MotionCheck motion(machine, start_steps);
   std::uint64_t next_period = 0;  // the RT numbers its periods from 0
   std::uint32_t segment_seen = UINT32_MAX;
@@ -429,6 +445,7 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
       for (int i = 0; i < kAxisCount; ++i) p[i] = static_cast<double>(rec.pos_steps[i]) / spu[i];
       trace_out.write(static_cast<double>(rec.t_ns) * 1e-9, p, rec.power_pct);
       deviation.add(p.head<3>(), rec.segment);
+      if (tip) tip->add_at_line(kin->forward(p).tip_mm, rec.line);
       if (rec.period != next_period) motion.gap();
       next_period = rec.period + 1;
       motion.add(rec.t_ns, rec.pos_steps, rec.line);
@@ -474,9 +491,9 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
 
   fill_run_figures(report, kernel, sim, planned, machine, start_steps);
   if (!laser_fault.empty() && report.fault.empty()) report.fault = "laser source: " + laser_fault;
-  report.max_deviation_mm = deviation.max_mm();
+  report.max_deviation_mm = tip ? tip->max_mm() : deviation.max_mm();
   motion.finish();
-  check_run(report, motion, deviation);
+  check_run(report, motion, deviation, tip ? &*tip : nullptr);
   // The job ran to its end (its checks may still fail: then the trace is
   // what shows why), so its trace replaces the old file.
   if (Status s = trace_out.commit(); !s) return s.error();

@@ -6,18 +6,37 @@
 
 namespace lcnc {
 
-double DeviationMeter::add(const Vec3& point, std::uint32_t index) {
-  const std::uint64_t want = static_cast<std::uint64_t>(index) + kWindowAhead + 1;
-  while (!source_done_ && loaded_ < want) {
-    Segment seg;
-    if (source_(seg) != SourceStatus::Item) {
-      source_done_ = true;
+bool DeviationMeter::load_next() {
+  Segment seg;
+  if (source_done_ || source_(seg) != SourceStatus::Item) {
+    source_done_ = true;
+    return false;
+  }
+  const double tol = seg.path_mode != PathMode::Blend ? 0.0
+                     : seg.blend_tolerance_mm > 0.0 ? seg.blend_tolerance_mm
+                                                    : default_tolerance_mm_;
+  window_.push_back(Entry{loaded_++, SegmentGeometry(seg), tol, seg.line});
+  return true;
+}
+
+double DeviationMeter::add_at_line(const Vec3& point, std::uint32_t line) {
+  while (window_.empty() || window_.back().line <= line) {
+    if (!load_next()) break;
+  }
+  std::uint32_t index = 0;
+  for (auto e = window_.rbegin(); e != window_.rend(); ++e) {
+    if (e->line <= line) {
+      index = e->index;
       break;
     }
-    const double tol = seg.path_mode != PathMode::Blend ? 0.0
-                       : seg.blend_tolerance_mm > 0.0 ? seg.blend_tolerance_mm
-                                                      : default_tolerance_mm_;
-    window_.push_back(Entry{loaded_++, SegmentGeometry(seg), tol, seg.line});
+  }
+  return add(point, index);
+}
+
+double DeviationMeter::add(const Vec3& point, std::uint32_t index) {
+  const std::uint64_t want = static_cast<std::uint64_t>(index) + kWindowAhead + 1;
+  while (loaded_ < want) {
+    if (!load_next()) break;
   }
   const std::uint32_t low = index > kWindowBack ? index - kWindowBack : 0;
   while (!window_.empty() && window_.front().index < low) window_.pop_front();
@@ -31,7 +50,7 @@ double DeviationMeter::add(const Vec3& point, std::uint32_t index) {
     if (e.index <= index) line = e.line;
   }
   if (!std::isfinite(best)) best = 0.0;  // no programmed segment: nothing to compare
-  const double allowed = std::max(tol, rounding_mm_) + kDeviationSlackMm;
+  const double allowed = std::max(tol, rounding_mm_) + extra_mm_ + kDeviationSlackMm;
   if (best - allowed > excess_) {
     excess_ = best - allowed;
     excess_tolerance_ = allowed;

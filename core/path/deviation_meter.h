@@ -38,9 +38,19 @@ class DeviationMeter {
                           double rounding_mm = 0.0)
       : source_(std::move(source)), default_tolerance_mm_(default_tolerance_mm),
         rounding_mm_(rounding_mm) {}
+  // extra_mm: added to every point's tolerance (under tool-centre-point
+  // control, the tip's own tolerance on the joint lines it becomes).
+  DeviationMeter(SegmentSource source, double default_tolerance_mm, double rounding_mm, double extra_mm)
+      : DeviationMeter(std::move(source), default_tolerance_mm, rounding_mm) {
+    extra_mm_ = extra_mm;
+  }
 
   // Adds an executed point that belongs to segment `index`; returns its deviation.
   double add(const Vec3& point, std::uint32_t index);
+  // The same for a point known by its program line only (the tool tip under
+  // tool-centre-point control, whose joint segments are not the program's):
+  // compared with the last segment of that line and those around it.
+  double add_at_line(const Vec3& point, std::uint32_t line);
 
   [[nodiscard]] double max_mm() const noexcept { return max_; }
   [[nodiscard]] std::uint64_t points() const noexcept { return points_; }
@@ -57,9 +67,12 @@ class DeviationMeter {
     double tolerance_mm;
     std::uint32_t line;
   };
+  bool load_next();  // one more segment into the window; false at the end
+
   SegmentSource source_;
   double default_tolerance_mm_;
   double rounding_mm_;
+  double extra_mm_ = 0.0;
   double excess_ = 0.0, excess_tolerance_ = 0.0;
   std::uint32_t excess_line_ = 0;
   std::deque<Entry> window_;

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numbers>
 
+#include "kinematics/five_axis.h"
 #include "path/segment_geometry.h"
 #include "plan/arc_transition.h"
 #include "plan/tolerances.h"
@@ -30,6 +33,11 @@ bool blendable(const Segment& s) { return blendable_line(s) || blendable_arc(s);
 // not zero, and a join with a segment where it is zero is no tangent one.
 bool moves_rotary(const Segment& s) { return s.end.tail<3>() != s.start.tail<3>(); }
 
+// Rotary travel per mm of path (deg/mm) of a segment `length` long.
+Vec3 rotary_rate(const Segment& s, double length) {
+  return length > 0.0 ? Vec3((s.end.tail<3>() - s.start.tail<3>()) / length) : Vec3::Zero();
+}
+
 }  // namespace
 
 PathBlender::PathBlender(const MachineConfig& machine, SegmentSource source,
@@ -41,6 +49,7 @@ PathBlender::PathBlender(const MachineConfig& machine, SegmentSource source,
     if (ax.present) sum += std::pow(0.5 / ax.steps_per_unit, 2);
   }
   margin_mm_ = std::sqrt(sum);
+  if (machine.tcp.enabled) tip_mm_per_deg_ = tip_lever_mm(machine.kinematics) * std::numbers::pi / 180.0;
 }
 
 void PathBlender::emit(IndexedSegment& s, bool with_geometry) {
@@ -73,26 +82,39 @@ SourceStatus PathBlender::next(const IndexedSegment*& out) {
     const bool cur_blendable = blendable(cur.seg);
     if (have_pending_ && cur_blendable) {
       const Segment& a = pending.seg;
-      const double tol = std::min(a.blend_tolerance_mm, cur.seg.blend_tolerance_mm) -
-                         std::max(merge_tolerance(a), merge_tolerance(cur.seg)) - margin_mm_ -
-                         filter_error_mm_;
+      double tol = std::min(a.blend_tolerance_mm, cur.seg.blend_tolerance_mm) -
+                   std::max(merge_tolerance(a), merge_tolerance(cur.seg)) - margin_mm_ -
+                   filter_error_mm_;
       const double len_a = pending_length_;
       const double len_b = path_length(cur.seg);
+      // Under tool-centre-point control the rotary axes run linearly across
+      // the blend while their rate per mm jumps at the corner: in the blend's
+      // middle they are off the lines' by trim·|rate jump|/2, which moves the
+      // tip by tip_mm_per_deg_ × that. Half the tolerance goes to X Y Z, half
+      // to the rotary axes, which bounds the trim.
+      double trim_cap = std::numeric_limits<double>::infinity();
+      if (tip_mm_per_deg_ > 0.0) {
+        const double jump = (rotary_rate(cur.seg, len_b) - rotary_rate(a, len_a)).norm();
+        if (jump > 0.0) {
+          tol *= 0.5;
+          trim_cap = tol / (0.5 * tip_mm_per_deg_ * jump);
+        }
+      }
       // A corner takes at most half of a line and 45 % of an arc (an arc
       // trimmed to nothing would read as a full circle).
       const double share_a = a.kind == MotionKind::Arc ? 0.45 : 0.5;
       const double share_b = cur.seg.kind == MotionKind::Arc ? 0.45 : 0.5;
-      const double max_a = std::min(pending_full_length_ * share_a, len_a);
+      const double max_a = std::min({pending_full_length_ * share_a, len_a, trim_cap});
+      const double max_b = std::min(len_b * share_b, trim_cap);
       // A line–line blend goes straight into arc_, its geometry as built
       // (a fillet's is computed as any arc's).
       ArcTransition& t = corner_;
       const bool line_line = a.kind == MotionKind::Linear && cur.seg.kind == MotionKind::Linear;
       if (line_line) {
         // (a line's path length is its X Y Z length: blendable lines have one)
-        (void)arc_transition(a, cur.seg, len_a, len_b, tol, max_a, len_b * share_b, t, arc_.seg,
-                             arc_.geo);
+        (void)arc_transition(a, cur.seg, len_a, len_b, tol, max_a, max_b, t, arc_.seg, arc_.geo);
       } else {
-        t = fillet_transition(a, cur.seg, tol, max_a, len_b * share_b);
+        t = fillet_transition(a, cur.seg, tol, max_a, max_b);
         if (t.blended) arc_.seg = t.arc;
       }
       if (t.blended) {

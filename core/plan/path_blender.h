@@ -46,6 +46,7 @@ class PathBlender {
   LineMerger merger_;
   double margin_mm_ = 0.0;
   double filter_error_mm_ = 0.0;
+  double tip_mm_per_deg_ = 0.0;  // under TCP: how far a degree of A or C moves the tip at most
   bool have_pending_ = false;
   // The pending line, whose end may still be blended, and the one read after
   // it: slots_[pending_slot_] and the other.

@@ -2,6 +2,9 @@
 
 #include "path/travel_check.h"
 
+#include <cmath>
+#include <numbers>
+
 namespace lcnc {
 
 SegmentSource reader_source(ProgramReader& reader) {
@@ -73,6 +76,32 @@ Result<ProgramSummary> check_job_program(const std::string& path, const MachineC
   sum.lines = read->lines;
   sum.warnings = read->warnings;
   return sum;
+}
+
+Result<std::unique_ptr<ProgramReader>> open_tip_program(const std::string& path,
+                                                         const MachineConfig& machine,
+                                                         ReaderOptions options) {
+  if (machine.tcp.enabled) options.start = TcpExpander::tip_start(kinematics_from(machine), options.start);
+  return ProgramReader::open(path, machine, options);
+}
+
+double xyz_rounding_mm(const MachineConfig& machine) {
+  double sq = 0.0;
+  for (Axis a : {Axis::X, Axis::Y, Axis::Z}) {
+    const AxisConfig& ax = machine.axis(a);
+    if (ax.present) sq += 0.25 / (ax.steps_per_unit * ax.steps_per_unit);
+  }
+  return std::sqrt(sq);
+}
+
+double tip_rounding_mm(const MachineConfig& machine) {
+  const double lever = tip_lever_mm(machine.kinematics);
+  double turn_rad = 0.0;
+  for (Axis a : {Axis::A, Axis::C}) {
+    const AxisConfig& ax = machine.axis(a);
+    if (ax.present) turn_rad += 0.5 / ax.steps_per_unit * std::numbers::pi / 180.0;
+  }
+  return xyz_rounding_mm(machine) + lever * turn_rad;
 }
 
 }  // namespace lcnc

@@ -50,4 +50,18 @@ class ProgramSource {
                                                        const MachineConfig& machine,
                                                        ReaderOptions options = {});
 
+// Under tool-centre-point control, the program as written: the tool tip's
+// path, read from joints options.start. A run measures the executed tip
+// (forward kinematics of the joints) against it.
+[[nodiscard]] Result<std::unique_ptr<ProgramReader>> open_tip_program(const std::string& path,
+                                                                      const MachineConfig& machine,
+                                                                      ReaderOptions options = {});
+
+// How far a point may be off the programmed path from its rounding to steps
+// alone: half a step on each of X Y Z.
+[[nodiscard]] double xyz_rounding_mm(const MachineConfig& machine);
+// The same for the tool tip: X Y Z's, plus half a step of A and of C turning
+// the tip about their axes (tip_lever_mm).
+[[nodiscard]] double tip_rounding_mm(const MachineConfig& machine);
+
 }  // namespace lcnc

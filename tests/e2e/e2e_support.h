@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -172,5 +173,31 @@ class Daemon {
   fs::path log_;
   pid_t pid_ = -1;
 };
+
+// One row of the --trace CSV: t,x,y,z,a,b,c,power.
+struct TraceRow {
+  double t = 0, x = 0, y = 0, z = 0, a = 0, b = 0, c = 0, power = 0;
+};
+
+inline std::vector<TraceRow> read_trace(const fs::path& file) {
+  std::vector<TraceRow> rows;
+  std::ifstream in(file);
+  std::string line;
+  if (!std::getline(in, line)) {
+    ADD_FAILURE() << "empty trace " << file;
+    return rows;
+  }
+  EXPECT_EQ(line, "t,x,y,z,a,b,c,power");
+  while (std::getline(in, line)) {
+    TraceRow r;
+    if (std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &r.t, &r.x, &r.y, &r.z, &r.a,
+                    &r.b, &r.c, &r.power) != 8) {
+      ADD_FAILURE() << "bad trace row: " << line;
+      break;
+    }
+    rows.push_back(r);
+  }
+  return rows;
+}
 
 }  // namespace e2e

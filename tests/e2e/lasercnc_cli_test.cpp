@@ -24,32 +24,6 @@ using namespace e2e;
 
 const std::string kShare = std::string(LCNC_SOURCE_DIR) + "/share";
 
-// One row of the --trace CSV: t,x,y,z,a,b,c,power.
-struct TraceRow {
-  double t = 0, x = 0, y = 0, z = 0, a = 0, b = 0, c = 0, power = 0;
-};
-
-std::vector<TraceRow> read_trace(const fs::path& file) {
-  std::vector<TraceRow> rows;
-  std::ifstream in(file);
-  std::string line;
-  if (!std::getline(in, line)) {
-    ADD_FAILURE() << "empty trace " << file;
-    return rows;
-  }
-  EXPECT_EQ(line, "t,x,y,z,a,b,c,power");
-  while (std::getline(in, line)) {
-    TraceRow r;
-    if (std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &r.t, &r.x, &r.y, &r.z, &r.a,
-                    &r.b, &r.c, &r.power) != 8) {
-      ADD_FAILURE() << "bad trace row: " << line;
-      break;
-    }
-    rows.push_back(r);
-  }
-  return rows;
-}
-
 // Checks the default machine's X Y Z velocity limits on a trace: velocity
 // over 10-row windows against the trace's own time column, allowing the ±1
 // step quantization at each end. Returns the largest X velocity seen.

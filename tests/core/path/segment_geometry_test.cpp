@@ -205,5 +205,35 @@ TEST(DeviationMeter, MeasuresAgainstTheWindowOfSegments) {
   EXPECT_NEAR(dm.max_mm(), 0.002, 1e-12);
 }
 
+
+// A point known by its program line only (the tool tip under TCP) is
+// compared with that line's segment and those before it, and held to the
+// tolerance plus the extra allowance.
+TEST(DeviationMeter, AtLineFindsTheLinesSegmentAndHoldsTheExtraAllowance) {
+  std::vector<Segment> segs(3);
+  for (int k = 0; k < 3; ++k) {
+    segs[k].kind = MotionKind::Linear;
+    segs[k].start << 0, k * 10.0, 0, 0, 0, 0;  // a staircase: lines 3, 5, 9
+    segs[k].end << 0, (k + 1) * 10.0, 0, 0, 0, 0;
+    segs[k].line = k == 0 ? 3 : k == 1 ? 5 : 9;
+  }
+  segs[2].start << 0, 20, 0, 0, 0, 0;
+  segs[2].end << 10, 20, 0, 0, 0, 0;  // line 9 turns along X
+  std::size_t i = 0;
+  DeviationMeter dm(
+      [&](Segment& out) {
+        if (i == segs.size()) return SourceStatus::End;
+        out = segs[i++];
+        return SourceStatus::Item;
+      },
+      0.0, 0.0, 0.001);
+  EXPECT_NEAR(dm.add_at_line(Vec3(0.0005, 5, 0), 3), 0.0005, 1e-12);
+  EXPECT_EQ(dm.excess_mm(), 0.0);  // within the extra 1 µm
+  EXPECT_NEAR(dm.add_at_line(Vec3(0.5, 15, 0), 5), 0.5, 1e-12);  // line 5's segment, not line 9's
+  EXPECT_NEAR(dm.excess_mm(), 0.5 - 0.001 - DeviationMeter::kDeviationSlackMm, 1e-12);
+  EXPECT_EQ(dm.excess_line(), 5u);
+  EXPECT_NEAR(dm.add_at_line(Vec3(5, 20.2, 0), 9), 0.2, 1e-12);
+}
+
 }  // namespace
 }  // namespace lcnc

@@ -3,10 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <random>
 #include <vector>
 
 #include "core/plan/test_machine.h"
+#include "kinematics/five_axis.h"
 
 namespace lcnc {
 namespace {
@@ -23,8 +25,8 @@ Segment g1(const Vec3& a, const Vec3& b, double p, double q) {
   return s;
 }
 
-std::vector<IndexedSegment> blend(const std::vector<Segment>& segs) {
-  const auto m = testing::test_machine();
+std::vector<IndexedSegment> blend(const std::vector<Segment>& segs,
+                                  const MachineConfig& m = testing::test_machine()) {
   std::size_t i = 0;
   PathBlender b(m, [&](Segment& out) {
     if (i == segs.size()) return SourceStatus::End;
@@ -128,6 +130,37 @@ TEST(PathBlender, JoinsWithRotaryAxesMovingAreNotMarkedTangent) {
   ASSERT_EQ(out.size(), 3u);
   EXPECT_TRUE(out[1].seg.kind == MotionKind::Arc);
   for (const auto& s : out) EXPECT_FALSE(s.tangent_in);
+}
+
+
+// Under tool-centre-point control the rotary axes turn the tip: a blend that
+// runs them linearly across a corner where their rate per mm jumps moves the
+// tip by the lever × trim × jump / 2. The trim is held so that this and the
+// X Y Z arc together keep P (a blend with the full trim took the tip 21 µm
+// past a 10 µm P).
+TEST(PathBlender, UnderToolCentrePointControlTheRotaryRateJumpBoundsTheTrim) {
+  std::vector<Segment> segs = {g1({10, 10, 5}, {20, 10, 5}, 0.05, 0.0),
+                               g1({20, 10, 5}, {20, 20, 5}, 0.05, 0.0)};
+  segs[0].end[5] = 30.0;  // C: 3 deg/mm, then 1 deg/mm
+  segs[1].start[5] = 30.0;
+  segs[1].end[5] = 40.0;
+  MachineConfig m = testing::test_machine();
+  const double plain_trim = 20.0 - blend(segs, m)[0].seg.end[0];
+  m.tcp.enabled = true;
+  const auto out = blend(segs, m);
+  ASSERT_EQ(out.size(), 3u);
+  ASSERT_EQ(out[1].seg.kind, MotionKind::Arc);
+  const double trim = 20.0 - out[0].seg.end[0];
+  const double jump = 3.0 - 1.0;  // deg/mm of C
+  const double tip_per_deg = tip_lever_mm(m.kinematics) * std::numbers::pi / 180.0;
+  EXPECT_GT(trim, 0.0);
+  EXPECT_LT(trim, plain_trim);
+  // the rotary share: at most half of P
+  EXPECT_LE(tip_per_deg * trim * jump / 2.0, 0.05 / 2.0 + 1e-12);
+  // the rotary axes at the blend's middle, off the lines' by trim·jump/2
+  const Pose mid = 0.5 * (out[1].seg.start + out[1].seg.end);
+  const double c_on_lines = 30.0;  // at the corner
+  EXPECT_NEAR(std::abs(mid[5] - c_on_lines), trim * jump / 2.0, 1e-9);
 }
 
 }  // namespace
