@@ -41,7 +41,7 @@ Result<DrillJob> build_drill_job(const std::vector<HoleProcessParams>& rows, con
     prog.segments.insert(prog.segments.begin(), rapid(above, prog.segments.front().start, line));
     prog.segments.push_back(rapid(prog.segments.back().end, retracted, line));
     for (HoleEvent& e : prog.events) ++e.before_segment;
-    Result<HoleProgram> placed = place_hole(prog, kin, options.chord_tolerance_mm);
+    Result<HoleProgram> placed = place_hole(prog, kin);
     if (!placed) return placed.error();
 
     DrillStep step;

@@ -34,7 +34,6 @@ namespace lcnc {
 struct DrillOptions {
   double clearance_mm = 5.0;         // above the surface, along the tool axis
   double head_settle_s = 0.2;        // dwell while the head takes its block
-  double chord_tolerance_mm = 0.001;  // helices on a tilted head become chords within this
 };
 
 struct DrillStep {

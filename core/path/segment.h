@@ -46,7 +46,7 @@ struct Segment {
   // axes move linearly with the arc angle (helix).
   Plane plane = Plane::XY;
   Vec3 center = Vec3::Zero();
-  Vec3 normal = Vec3::UnitZ();  // Plane::Free only: counter-clockwise about it
+  Vec3 normal = Vec3::UnitZ();  // Plane::Free only: counter-clockwise about it (a helix travels along it)
   bool clockwise = false;
   std::uint32_t extra_turns = 0;
 

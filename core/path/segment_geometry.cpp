@@ -77,17 +77,29 @@ void SegmentGeometry::set(const Segment& seg) {
   const Vec3 a = start_.head<3>(), b = end_.head<3>();
   const double two_pi = 2.0 * std::numbers::pi;
   if (seg.plane == Plane::Free) {
-    // Corner blend: start and end lie in the plane through the centre.
+    const Vec3 n = seg.normal.normalized();
+    // Flat (corner blends, circles on a tilted head): start and end lie in
+    // the plane through the centre. Else a helix about n (a helix on a tilted
+    // head): the plane is the start's, the centre moved into it, and the end
+    // rises by `rise` along n.
+    const double rise = (b - a).dot(n);
     axis_n_ = Vec3::Zero();
     helix_h_ = 0.0;
-    const Vec3 n = seg.normal.normalized();
-    const Vec3 ra = a - center_, rb = b - center_;
+    if (std::abs(rise) > plan::kMinSegmentLength) {
+      axis_n_ = n;
+      helix_h_ = rise;
+      center_ += (a - center_).dot(n) * n;
+    }
+    const Vec3 ra = a - center_;
     radius_ = ra.norm();
     u_ = ra / radius_;
     w_ = n.cross(u_);
+    const Vec3 rb = b - center_;
     const double y = rb.dot(w_), x = rb.dot(u_);
     sweep_ = atan2_small(y, x);
-    if (sweep_ <= 0.0) sweep_ += two_pi;
+    // End on the start (to rounding: a full circle mapped by a rotation comes
+    // back a few 1e-17 rad either side): one full turn, as on the named planes.
+    if (sweep_ <= plan::kFullTurnAngle) sweep_ += two_pi;
     sweep_ += two_pi * seg.extra_turns;
     set_sin_cos_sweep(y, x);
   } else {
@@ -106,7 +118,7 @@ void SegmentGeometry::set(const Segment& seg) {
     w_ = n.cross(u_);
     const double y = rb.dot(w_), x = rb.dot(u_);
     double sweep = atan2_small(y, x);     // (−π, π]
-    if (sweep <= 1e-12) sweep += two_pi;  // end == start: one full turn
+    if (sweep <= plan::kFullTurnAngle) sweep += two_pi;  // end == start: one full turn
     sweep_ = sweep + two_pi * seg.extra_turns;
     set_sin_cos_sweep(y, x);
   }

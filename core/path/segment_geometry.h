@@ -7,8 +7,10 @@
 // the unit vectors u (centre → start) and w = n × u (n the unit normal about
 // which the arc turns counter-clockwise):
 //   xyz(s) = c + r·(cos φ·u + sin φ·w) + (s/L)·h·n̂,   L = sqrt((r·sweep)² + h²)
-// with h the travel along the plane's normal axis n̂ (helix); the rotary axes
-// move linearly with s.
+// with h the travel along the plane's normal axis n̂ (helix): a named plane's
+// normal axis, or a Free plane's normal (the start's plane; the centre is
+// taken into it); the rotary axes move linearly with s. An arc whose end
+// comes back onto its start (to kFullTurnAngle) is a full turn.
 #pragma once
 
 #include <algorithm>

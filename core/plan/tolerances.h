@@ -10,6 +10,10 @@ inline constexpr double kMinSegmentLength = 1e-9;
 // speeding up and slowing down on the arc. Curvature-limited arcs run at
 // sqrt(0.995) ≈ 99.75 % of the speed that would use the whole budget.
 inline constexpr double kArcNormalShare = 0.995;
+// An arc whose end lies this close (rad) after its start ends where it
+// starts: a full turn (a rounding allowance — a circle mapped by a rotation
+// comes back a few 1e-17 rad off; blends turn by at least kMinBlendAngle).
+inline constexpr double kFullTurnAngle = 1e-12;
 // Corners turning less than this (rad) are tangent: no blend needed.
 inline constexpr double kMinBlendAngle = 1e-7;
 // Corners turning more than this (rad) reverse: no blend, the path stops.

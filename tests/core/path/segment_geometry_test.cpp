@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "path/deviation_meter.h"
@@ -74,6 +75,51 @@ TEST(SegmentGeometry, HelixWithTurns) {
   const double plane = 3 * 2 * std::numbers::pi * 2.0;
   EXPECT_NEAR(g.length(), std::hypot(plane, 3.0), 1e-9);
   EXPECT_NEAR(g.at(g.length() / 3)[2], 11.0, 1e-9);  // one turn, one mm
+}
+
+// A G17 circle or helix turned by a rotation (a hole on a tilted head) is a
+// Free-plane arc about the turned axis: the same length, turns and points.
+// A full circle's end comes back onto its start only to rounding, a few
+// 1e-17 rad either side: still one full turn (not a ring of no length).
+TEST(SegmentGeometry, TurnedCirclesAndHelicesAreFreePlaneArcsOfTheSameTurns) {
+  constexpr double kDeg = std::numbers::pi / 180.0;
+  int turned = 0;
+  for (double a_deg = -90.0; a_deg <= 90.0; a_deg += 10.0) {
+    for (double c_deg = 0.0; c_deg < 360.0; c_deg += 15.0) {
+      Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+      t.translation() = Vec3(220.0, 100.0, 20.0);
+      t.linear() = (Eigen::AngleAxisd(c_deg * kDeg, Vec3::UnitZ()) *
+                    Eigen::AngleAxisd(a_deg * kDeg, Vec3::UnitX()))
+                       .toRotationMatrix();
+      for (const double dz : {0.0, -1.0}) {
+        for (const std::uint32_t turns : {0u, 3u}) {
+          Segment g17 = arc(0.6, false, turns, dz);
+          const SegmentGeometry want(g17);
+          Segment free = g17;
+          free.plane = Plane::Free;
+          free.normal = t.linear() * Vec3::UnitZ();
+          free.center = t * g17.center;
+          free.start.head<3>() = t * Vec3(g17.start.head<3>());
+          free.end.head<3>() = t * Vec3(g17.end.head<3>());
+          const SegmentGeometry got(free);
+          const std::string at = "A " + std::to_string(a_deg) + " C " + std::to_string(c_deg) +
+                                 " dz " + std::to_string(dz) + " turns " + std::to_string(turns);
+          ASSERT_NEAR(got.sweep_rad(), want.sweep_rad(), 1e-9) << at;
+          ASSERT_NEAR(got.length(), want.length(), 1e-9) << at;
+          for (int k = 0; k <= 40; ++k) {
+            const double sk = want.length() * k / 40.0;
+            ASSERT_LT((Vec3(got.at(sk).head<3>()) - t * Vec3(want.at(sk).head<3>())).norm(), 1e-9)
+                << at << " at " << k << "/40";
+            ASSERT_LT((Vec3(got.tangent(sk).head<3>()) - t.linear() * Vec3(want.tangent(sk).head<3>())).norm(),
+                      1e-9)
+                << at << " tangent at " << k << "/40";
+          }
+          ++turned;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(turned, 19 * 24 * 4);
 }
 
 TEST(SegmentGeometry, DistanceToLineAndArc) {
