@@ -19,6 +19,7 @@
 #include "gcode/program_reader.h"
 #include "holes/drill_job.h"
 #include "plan/motion_check.h"
+#include "plan/path_check.h"
 #include "plan/program_source.h"
 #include "rt/rt_kernel.h"
 #include "rt/shm_command.h"
@@ -76,10 +77,12 @@ struct Daemon::Impl {
   bool stop_sent = false;      // the planner stopped short of a soft limit
   std::uint32_t jobs_ended_seen = 0;
   std::int64_t job_time_start_ns = 0;
-  // The job's own check (plan/motion_check.h): every period the RT traced
-  // from the job's start, measured against the axis limits; a job that
-  // breaks one has failed, whatever else it did.
+  // The job's own check (plan/motion_check.h, plan/path_check.h): every
+  // period the RT traced from the job's start, measured against the axis
+  // limits and the program's path; a job that breaks one has failed,
+  // whatever else it did.
   std::unique_ptr<MotionCheck> motion;
+  std::unique_ptr<PathCheck> path;  // and the executed path against the program
   std::uint64_t next_period = 0;  // the trace's next record, to see lost ones
   std::uint64_t job_underruns_start = 0;
   shm::JobStatus job{};
@@ -284,6 +287,13 @@ struct Daemon::Impl {
           loaded_from = ropt.start;
         }
         if (loaded.drill_segments) {
+          path = PathCheck::for_segments(loaded.drill_segments, machine);
+        } else {
+          Result<std::unique_ptr<PathCheck>> p = PathCheck::for_program(program->path(), machine, ropt);
+          if (!p) return Ack{false, p.error().code, "start: " + p.error().to_string()};
+          path = std::move(p).value();
+        }
+        if (loaded.drill_segments) {
           feed->start(loaded.drill_segments, ropt.start, program->name());
         } else {
           feed->start(program->path(), ropt);
@@ -428,6 +438,13 @@ struct Daemon::Impl {
       if (motion && r.t_ns > job_time_start_ns) {
         if (r.period != next_period) motion->gap();
         motion->add(r.t_ns - job_time_start_ns, r.pos_steps, r.line);
+        if (path && r.on_path) {  // (idle and underrun periods hold a position of no segment)
+          Pose p = Pose::Zero();
+          for (int i = 0; i < kAxisCount; ++i) {
+            if (machine.axes[i].present) p[i] = static_cast<double>(r.pos_steps[i]) / machine.axes[i].steps_per_unit;
+          }
+          path->add(p, r.segment, r.line);
+        }
       }
       next_period = r.period + 1;
     }
@@ -456,6 +473,10 @@ struct Daemon::Impl {
       if (motion->gaps() > 0)  // the control thread starved of the CPU: the guard still held every entry
         logger()->warn("job check: the RT trace lost records; those periods were held to the increment guard only");
       motion.reset();
+    }
+    if (path) {
+      for (std::string& b : path->breaches()) breaches.push_back(std::move(b));
+      path.reset();
     }
     feed->abort();  // a stopped job: the planner stops; a finished one has
     const PlannedJob& planned = feed->result();
@@ -501,7 +522,7 @@ struct Daemon::Impl {
     } else {
       job.last_outcome = shm::JobOutcome::Done;
       job.progress = 1.0;
-      std::snprintf(msg, sizeof msg, "job done: %s, cycle %.3f s, %llu underruns, every axis within its limits",
+      std::snprintf(msg, sizeof msg, "job done: %s, cycle %.3f s, %llu underruns, every axis within its limits, the path within its tolerance",
                     program->name().c_str(), job.last_cycle_time_s,
                     static_cast<unsigned long long>(job.last_underruns));
     }

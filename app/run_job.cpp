@@ -15,8 +15,8 @@
 #include "common/share_path.h"
 #include "drivers/sim_machine.h"
 #include "gcode/program_reader.h"
-#include "path/deviation_meter.h"
 #include "plan/motion_check.h"
+#include "plan/path_check.h"
 #include "plan/program_source.h"
 #include "app/output_file.h"
 #include "app/planner_feed.h"
@@ -216,19 +216,7 @@ constexpr double kPlannedPeakSlack = 1e-6;
 // The run's own check (RunReport::breaches): the plan's peaks at the run's
 // override and the trace's measured motion against every axis limit, and
 // the executed path against its tolerance.
-void deviation_breach(RunReport& report, const DeviationMeter& meter, const char* what) {
-  if (meter.excess_mm() <= 0.0) return;
-  char msg[200];
-  std::snprintf(msg, sizeof msg, "%s %.4f mm, beyond its tolerance %.4f mm at line %u", what,
-                meter.excess_tolerance_mm() + meter.excess_mm(), meter.excess_tolerance_mm(),
-                meter.excess_line());
-  report.breaches.emplace_back(msg);
-}
-
-// tip: under tool-centre-point control, the tool tip measured against the
-// program as written (else null).
-void check_run(RunReport& report, const MotionCheck& motion, const DeviationMeter& deviation,
-               const DeviationMeter* tip) {
+void check_run(RunReport& report, const MotionCheck& motion, const PathCheck& path) {
   report.velocity_window = motion.velocity_window();
   report.acceleration_window = motion.acceleration_window();
   for (int i = 0; i < kAxisCount; ++i) {
@@ -254,9 +242,7 @@ void check_run(RunReport& report, const MotionCheck& motion, const DeviationMete
     }
   }
   for (std::string& b : motion.breaches()) report.breaches.push_back(std::move(b));
-
-  deviation_breach(report, deviation, "path deviation");
-  if (tip != nullptr) deviation_breach(report, *tip, "tool tip deviation");
+  for (std::string& b : path.breaches()) report.breaches.push_back(std::move(b));
 }
 
 // Trace records read between two looks at the kernel (segment, laser,
@@ -385,45 +371,17 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   kernel.start(rt_options);
 
   // Drain the trace while the job runs: CSV, deviation, progress.
-  Result<std::unique_ptr<ProgramSource>> ref_reader =
-      options.segments ? Result<std::unique_ptr<ProgramSource>>(std::unique_ptr<ProgramSource>())
-                       : ProgramSource::open(options.program, machine, ropt);
-  if (!ref_reader) {
+  Result<std::unique_ptr<PathCheck>> path_check =
+      options.segments ? Result<std::unique_ptr<PathCheck>>(PathCheck::for_segments(options.segments, machine))
+                       : PathCheck::for_program(options.program, machine, ropt);
+  if (!path_check) {
     feed.abort();
     kernel.shutdown();
     kernel.join();
     if (laser) (void)laser->finish();
-    return ref_reader.error();
+    return path_check.error();
   }
-  std::size_t ref_index = 0;
-  DeviationMeter deviation(options.segments
-                               ? SegmentSource([&](Segment& out) {
-                                   if (ref_index == options.segments->size()) return SourceStatus::End;
-                                   out = (*options.segments)[ref_index++];
-                                   return SourceStatus::Item;
-                                 })
-                               : (*ref_reader)->source(),
-                           machine.path_tolerance_mm, xyz_rounding_mm(machine));
-  // Under tool-centre-point control the program is the tip's path: the
-  // joints' forward kinematics are held to it too.
-  const bool tip_check = machine.tcp.enabled && !options.segments;
-  Result<std::unique_ptr<ProgramReader>> tip_reader =
-      tip_check ? open_tip_program(options.program, machine, ropt)
-                : Result<std::unique_ptr<ProgramReader>>(std::unique_ptr<ProgramReader>());
-  if (!tip_reader) {
-    feed.abort();
-    kernel.shutdown();
-    kernel.join();
-    if (laser) (void)laser->finish();
-    return tip_reader.error();
-  }
-  std::optional<DeviationMeter> tip;
-  std::optional<FiveAxisKinematics> kin;
-  if (tip_check) {
-    tip.emplace(reader_source(**tip_reader), machine.path_tolerance_mm, tip_rounding_mm(machine),
-                machine.tcp.tip_tolerance_mm);
-    kin.emplace(kinematics_from(machine));
-  }
+  PathCheck& path = **path_check;
   MotionCheck motion(machine, start_steps);
   std::uint64_t next_period = 0;  // the RT numbers its periods from 0
   std::uint32_t segment_seen = UINT32_MAX;
@@ -444,8 +402,7 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
       Pose p = Pose::Zero();
       for (int i = 0; i < kAxisCount; ++i) p[i] = static_cast<double>(rec.pos_steps[i]) / spu[i];
       trace_out.write(static_cast<double>(rec.t_ns) * 1e-9, p, rec.power_pct);
-      deviation.add(p.head<3>(), rec.segment);
-      if (tip) tip->add_at_line(kin->forward(p).tip_mm, rec.line);
+      if (rec.on_path) path.add(p, rec.segment, rec.line);  // (an underrun holds a position of no segment)
       if (rec.period != next_period) motion.gap();
       next_period = rec.period + 1;
       motion.add(rec.t_ns, rec.pos_steps, rec.line);
@@ -491,9 +448,9 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
 
   fill_run_figures(report, kernel, sim, planned, machine, start_steps);
   if (!laser_fault.empty() && report.fault.empty()) report.fault = "laser source: " + laser_fault;
-  report.max_deviation_mm = tip ? tip->max_mm() : deviation.max_mm();
+  report.max_deviation_mm = path.max_mm();
   motion.finish();
-  check_run(report, motion, deviation, tip ? &*tip : nullptr);
+  check_run(report, motion, path);
   // The job ran to its end (its checks may still fail: then the trace is
   // what shows why), so its trace replaces the old file.
   if (Status s = trace_out.commit(); !s) return s.error();

@@ -592,6 +592,7 @@ void RtKernel::cycle(const Motion& m, double length_ns, std::int64_t end_ns) noe
     rec.segment = m.inc.segment;
     rec.underrun = m.underrun;
     rec.held = m.held;
+    rec.on_path = m.on_path && !m.held && !m.underrun;
     if (!trace_->try_push(rec)) trace_drops_.fetch_add(1, std::memory_order_relaxed);
   }
 }

@@ -77,6 +77,7 @@ struct TraceRecord {
   std::uint32_t segment = 0;
   bool underrun = false;  // the buffer was empty: position held
   bool held = false;      // feed hold (K < K_min): no entry taken, position held
+  bool on_path = false;   // a job's entry taken this period: `segment` is the job's segment
 };
 using TraceRing = SpscRing<TraceRecord, kTraceRingCapacity>;
 

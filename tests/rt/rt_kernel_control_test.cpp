@@ -163,6 +163,42 @@ TEST(RtKernelControl, EStopStopsMotionAndLaserFromTheNextPeriod) {
   r.kernel->shutdown();
 }
 
+// The trace says which periods took a job's entry: only their segment is
+// the job's (idle and underrun periods hold a position of no segment, and a
+// path check must skip them).
+TEST(RtKernelControl, TraceMarksThePeriodsThatTookAJobsEntry) {
+  Rig r;
+  r.start_idle();
+  ASSERT_TRUE(wait_for([&] { return r.kernel->periods() > 50; }));
+  for (int i = 0; i < 200; ++i) {
+    PeriodIncrement inc = step_x(3);
+    inc.segment = 7;
+    ASSERT_TRUE(r.buffer->try_push(inc));
+  }
+  r.send(RtCommandType::StartJob);
+  // no end of program: the buffer runs dry, an underrun
+  ASSERT_TRUE(wait_for([&] { return r.kernel->underruns() > 20; }));
+  r.send(RtCommandType::EStop);
+  ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::EStop; }));
+  r.drain();
+  std::size_t on = 0, underrun = 0, idle = 0;
+  for (const TraceRecord& rec : r.records) {
+    if (rec.on_path) {
+      ++on;
+      EXPECT_EQ(rec.segment, 7u) << rec.period;
+      EXPECT_FALSE(rec.underrun);
+    } else if (rec.underrun) {
+      ++underrun;
+    } else {
+      ++idle;
+    }
+  }
+  EXPECT_EQ(on, 200u);
+  EXPECT_GT(underrun, 20u);
+  EXPECT_GT(idle, 50u);
+  r.kernel->shutdown();
+}
+
 // The e-stop word (any process bumps it, no lock, no daemon in between):
 // the kernel takes it in the period after the request, counted by the
 // kernel itself — the StateChange log record carries its period index.

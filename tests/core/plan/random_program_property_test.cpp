@@ -33,6 +33,7 @@
 #include "plan/increment_guard.h"
 #include "plan/motion_check.h"
 #include "plan/planner.h"
+#include "core/plan/test_machine.h"
 #include "plan/program_source.h"
 
 namespace lcnc {
@@ -230,16 +231,8 @@ void check_one(const std::string& path, const std::string& text, const MachineCo
   tally.periods += k;
 }
 
-MachineConfig shipped(bool tcp) {
-  Result<MachineConfig> m = load_machine_config(std::string(LCNC_SOURCE_DIR) + "/share/machines/default.toml");
-  EXPECT_TRUE(static_cast<bool>(m)) << m.error().to_string();
-  MachineConfig out = *m;
-  out.tcp.enabled = tcp;
-  return out;
-}
-
 void run_property(bool tcp, bool rotary, std::uint32_t seed, int programs) {
-  const MachineConfig m = shipped(tcp);
+  const MachineConfig m = testing::shipped_machine(tcp);
   const fs::path dir = fs::temp_directory_path() / ("lcnc_property_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const std::string path = (dir / "p.ngc").string();

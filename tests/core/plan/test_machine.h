@@ -1,6 +1,10 @@
 // A machine built in code for planner tests (no TOML involved).
 #pragma once
 
+#include <gtest/gtest.h>
+
+#include <string>
+
 #include "machine/machine_config.h"
 
 namespace lcnc::testing {
@@ -30,6 +34,16 @@ inline MachineConfig test_machine(double vmax = 500.0, double amax = 5000.0) {
   c.max_acceleration = 3600.0;
   c.steps_per_unit = 1000.0;
   return m;
+}
+
+// The shipped default machine (share/machines/default.toml), with
+// tool-centre-point control on or off.
+inline MachineConfig shipped_machine(bool tcp) {
+  Result<MachineConfig> m = load_machine_config(std::string(LCNC_SOURCE_DIR) + "/share/machines/default.toml");
+  EXPECT_TRUE(static_cast<bool>(m)) << m.error().to_string();
+  MachineConfig out = *m;
+  out.tcp.enabled = tcp;
+  return out;
 }
 
 }  // namespace lcnc::testing
