@@ -288,14 +288,11 @@ struct Daemon::Impl {
         }
         if (loaded.drill_segments) {
           path = PathCheck::for_segments(loaded.drill_segments, machine);
+          feed->start(loaded.drill_segments, ropt.start, program->name());
         } else {
           Result<std::unique_ptr<PathCheck>> p = PathCheck::for_program(program->path(), machine, ropt);
           if (!p) return Ack{false, p.error().code, "start: " + p.error().to_string()};
           path = std::move(p).value();
-        }
-        if (loaded.drill_segments) {
-          feed->start(loaded.drill_segments, ropt.start, program->name());
-        } else {
           feed->start(program->path(), ropt);
         }
         job_active = true;

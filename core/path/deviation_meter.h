@@ -34,16 +34,12 @@ class DeviationMeter {
 
   // default_tolerance_mm: G64 without P (MachineConfig::path_tolerance_mm);
   // rounding_mm: the distance a point's rounding to steps may add.
-  explicit DeviationMeter(SegmentSource source, double default_tolerance_mm = 0.0,
-                          double rounding_mm = 0.0)
-      : source_(std::move(source)), default_tolerance_mm_(default_tolerance_mm),
-        rounding_mm_(rounding_mm) {}
   // extra_mm: added to every point's tolerance (under tool-centre-point
   // control, the tip's own tolerance on the joint lines it becomes).
-  DeviationMeter(SegmentSource source, double default_tolerance_mm, double rounding_mm, double extra_mm)
-      : DeviationMeter(std::move(source), default_tolerance_mm, rounding_mm) {
-    extra_mm_ = extra_mm;
-  }
+  explicit DeviationMeter(SegmentSource source, double default_tolerance_mm = 0.0,
+                          double rounding_mm = 0.0, double extra_mm = 0.0)
+      : source_(std::move(source)), default_tolerance_mm_(default_tolerance_mm),
+        rounding_mm_(rounding_mm), extra_mm_(extra_mm) {}
 
   // Adds an executed point that belongs to segment `index`; returns its deviation.
   double add(const Vec3& point, std::uint32_t index);
@@ -72,7 +68,7 @@ class DeviationMeter {
   SegmentSource source_;
   double default_tolerance_mm_;
   double rounding_mm_;
-  double extra_mm_ = 0.0;
+  double extra_mm_;
   double excess_ = 0.0, excess_tolerance_ = 0.0;
   std::uint32_t excess_line_ = 0;
   std::deque<Entry> window_;
