@@ -92,9 +92,13 @@ TEST(LasercncRun, SampleJobRunsWithExactStepsAndAnHonestReport) {
   EXPECT_LE(j["max_deviation_mm"].get<double>(), 0.01);
   const double period = j["period_s"].get<double>();
   EXPECT_NEAR(period, 75e-6, 1e-12);
-  // at 100 % every period lasts T
+  // at 100 % every period lasts T, unless the planner fell behind and the RT
+  // slowed the path for it (counted as starvations): then only longer
   EXPECT_EQ(j["feed_override"].get<double>(), 1.0);
-  EXPECT_NEAR(j["cycle_time_s"].get<double>(), j["periods"].get<double>() * period, 1e-9);
+  if (j["starvations"].get<long long>() > 0)
+    EXPECT_GT(j["cycle_time_s"].get<double>(), j["periods"].get<double>() * period);
+  else
+    EXPECT_NEAR(j["cycle_time_s"].get<double>(), j["periods"].get<double>() * period, 1e-9);
   // cutting 480+ mm at ≤ 100 mm/s takes longer than 4.8 s
   EXPECT_GT(j["feed_length_mm"].get<double>(), 480.0);
   EXPECT_GT(j["cycle_time_s"].get<double>(), j["feed_length_mm"].get<double>() / 100.0);
@@ -140,6 +144,19 @@ TEST(LasercncRun, FeedOverrideScalesTheCycleTimeAndKeepsEveryStep) {
   const double T = runs[100]["period_s"].get<double>();
   const double c100 = runs[100]["cycle_time_s"].get<double>();
   EXPECT_GT(c100, 1.0);
+  // A planner that falls behind (a loaded machine, a sanitizer build) makes
+  // the RT slow the path down before its buffer empties: such periods last
+  // longer than T/K and the report counts them as starvations. Exact timing
+  // holds for runs without them; a starved run may only be slower.
+  const auto starved = [&](int pct) { return runs[pct]["starvations"].get<long long>() > 0; };
+  for (int pct : {100, 150, 50}) {
+    const nlohmann::json& j = runs[pct];
+    const double nominal = j["periods"].get<double>() * T / (pct / 100.0);
+    if (starved(pct))
+      EXPECT_GT(j["cycle_time_s"].get<double>(), nominal - 1e-9) << pct;
+    else
+      EXPECT_NEAR(j["cycle_time_s"].get<double>(), nominal, 1e-9) << pct;
+  }
   for (int pct : {150, 50}) {
     const nlohmann::json& j = runs[pct];
     const double k = pct / 100.0;
@@ -154,10 +171,12 @@ TEST(LasercncRun, FeedOverrideScalesTheCycleTimeAndKeepsEveryStep) {
     }
     // the same periods, each T/K long: the cycle time scales by 1/K
     EXPECT_EQ(j["periods"].get<long long>(), runs[100]["periods"].get<long long>());
-    EXPECT_NEAR(j["cycle_time_s"].get<double>(), c100 / k, 3 * T) << pct;
-    EXPECT_NEAR(j["laser_on_s"].get<double>(), runs[100]["laser_on_s"].get<double>() / k, 3 * T);
-    EXPECT_NEAR(j["axes"]["X"]["peak_velocity"].get<double>(),
-                runs[100]["axes"]["X"]["peak_velocity"].get<double>() * k, 1e-6);
+    if (!starved(pct) && !starved(100)) {
+      EXPECT_NEAR(j["cycle_time_s"].get<double>(), c100 / k, 3 * T) << pct;
+      EXPECT_NEAR(j["laser_on_s"].get<double>(), runs[100]["laser_on_s"].get<double>() / k, 3 * T);
+      EXPECT_NEAR(j["axes"]["X"]["peak_velocity"].get<double>(),
+                  runs[100]["axes"]["X"]["peak_velocity"].get<double>() * k, 1e-6);
+    }
     // the trace's time is machine time: the last row ends the cycle
     const std::vector<TraceRow>& rows = traces[pct];
     ASSERT_EQ(rows.size(), j["periods"].get<std::size_t>());
@@ -167,10 +186,13 @@ TEST(LasercncRun, FeedOverrideScalesTheCycleTimeAndKeepsEveryStep) {
   // at 150 % the rapid reaches the X limit (500 mm/s) and nothing exceeds any
   // axis limit, measured from the trace against its own time column
   const double peak150 = expect_within_velocity_limits(traces[150]);
-  EXPECT_GT(peak150, 0.95 * 500.0);
   EXPECT_LE(runs[150]["axes"]["X"]["peak_velocity"].get<double>(), 500.0 + 1e-6);
   EXPECT_LE(runs[150]["axes"]["X"]["peak_acceleration"].get<double>(), 5000.0 * (1 + 1e-6));
-  EXPECT_NEAR(expect_within_velocity_limits(traces[100]), peak150 / 1.5, 0.02 * peak150);
+  const double peak100 = expect_within_velocity_limits(traces[100]);
+  if (!starved(150) && !starved(100)) {
+    EXPECT_GT(peak150, 0.95 * 500.0);
+    EXPECT_NEAR(peak100, peak150 / 1.5, 0.02 * peak150);
+  }
 }
 
 TEST(LasercncRun, BlendingCutsCornersWithinPAndSavesTime) {
