@@ -65,12 +65,15 @@ struct ProgramReader::Impl {
         options(opts),
         source(std::move(src)),
         parser(present_axes(machine)),
-        interp(machine, options.start) {}
+        interp(machine, options.start) {
+    run_startup();
+  }
 
   enum class State : std::uint8_t { Running, Ended, Failed };
 
   Next read(Segment& out);
   bool run_line(std::string_view line);
+  void run_startup();
   void warn_lines_after_end();
   Next fail(ErrorCode code, std::string_view line, std::uint32_t byte_pos, std::string message);
 
@@ -172,6 +175,30 @@ ProgramReader::Next ProgramReader::Impl::read(Segment& out) {
       end_what += " on line " + std::to_string(line);
     }
   }
+}
+
+// The machine's startup modes (MachineConfig::startup_code, admitted by the
+// config's validation), run as if the program's line 0. Anything it would
+// move, or an error, fails the reader at once: a config that bypassed the
+// validation must not move the machine.
+void ProgramReader::Impl::run_startup() {
+  if (machine.startup_code.empty()) return;
+  const std::string& code = machine.startup_code;
+  const char* why = nullptr;
+  if (!parser.parse(code, block)) {
+    why = parser.fault().message.c_str();
+  } else if (!block.empty && !interp.execute(block, parser.text(), 0, pending)) {
+    why = interp.fault().message.c_str();
+  } else if (!pending.empty() || interp.ended()) {
+    why = "it moves or ends";
+  }
+  if (why == nullptr) return;
+  error = make_error(ErrorCode::ConfigBadValue,
+                     std::string("machine.startup_code \"") + code + "\": " + why +
+                         "; expected modal codes only",
+                     file, 0, 0);
+  pending.clear();
+  state = State::Failed;
 }
 
 // Lines after the end are not run (RS274NGC); say so once if any would have.

@@ -5,7 +5,10 @@
 #include "machine/machine_config.h"
 
 #include <algorithm>
+#include <array>
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <string_view>
@@ -331,6 +334,43 @@ bool load_axis(Loader& L, const toml::table& t, Axis axis, AxisConfig& a) {
          load_pitch_table(L, t, p, a.pitch_compensation);
 }
 
+// What is wrong with a startup code (empty when nothing): words of the
+// modal codes a program may start with, separated by blanks; P and Q only
+// after G64, as numbers. The G-code reader runs it; this only admits it.
+std::string startup_code_problem(const std::string& code) {
+  static constexpr std::array<const char*, 20> kAllowed = {
+      "G17", "G18", "G19", "G20", "G21", "G90", "G91", "G90.1", "G91.1", "G93",
+      "G94", "G54", "G55", "G56", "G57", "G58", "G59", "G61", "G61.1", "G64"};
+  bool after_g64 = false;
+  std::size_t i = 0;
+  while (i < code.size()) {
+    if (code[i] == ' ' || code[i] == '\t') {
+      ++i;
+      continue;
+    }
+    std::size_t j = i;
+    while (j < code.size() && code[j] != ' ' && code[j] != '\t') ++j;
+    std::string w = code.substr(i, j - i);
+    for (char& c : w) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    i = j;
+    if ((w[0] == 'P' || w[0] == 'Q') && after_g64) {
+      char* end = nullptr;
+      const double v = std::strtod(w.c_str() + 1, &end);
+      if (w.size() == 1 || *end != '\0' || !(v >= 0.0 && v <= 10.0))
+        return "found '" + w + "'; expected " + w[0] + " as a number of mm from 0 to 10 after G64";
+      continue;
+    }
+    if (w == "M5" || w == "M9") continue;
+    bool known = false;
+    for (const char* a : kAllowed) known = known || w == a;
+    if (!known)
+      return "found '" + w + "'; expected only G17 G18 G19 G20 G21 G90 G91 G90.1 G91.1 G93 G94 "
+             "G54…G59 G61 G61.1 G64 [P Q] M5 M9 (modes a program starts in, no motion)";
+    after_g64 = w == "G64";
+  }
+  return {};
+}
+
 }  // namespace
 
 Status validate(const MachineConfig& m, const std::string& file) {
@@ -342,6 +382,8 @@ Status validate(const MachineConfig& m, const std::string& file) {
   if (!(m.path_tolerance_mm > 0.0 && m.path_tolerance_mm <= 10.0))
     return bad("machine.path_tolerance_mm = " + fmt(m.path_tolerance_mm) +
                "; allowed > 0 … 10 mm");
+  if (std::string why = startup_code_problem(m.startup_code); !why.empty())
+    return bad("machine.startup_code = \"" + m.startup_code + "\": " + why);
   if (!(m.max_feed_override >= 1.0 && m.max_feed_override <= 2.0))
     return bad("machine.max_feed_override = " + fmt(m.max_feed_override) + "; allowed 1.0 … 2.0");
   if (!(m.max_jerk == 0.0 || (m.max_jerk >= kMinMaxJerk && m.max_jerk <= kMaxMaxJerk)))
@@ -413,7 +455,9 @@ Result<MachineConfig> parse_machine_config(std::string_view text, const std::str
     double period_us = m.period_ns / 1000.0;
     std::optional<double> max_jerk;
     if (!L.only_keys(*t, "machine.",
-                     {"name", "period_us", "path_tolerance_mm", "max_feed_override", "max_jerk"}) ||
+                     {"name", "period_us", "path_tolerance_mm", "max_feed_override", "max_jerk",
+                      "startup_code"}) ||
+        !L.string(*t, "machine.", "startup_code", m.startup_code) ||
         !L.number(*t, "machine.", "max_feed_override", m.max_feed_override, false) ||
         !L.optional_number(*t, "machine.", "max_jerk", max_jerk) ||
         !L.string(*t, "machine.", "name", m.name) ||

@@ -117,6 +117,12 @@ struct MachineConfig {
   std::string name = "default";
   std::uint32_t period_ns = 75'000;
   double path_tolerance_mm = 0.01;  // default G64 P when P is not given
+  // Modal codes every program starts with, as if its first line
+  // (LinuxCNC's RS274NGC_STARTUP_CODE): only G17 G18 G19 G20 G21 G90 G91
+  // G90.1 G91.1 G93 G94 G54…G59 G61 G61.1 G64 [P Q] M5 M9. Empty: G17 G21
+  // G90 G91.1 G94 G54 G61 M5 M9. The shipped machine starts in G64, so a
+  // CAM file without one blends within path_tolerance_mm.
+  std::string startup_code;
   // Highest feed override K (DESIGN §5.5). Override scales the RT period to
   // T/K, so speed scales by K and acceleration by K²: the planner plans for
   // v ≤ vmax/K_max and a ≤ amax/K_max² so that any K ≤ K_max stays within the

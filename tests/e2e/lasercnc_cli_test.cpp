@@ -214,6 +214,27 @@ TEST(LasercncRun, BlendingCutsCornersWithinPAndSavesTime) {
   EXPECT_TRUE(jb["steps_match"].get<bool>());
 }
 
+// The shipped machine starts every program in G64 (its startup_code): a
+// CAM file that never writes G64 blends within the machine's tolerance, and
+// `--tolerance` sets that tolerance. It used to start in G61 and stop at
+// every chord.
+TEST(LasercncRun, AProgramWithoutG64BlendsWithinTheMachinesTolerance) {
+  std::string body = "G0 X100 Y100 Z5\nG1 F6000\n";
+  for (int k = 0; k < 20; ++k)  // the zig-zag above, with no path mode of its own
+    body += "G1 X" + std::to_string(105 + 5 * k) + " Y" + (k % 2 ? "100" : "100.88") + "\n";
+  body += "M2\n";
+  const fs::path cam = write_file("cam.ngc", "G21 G90\n" + body);
+  const fs::path stop = write_file("stop.ngc", "G21 G90 G61\n" + body);
+  const CmdResult rc = lasercnc("run " + cam.string() + " --json --no-progress --tolerance 0.02");
+  const CmdResult rs = lasercnc("run " + stop.string() + " --json --no-progress --tolerance 0.02");
+  ASSERT_EQ(rc.exit_code, 0) << rc.err;
+  ASSERT_EQ(rs.exit_code, 0) << rs.err;
+  const auto jc = nlohmann::json::parse(rc.out), js = nlohmann::json::parse(rs.out);
+  EXPECT_LE(jc["max_deviation_mm"].get<double>(), 0.02);
+  EXPECT_GT(jc["max_deviation_mm"].get<double>(), 0.011);  // --tolerance, not the config's 0.01
+  EXPECT_LT(jc["cycle_time_s"].get<double>(), 0.9 * js["cycle_time_s"].get<double>());
+}
+
 TEST(LasercncRun, TextReportNamesEveryFigure) {
   const fs::path prog = write_file("square.ngc", "G21 G90 G61\nG0 X10 Y10 Z5\nG1 X20 F1200\nG1 Y20\nM2\n");
   const CmdResult r = lasercnc("run " + prog.string() + " --no-progress");

@@ -13,6 +13,7 @@ using test::pose;
 using test::run;
 using test::segments;
 using test::start_at;
+using test::test_machine;
 
 TEST(ProgramReader, M3IsConstantPowerFromS) {
   const auto segs = segments("M3 S40\nG1 X20 F600\n");
@@ -93,6 +94,39 @@ TEST(ProgramReader, G64PAndQSetTheTolerances) {
   ASSERT_EQ(segs.size(), 1u);
   EXPECT_DOUBLE_EQ(segs[0].blend_tolerance_mm, 0.0254);
   EXPECT_DOUBLE_EQ(segs[0].naive_cam_tolerance_mm, 0.0508);
+}
+
+// The machine's startup code runs before the program's first line: a CAM
+// file that never writes G64 blends on a machine that starts in it, and the
+// program's own G61 still asks for the exact path.
+TEST(ProgramReader, StartupCodeSetsTheModesEveryProgramStartsIn) {
+  MachineConfig m = test_machine();
+  m.startup_code = "G64 P0.05 G91";
+  auto segs = segments("G1 X5 F600\nG61 X5\n", start_at(), m);
+  ASSERT_EQ(segs.size(), 2u);
+  EXPECT_EQ(segs[0].path_mode, PathMode::Blend);
+  EXPECT_DOUBLE_EQ(segs[0].blend_tolerance_mm, 0.05);
+  EXPECT_DOUBLE_EQ(segs[0].end[0], 15.0);  // G91 from the startup code
+  EXPECT_EQ(segs[1].path_mode, PathMode::ExactPath);
+  m.startup_code = "G64";
+  segs = segments("G1 X20 F600\n", start_at(), m);
+  ASSERT_EQ(segs.size(), 1u);
+  EXPECT_DOUBLE_EQ(segs[0].blend_tolerance_mm, m.path_tolerance_mm);  // bare G64
+  EXPECT_EQ(segs[0].path_mode, PathMode::Blend);
+  // without one: G61, as RS274NGC
+  EXPECT_EQ(segments("G1 X20 F600\n")[0].path_mode, PathMode::ExactPath);
+}
+
+// A startup code that bypassed the config's check (a config built in code)
+// never moves the machine: the reader fails before the first line.
+TEST(ProgramReader, AStartupCodeThatWouldMoveFailsTheReader) {
+  MachineConfig m = test_machine();
+  m.startup_code = "G1 X50 F600";
+  const test::Run r = run("G1 X20\n", start_at(), m);
+  EXPECT_EQ(r.last, ProgramReader::Next::Error);
+  EXPECT_TRUE(r.segments.empty());
+  EXPECT_EQ(r.error.code, ErrorCode::ConfigBadValue);
+  EXPECT_NE(r.error.message.find("machine.startup_code"), std::string::npos) << r.error.to_string();
 }
 
 TEST(ProgramReader, G61AndG611AreExactPathAndExactStop) {

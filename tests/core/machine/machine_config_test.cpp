@@ -176,6 +176,29 @@ TEST(MachineConfig, MaxFeedOverrideIsReadAndBounded) {
   EXPECT_NE(bad.error().message.find("max_feed_override"), std::string::npos);
 }
 
+// The modes every program starts in: the shipped machine blends (G64);
+// anything that would move, dwell or switch the laser is refused with what
+// is allowed.
+TEST(MachineConfig, StartupCodeAdmitsModalCodesOnly) {
+  auto m = load_machine_config(kShare + "/machines/default.toml");
+  ASSERT_TRUE(m);
+  EXPECT_NE(m->startup_code.find("G64"), std::string::npos) << m->startup_code;
+  const auto with = [](const std::string& code) {
+    std::string text = kMinimal;
+    text.replace(text.find("period_us = 75"), 14, "period_us = 75\nstartup_code = \"" + code + "\"");
+    return parse_machine_config(text, "m.toml");
+  };
+  auto ok = with("G17 g21 G90 G91.1 G94 G55 G64 P0.02 Q0.001 M5 M9");
+  ASSERT_TRUE(ok) << ok.error().to_string();
+  EXPECT_EQ(ok->startup_code, "G17 g21 G90 G91.1 G94 G55 G64 P0.02 Q0.001 M5 M9");
+  for (const char* bad : {"G1 X10", "G64 M3", "G4 P1", "G61 P0.1", "G64 P11", "G64 Pabc", "M30", "F600"}) {
+    auto r = with(bad);
+    ASSERT_FALSE(r) << bad;
+    EXPECT_NE(r.error().message.find("machine.startup_code"), std::string::npos) << r.error().message;
+    EXPECT_NE(r.error().message.find("found '"), std::string::npos) << r.error().message;
+  }
+}
+
 }  // namespace
 }  // namespace lcnc
 
