@@ -195,11 +195,16 @@ TEST(LasercncRun, FeedOverrideScalesTheCycleTimeAndKeepsEveryStep) {
   }
 }
 
-TEST(LasercncRun, BlendingCutsCornersWithinPAndSavesTime) {
+// A zig-zag of 20° turns at F6000, with no path mode of its own.
+std::string zigzag_body() {
   std::string body = "G0 X100 Y100 Z5\nG1 F6000\n";
-  for (int k = 0; k < 20; ++k)  // a zig-zag of 20° turns
+  for (int k = 0; k < 20; ++k)
     body += "G1 X" + std::to_string(105 + 5 * k) + " Y" + (k % 2 ? "100" : "100.88") + "\n";
-  body += "M2\n";
+  return body + "M2\n";
+}
+
+TEST(LasercncRun, BlendingCutsCornersWithinPAndSavesTime) {
+  const std::string body = zigzag_body();
   const fs::path blend = write_file("blend.ngc", "G21 G90 G64 P0.02\n" + body);
   const fs::path stop = write_file("stop.ngc", "G21 G90 G61\n" + body);
   const CmdResult rb = lasercnc("run " + blend.string() + " --json --no-progress");
@@ -219,10 +224,7 @@ TEST(LasercncRun, BlendingCutsCornersWithinPAndSavesTime) {
 // `--tolerance` sets that tolerance. It used to start in G61 and stop at
 // every chord.
 TEST(LasercncRun, AProgramWithoutG64BlendsWithinTheMachinesTolerance) {
-  std::string body = "G0 X100 Y100 Z5\nG1 F6000\n";
-  for (int k = 0; k < 20; ++k)  // the zig-zag above, with no path mode of its own
-    body += "G1 X" + std::to_string(105 + 5 * k) + " Y" + (k % 2 ? "100" : "100.88") + "\n";
-  body += "M2\n";
+  const std::string body = zigzag_body();
   const fs::path cam = write_file("cam.ngc", "G21 G90\n" + body);
   const fs::path stop = write_file("stop.ngc", "G21 G90 G61\n" + body);
   const CmdResult rc = lasercnc("run " + cam.string() + " --json --no-progress --tolerance 0.02");
