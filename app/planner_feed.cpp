@@ -8,6 +8,7 @@
 
 #include "plan/motion_stats.h"
 #include "plan/planner.h"
+#include "plan/ramp_room.h"
 #include "plan/program_source.h"
 
 namespace lcnc::app {
@@ -111,15 +112,25 @@ void PlannerFeed::run(const std::string& name, const Pose& start, const OpenSour
     result_.failed = true;
   } else {
     Planner planner(machine_, std::move(source));
+    RampRoomMeter room(machine_, start);
     PeriodSample sample;
     PeriodSample last;
     SourceStatus st;
     bool pushed = true;
+    // An override above 100 % is planned for: from the start (the run's
+    // --feed-override), and on every raise (what is not yet handed out is
+    // planned again). A lower one the RT applies at once by itself.
+    planner.set_feed_scale(kernel_.feed_override_target());
     while (pushed && (st = planner.next(sample)) == SourceStatus::Item) {
       stats.add(sample.pose);
       last = sample;
       any = true;
-      pushed = push(quant.quantize(sample));
+      PeriodIncrement inc = quant.quantize(sample);
+      inc.ramp = room.next(sample.pose);
+      pushed = push(inc);
+      const double asked = kernel_.feed_override_target();
+      if (asked > planner.feed_scale() || (asked < planner.feed_scale() && planner.feed_scale() > 1.0))
+        planner.set_feed_scale(asked);
     }
     if (pushed && st == SourceStatus::Error) {
       result_.failed = true;
@@ -129,9 +140,13 @@ void PlannerFeed::run(const std::string& name, const Pose& start, const OpenSour
     // motion like the end does: at rest where the last good segment ends.
     while (pushed && quant.owed() && !abort_.load()) {
       stats.add(last.pose);
-      pushed = push(quant.pay_owed(last));
+      PeriodIncrement inc = quant.pay_owed(last);
+      inc.ramp = room.next(last.pose);
+      pushed = push(inc);
     }
-    stats.finish();
+    // A job cut short (stopped, e-stopped) does not end where the plan
+    // does: no stop from the last sample to rest belongs to its figures.
+    if (!abort_.load()) stats.finish();
   }
   if (!any) {
     PeriodIncrement end;  // nothing moved: a controlled end, laser off

@@ -30,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "common/share_path.h"
 #include "gcode/program_reader.h"
 #include "path/deviation_meter.h"
 #include "plan/lookahead.h"
@@ -418,6 +419,37 @@ int main(int argc, char** argv) {
     if (csv != nullptr) std::fclose(csv);
     std::printf("%-46s %10.4f %10.4f %7.4f %10.5f\n", c.name, r.cycle_s, opt, r.cycle_s / opt,
                 r.max_dev_mm);
+  }
+  // The shipped machine at 100 %: share/machines/default.toml (its feed
+  // override up to 150 %, its startup modes, its P) with the limits above
+  // and room to move, the programs without their G64 line — as a CAM file
+  // that never writes one runs on it.
+  {
+    Result<MachineConfig> shipped = load_machine_config(share_path("machines/default.toml"));
+    if (!shipped) {
+      std::fprintf(stderr, "%s\n", shipped.error().to_string().c_str());
+      return 1;
+    }
+    MachineConfig ms = *shipped;
+    for (int i = 0; i < 3; ++i) {
+      ms.axes[i].min = 0.0;
+      ms.axes[i].max = 1000.0;
+      ms.axes[i].max_velocity = kVmax;
+      ms.axes[i].max_acceleration = kAmax;
+    }
+    std::printf("\nshipped machine at 100 %% (default.toml: startup \"%s\", P %.3f mm, override up "
+                "to %.0f %%), programs without G64\n",
+                ms.startup_code.c_str(), ms.path_tolerance_mm, 100 * ms.max_feed_override);
+    std::printf("%-46s %10s %10s %7s %10s\n", "case", "ours [s]", "optimum", "ratio", "dev [mm]");
+    for (const Case& c : cases) {
+      std::string program = c.program;
+      const std::string g64 = " G64 P0.01";
+      program.erase(program.find(g64), g64.size());
+      const PlannerRun r = run_planner(program, c.start, ms);
+      const double opt = optimal_time(r.planned, 0.0005, nullptr);
+      std::printf("%-46s %10.4f %10.4f %7.4f %10.5f\n", c.name, r.cycle_s, opt, r.cycle_s / opt,
+                  r.max_dev_mm);
+    }
   }
   // Jerk limit (machine.max_jerk, plan/jerk_filter.h): the same programs at
   // J = 50 and 500 m/s³, against the plan without it.

@@ -16,7 +16,7 @@ FeedOverrideRamp::FeedOverrideRamp(const MachineConfig& machine) noexcept
   }
   // No axis moves: any rate fits; one per second keeps K_min small.
   if (!std::isfinite(accel_per_speed)) accel_per_speed = 1.0;
-  rate_per_s_ = kOverrideRampShare * k_max_ * accel_per_speed;
+  rate_per_s_ = kOverrideRampShare * accel_per_speed;
   k_min_ = std::sqrt(rate_per_s_ * machine.period_s());
 }
 
@@ -25,9 +25,23 @@ double FeedOverrideRamp::clamp_target(double k) const noexcept {
   return std::clamp(k, k_min_, k_max_);
 }
 
-double FeedOverrideRamp::step(double k, double target, double length_s) const noexcept {
-  const double dk = rate_per_s_ * length_s;
-  if (k < target) return std::min(target, k + dk);
+double FeedOverrideRamp::period_scale(double e, double k_plan) const noexcept {
+  if (!(e > 0.0)) return 0.0;
+  const double k = k_plan > 1.0 ? e / k_plan : e;
+  return std::clamp(k, k_min_, 1.0);
+}
+
+double FeedOverrideRamp::step(double k, double target, double length_s,
+                              const RampRoom& room) const noexcept {
+  const double r0 = room.r0;
+  if (k < target) {
+    // the room at the K this step may reach (K² grows with it)
+    const double k_next = std::min(target, k + rate_per_s_ * length_s);
+    const double rate = std::clamp(r0 - k_next * k_next * room.up, 0.0, rate_per_s_);
+    return std::min(target, k + rate * length_s);
+  }
+  const double rate = std::clamp(r0 - k * k * room.down, 0.0, rate_per_s_);
+  const double dk = rate * length_s;
   double next = std::max(target, k - dk);
   // Stopping: the last moving period runs at exactly K_min (a smaller step
   // than dk), so the stop from there costs no more than the ramp (header).

@@ -52,14 +52,18 @@ RtKernel::RtKernel(const MachineConfig& machine, PositionBuffer& buffer, PulseSi
     l.present = true;
     l.min_steps = std::llround(ax.min * spu);
     l.max_steps = std::llround(ax.max * spu);
-    // Jog and homing moves run at the planner's limits (DESIGN §5.5: speed
-    // and acceleration planned for the highest override), the jog at a
-    // quarter of the speed — an operator's speed, not a rapid.
-    const double k_max = machine.max_feed_override;
-    l.accel = ax.max_acceleration * spu / (k_max * k_max);
-    l.jog_speed = 0.25 * ax.max_velocity * spu / k_max;
+    // Jog and homing moves: the jog at a quarter of the speed — an
+    // operator's speed, not a rapid. The override scales their periods too,
+    // and its ramp adds up to ρ_max·v (rt/feed_override.h, eq. 1): their
+    // acceleration leaves that much of the axis's.
+    l.jog_speed = 0.25 * ax.max_velocity * spu;
     l.search_speed = ax.home_search_velocity_or_default() * spu;
     l.latch_speed = ax.home_latch_velocity_or_default() * spu;
+    const double fastest = std::max({l.jog_speed, std::abs(l.search_speed), std::abs(l.latch_speed)});
+    l.accel = std::max(0.5 * ax.max_acceleration * spu,
+                       ax.max_acceleration * spu - ramp_.rate_per_s() * fastest);
+    if (ax.max_velocity > 0.0 && ax.max_acceleration > 0.0)
+      brake_wait_s_ = std::max(brake_wait_s_, ax.max_velocity / ax.max_acceleration);
     l.home_steps = std::llround(ax.home_position_or_default() * spu);
     // A rotary axis that wraps has no travel limits.
     if (ax.wrap) {
@@ -79,8 +83,11 @@ RtKernel::~RtKernel() {
 }
 
 std::size_t RtKernel::braking_reserve(double k) const noexcept {
-  // Entries consumed while K ramps linearly to 0 at ρ: ∫ K/T dt = K²/(2ρT).
-  const double n = k * k / (2.0 * ramp_.rate_per_s() * period_s_);
+  // Entries consumed while K ramps linearly to 0 at ρ_max: ∫ K/T dt =
+  // K²/(2ρT); before that, while the plan itself brakes at an axis's full
+  // deceleration, K may have to wait (no room to fall): at most the longest
+  // such braking, vmax/amax, at K.
+  const double n = k * k / (2.0 * ramp_.rate_per_s() * period_s_) + k * brake_wait_s_ / period_s_;
   return static_cast<std::size_t>(std::ceil(n)) + 64;
 }
 
@@ -100,8 +107,7 @@ void RtKernel::start(const RtOptions& options) {
   options_ = options;
   // The run begins at the override already asked for, with no ramp. The
   // thread's creation below orders these writes before its first read.
-  k_ = target_k_.load(std::memory_order_relaxed);
-  k_now_.store(k_, std::memory_order_relaxed);
+  begin_at_override();
   state_now_ = options.start_running ? MachineState::Running : MachineState::Idle;
   state_.store(state_now_, std::memory_order_release);
   // requests made before the kernel ran are not this run's
@@ -206,12 +212,25 @@ void RtKernel::run(const RtOptions& options) noexcept {
     }
     // a one-shot run ends once a stop or an e-stop has settled
     if (options.exit_at_end && job_aborted_ && !flushing_) break;
-    // 9. ramp K toward the effective target for the next period. relaxed
-    // pairs with set_feed_override()'s relaxed store: only the value is read.
+    // 9. ramp K toward the next period's target: the operator's override
+    // over what the next entry is planned at, eq. (0) of feed_override.h,
+    // as fast as that entry's room allows. relaxed pairs with
+    // set_feed_override()'s relaxed store: only the value is read.
     double target = target_k_.load(std::memory_order_relaxed);
     if (hold_ || stopping_ || starving_) target = 0.0;
-    k_ = ramp_.step(k_, target, length_ns * 1e-9);
-    k_now_.store(k_, std::memory_order_relaxed);
+    RampRoom room;  // jogs, homing: the ramp's own rate
+    if (on_path_state()) {
+      if (const PeriodIncrement* next = buffer_.front()) {
+        k_plan_ = next->k_plan;
+        room = next->ramp;
+      } else {
+        room = m.inc.ramp;  // none queued: the last entry's
+      }
+    } else {
+      k_plan_ = 1.0f;  // jogs and homing are not planned
+    }
+    k_ = ramp_.step(k_, ramp_.period_scale(target, k_plan_), length_ns * 1e-9, room);
+    k_now_.store(k_ * k_plan_, std::memory_order_relaxed);
   }
   publish_status(true);
   if (options.on_loop_exit) options.on_loop_exit();
@@ -220,8 +239,16 @@ void RtKernel::run(const RtOptions& options) noexcept {
   finished_.store(true, std::memory_order_release);
 }
 
+void RtKernel::begin_at_override() noexcept {
+  const PeriodIncrement* first = buffer_.front();
+  k_plan_ = first != nullptr ? first->k_plan : 1.0f;
+  const double e = target_k_.load(std::memory_order_relaxed);
+  k_ = e > 0.0 ? ramp_.period_scale(e, k_plan_) : 0.0;
+  k_now_.store(k_ * k_plan_, std::memory_order_relaxed);
+}
+
 std::size_t RtKernel::refill_level() const noexcept {
-  return std::min(kPositionBufferCapacity - 1, 2 * braking_reserve(ramp_.k_max()));
+  return std::min(kPositionBufferCapacity - 1, 2 * braking_reserve(1.0));
 }
 
 void RtKernel::wait_for_producer() const noexcept {
@@ -278,8 +305,7 @@ void RtKernel::take_commands() noexcept {
         hold_ = stopping_ = starving_ = job_aborted_ = false;
         end_seen_ = false;
         // a job starts at rest: at the operator's override, no ramp
-        k_ = target_k_.load(std::memory_order_relaxed);
-        k_now_.store(k_, std::memory_order_relaxed);
+        begin_at_override();
         set_state(MachineState::Running);
         break;
       case RtCommandType::Hold:
@@ -620,7 +646,7 @@ void RtKernel::publish_status(bool force) noexcept {
     st.pos_steps[i] = pos_steps_[i];
     st.pos[i] = static_cast<double>(pos_steps_[i]) * units_per_step_[i];
   }
-  st.feed_override = k_;
+  st.feed_override = k_ * k_plan_;
   st.feed_override_target = target_k_.load(std::memory_order_relaxed);
   st.machine_time_s = static_cast<double>(machine_time_ns_.load(std::memory_order_relaxed)) * 1e-9;
   st.buffer_fill = static_cast<std::uint32_t>(buffer_.size());

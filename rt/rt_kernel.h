@@ -207,16 +207,23 @@ class RtKernel {
     return last_job_completed_.load(std::memory_order_relaxed);
   }
 
-  // Feed override K (1 = 100 %), from any thread, lock-free. Clamped to
-  // 0 … K_max (FeedOverrideRamp::clamp_target); 0 is a feed hold. While
-  // running, the RT thread ramps toward it at override_ramp().rate_per_s();
-  // set before start(), the run begins at it with no ramp. Default 1.
+  // Feed override E (1 = 100 %), from any thread, lock-free. Clamped to
+  // 0 … machine.max_feed_override (FeedOverrideRamp::clamp_target); 0 is a
+  // feed hold. The RT thread scales the periods of what is planned (at
+  // K = min(1, E / the override an entry is planned at), ramped); the
+  // planner plans for E above 1 (app/planner_feed.h). Set before start(),
+  // the run begins at it with no ramp. Default 1.
   void set_feed_override(double k) noexcept {
     // relaxed: a lone value, read by the RT thread's relaxed load in run();
     // nothing else is published with it.
     target_k_.store(ramp_.clamp_target(k), std::memory_order_relaxed);
   }
-  // The override the RT thread runs at now (ramping toward the target).
+  // The override asked for (clamped), which the planner plans for.
+  [[nodiscard]] double feed_override_target() const noexcept {
+    return target_k_.load(std::memory_order_relaxed);
+  }
+  // The override the machine runs at now: the period scale times the
+  // override the running entries are planned at.
   [[nodiscard]] double feed_override() const noexcept {
     return k_now_.load(std::memory_order_relaxed);
   }
@@ -296,6 +303,9 @@ class RtKernel {
   void set_fault(ErrorCode code, int axis, std::uint32_t line) noexcept;
   void enter_estop(ErrorCode code, int axis, std::uint32_t line) noexcept;
   void begin_stop(ErrorCode code, int axis, std::uint32_t line) noexcept;
+  // K for a start from rest: the operator's override over what the first
+  // queued entry is planned at, no ramp.
+  void begin_at_override() noexcept;
   void path_motion(Motion& m) noexcept;
   void axis_motion(Motion& m) noexcept;
   void homing_step() noexcept;
@@ -377,7 +387,9 @@ class RtKernel {
   LatencyHistogram compute_{10};
   std::array<std::int64_t, kAxisCount> pos_steps_{};
   bool end_seen_ = false;
-  double k_ = 1.0;                  // RT thread's current K (from the target in start())
+  double k_ = 1.0;                  // RT thread's period scale K ≤ 1 (feed_override.h)
+  float k_plan_ = 1.0f;             // the override the entries now running are planned at
+  double brake_wait_s_ = 0.0;       // longest braking of an axis from vmax at amax
   double laser_on_exact_ns_ = 0.0;  // RT thread's laser-on time, unrounded
 
   std::atomic<bool> shutdown_requested_{false};

@@ -74,6 +74,19 @@ class SpscRing {
     return true;
   }
 
+  // Consumer side: the item try_pop would take next, left in the ring (valid
+  // until the next try_pop); nullptr when there is none, or the indices are
+  // corrupt (try_pop then resyncs).
+  [[nodiscard]] const T* front() noexcept {
+    const std::uint64_t head = head_.load(std::memory_order_relaxed);  // own index
+    if (head == tail_cache_ || tail_cache_ - head > Capacity) {
+      // acquire pairs with the producer's release store of tail_.
+      tail_cache_ = tail_.load(std::memory_order_acquire);
+      if (head == tail_cache_ || tail_cache_ - head > Capacity) return nullptr;
+    }
+    return &slots_[head & kMask];
+  }
+
   // Items in the ring as seen from any thread (a snapshot; exact only from
   // the producer or consumer when the other side is idle).
   [[nodiscard]] std::size_t size() const noexcept {

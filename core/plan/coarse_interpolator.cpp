@@ -21,13 +21,19 @@ bool CoarseInterpolator::pull() {
     if (next->profile.duration() > 0.0) {
       cur_ = next;
       duration_ = next->profile.duration();
+      profile_ = next->profile;
+      s_from_ = 0.0;
       const Segment& s = next->seg;
       end_ = End{s.end, next->profile.v1, s.line, next->index, s.kind};
       const bool cut = s.kind == MotionKind::Linear || s.kind == MotionKind::Arc;
       // M4 on a cut: power follows speed; at no programmed speed, none
       dynamic_ = cut && s.laser == LaserMode::Dynamic && next->programmed_speed > plan::kMinVelocity;
       power_pct_ = s.power_pct;
-      programmed_speed_ = next->programmed_speed;
+      // M4's power follows the speed against the program's F, not the F
+      // times the override the segment is planned at: the RT scales it by
+      // the K it runs at (≤ 1) and caps it at the programmed power.
+      programmed_speed_ = next->programmed_speed / next->k_plan;
+      k_plan_ = static_cast<float>(next->k_plan);
       // otherwise constant: M3 on cuts and dwells, nothing on rapids or with the laser off
       power_ = (s.laser == LaserMode::Constant && s.kind != MotionKind::Rapid)
                    ? static_cast<float>(s.power_pct)
@@ -68,19 +74,37 @@ SourceStatus CoarseInterpolator::next(PeriodSample& out) {
   }
   const PlannedSegment& c = *cur_;
   double s, v;
-  c.profile.sample(tau_, s, v);
+  profile_.sample(tau_, s, v);
   if (end_.kind == MotionKind::Dwell)
     out.pose = end_.pose;
   else
-    c.geo.at(s, out.pose);
+    c.geo.at(s_from_ + s, out.pose);
   out.speed = v;
   out.power_pct = laser_power(v);
   out.power_cap_pct = power_cap_;
+  out.k_plan = k_plan_;
   out.line = end_.line;
   out.segment = end_.segment;
   out.kind = end_.kind;
   out.end_of_program = false;
   return SourceStatus::Item;
+}
+
+void CoarseInterpolator::raise_feed_scale(double k) {
+  if (cur_ == nullptr || done_ || end_.kind != MotionKind::Linear || cur_->geo.is_arc()) return;
+  const double v_new = std::min(cur_->v_limit, cur_->programmed_speed / cur_->k_plan * k);
+  if (!(v_new > profile_.vc)) return;
+  double s, v;
+  profile_.sample(tau_, s, v);
+  const double rest = cur_->geo.length() - (s_from_ + s);
+  if (!(rest > plan::kMinSegmentLength)) return;
+  Trapezoid t;
+  t.set(rest, profile_.accel, profile_.decel, v, v_new, profile_.v1);
+  profile_ = t;
+  s_from_ += s;
+  duration_ = profile_.duration();
+  tau_ = 0.0;
+  k_plan_ = static_cast<float>(k);
 }
 
 StepQuantizer::StepQuantizer(const MachineConfig& machine, const Pose& start)

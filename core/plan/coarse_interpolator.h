@@ -31,6 +31,7 @@ struct PeriodSample {
   double speed = 0.0;         // path speed at t_s
   float power_pct = 0.0f;
   float power_cap_pct = 0.0f;  // M4: the programmed power (see PeriodIncrement)
+  float k_plan = 1.0f;         // the feed override it is planned at (see PeriodIncrement)
   std::uint32_t line = 0;
   std::uint32_t segment = 0;
   MotionKind kind = MotionKind::Dwell;
@@ -46,6 +47,12 @@ class CoarseInterpolator {
   [[nodiscard]] SourceStatus next(PeriodSample& out);
   [[nodiscard]] std::uint64_t periods() const noexcept { return periods_; }
   [[nodiscard]] std::uint32_t segments_started() const noexcept { return started_; }
+  // A feed override raised to k (Planner::set_feed_scale): the rest of the
+  // current segment, when it is a straight cut, speeds up to F·k within its
+  // axes' limits, from where and how fast it is now to the speed it was
+  // planned to end at (the look-ahead plans what follows from there). Arcs,
+  // rapids and dwells run on as planned.
+  void raise_feed_scale(double k);
 
  private:
   // The next segment that takes time becomes the current one; false at the
@@ -54,7 +61,8 @@ class CoarseInterpolator {
   bool pull();
   [[nodiscard]] float laser_power(double speed) const noexcept {
     if (!dynamic_) return power_;
-    const double k = std::clamp(speed / programmed_speed_, 0.0, 1.0);
+    // above 1 on a segment planned at an override above 100 %: the RT caps it
+    const double k = std::max(speed / programmed_speed_, 0.0);
     return static_cast<float>(power_pct_ * k);
   }
 
@@ -64,6 +72,10 @@ class CoarseInterpolator {
   // source is asked again), and its duration.
   const PlannedSegment* cur_ = nullptr;
   double duration_ = 0.0;
+  // The current segment's profile from s_from_ on: its own, or the rest of
+  // it re-planned for a raised feed override.
+  Trapezoid profile_;
+  double s_from_ = 0.0;
   // What every period of the current segment reports alike, read from it
   // once (not from its few hundred bytes each period): the laser power (a
   // constant, or M4's scaled by speed), the power cap; where it came from
@@ -71,6 +83,7 @@ class CoarseInterpolator {
   bool dynamic_ = false;  // M4 on a cut: power_pct_ scaled by speed / programmed_speed_
   float power_ = 0.0f, power_cap_ = 0.0f;
   double power_pct_ = 0.0, programmed_speed_ = 0.0;
+  float k_plan_ = 1.0f;
   // Where the current segment ends: the program's last sample.
   struct End {
     Pose pose = Pose::Zero();
@@ -146,6 +159,7 @@ inline PeriodIncrement StepQuantizer::emit(const PeriodSample& s) {
   }
   inc.power_pct = s.power_pct;
   inc.power_cap_pct = s.power_cap_pct;
+  inc.k_plan = s.k_plan;
   inc.line = s.line;
   inc.segment = s.segment;
   inc.kind = s.kind;

@@ -10,9 +10,8 @@
 //   acceleration  |d − d_prev| ≤ ⌊amax·T²·spu⌋ + 2    a second difference of
 //                                                     rounded targets: two steps
 // with d the period's steps and d_prev the period before's (0 at the start:
-// a job starts at rest). T is the nominal period: the feed override scales
-// the period in the RT, up to machine.max_feed_override, which the plan
-// leaves room for.
+// a job starts at rest). T is the nominal period: the RT scales the
+// period by K ≤ 1 (rt/feed_override.h), which only slows the plan down.
 #pragma once
 
 #include <array>

@@ -10,20 +10,19 @@ namespace lcnc {
 JerkLimit jerk_limit(const MachineConfig& m) {
   JerkLimit lim;
   if (!(m.max_jerk > 0.0)) return lim;
-  const double k = m.max_feed_override;
   const double period = m.period_s();
-  const double jerk = m.max_jerk / (k * k * k);  // J_p
-  double a_top = 0.0, a_sqr = 0.0;  // largest and Σ a_p² of the linear axes
+  const double jerk = m.max_jerk;
+  double a_top = 0.0, a_sqr = 0.0;  // largest and Σ a² of the linear axes
   for (int i = 0; i < 3; ++i) {
     const AxisConfig& ax = m.axes[i];
     if (!ax.present) continue;
-    const double a = ax.max_acceleration / (k * k);
+    const double a = ax.max_acceleration;
     a_top = std::max(a_top, a);
     a_sqr += a * a;
   }
   if (a_top <= 0.0) return lim;
   const double norm_ratio = std::sqrt(a_sqr) / a_top;           // |a| / a_top
-  const double swing = 2.0 + plan::kJunctionJumpShare * k * k;  // Δa_in / a, eq. (1)
+  const double swing = 2.0 + plan::kJunctionJumpShare;  // Δa_in / a, eq. (1)
   const double budget = plan::kJerkFilterShare * m.path_tolerance_mm;
   // e_f of a window of `taps` when the largest axis acceleration is `a`, eq. (2)
   auto error = [&](double taps, double a) {

@@ -6,12 +6,13 @@
 // τ = M·T). Averaging positions averages velocity and acceleration too, so
 // neither can exceed its limit. The filtered acceleration changes by
 // (a_in(k) − a_in(k−M))/M per period, so its jerk is at most
-//     Δa_in / τ,   Δa_in = 2·a + kJunctionJumpShare·K²·a                 (1)
+//     Δa_in / τ,   Δa_in = 2·a + kJunctionJumpShare·a                    (1)
 // where 2·a is a swing from full acceleration to full deceleration and the
 // second term the velocity jump the look-ahead allows at a near-tangent join
 // (kJunctionJumpShare·amax·T per axis, plan/lookahead.h). So M = ⌈Δa_in/(J·T)⌉.
-// Planned units (DESIGN §5.5): at override K the acceleration is K²·a_p and
-// the jerk K³·J_p, so the planner works with a_p = a/K_max², J_p = J/K_max³.
+// The plan is at the machine's limits; the RT runs it at K ≤ 1 (the feed
+// override's period scaling), where the acceleration is K²·a and the jerk
+// K³·J of the plan's, no more.
 // Rotary axes get the same window: one τ for all axes keeps the path's shape
 // (their jerk is then at most Δa_in/τ of their own acceleration; J is in mm).
 //
@@ -25,7 +26,7 @@
 // e_f comes out of the path tolerance P: corner blends get P − e_f − the
 // half-step margin (plan/path_blender.h), so the executed path stays within P.
 // (Not budgeted: a near-tangent join's velocity jump Δv ≤ kJunctionJumpShare·
-// K²·a·T moves the mean by at most Δv·τ/8, 0.3·K²/M of e_f: < 1 % for M ≥ 70.)
+// a·T moves the mean by at most Δv·τ/8, 0.3/M of e_f: < 1 % for M ≥ 70.)
 //
 // Trade-off: e_f grows as a³/J². When it would exceed half of the machine's
 // path tolerance (machine.path_tolerance_mm), the planned acceleration of the

@@ -50,12 +50,10 @@ Lookahead::Lookahead(const MachineConfig& machine, IndexedSource source)
   double a_min = std::numeric_limits<double>::infinity();
   for (int i = 0; i < kAxisCount; ++i)
     if (machine.axes[i].present) a_min = std::min(a_min, machine.axes[i].max_acceleration);
-  const double k = machine.max_feed_override;
-  a_brake_ = std::isfinite(a_min) ? a_min / (k * k) : 0.0;
+  a_brake_ = std::isfinite(a_min) ? a_min : 0.0;
 }
 
-double Lookahead::junction_limit(const PlannedSegment& a, double v_a, const PlannedSegment& b,
-                                 double v_b) {
+double Lookahead::junction_limit(const PlannedSegment& a, const PlannedSegment& b) {
   // a's end tangent if known; b's is known below when b is a line
   std::optional<Pose> ta = std::exchange(back_end_tangent_, std::nullopt);
   const Segment& sa = a.seg;
@@ -66,7 +64,7 @@ double Lookahead::junction_limit(const PlannedSegment& a, double v_a, const Plan
   if (!ta) ta = a.geo.end_tangent();
   const Pose tb = b.geo.start_tangent();
   if (!b.geo.is_arc()) back_end_tangent_ = tb;  // a line ends as it starts
-  double v = std::min(v_a, v_b);
+  double v = std::numeric_limits<double>::infinity();
   for (int i = 0; i < kAxisCount; ++i) {
     const double jump = std::abs(tb[i] - (*ta)[i]);
     if (jump <= plan::kTangentJump) continue;          // tangent (blends, tangent arcs)
@@ -75,6 +73,44 @@ double Lookahead::junction_limit(const PlannedSegment& a, double v_a, const Plan
                         machine_.period_s() / jump);
   }
   return v;
+}
+
+void Lookahead::set_speed(std::size_t k, double k_plan) {
+  Node& n = node(k);
+  PlannedSegment& p = segment(k);
+  p.k_plan = p.seg.kind == MotionKind::Rapid ? 1.0 : k_plan;
+  // one evaluation: the tangential limits are functions of the speed
+  p.programmed_speed = target_speed(p.seg, p.geo, n.lim, p.k_plan);
+  p.v_limit = n.lim.v_max;
+  n.x_max = p.programmed_speed * p.programmed_speed;
+}
+
+void Lookahead::set_feed_scale(double k) {
+  const bool raise = k > feed_scale_;
+  feed_scale_ = k;
+  if (!raise) return;
+  // What was handed out is committed; the rest is planned again from where
+  // the last of it ends.
+  const double x_from = handed_ > 0 ? node(handed_ - 1).x_exit : x_released_from_;
+  head_ = (head_ + handed_) & mask_;
+  size_ -= handed_;
+  released_ = handed_ = 0;
+  x_start_ = x_from;
+  if (size_ == 0) return;
+  braking_length_ = 0.0;
+  tail_length_ = 0.0;
+  for (std::size_t j = 0; j < size_; ++j) {
+    Node& n = node(j);
+    n.planned_back = false;
+    if (j > 0) tail_length_ += n.length;
+    if (!n.dwell && segment(j).k_plan < k) set_speed(j, k);  // never slower than planned
+    braking_length_ = std::max(braking_length_, braking_length(n.x_max));
+  }
+  for (std::size_t j = 0; j + 1 < size_; ++j) {
+    Node& n = node(j);
+    n.x_junction = std::min({n.x_junction_geo, n.x_max, node(j + 1).x_max});
+  }
+  plan_and_release();
 }
 
 void Lookahead::grow() {
@@ -120,19 +156,16 @@ bool Lookahead::fill() {
       n.dwell = true;
       p.profile = Trapezoid::hold(p.seg.dwell_s);
     } else {
-      // one evaluation: the tangential limits are functions of the speed
-      p.programmed_speed = target_speed(p.seg, p.geo, n.lim);
-      n.x_max = p.programmed_speed * p.programmed_speed;
+      set_speed(k, feed_scale_);
       braking_length_ = std::max(braking_length_, braking_length(n.x_max));
     }
     if (k > 0) {
       Node& before = node(k - 1);
-      const PlannedSegment& a = segment(k - 1);
       if (in->tangent_in) back_end_tangent_.reset();  // not looked at
-      const double v = in->tangent_in
-                           ? std::min(a.programmed_speed, p.programmed_speed)
-                           : junction_limit(a, a.programmed_speed, p, p.programmed_speed);
-      before.x_junction = v * v;
+      const double v = in->tangent_in ? std::numeric_limits<double>::infinity()
+                                      : junction_limit(segment(k - 1), p);
+      before.x_junction_geo = v * v;
+      before.x_junction = std::min({before.x_junction_geo, before.x_max, n.x_max});
       tail_length_ += n.length;
     }
     max_window_ = std::max(max_window_, size_);
@@ -174,6 +207,7 @@ void Lookahead::plan_and_release() {
     next_entry = entry;
   }
   // Forward from the speed we are committed to, over the segments released.
+  x_released_from_ = x_start_;
   double entry = x_start_;
   for (std::size_t k = 0; k < count; ++k) {
     Node& s = node(k);

@@ -64,6 +64,15 @@ class Lookahead {
 
   [[nodiscard]] std::size_t max_window_seen() const noexcept { return max_window_; }
 
+  // The feed override to plan for (≥ 1; 1 at the start): feed moves at F·k
+  // within the axes' limits (target_speed), rapids as ever. A raise re-plans
+  // every segment not yet handed out, from the speed the last one handed out
+  // ends at — it can only speed them up, so the plan stays feasible; a
+  // segment already planned faster keeps its speed. A lower k applies to the
+  // segments that come in from now on (the RT slows what is planned faster).
+  void set_feed_scale(double k);
+  [[nodiscard]] double feed_scale() const noexcept { return feed_scale_; }
+
  private:
   // What the passes read and write, kept apart from the planned segments
   // (some 600 bytes each, touched only when they come in and go out): the
@@ -75,6 +84,8 @@ class Lookahead {
     double length = 0.0;
     double x_max = 0.0;       // top speed on the segment
     double x_junction = 0.0;  // limit where this segment ends and the next starts
+    // The same from the geometry alone (∞: none), before the two top speeds.
+    double x_junction_geo = 0.0;
     // The backward pass's speeds, kept from one plan to the next: the pass
     // stops at the first segment whose entry speed comes out unchanged.
     double x_entry_back = 0.0, x_exit_back = 0.0;
@@ -95,8 +106,10 @@ class Lookahead {
   [[nodiscard]] double braking_length(double x) const noexcept {
     return a_brake_ > 0.0 ? x / (2.0 * a_brake_) : 0.0;
   }
-  [[nodiscard]] double junction_limit(const PlannedSegment& a, double v_a,
-                                      const PlannedSegment& b, double v_b);
+  // The junction's limit from the geometry and the axes (∞ when none), to be
+  // taken with the two segments' top speeds.
+  [[nodiscard]] double junction_limit(const PlannedSegment& a, const PlannedSegment& b);
+  void set_speed(std::size_t k, double k_plan);  // segment k's top speed at override k_plan
 
   const MachineConfig& machine_;
   IndexedSource source_;
@@ -123,6 +136,8 @@ class Lookahead {
   double braking_length_ = 0.0;
   double a_brake_ = 0.0;  // the weakest axis's acceleration (planned units)
   double x_start_ = 0.0;      // speed² the last released segment ends at
+  double x_released_from_ = 0.0;  // speed² the released segments start at
+  double feed_scale_ = 1.0;
   bool source_done_ = false;
   bool source_error_ = false;
   std::size_t max_window_ = 0;

@@ -6,12 +6,25 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <type_traits>
 
 #include "geom/pose.h"
 #include "path/segment.h"
 
 namespace lcnc {
+
+// How fast the RT may change the period scale K (≤ 1) while it executes an
+// entry without an axis leaving its acceleration limit (rt/feed_override.h):
+// |dK/dt| ≤ max(0, r0 − K²·r1), r1 = down while K falls, up while it rises.
+// The planner sets it from the entry's planned axis speeds and
+// accelerations (plan/ramp_room.h); an entry built by hand leaves the
+// defaults, which put no bound but the ramp's own rate.
+struct RampRoom {
+  float r0 = std::numeric_limits<float>::infinity();  // 1/s
+  float down = 0.0f;                                   // 1/s
+  float up = 0.0f;                                     // 1/s
+};
 
 struct PeriodIncrement {
   std::array<std::int32_t, kAxisCount> steps{};  // increment this period, per axis
@@ -20,6 +33,11 @@ struct PeriodIncrement {
   // output by the feed override K — power follows the actual speed — up to
   // this cap. 0 for M3 and laser off: their power does not follow speed.
   float power_cap_pct = 0.0f;
+  // The feed override this entry was planned at (feed moves scaled by it
+  // within the axes' limits; rapids and dwells 1). The RT runs it at
+  // K = min(1, override / k_plan): faster than planned it never goes.
+  float k_plan = 1.0f;
+  RampRoom ramp;
   std::uint32_t line = 0;                        // source line executing
   std::uint32_t segment = 0;                     // segment index executing (0-based)
   MotionKind kind = MotionKind::Linear;  // Dwell entries run at the nominal period whatever the override

@@ -15,7 +15,11 @@ struct PlannedSegment {
   Segment seg;
   SegmentGeometry geo{Segment{}};
   Trapezoid profile;
-  double programmed_speed = 0.0;  // F (or L/duration) the segment was asked to run at
+  double programmed_speed = 0.0;  // F (or L/duration) the segment was asked to run at, × k_plan
+  // The feed override it is planned at: programmed_speed is the program's
+  // F times this (1 for rapids and dwells), within the axes' limits.
+  double k_plan = 1.0;
+  double v_limit = 0.0;  // the highest speed its axes allow (SegmentLimits::v_max)
   std::uint32_t index = 0;        // position in the program's segment stream
 };
 

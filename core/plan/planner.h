@@ -35,6 +35,14 @@ class Planner {
 
   [[nodiscard]] std::uint64_t periods() const noexcept { return interp_.periods(); }
   [[nodiscard]] std::size_t max_window() const noexcept { return lookahead_.max_window_seen(); }
+  // The feed override to plan for, ≥ 1 (Lookahead::set_feed_scale): a raise
+  // shows after what is already sampled and what the look-ahead handed out.
+  void set_feed_scale(double k) {
+    k = std::max(1.0, k);
+    if (k > lookahead_.feed_scale()) interp_.raise_feed_scale(k);
+    lookahead_.set_feed_scale(k);
+  }
+  [[nodiscard]] double feed_scale() const noexcept { return lookahead_.feed_scale(); }
   // The jerk filter in force (taps 1: none).
   [[nodiscard]] const JerkLimit& jerk_limit() const noexcept { return jerk_; }
   // Observes every planned segment as it leaves the look-ahead (tests, benchmarks).

@@ -56,23 +56,23 @@ struct ArcAxis {
 // speeding up, − slowing down):
 //   a ≤ (amax − a_n·max(0, n_hi)) / (ρ·x_hi)   (x_hi > 0)
 //   a ≤ (amax + a_n·min(0, n_lo)) / (ρ·(−x_lo)) (x_lo < 0)
-// in planned units: a_n = c·x, divided by K². A side the tangent never
+// with a_n = c·x. A side the tangent never
 // points to gives no line (p = ∞). Speeding up, x = t: x_hi = t_hi, x_lo =
 // t_lo; slowing down the two swap sides (x_hi = −t_lo, x_lo = −t_hi), so one
 // division per side of t serves both.
-void box_lines(const ArcAxis& x, double rho, double c, double k2, ArcAxisBound& b) {
+void box_lines(const ArcAxis& x, double rho, double c, ArcAxisBound& b) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   b.p_up = b.p_down = {kInf, kInf};
   b.q_up = b.q_down = {0.0, 0.0};
   const double q_hi = std::max(0.0, x.n_hi) * c, q_lo = -std::min(0.0, x.n_lo) * c;
   if (x.t_hi > 1e-15) {  // speeding up: its first line; slowing down: its second
-    const double per = 1.0 / (rho * x.t_hi * k2);
+    const double per = 1.0 / (rho * x.t_hi);
     b.p_up[0] = b.p_down[1] = x.a_axis * per;
     b.q_up[0] = q_hi * per;
     b.q_down[1] = q_lo * per;
   }
   if (x.t_lo < -1e-15) {  // speeding up: its second line; slowing down: its first
-    const double per = 1.0 / (rho * -x.t_lo * k2);
+    const double per = 1.0 / (rho * -x.t_lo);
     b.p_up[1] = b.p_down[0] = x.a_axis * per;
     b.q_up[1] = q_lo * per;
     b.q_down[0] = q_hi * per;
@@ -142,33 +142,33 @@ void segment_limits(const SegmentGeometry& geo, const MachineConfig& machine, Se
       v_max = std::min(v_max, std::sqrt(plan::kArcNormalShare * a_n_max * geo.radius()) / rho);
   }
   if (!std::isfinite(v_max)) return;
-  // Planned at the highest feed override (DESIGN §5.5): at K the speed is K·v
-  // and the acceleration K²·a.
-  const double k = machine.max_feed_override, k2 = k * k;
-  lim.v_max = v_max / k;
-  lim.a_linear = a_linear / k2;  // ∞ when only the arc's plane moves
+  // Planned at the machine's full limits: an override above 100 % is planned
+  // for (the feed scaled, the limits kept), one below it slows what is planned.
+  lim.v_max = v_max;
+  lim.a_linear = a_linear;  // ∞ when only the arc's plane moves
   if (!arc) return;
-  // a_n = (ρ·K·v)²/r: the physical centripetal acceleration at planned speed v
-  const double c = rho * rho * k2 / geo.radius();
-  lim.c = c / (rho * k2);  // the norm bound sqrt((amax/g)² − a_n²)/ρ/K² as sqrt(b − (c'·x)²)
+  // a_n = (ρ·v)²/r: the centripetal acceleration at speed v
+  const double c = rho * rho / geo.radius();
+  lim.c = c / rho;  // the norm bound sqrt((amax/g)² − a_n²)/ρ as sqrt(b − (c'·x)²)
   for (int j = 0; j < arc_axis_count; ++j) {
     const ArcAxis& x = arc_axes[j];
     ArcAxisBound& ax = lim.axes[lim.axis_count++];
-    box_lines(x, rho, c, k2, ax);
-    const double by_norm = x.a_axis / (x.g * rho * k2);
+    box_lines(x, rho, c, ax);
+    const double by_norm = x.a_axis / (x.g * rho);
     ax.b = by_norm * by_norm;
     ax.cap = by_norm;
   }
 }
 
-double target_speed(const Segment& seg, const SegmentGeometry& geo, const SegmentLimits& lim) {
+double target_speed(const Segment& seg, const SegmentGeometry& geo, const SegmentLimits& lim,
+                    double feed_scale) {
   switch (seg.kind) {
     case MotionKind::Rapid: return lim.v_max;
     case MotionKind::Dwell: return 0.0;
     case MotionKind::Linear:
     case MotionKind::Arc:
-      if (seg.duration_s > 0.0) return std::min(lim.v_max, geo.length() / seg.duration_s);
-      return std::min(lim.v_max, seg.feed_mm_s);
+      if (seg.duration_s > 0.0) return std::min(lim.v_max, feed_scale * geo.length() / seg.duration_s);
+      return std::min(lim.v_max, feed_scale * seg.feed_mm_s);
   }
   return 0.0;
 }

@@ -28,9 +28,8 @@
 // a_n = (ρ·v)²/r is linear in x, and so is the box bound (a min of two
 // lines per axis and side); the norm bound is sqrt(b − (c·x)²). The
 // reachable speed then solves v'² = v² + 2L·a(v') in closed form.
-// All of it is planned at the highest feed override K (DESIGN §5.5): the
-// limits returned are v_max/K and accelerations/K², so any override up to K
-// keeps every axis within its limits.
+// The limits are the machine's own: an override above 100 % is planned for
+// (target_speed's feed_scale), one below it runs the plan slower in the RT.
 #pragma once
 
 #include <algorithm>
@@ -148,7 +147,9 @@ void segment_limits(const SegmentGeometry& geo, const MachineConfig& machine, Se
 }
 
 // The speed to plan for: rapid → v_max; feed → min(F, v_max); G93 → L/duration.
+// A feed move's speed is scaled by feed_scale (the feed override planned
+// for, ≥ 1), still within v_max; a rapid's is v_max whatever the override.
 [[nodiscard]] double target_speed(const Segment& seg, const SegmentGeometry& geo,
-                                  const SegmentLimits& lim);
+                                  const SegmentLimits& lim, double feed_scale = 1.0);
 
 }  // namespace lcnc

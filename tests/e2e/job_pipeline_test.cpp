@@ -19,6 +19,7 @@
 
 #include "app/planner_feed.h"
 #include "app/run_job.h"
+#include "plan/motion_check.h"
 #include "drivers/sim_machine.h"
 #include "rt/rt_kernel.h"
 #include "rt/rt_log.h"
@@ -297,6 +298,79 @@ TEST(JobPipeline, APlannerStalledAtFullSpeedBrakesAlongThePathAndRunsOn) {
     ended |= began && l.code == rt::RtLogCode::StarveEnd;
   }
   EXPECT_TRUE(began && ended);
+}
+
+// The override above 100 % comes through the planner, below it through the
+// RT's period scaling; both at once, mid-job, never take an axis past its
+// limits. Three laps of an R40 circle of 2000 chords at F12000 (200 mm/s)
+// in virtual time (the kernel never waits for a late planner): 100 %, then
+// 150 % from period 8,000, 40 % from 24,000, 100 % from 30,000. Measured
+// from the trace as an outsider would (MotionCheck: velocity over its
+// window, acceleration over 2 × its window, both stated by the check).
+TEST(JobPipeline, OverrideRaisedTo150AndLoweredTo40MidJobKeepsEveryLimitAndStep) {
+  std::string text = "G21 G90 G64 P0.01\nG0 X90 Y50 Z5\nM3 S60\nG1 F12000\n";
+  char buf[96];
+  for (int lap = 0; lap < 3; ++lap)
+    for (int i = 1; i <= 2000; ++i) {
+      const double phi = 2 * M_PI * i / 2000.0;
+      std::snprintf(buf, sizeof buf, "X%.4f Y%.4f\n", 50 + 40 * std::cos(phi), 50 + 40 * std::sin(phi));
+      text += buf;
+    }
+  text += "M5\nM2\n";
+  const fs::path prog = write("override_circle.ngc", text);
+  ASSERT_TRUE(static_cast<bool>(check_program(prog.string(), machine())));
+  std::unique_ptr<rt::TraceRing> trace = std::make_unique<rt::TraceRing>();
+  Job job(trace.get());
+  job.run(prog, true);
+  struct Change {
+    std::uint64_t at;
+    double k;
+  };
+  const Change changes[] = {{8'000, 1.5}, {24'000, 0.4}, {30'000, 1.0}};
+  std::size_t next = 0;
+  std::vector<rt::TraceRecord> recs;
+  rt::TraceRecord rec;
+  while (!job.kernel->finished()) {
+    while (trace->try_pop(rec)) recs.push_back(rec);
+    if (next < std::size(changes) && job.kernel->periods() >= changes[next].at)
+      job.kernel->set_feed_override(changes[next++].k);
+    std::this_thread::yield();
+  }
+  job.kernel->join();
+  job.feed->join();
+  while (trace->try_pop(rec)) recs.push_back(rec);
+  ASSERT_EQ(next, std::size(changes)) << "the job ended before the last change";
+  const PlannedJob& planned = job.feed->result();
+  ASSERT_FALSE(planned.failed) << planned.error.to_string();
+  // steps exact, no underrun, no fault, the whole trace
+  for (int a = 0; a < kAxisCount; ++a) EXPECT_EQ(job.sim->position_steps(a), planned.commanded[a]) << a;
+  EXPECT_EQ(job.kernel->underruns(), 0u);
+  EXPECT_FALSE(job.kernel->fault().active);
+  ASSERT_EQ(job.kernel->trace_drops(), 0u);
+  ASSERT_EQ(recs.size(), job.kernel->periods());
+  // every axis within its velocity and acceleration limits
+  MotionCheck check(job.m, job.start);
+  for (const rt::TraceRecord& r : recs) check.add(r.t_ns, r.pos_steps, r.line);
+  check.finish();
+  EXPECT_TRUE(check.ok()) << check.breaches().front();
+  // the path speed per phase, over windows of 40 periods: 100 % (200 mm/s),
+  // 150 % once the planner's new entries run, 40 % within the ramp's time
+  auto speed = [&](std::size_t k) {
+    const rt::TraceRecord &a = recs[k - 40], &b = recs[k];
+    const double dx = static_cast<double>(b.pos_steps[0] - a.pos_steps[0]) / 1000.0;
+    const double dy = static_cast<double>(b.pos_steps[1] - a.pos_steps[1]) / 1000.0;
+    return std::hypot(dx, dy) / (static_cast<double>(b.t_ns - a.t_ns) * 1e-9);
+  };
+  auto peak = [&](std::size_t from, std::size_t to) {
+    double v = 0.0;
+    for (std::size_t k = std::max<std::size_t>(from, 40); k < std::min(to, recs.size()); ++k)
+      v = std::max(v, speed(k));
+    return v;
+  };
+  EXPECT_NEAR(peak(4'000, 8'000), 200.0, 2.0);
+  EXPECT_NEAR(peak(16'000, 24'000), 300.0, 3.0);  // one buffer after the raise
+  EXPECT_NEAR(peak(26'000, 30'000), 80.0, 1.5);   // 0.2 s of ramp after the drop
+  EXPECT_NEAR(peak(36'000, 40'000), 200.0, 2.0);
 }
 
 // The soak: random jobs one after another in virtual time (the kernel runs

@@ -123,10 +123,11 @@ TEST(LasercncRun, SampleJobRunsWithExactStepsAndAnHonestReport) {
   EXPECT_EQ(rows.back().power, 0.0);
 }
 
-// Feed override for the whole run (DESIGN §5.5): every period lasts T/K, so
-// the cycle time scales by 1/K while the steps stay exact; the default machine
-// is planned at 150 %, so at 150 % the motion reaches but never exceeds the
-// axis limits.
+// Feed override for the whole run. Below 100 % every period lasts T/K: the
+// cycle time scales by 1/K while the steps stay exact. Above it the planner
+// plans the feed moves at K·F within the limits: the cuts take 1/K of the
+// time, the rapids (already at the axes' speed) as long as at 100 %, and
+// the steps are the same.
 TEST(LasercncRun, FeedOverrideScalesTheCycleTimeAndKeepsEveryStep) {
   const fs::path prog = write_file("override.ngc",
                                    "G21 G90 G61\nG0 X10 Y10 Z5\nG0 X400 Y200\n"
@@ -151,16 +152,7 @@ TEST(LasercncRun, FeedOverrideScalesTheCycleTimeAndKeepsEveryStep) {
   const auto starved = [&](int pct) { return runs[pct]["starvations"].get<long long>() > 0; };
   for (int pct : {100, 150, 50}) {
     const nlohmann::json& j = runs[pct];
-    const double nominal = j["periods"].get<double>() * T / (pct / 100.0);
-    if (starved(pct))
-      EXPECT_GT(j["cycle_time_s"].get<double>(), nominal - 1e-9) << pct;
-    else
-      EXPECT_NEAR(j["cycle_time_s"].get<double>(), nominal, 1e-9) << pct;
-  }
-  for (int pct : {150, 50}) {
-    const nlohmann::json& j = runs[pct];
-    const double k = pct / 100.0;
-    EXPECT_EQ(j["feed_override"].get<double>(), k);
+    EXPECT_EQ(j["feed_override"].get<double>(), pct / 100.0);
     EXPECT_TRUE(j["steps_match"].get<bool>()) << pct;
     EXPECT_EQ(j["underruns"].get<long long>(), 0) << pct;
     EXPECT_EQ(j["bad_frames"].get<long long>(), 0) << pct;
@@ -169,30 +161,43 @@ TEST(LasercncRun, FeedOverrideScalesTheCycleTimeAndKeepsEveryStep) {
       EXPECT_EQ(ax["steps_sent"].get<long long>(),
                 runs[100]["axes"][name]["steps_sent"].get<long long>());
     }
-    // the same periods, each T/K long: the cycle time scales by 1/K
-    EXPECT_EQ(j["periods"].get<long long>(), runs[100]["periods"].get<long long>());
-    if (!starved(pct) && !starved(100)) {
-      EXPECT_NEAR(j["cycle_time_s"].get<double>(), c100 / k, 3 * T) << pct;
-      EXPECT_NEAR(j["laser_on_s"].get<double>(), runs[100]["laser_on_s"].get<double>() / k, 3 * T);
-      EXPECT_NEAR(j["axes"]["X"]["peak_velocity"].get<double>(),
-                  runs[100]["axes"]["X"]["peak_velocity"].get<double>() * k, 1e-6);
+    // every period lasted T/K, K = min(1, override); the last row ends the cycle
+    const double nominal = j["periods"].get<double>() * T / std::min(1.0, pct / 100.0);
+    if (starved(pct)) {
+      EXPECT_GT(j["cycle_time_s"].get<double>(), nominal - 1e-9) << pct;
+    } else {
+      EXPECT_NEAR(j["cycle_time_s"].get<double>(), nominal, 1e-9) << pct;
     }
-    // the trace's time is machine time: the last row ends the cycle
     const std::vector<TraceRow>& rows = traces[pct];
     ASSERT_EQ(rows.size(), j["periods"].get<std::size_t>());
     EXPECT_NEAR(rows.back().t, j["cycle_time_s"].get<double>(), 1e-9);
-    EXPECT_NEAR(rows.front().t, T / k, 1e-9);
+    EXPECT_NEAR(rows.front().t, T / std::min(1.0, pct / 100.0), 1e-9);
+    // never past a limit, measured from the trace against its own time
+    expect_within_velocity_limits(rows);
+    EXPECT_LE(j["axes"]["X"]["peak_velocity"].get<double>(), 500.0 + 1e-6);
+    EXPECT_LE(j["axes"]["X"]["peak_acceleration"].get<double>(), 5000.0 * (1 + 1e-6));
   }
-  // at 150 % the rapid reaches the X limit (500 mm/s) and nothing exceeds any
-  // axis limit, measured from the trace against its own time column
-  const double peak150 = expect_within_velocity_limits(traces[150]);
-  EXPECT_LE(runs[150]["axes"]["X"]["peak_velocity"].get<double>(), 500.0 + 1e-6);
-  EXPECT_LE(runs[150]["axes"]["X"]["peak_acceleration"].get<double>(), 5000.0 * (1 + 1e-6));
-  const double peak100 = expect_within_velocity_limits(traces[100]);
+  // 50 %: the same periods, each T/0.5 — the cycle doubles
+  EXPECT_EQ(runs[50]["periods"].get<long long>(), runs[100]["periods"].get<long long>());
+  if (!starved(50) && !starved(100)) {
+    EXPECT_NEAR(runs[50]["cycle_time_s"].get<double>(), 2 * c100, 3 * T);
+    EXPECT_NEAR(runs[50]["laser_on_s"].get<double>(), 2 * runs[100]["laser_on_s"].get<double>(), 3 * T);
+    EXPECT_NEAR(runs[50]["axes"]["X"]["peak_velocity"].get<double>(),
+                runs[100]["axes"]["X"]["peak_velocity"].get<double>() * 0.5, 1e-6);
+  }
+  // 150 %: the 150 mm of cut at 150 mm/s instead of 100 (plus 10 ms more of
+  // speeding up and slowing down per cut), the rapids as fast as at 100 %
+  const double on100 = runs[100]["laser_on_s"].get<double>();
+  const double on150 = runs[150]["laser_on_s"].get<double>();
+  EXPECT_LT(runs[150]["periods"].get<long long>(), runs[100]["periods"].get<long long>());
   if (!starved(150) && !starved(100)) {
-    EXPECT_GT(peak150, 0.95 * 500.0);
-    EXPECT_NEAR(peak100, peak150 / 1.5, 0.02 * peak150);
+    EXPECT_NEAR(on100, 1.5 + 2 * 0.02, 0.01);
+    EXPECT_NEAR(on150, 1.0 + 2 * 0.03, 0.01);
+    EXPECT_NEAR(runs[150]["cycle_time_s"].get<double>(), c100 - (on100 - on150), 3 * T);
   }
+  // at 100 % the rapids reach the X limit already: the plan is at the limits
+  EXPECT_GT(expect_within_velocity_limits(traces[100]), 0.95 * 500.0);
+  EXPECT_NEAR(runs[100]["axes"]["X"]["peak_velocity"].get<double>(), 500.0, 1e-6);
 }
 
 // A zig-zag of 20° turns at F6000, with no path mode of its own.
@@ -252,12 +257,10 @@ TEST(LasercncRun, LimitsFromTheCommandLineOverrideTheConfig) {
   const CmdResult r = lasercnc("run " + prog.string() + " --json --no-progress --vmax 100 --amax 1000");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  // planned for the default machine's 150 % feed override: at 100 % the
-  // limits are v/1.5 and a/1.5²
-  EXPECT_NEAR(j["axes"]["X"]["peak_velocity"].get<double>(), 100.0 / 1.5, 1e-6);
-  EXPECT_LE(j["axes"]["X"]["peak_acceleration"].get<double>(), 1000.0 / 2.25 * (1 + 1e-6));
-  // 100 mm at 66.7 mm/s with a = 444.4: 1.5 s + 0.15 s
-  EXPECT_NEAR(j["cycle_time_s"].get<double>(), 1.65, 0.01);
+  // planned at the limits given: 100 mm at 100 mm/s with a = 1000: 1 s + 0.1 s
+  EXPECT_NEAR(j["axes"]["X"]["peak_velocity"].get<double>(), 100.0, 1e-6);
+  EXPECT_LE(j["axes"]["X"]["peak_acceleration"].get<double>(), 1000.0 * (1 + 1e-6));
+  EXPECT_NEAR(j["cycle_time_s"].get<double>(), 1.1, 0.01);
 }
 
 TEST(LasercncRun, BadProgramIsRejectedBeforeAnythingMoves) {

@@ -6,6 +6,8 @@
 #include <limits>
 #include <vector>
 
+#include "plan/ramp_room.h"
+
 namespace lcnc::rt {
 namespace {
 
@@ -29,7 +31,7 @@ MachineConfig default_like() {
 
 TEST(FeedOverrideRamp, RateAndKMinFollowTheMachine) {
   const FeedOverrideRamp r(default_like());
-  // ρ = s·K_max·min(amax/vmax) = 1/3 · 1.5 · 10 /s
+  // ρ_max = s·min(amax/vmax) = 1/2 · 10 /s
   EXPECT_DOUBLE_EQ(r.rate_per_s(), 5.0);
   EXPECT_DOUBLE_EQ(r.k_min(), std::sqrt(5.0 * 75e-6));
   EXPECT_DOUBLE_EQ(r.k_max(), 1.5);
@@ -80,22 +82,22 @@ Ramped run_ramp(const FeedOverrideRamp& r, double period_s, double k0, double ta
 TEST(FeedOverrideRamp, RisesLinearlyInMachineTimeFromHoldToTheTarget) {
   const FeedOverrideRamp r(default_like());
   const double T = 75e-6;
-  const Ramped up = run_ramp(r, T, 0.0, 1.5, 20000);
+  const Ramped up = run_ramp(r, T, 0.0, 1.0, 20000);
   bool reached = false;
   for (std::size_t i = 0; i < up.k.size(); ++i) {
     const double linear = r.rate_per_s() * up.t_start_s[i];  // K(t) = ρ·t from 0
-    if (linear < 1.5) {
+    if (linear < 1.0) {
       ASSERT_NEAR(up.k[i], linear, 1e-9) << "period " << i;
     } else {
-      ASSERT_EQ(up.k[i], 1.5) << "period " << i;  // on the target, never past it
+      ASSERT_EQ(up.k[i], 1.0) << "period " << i;  // on the target, never past it
       reached = true;
     }
   }
   EXPECT_TRUE(reached);
-  // 0 → 150 % takes 1.5/ρ = 0.3 s of machine time
+  // 0 → 100 % takes 1/ρ = 0.2 s of machine time
   std::size_t first = 0;
-  while (up.k[first] < 1.5) ++first;
-  EXPECT_NEAR(up.t_start_s[first], 1.5 / r.rate_per_s(), 2 * T);
+  while (up.k[first] < 1.0) ++first;
+  EXPECT_NEAR(up.t_start_s[first], 1.0 / r.rate_per_s(), 2 * T);
   // the first moving period runs at K_min (within one hold step of it)
   std::size_t moving = 0;
   while (r.holds(up.k[moving])) ++moving;
@@ -124,7 +126,7 @@ TEST(FeedOverrideRamp, FallsLinearlyToKMinThenHolds) {
 TEST(FeedOverrideRamp, NoStepIsLargerThanTheRateTimesThePeriod) {
   const FeedOverrideRamp r(default_like());
   const double T = 75e-6;
-  const double targets[] = {1.5, 0.0, 0.7, 0.02, 1.2, 0.0, 1.0};
+  const double targets[] = {1.0, 0.0, 0.7, 0.02, 0.9, 0.0, 1.0};
   double k = 1.0;
   for (double target : targets) {
     for (int n = 0; n < 8000; ++n) {
@@ -139,12 +141,13 @@ TEST(FeedOverrideRamp, NoStepIsLargerThanTheRateTimesThePeriod) {
   }
 }
 
-// Eq. (2) of the header, executed. One axis follows a plan at the limits the
-// planner uses (rest → accelerate at amax/K_max² to vmax/K_max → cruise →
-// brake to rest) while the override ramps; each period executes T of the
-// plan in T/K. The acceleration, differenced period by period in machine
-// time, stays within amax when the ramp and the plan's acceleration add up
-// at K ≤ 1.2 (< K_max·sqrt(1 − s) = 122 %), and a ramp alone uses ρ·v ≈ s·amax.
+// Eq. (1) of the header, executed. One axis follows a plan at the machine's
+// full limits (rest → accelerate at amax to vmax → cruise → brake at amax
+// to rest), sampled once per period as the planner does, each entry with its
+// ramp room (plan/ramp_room.h) as the planner computes it; the override
+// ramps while each period executes T of the plan in T/K. The acceleration,
+// differenced period by period in machine time, stays within amax however
+// the ramp and the plan's own acceleration meet.
 struct Plan {
   double v_p, a_p, t_acc, t_cruise;
   [[nodiscard]] double end() const { return 2 * t_acc + t_cruise; }
@@ -157,50 +160,114 @@ struct Plan {
   }
 };
 
-// Peak |acceleration| executing `plan` from K = k0; at plan time tau_change
-// the target becomes `target`.
-double executed_peak_accel(const FeedOverrideRamp& r, double period_s, const Plan& plan, double k0,
-                           double target, double tau_change) {
-  double k = k0, tau = 0.0, x_prev = 0.0, v_prev = 0.0, len_prev = period_s, peak = 0.0;
-  for (int n = 0; n < 4'000'000 && tau < plan.end(); ++n) {
+struct Executed {
+  double peak_accel = 0.0;
+  double peak_after = 0.0;   // from the change of target on
+  bool held = false;         // came to a hold (K = 0) for good
+  double hold_at_tau = 0.0;  // the plan time it held at
+};
+
+// Executes `plan` from K = k0 (a period scale, ≤ 1); from plan time
+// tau_change on the target is `target`.
+Executed execute(const MachineConfig& m, const Plan& plan, double k0, double target,
+                 double tau_change) {
+  const FeedOverrideRamp r(m);
+  const double T = m.period_s();
+  // the planner's entries: poses at n·T and each one's room
+  std::vector<double> x{0.0};
+  std::vector<RampRoom> room{RampRoom{}};
+  Pose p = Pose::Zero();
+  RampRoomMeter meter(m, p);
+  for (std::size_t n = 1; static_cast<double>(n - 1) * T < plan.end(); ++n) {
+    p[0] = plan.x(static_cast<double>(n) * T);
+    x.push_back(p[0]);
+    room.push_back(meter.next(p));
+  }
+  Executed out;
+  double k = k0, x_prev = 0.0, v_prev = 0.0, len_prev = T;
+  std::size_t next = 1;  // the next entry to execute
+  for (int n = 0; n < 4'000'000 && next < x.size(); ++n) {
     const bool held = r.holds(k);
-    const double len = held ? period_s : period_s / k;
-    if (!held) tau += period_s;  // one entry of the plan executed
-    const double x = plan.x(tau);
-    const double v = (x - x_prev) / len;
-    peak = std::max(peak, std::abs(v - v_prev) / (0.5 * (len + len_prev)));
-    x_prev = x;
+    const double len = held ? T : T / k;
+    const double xn = held ? x_prev : x[next++];
+    const double v = (xn - x_prev) / len;
+    const double a = std::abs(v - v_prev) / (0.5 * (len + len_prev));
+    out.peak_accel = std::max(out.peak_accel, a);
+    const double tau = static_cast<double>(next - 1) * T;
+    if (tau > tau_change) out.peak_after = std::max(out.peak_after, a);
+    x_prev = xn;
     v_prev = v;
     len_prev = len;
     const double target_now = tau >= tau_change ? target : k0;
-    if (target_now == 0.0 && k == 0.0) break;  // held for good
-    k = r.step(k, target_now, len);
+    if (target_now == 0.0 && k == 0.0) {  // held for good
+      out.held = true;
+      out.hold_at_tau = tau;
+      break;
+    }
+    k = r.step(k, target_now, len, next < room.size() ? room[next] : RampRoom{});
   }
-  return peak;
+  return out;
 }
 
-TEST(FeedOverrideRamp, RampPlusPlanStaysWithinTheAxisAcceleration) {
+TEST(FeedOverrideRamp, RampPlusFullLimitPlanStaysWithinTheAxisAcceleration) {
+  const MachineConfig m = default_like();
+  const double vmax = 500, amax = 5000;
+  const Plan plan{vmax, amax, vmax / amax, 0.3};
+  const double brake = plan.t_acc + plan.t_cruise;
+  // a resume from hold while the plan speeds up at full acceleration: the
+  // ramp waits for room, and still gets to 100 %
+  const Executed up = execute(m, plan, 0.0, 1.0, 0.0);
+  EXPECT_LE(up.peak_accel, amax * (1 + 1e-6));
+  // a feed hold from 100 % just as the plan brakes at its full deceleration:
+  // K waits while the plan brakes, then falls; the machine holds before the
+  // plan's own stop
+  const Executed hold = execute(m, plan, 1.0, 0.0, brake);
+  EXPECT_LE(hold.peak_accel, amax * (1 + 1e-6));
+  // a feed hold half-way through the braking, from 60 %: room is (1 − K²)·amax
+  const Executed half = execute(m, plan, 0.6, 0.0, brake + 0.5 * plan.t_acc);
+  EXPECT_LE(half.peak_accel, amax * (1 + 1e-6));
+  EXPECT_TRUE(half.held);
+  // a feed hold while cruising: the ramp alone, ρ_max·vmax = amax/2 (the
+  // step into the hold, differenced over half a long period, twice that),
+  // and the machine holds within 0.2 s of machine time, 0.1 s of the plan's
+  const Executed cruise = execute(m, plan, 1.0, 0.0, plan.t_acc + 0.05);
+  EXPECT_LE(cruise.peak_accel, amax * (1 + 1e-6));
+  EXPECT_GT(cruise.peak_after, amax * 0.45);
+  ASSERT_TRUE(cruise.held);
+  EXPECT_LT(cruise.hold_at_tau, plan.t_acc + 0.05 + 0.1 + 1e-3);
+  // ramp down while the plan speeds up: the terms oppose
+  EXPECT_LE(execute(m, plan, 1.0, 0.0, 0.5 * plan.t_acc).peak_accel, amax * (1 + 1e-6));
+}
+
+// The same without the room (an entry built by hand): a hold at full
+// braking would take the axis past its limit — what the room is for.
+TEST(FeedOverrideRamp, WithoutTheRoomAHoldAtFullBrakingWouldBreakTheLimit) {
   const MachineConfig m = default_like();
   const FeedOverrideRamp r(m);
-  const double T = m.period_s();
-  const double vmax = 500, amax = 5000, kmax = m.max_feed_override;
-  const Plan plan{vmax / kmax, amax / (kmax * kmax), (vmax / kmax) / (amax / (kmax * kmax)), 0.3};
-  ASSERT_NEAR(plan.t_acc, 0.15, 1e-12);
-  const double brake = plan.t_acc + plan.t_cruise;
-  // the ramp up while the plan speeds up: both terms add toward K = 1.2
-  const double up = executed_peak_accel(r, T, plan, 0.0, 1.2, 0.0);
-  EXPECT_LE(up, amax);
-  EXPECT_GT(up, 0.85 * amax);
-  // a feed hold from 120 % just as the plan brakes at its speed limit
-  const double hold = executed_peak_accel(r, T, plan, 1.2, 0.0, brake);
-  EXPECT_LE(hold, amax);
-  EXPECT_GT(hold, 0.95 * amax);
-  // a feed hold from 100 % while cruising: the ramp alone, ρ·vmax/K_max = amax/3
-  // (the step into the hold, differenced over half a long period, 2/3)
-  const double cruise = executed_peak_accel(r, T, plan, 1.0, 0.0, plan.t_acc + 0.1);
-  EXPECT_LE(cruise, amax * 2.0 / 3.0 * 1.05);
-  // ramp down while the plan speeds up: the terms oppose
-  EXPECT_LE(executed_peak_accel(r, T, plan, 1.2, 0.0, 0.0), amax);
+  const double T = m.period_s(), vmax = 500, amax = 5000;
+  const Plan plan{vmax, amax, vmax / amax, 0.3};
+  double k = 1.0, tau = plan.t_acc + plan.t_cruise, x_prev = plan.x(tau), v_prev = vmax, peak = 0;
+  while (tau < plan.end() && !r.holds(k)) {
+    const double len = T / k;
+    tau += T;
+    const double v = (plan.x(tau) - x_prev) / len;
+    peak = std::max(peak, std::abs(v - v_prev) / len);
+    x_prev = plan.x(tau);
+    v_prev = v;
+    k = r.step(k, 0.0, len);
+  }
+  EXPECT_GT(peak, 1.3 * amax);
+}
+
+TEST(FeedOverrideRamp, PeriodScaleIsTheOverrideOverWhatTheEntryIsPlannedAt) {
+  const FeedOverrideRamp r(default_like());
+  EXPECT_EQ(r.period_scale(1.0, 1.0f), 1.0);
+  EXPECT_EQ(r.period_scale(1.5, 1.0f), 1.0);  // never faster than planned
+  EXPECT_DOUBLE_EQ(r.period_scale(1.2, 1.5f), 0.8);
+  EXPECT_DOUBLE_EQ(r.period_scale(0.4, 1.5f), 0.4 / 1.5);
+  EXPECT_EQ(r.period_scale(0.0, 1.5f), 0.0);  // a hold
+  // a small override over a large plan still moves: K_min, not a hold
+  EXPECT_EQ(r.period_scale(r.k_min(), 1.5f), r.k_min());
 }
 
 }  // namespace

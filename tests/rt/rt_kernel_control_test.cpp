@@ -403,7 +403,7 @@ TEST(RtKernelControl, JogMovesExactlyAndStopsShortAtTheSoftLimit) {
   // but for the quantization to whole steps: rounded positions make two
   // neighbouring increments differ by up to 2 steps more than the motion does
   const std::vector<double> v = r.speeds();
-  const double jog = 0.25 * 500 * 1000 / 1.5, acc = 50000.0 * 1000 / (1.5 * 1.5);
+  const double jog = 0.25 * 500 * 1000, acc = 50000.0 * 1000;
   for (std::size_t i = 1; i < v.size(); ++i) {
     EXPECT_LE(std::abs(v[i]), jog * 1.01 + 1.0 / r.m.period_s()) << i;
     EXPECT_LE(std::abs(v[i] - v[i - 1]) / r.m.period_s(), acc + 2.0 / (r.m.period_s() * r.m.period_s())) << i;

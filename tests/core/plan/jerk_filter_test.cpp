@@ -119,15 +119,19 @@ TEST(JerkLimit, LowersAccelerationToKeepHalfTheTolerance) {
   EXPECT_EQ(p.axis(Axis::C).max_acceleration, 3600.0);  // rotary axes keep theirs
 }
 
-TEST(JerkLimit, PlansForTheHighestFeedOverride) {
+// The operator's highest override is no derate: the window is the one the
+// machine's own acceleration and jerk ask for (the RT runs the plan at
+// K ≤ 1, where the jerk is K³·J of the plan's).
+TEST(JerkLimit, PlansAtTheMachinesLimitsWhateverTheHighestOverride) {
   auto m = testing::test_machine(150.0, 3000.0);
   m.max_jerk = 2e6;
+  const JerkLimit at_one = jerk_limit(m);
   m.max_feed_override = 1.5;
   const JerkLimit l = jerk_limit(m);
-  // a_p = a/K², J_p = J/K³: τ = swing·a_p/J_p grows by K
-  const double swing = 2.0 + plan::kJunctionJumpShare * 2.25;
-  EXPECT_EQ(l.taps, static_cast<std::uint32_t>(
-                        std::ceil(swing * (3000.0 / 2.25) / (2e6 / 3.375 * m.period_s()))));
+  const double swing = 2.0 + plan::kJunctionJumpShare;
+  EXPECT_EQ(l.taps, static_cast<std::uint32_t>(std::ceil(swing * 3000.0 / (2e6 * m.period_s()))));
+  EXPECT_EQ(l.taps, at_one.taps);
+  EXPECT_EQ(l.accel_scale, at_one.accel_scale);
 }
 
 TEST(JerkLimit, OffWhenTheTrapezoidsAlreadyKeepTheJerk) {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <random>
@@ -160,8 +161,8 @@ double steps_allowance(const MachineConfig& m) {
 
 // Random polylines (fixed seed; LCNC_FUZZ_SCALE scales the count), blended at
 // P, C turning along; J at which the acceleration must be lowered, and one at
-// which it need not; planned for override 1 and 1.5 (then every limit holds
-// at K_max: v/K, a/K², J/K³ in planned time).
+// which it need not; on machines whose operator may set 100 % or 150 % (no
+// difference: the plan is at the limits, the RT only slows it).
 TEST(Planner, JerkLimitKeepsJerkAccelerationVelocityAndTolerance) {
   std::mt19937_64 rng(2024);
   std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -171,7 +172,6 @@ TEST(Planner, JerkLimitKeepsJerkAccelerationVelocityAndTolerance) {
     auto m = testing::test_machine(150.0, 3000.0);
     m.max_jerk = p % 2 == 0 ? 1e5 : 2e6;
     m.max_feed_override = p % 4 < 2 ? 1.0 : 1.5;
-    const double k = m.max_feed_override;
     const JerkLimit lim = jerk_limit(m);
     ASSERT_TRUE(lim.enabled());
     std::vector<Segment> segs;
@@ -193,13 +193,13 @@ TEST(Planner, JerkLimitKeepsJerkAccelerationVelocityAndTolerance) {
     }
     for (int ax = 0; ax < 3; ++ax) {
       // poses: exact up to rounding of the mean (~1e-13 mm: 1 mm/s³ here)
-      const double jerk = m.max_jerk / (k * k * k);
+      const double jerk = m.max_jerk;
       EXPECT_LE(r.j[ax], jerk + 10.0) << "program " << p << " axis " << ax;
       EXPECT_LE(r.j_steps[ax], jerk + steps_allowance(m)) << "program " << p << " axis " << ax;
-      EXPECT_LE(r.a[ax], lim.accel_scale * 3000.0 / (k * k) * (1 + 1e-6)) << "program " << p;
-      EXPECT_LE(r.v[ax], 150.0 / k * (1 + 1e-9)) << "program " << p << " axis " << ax;
+      EXPECT_LE(r.a[ax], lim.accel_scale * 3000.0 * (1 + 1e-6)) << "program " << p;
+      EXPECT_LE(r.v[ax], 150.0 * (1 + 1e-9)) << "program " << p << " axis " << ax;
     }
-    EXPECT_LE(r.a[5], 3600.0 / (k * k) * (1 + 1e-6));
+    EXPECT_LE(r.a[5], 3600.0 * (1 + 1e-6));
   }
 }
 
@@ -374,6 +374,71 @@ TEST(Planner, WithoutJerkLimitThePlanIsBitIdentical) {
   }
   EXPECT_GT(n, 1000u);
   EXPECT_FALSE(planner.jerk_limit().enabled());
+}
+
+}  // namespace
+}  // namespace lcnc
+
+// --- feed override above 100 %: planned for (Planner::set_feed_scale) --------
+
+namespace lcnc {
+namespace {
+
+// A line of 0.05 mm chords at F 100 mm/s. Raised to 150 % mid-way, the
+// planner re-plans what it has not handed out: the speed rises to 150 mm/s
+// without a jump (no period changes speed by more than the acceleration
+// allows) and the samples say the override they are planned at. Lowered
+// again, the segments already planned at 150 % keep their speed (the RT
+// slows them), and the ones that come in later are planned at 100 %.
+TEST(Planner, ARaisedOverrideIsPlannedForFromWhereThePlanStandsWithoutAJump) {
+  const auto m = testing::test_machine(500.0, 5000.0);
+  std::vector<Segment> segs;
+  for (int k = 0; k < 4000; ++k) {
+    Segment s;
+    s.kind = MotionKind::Linear;
+    s.feed_mm_s = 100.0;
+    s.path_mode = PathMode::Blend;
+    s.blend_tolerance_mm = 0.01;
+    s.start << 10 + 0.05 * k, 10, 5, 0, 0, 0;
+    s.end << 10 + 0.05 * (k + 1), 10, 5, 0, 0, 0;
+    segs.push_back(s);
+  }
+  std::size_t i = 0;
+  Planner planner(m, [&](Segment& out) {
+    if (i == segs.size()) return SourceStatus::End;
+    out = segs[i++];
+    return SourceStatus::Item;
+  });
+  const double T = m.period_s();
+  PeriodSample s;
+  double prev_x = 10.0, prev_v = 0.0, worst_dv = 0.0;
+  std::vector<double> speed;
+  std::vector<float> k_plan;
+  while (planner.next(s) == SourceStatus::Item) {
+    const double v = (s.pose[0] - prev_x) / T;
+    worst_dv = std::max(worst_dv, std::abs(v - prev_v));
+    prev_x = s.pose[0];
+    prev_v = v;
+    speed.push_back(v);
+    k_plan.push_back(s.k_plan);
+    if (speed.size() == 4000) planner.set_feed_scale(1.5);
+    if (speed.size() == 8000) planner.set_feed_scale(1.0);
+  }
+  EXPECT_LE(worst_dv, 5000.0 * T * (1 + 1e-6));  // (speeds from differenced poses)
+  ASSERT_GT(speed.size(), 10'000u);
+  EXPECT_NEAR(speed[3999], 100.0, 1e-6);
+  EXPECT_EQ(k_plan[3999], 1.0f);
+  // the window planned before the raise is handed out again at 150 %: the
+  // speed rises at once (50 mm/s at 5000 mm/s² takes 134 periods)
+  EXPECT_NEAR(speed[4200], 150.0, 1e-6);
+  EXPECT_EQ(k_plan[4200], 1.5f);
+  // lowered: what is planned keeps its speed (the window: 4 braking lengths
+  // of 150 mm/s, 9 mm, 800 periods), what comes later is at 100 %
+  EXPECT_NEAR(speed[8001], 150.0, 1e-6);
+  EXPECT_EQ(k_plan[8001], 1.5f);
+  EXPECT_NEAR(speed[9500], 100.0, 1e-6);
+  EXPECT_EQ(k_plan[9500], 1.0f);
+  EXPECT_LE(*std::max_element(speed.begin(), speed.end()), 150.0 + 1e-6);
 }
 
 }  // namespace

@@ -25,7 +25,7 @@ struct ReferenceLimits {
   double v_max = 0.0;
   double a_linear = 0.0;
   bool arc = false;
-  double rho = 0.0, radius = 0.0, override_k = 1.0;
+  double rho = 0.0, radius = 0.0;
   std::array<double, 3> a_axis{}, g{}, t_lo{}, t_hi{}, n_lo{}, n_hi{};
 
   static void sinusoid_range(double a, double b, double sweep, double& lo, double& hi) {
@@ -54,7 +54,6 @@ struct ReferenceLimits {
     constexpr double kInf = std::numeric_limits<double>::infinity();
     v_max = kInf;
     a_linear = kInf;
-    override_k = m.max_feed_override;
     const double L = geo.length();
     Pose lin = (seg.end - seg.start) / L;
     if (geo.is_arc()) lin.head<3>() = geo.tangent(0.0).head<3>() - geo.plane_speed_ratio() * geo.w();
@@ -65,7 +64,6 @@ struct ReferenceLimits {
       a_linear = std::min(a_linear, m.axes[i].max_acceleration / k);
     }
     if (geo.is_arc() && geo.plane_speed_ratio() > 0.0) arc_limits(geo, m, lin);
-    v_max /= override_k;
   }
 
   void arc_limits(const SegmentGeometry& geo, const MachineConfig& m, const Pose& lin) {
@@ -91,9 +89,8 @@ struct ReferenceLimits {
   }
 
   [[nodiscard]] double tangential(double v, double sign) const {
-    const double k2 = override_k * override_k;
-    if (!arc) return a_linear / k2;
-    const double vp = rho * v * override_k;
+    if (!arc) return a_linear;
+    const double vp = rho * v;
     const double a_n = vp * vp / radius;
     double a_t = a_linear;
     for (int i = 0; i < 3; ++i) {
@@ -104,7 +101,7 @@ struct ReferenceLimits {
                                   std::min(0.0, a_n * n_lo[i]), std::max(0.0, a_n * n_hi[i]));
       a_t = std::min(a_t, std::max(a1, a2));
     }
-    return a_t / k2;
+    return a_t;
   }
 };
 
@@ -176,7 +173,7 @@ TEST(SegmentLimits, BlendArcsMatchTheReferenceModel) {
 
 TEST(SegmentLimits, PlaneArcsAndHelicesMatchTheReferenceModel) {
   MachineConfig m = testing::test_machine(100.0, 2000.0);
-  m.max_feed_override = 1.5;
+  m.max_feed_override = 1.5;  // the operator's highest override: no derate
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   constexpr double kPi = 3.14159265358979323846;
