@@ -30,8 +30,8 @@ struct RunOptions {
   std::optional<double> tolerance_mm;   // path tolerance
   std::string trace_file;               // CSV t,x,y,z,a,b,c,power per RT period; empty: none
   bool realtime = true;                 // try SCHED_FIFO + mlockall
-  // Feed override for the whole run, % (rt/feed_override.h): 1 ≤ pct ≤ 100·K_max
-  // (machine.max_feed_override), else a Usage error. Set before the RT
+  // Feed override for the whole run, % (README, rt/feed_override.h): 1 ≤ pct
+  // ≤ 100·machine.max_feed_override, else a Usage error. Set before the RT
   // thread starts, so the run begins at it with no ramp.
   double feed_override_pct = 100.0;
   // The laser source and power meter over Modbus (app/laser_link.h):

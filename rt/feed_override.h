@@ -1,5 +1,5 @@
-// Feed override (DESIGN §5.5, seed 001 §3.5), the RT's part: the period
-// scale K that the RT kernel applies, one step per period.
+// Feed override, the RT's part: the period scale K that the RT kernel
+// applies, one step per period.
 //
 // The planner plans at the machine's full limits, and at the operator's
 // override E when that is above 100 % (feed moves at E·F within the limits;

@@ -294,7 +294,7 @@ class RtKernel {
   void log(RtLogCode code, std::int64_t value, int axis = -1, std::uint32_t line = 0) noexcept;
   void set_state(MachineState s) noexcept;
   // The fill at which a starving kernel runs on: twice the braking reserve
-  // at the highest override (or the whole buffer).
+  // at K = 1 (or the whole buffer).
   [[nodiscard]] std::size_t refill_level() const noexcept;
   // Virtual time: until the producer has filled the buffer to refill_level().
   void wait_for_producer() const noexcept;

@@ -123,10 +123,10 @@ struct MachineConfig {
   // G90 G91.1 G94 G54 G61 M5 M9. The shipped machine starts in G64, so a
   // CAM file without one blends within path_tolerance_mm.
   std::string startup_code;
-  // Highest feed override K (DESIGN §5.5). Override scales the RT period to
-  // T/K, so speed scales by K and acceleration by K²: the planner plans for
-  // v ≤ vmax/K_max and a ≤ amax/K_max² so that any K ≤ K_max stays within the
-  // axis limits.
+  // The highest feed override the operator may set (1 = 100 %). No derate:
+  // the plan is at the axes' limits; above 100 % the planner plans the feed
+  // moves faster within them, below it the RT scales the period
+  // (rt/feed_override.h).
   double max_feed_override = 1.0;
   // Jerk limit of the linear axes, mm/s³ (S-curve acceleration by a moving
   // average of the planned path, plan/jerk_filter.h); 0 = none. Planned, like

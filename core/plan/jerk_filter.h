@@ -32,12 +32,12 @@
 // path tolerance (machine.path_tolerance_mm), the planned acceleration of the
 // linear axes is lowered by accel_scale so that e_f ≤ P/2 — with a jerk
 // limit and a tight tolerance the machine cannot use its full acceleration.
-// The default machine (X, Y at a_p = 5000/1.5² = 2222 mm/s², Z at 1333,
-// P = 0.01 mm, K_max = 1.5): at J = 50 m/s³ it plans X and Y at 151 mm/s²
-// (6.8 %), M = 302 (τ = 22.7 ms); at J = 500 m/s³ at 699 mm/s² (31 %),
-// M = 140 (τ = 10.5 ms). tests/vectors/plate.ngc then takes 7.60 s and
-// 3.56 s instead of 2.13 s. The full acceleration needs J ≥ 2816 m/s³ at
-// this P (or P ≥ 0.32 mm at 500 m/s³). BENCHMARKS.md has the bench cases.
+// The default machine (X, Y at 5000 mm/s², Z at 3000, P = 0.01 mm): at
+// J = 50 m/s³ it plans X and Y at 354 mm/s² (7.1 %), M = 198 (τ = 14.9 ms);
+// at J = 500 m/s³ at 1625 mm/s² (32.5 %), M = 91 (τ = 6.8 ms).
+// tests/vectors/plate.ngc then takes 4.95 s and 2.46 s instead of 1.66 s.
+// The full acceleration needs J ≥ 2705 m/s³ at this P (or P ≥ 0.28 mm at
+// 500 m/s³). BENCHMARKS.md has the bench cases.
 //
 // A program whose G64 P is below e_f + the half-step margin gets no corner
 // blends (the tolerance left for them is ≤ 0): its corners are stopped at and

@@ -11,10 +11,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <random>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "app/planner_feed.h"
@@ -303,10 +305,11 @@ TEST(JobPipeline, APlannerStalledAtFullSpeedBrakesAlongThePathAndRunsOn) {
 // The override above 100 % comes through the planner, below it through the
 // RT's period scaling; both at once, mid-job, never take an axis past its
 // limits. Three laps of an R40 circle of 2000 chords at F12000 (200 mm/s)
-// in virtual time (the kernel never waits for a late planner): 100 %, then
-// 150 % from period 8,000, 40 % from 24,000, 100 % from 30,000. Measured
-// from the trace as an outsider would (MotionCheck: velocity over its
-// window, acceleration over 2 × its window, both stated by the check).
+// in real time, the override set from this thread at given periods: 100 %, then
+// 150 % — planned from the entry the planner is at (the kernel's period plus
+// what is queued) — then 40 % and back to 100 %, each acting in the RT at
+// once. Measured from the trace as an outsider would (MotionCheck: velocity
+// and acceleration over the windows it states).
 TEST(JobPipeline, OverrideRaisedTo150AndLoweredTo40MidJobKeepsEveryLimitAndStep) {
   std::string text = "G21 G90 G64 P0.01\nG0 X90 Y50 Z5\nM3 S60\nG1 F12000\n";
   char buf[96];
@@ -321,25 +324,31 @@ TEST(JobPipeline, OverrideRaisedTo150AndLoweredTo40MidJobKeepsEveryLimitAndStep)
   ASSERT_TRUE(static_cast<bool>(check_program(prog.string(), machine())));
   std::unique_ptr<rt::TraceRing> trace = std::make_unique<rt::TraceRing>();
   Job job(trace.get());
-  job.run(prog, true);
-  struct Change {
-    std::uint64_t at;
-    double k;
-  };
-  const Change changes[] = {{8'000, 1.5}, {24'000, 0.4}, {30'000, 1.0}};
-  std::size_t next = 0;
+  job.run(prog);
   std::vector<rt::TraceRecord> recs;
   rt::TraceRecord rec;
-  while (!job.kernel->finished()) {
-    while (trace->try_pop(rec)) recs.push_back(rec);
-    if (next < std::size(changes) && job.kernel->periods() >= changes[next].at)
-      job.kernel->set_feed_override(changes[next++].k);
-    std::this_thread::yield();
-  }
+  // waits for the kernel's period `at`, reading the trace; false if the job ended first
+  auto reach = [&](std::uint64_t at) {
+    while (!job.kernel->finished() && job.kernel->periods() < at) {
+      while (trace->try_pop(rec)) recs.push_back(rec);
+      std::this_thread::yield();
+    }
+    return !job.kernel->finished();
+  };
+  ASSERT_TRUE(reach(8'000));
+  job.kernel->set_feed_override(1.5);
+  // the planner plans for it from about the entry it is at
+  const std::uint64_t raised = job.kernel->periods() + job.buffer->size();
+  ASSERT_TRUE(reach(raised + 6'000));
+  job.kernel->set_feed_override(0.4);
+  const std::uint64_t lowered = job.kernel->periods();
+  ASSERT_TRUE(reach(lowered + 5'000));
+  job.kernel->set_feed_override(1.0);
+  const std::uint64_t back = job.kernel->periods();
+  reach(std::numeric_limits<std::uint64_t>::max());
   job.kernel->join();
   job.feed->join();
   while (trace->try_pop(rec)) recs.push_back(rec);
-  ASSERT_EQ(next, std::size(changes)) << "the job ended before the last change";
   const PlannedJob& planned = job.feed->result();
   ASSERT_FALSE(planned.failed) << planned.error.to_string();
   // steps exact, no underrun, no fault, the whole trace
@@ -353,24 +362,41 @@ TEST(JobPipeline, OverrideRaisedTo150AndLoweredTo40MidJobKeepsEveryLimitAndStep)
   for (const rt::TraceRecord& r : recs) check.add(r.t_ns, r.pos_steps, r.line);
   check.finish();
   EXPECT_TRUE(check.ok()) << check.breaches().front();
-  // the path speed per phase, over windows of 40 periods: 100 % (200 mm/s),
-  // 150 % once the planner's new entries run, 40 % within the ramp's time
+  // A planner that fell behind (a sanitizer build on a loaded machine) had
+  // the RT slow the path for it: then the phases' speeds are not the
+  // override's alone. The rest above holds whatever the timing.
+  if (job.kernel->starvations() > 0) GTEST_SKIP() << "the planner fell behind: phase speeds not checked";
+  // the path speed per phase, over windows of 40 periods: 100 % (200 mm/s);
+  // 150 % once the re-planned entries run (the look-ahead's window and
+  // 100 → 150 mm/s at 5000 mm/s²: a few hundred periods); 40 % once the
+  // ramp is over (0.15 s of machine time, some 1,300 periods); 100 %
   auto speed = [&](std::size_t k) {
     const rt::TraceRecord &a = recs[k - 40], &b = recs[k];
     const double dx = static_cast<double>(b.pos_steps[0] - a.pos_steps[0]) / 1000.0;
     const double dy = static_cast<double>(b.pos_steps[1] - a.pos_steps[1]) / 1000.0;
     return std::hypot(dx, dy) / (static_cast<double>(b.t_ns - a.t_ns) * 1e-9);
   };
-  auto peak = [&](std::size_t from, std::size_t to) {
-    double v = 0.0;
-    for (std::size_t k = std::max<std::size_t>(from, 40); k < std::min(to, recs.size()); ++k)
-      v = std::max(v, speed(k));
-    return v;
+  auto range = [&](std::uint64_t from, std::uint64_t to) {
+    double lo = 1e300, hi = 0.0;
+    for (std::size_t k = std::max<std::uint64_t>(from, 40); k < std::min<std::uint64_t>(to, recs.size()); ++k) {
+      lo = std::min(lo, speed(k));
+      hi = std::max(hi, speed(k));
+    }
+    return std::pair{lo, hi};
   };
-  EXPECT_NEAR(peak(4'000, 8'000), 200.0, 2.0);
-  EXPECT_NEAR(peak(16'000, 24'000), 300.0, 3.0);  // one buffer after the raise
-  EXPECT_NEAR(peak(26'000, 30'000), 80.0, 1.5);   // 0.2 s of ramp after the drop
-  EXPECT_NEAR(peak(36'000, 40'000), 200.0, 2.0);
+  ASSERT_GT(raised, 10'000u);
+  const auto [lo100, hi100] = range(raised - 4'000, raised);
+  EXPECT_NEAR(lo100, 200.0, 2.0);
+  EXPECT_NEAR(hi100, 200.0, 2.0);
+  const auto [lo150, hi150] = range(raised + 1'500, lowered);
+  EXPECT_NEAR(lo150, 300.0, 3.0);
+  EXPECT_NEAR(hi150, 300.0, 3.0);
+  const auto [lo40, hi40] = range(lowered + 2'500, back);
+  EXPECT_NEAR(lo40, 80.0, 1.0);
+  EXPECT_NEAR(hi40, 80.0, 1.0);
+  const auto [lo_back, hi_back] = range(back + 2'500, back + 4'000);
+  EXPECT_NEAR(lo_back, 200.0, 2.0);
+  EXPECT_NEAR(hi_back, 200.0, 2.0);
 }
 
 // The soak: random jobs one after another in virtual time (the kernel runs

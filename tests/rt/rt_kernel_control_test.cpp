@@ -18,8 +18,8 @@ namespace {
 
 using namespace std::chrono_literals;
 
-// X, Y, Z of 0–100 mm, 1 µm steps; amax/vmax = 100 /s, K_max 1.5: the
-// override ramps at ρ = 50 /s (100 % ↔ hold in 20 ms).
+// X, Y, Z of 0–100 mm, 1 µm steps; amax/vmax = 100 /s: the override ramps
+// at ρ_max = 50 /s (100 % ↔ hold in 20 ms).
 MachineConfig machine() {
   MachineConfig m;
   m.period_ns = 75'000;
