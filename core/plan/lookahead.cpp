@@ -155,6 +155,8 @@ bool Lookahead::fill() {
     if (dwell) {
       n.dwell = true;
       p.profile = Trapezoid::hold(p.seg.dwell_s);
+      p.k_plan = 1.0;  // a dwell's time is the program's, whatever the override
+      p.v_limit = 0.0;
     } else {
       set_speed(k, feed_scale_);
       braking_length_ = std::max(braking_length_, braking_length(n.x_max));

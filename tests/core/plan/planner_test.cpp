@@ -441,5 +441,53 @@ TEST(Planner, ARaisedOverrideIsPlannedForFromWhereThePlanStandsWithoutAJump) {
   EXPECT_LE(*std::max_element(speed.begin(), speed.end()), 150.0 + 1e-6);
 }
 
+// A dwell after segments planned at 150 % is planned at 100 %: its time is
+// the program's (the RT runs dwells at the nominal period), and the moves
+// around it keep theirs.
+TEST(Planner, ADwellIsPlannedAtOneHundredPercentWhateverTheOverride) {
+  const auto m = testing::test_machine(500.0, 5000.0);
+  // more lines than the look-ahead's ring has slots (1024): the dwell takes
+  // a slot a line planned at 150 % held before
+  std::vector<Segment> segs;
+  Pose at = Pose::Zero();
+  at << 10, 10, 5, 0, 0, 0;
+  for (int k = 0; k < 1100; ++k) {
+    Segment line;
+    line.kind = MotionKind::Linear;
+    line.feed_mm_s = 100.0;
+    line.path_mode = PathMode::Blend;
+    line.blend_tolerance_mm = 0.01;
+    line.start = at;
+    at[0] += 0.05;
+    line.end = at;
+    segs.push_back(line);
+  }
+  Segment dwell;
+  dwell.kind = MotionKind::Dwell;
+  dwell.dwell_s = 0.01;
+  dwell.start = dwell.end = at;
+  segs.push_back(dwell);
+  std::size_t i = 0;
+  Planner planner(m, [&](Segment& out) {
+    if (i == segs.size()) return SourceStatus::End;
+    out = segs[i++];
+    return SourceStatus::Item;
+  });
+  planner.set_feed_scale(1.5);
+  PeriodSample s;
+  std::size_t dwelling = 0, fast = 0;
+  while (planner.next(s) == SourceStatus::Item) {
+    if (s.kind == MotionKind::Dwell) {
+      ++dwelling;
+      EXPECT_EQ(s.k_plan, 1.0f);
+    } else if (s.kind == MotionKind::Linear && !s.end_of_program) {
+      ++fast;
+      EXPECT_EQ(s.k_plan, 1.5f);
+    }
+  }
+  EXPECT_NEAR(static_cast<double>(dwelling), 0.01 / m.period_s(), 2.0);
+  EXPECT_GT(fast, 500u);
+}
+
 }  // namespace
 }  // namespace lcnc
