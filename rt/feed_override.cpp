@@ -37,10 +37,10 @@ double FeedOverrideRamp::step(double k, double target, double length_s,
   if (k < target) {
     // the room at the K this step may reach (K² grows with it)
     const double k_next = std::min(target, k + rate_per_s_ * length_s);
-    const double rate = std::clamp(r0 - k_next * k_next * room.up, 0.0, rate_per_s_);
+    const double rate = std::clamp(r0 * (1.0 - k_next * k_next * room.up), 0.0, rate_per_s_);
     return std::min(target, k + rate * length_s);
   }
-  const double rate = std::clamp(r0 - k * k * room.down, 0.0, rate_per_s_);
+  const double rate = std::clamp(r0 * (1.0 - k * k * room.down), 0.0, rate_per_s_);
   const double dk = rate * length_s;
   double next = std::max(target, k - dk);
   // Stopping: the last moving period runs at exactly K_min (a smaller step

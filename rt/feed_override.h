@@ -17,7 +17,7 @@
 // with v_p, a_p the plan's. K² ≤ 1 keeps the first term within the limit;
 // the second is the ramp's, and the plan leaves it only what its own
 // acceleration does not use. Each entry carries that room (RampRoom,
-// plan/ramp_room.h): |dK/dt| ≤ r0 − K²·r1, r1 for the ramp's direction.
+// plan/ramp_room.h): |dK/dt| ≤ r0·(1 − K²·f), f for the ramp's direction.
 //
 // Ramp rate. K changes linearly in machine time at ρ = |dK/dt| — the seed's
 // V(i+1) = V(i) + a·T(i) with V ∝ K and T(i) = T/K(i) the length of period i:

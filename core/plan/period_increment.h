@@ -16,14 +16,14 @@ namespace lcnc {
 
 // How fast the RT may change the period scale K (≤ 1) while it executes an
 // entry without an axis leaving its acceleration limit (rt/feed_override.h):
-// |dK/dt| ≤ max(0, r0 − K²·r1), r1 = down while K falls, up while it rises.
+// |dK/dt| ≤ r0·max(0, 1 − K²·f), f = down while K falls, up while it rises.
 // The planner sets it from the entry's planned axis speeds and
 // accelerations (plan/ramp_room.h); an entry built by hand leaves the
 // defaults, which put no bound but the ramp's own rate.
 struct RampRoom {
   float r0 = std::numeric_limits<float>::infinity();  // 1/s
-  float down = 0.0f;                                   // 1/s
-  float up = 0.0f;                                     // 1/s
+  float down = 0.0f;                                   // share of amax, 0 … 1
+  float up = 0.0f;                                     // share of amax, 0 … 1
 };
 
 struct PeriodIncrement {

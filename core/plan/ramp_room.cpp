@@ -28,7 +28,7 @@ RampRoom RampRoomMeter::next(const Pose& pose) noexcept {
     const double v = std::max(std::abs(v_before), std::abs(v_now));
     if (v < kRest) continue;
     r0 = std::min(r0, amax_[i] / v);
-    const double r = std::abs(a) / v;
+    const double r = std::abs(a) / amax_[i];  // the share of its acceleration the plan uses
     // a reversal (v changes sign) counts both ways
     if (a * v_before < 0.0 || a * v_now < 0.0) down = std::max(down, r);
     if (a * v_before > 0.0 || a * v_now > 0.0) up = std::max(up, r);

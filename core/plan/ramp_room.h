@@ -11,12 +11,16 @@
 //     |dK/dt|·|v_i| ≤ amax_i                 on one where it takes away.
 //
 // A falling K adds on an axis that brakes (a·v < 0), a rising K on one that
-// speeds up (a·v > 0). Over all axes that is, conservatively,
+// speeds up (a·v > 0). Per axis the room is (amax_i/|v_i|)·(1 − K²·f_i),
+// f_i = |a_i|/amax_i the share of its acceleration the plan uses; over all
+// axes, conservatively,
 //
-//     |dK/dt| ≤ r0 − K²·r1,   r0 = min_i amax_i/|v_i|,
-//                             r1 = max_i |a_i|/|v_i|   (the axes that add)
+//     |dK/dt| ≤ r0·(1 − K²·f),   r0 = min_i amax_i/|v_i|,
+//                                f = max_i |a_i|/amax_i   (the axes that add)
 //
-// with r1 = down for a falling K and up for a rising one. Entry k's v is the
+// with f = down for a falling K and up for a rising one. (Not r0 − K²·max
+// |a_i|/|v_i|: an axis just starting to move, v tiny, would make that
+// negative at any K and hold a resume at K = 0 for good.) Entry k's v is the
 // larger of the planned velocities of periods k−1 and k (the RT sets the K
 // of period k from entry k, and the step in speed into it carries period
 // k−1's velocity), its a the second difference of the planned poses

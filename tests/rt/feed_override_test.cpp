@@ -259,6 +259,27 @@ TEST(FeedOverrideRamp, WithoutTheRoomAHoldAtFullBrakingWouldBreakTheLimit) {
   EXPECT_GT(peak, 1.3 * amax);
 }
 
+// A resume from a hold where one axis cruises fast and another just starts
+// to move at its full acceleration (its speed tiny): K rises. (A room of
+// r0 − K²·max |a|/|v| mixed the two axes: the starting axis's huge |a|/|v|
+// left no room at any K, and the machine stayed held for good.)
+TEST(FeedOverrideRamp, AResumeRisesWhenAnAxisStartsToMoveAtFullAcceleration) {
+  MachineConfig m = default_like();
+  const FeedOverrideRamp r(m);
+  const double T = m.period_s();
+  RampRoomMeter meter(m, Pose::Zero());
+  Pose p = Pose::Zero();
+  RampRoom room;
+  for (int k = 1; k <= 3; ++k) {
+    p[0] = 500.0 * T * k;                  // X at 500 mm/s
+    p[1] = 0.5 * 5000.0 * (k - 2) * (k - 2) * T * T * (k >= 2);  // Y starts at 5000 mm/s²
+    room = meter.next(p);
+  }
+  double k = 0.0;
+  for (int n = 0; n < 2000; ++n) k = r.step(k, 1.0, r.holds(k) ? T : T / k, room);
+  EXPECT_GT(k, 0.1);
+}
+
 TEST(FeedOverrideRamp, PeriodScaleIsTheOverrideOverWhatTheEntryIsPlannedAt) {
   const FeedOverrideRamp r(default_like());
   EXPECT_EQ(r.period_scale(1.0, 1.0f), 1.0);
