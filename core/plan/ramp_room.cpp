@@ -19,7 +19,9 @@ RampRoom RampRoomMeter::next(const Pose& pose) noexcept {
   // Below this speed (units/s) an axis is at rest: the ramp's share v·dK/dt
   // is nothing there (a tenth of a micrometre per second).
   constexpr double kRest = 1e-4;
-  double r0 = kInf, down = 0.0, up = 0.0;
+  // The room at K = 0 (min_i r_i) and at K = 1 for a falling and a rising K
+  // (min_i r_i·(1 − f_i)); the chord between them is the bound (header).
+  double at0 = kInf, down1 = kInf, up1 = kInf;
   for (int i = 0; i < kAxisCount; ++i) {
     if (!present_[i]) continue;
     const double v_before = (p1_[i] - p2_[i]) * inv_period_;
@@ -27,21 +29,32 @@ RampRoom RampRoomMeter::next(const Pose& pose) noexcept {
     const double a = (v_now - v_before) * inv_period_;
     const double v = std::max(std::abs(v_before), std::abs(v_now));
     if (v < kRest) continue;
-    r0 = std::min(r0, amax_[i] / v);
-    const double r = std::abs(a) / amax_[i];  // the share of its acceleration the plan uses
+    const double r = amax_[i] / v;
+    const double f = std::abs(a) / amax_[i];  // the share of its acceleration the plan uses
+    at0 = std::min(at0, r);
     // a reversal (v changes sign) counts both ways
-    if (a * v_before < 0.0 || a * v_now < 0.0) down = std::max(down, r);
-    if (a * v_before > 0.0 || a * v_now > 0.0) up = std::max(up, r);
+    const bool brakes = a * v_before < 0.0 || a * v_now < 0.0;
+    const bool speeds_up = a * v_before > 0.0 || a * v_now > 0.0;
+    down1 = std::min(down1, brakes ? r * (1.0 - f) : r);
+    up1 = std::min(up1, speeds_up ? r * (1.0 - f) : r);
   }
   p2_ = p1_;
   p1_ = pose;
   RampRoom room;
-  room.r0 = static_cast<float>(r0);
-  // rounded up: the bound r0 − K²·r1 must not come out larger than exact
-  room.down = std::nextafter(static_cast<float>(down), std::numeric_limits<float>::infinity());
-  room.up = std::nextafter(static_cast<float>(up), std::numeric_limits<float>::infinity());
-  if (static_cast<double>(room.r0) > r0)
-    room.r0 = std::nextafter(room.r0, 0.0f);
+  if (!std::isfinite(at0)) return room;  // nothing moves: no bound
+  // r0 rounded down and the shares rounded up: the stored chord lies below
+  // the exact one at K = 0 and K = 1, so below it everywhere.
+  room.r0 = static_cast<float>(at0);
+  if (static_cast<double>(room.r0) > at0) room.r0 = std::nextafter(room.r0, 0.0f);
+  const double r0 = room.r0;
+  const auto share = [r0](double at1) {
+    const double f = std::max(0.0, 1.0 - at1 / r0);
+    float g = static_cast<float>(f);
+    if (static_cast<double>(g) < f) g = std::nextafter(g, std::numeric_limits<float>::infinity());
+    return g;
+  };
+  room.down = share(down1);
+  room.up = share(up1);
   return room;
 }
 

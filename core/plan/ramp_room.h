@@ -11,17 +11,22 @@
 //     |dK/dt|·|v_i| ≤ amax_i                 on one where it takes away.
 //
 // A falling K adds on an axis that brakes (a·v < 0), a rising K on one that
-// speeds up (a·v > 0). Per axis the room is (amax_i/|v_i|)·(1 − K²·f_i),
-// f_i = |a_i|/amax_i the share of its acceleration the plan uses; over all
-// axes, conservatively,
+// speeds up (a·v > 0). Per axis the room is linear in u = K²,
 //
-//     |dK/dt| ≤ r0·(1 − K²·f),   r0 = min_i amax_i/|v_i|,
-//                                f = max_i |a_i|/amax_i   (the axes that add)
+//     room_i(u) = r_i·(1 − u·f_i),   r_i = amax_i/|v_i|,
+//                                    f_i = |a_i|/amax_i on an axis that adds, else 0,
 //
-// with f = down for a falling K and up for a rising one. (Not r0 − K²·max
-// |a_i|/|v_i|: an axis just starting to move, v tiny, would make that
-// negative at any K and hold a resume at K = 0 for good.) Entry k's v is the
-// larger of the planned velocities of periods k−1 and k (the RT sets the K
+// and the room of the entry, min_i room_i, is concave in u: it lies above
+// its chord between u = 0 and u = 1. The entry carries that chord,
+//
+//     |dK/dt| ≤ r0·(1 − K²·f),   r0 = min_i r_i,   f = 1 − min_i r_i·(1 − f_i) / r0,
+//
+// f = down for a falling K and up for a rising one: exact at K = 0 and
+// K = 1, safe between. (r0 from one axis and f from another would be safe
+// too, but a circle at its centripetal limit — one axis at full
+// acceleration and nearly at rest, the other fast and unaccelerated — would
+// then leave a hold no room at all.) Entry k's v is the larger of the
+// planned velocities of periods k−1 and k (the RT sets the K
 // of period k from entry k, and the step in speed into it carries period
 // k−1's velocity), its a the second difference of the planned poses
 // (p_k − 2·p_{k−1} + p_{k−2})/T², the change of speed into it. Exact poses,

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "core/plan/test_machine.h"
 
@@ -55,6 +56,33 @@ TEST(RampRoom, FullAccelerationLeavesARisingOverrideNoRoomAtFullSpeed) {
   EXPECT_NEAR(r.r0, a / (v + a * T), 1e-2);
   EXPECT_NEAR(r.up, 1.0, 1e-6);
   EXPECT_NEAR(r.down, 0.0, 1e-6);
+}
+
+// A circle at its centripetal limit, 10° before X turns: X brakes at nearly
+// its full acceleration and moves slowly, Y cruises fast. At K = 1 a falling
+// K has X's own room, (amax/|v_x|)·(1 − |a_x|/amax), not Y's rate times X's
+// share (which would be nearly nothing); at K = 0 it has Y's rate.
+TEST(RampRoom, ACircleAtItsLimitKeepsTheRoomOfEachAxis) {
+  const MachineConfig m = testing::test_machine();
+  const double T = m.period_s(), amax = 5000.0, radius = 20.0;
+  const double v = std::sqrt(amax * radius), w = v / radius;
+  const auto at = [&](double angle) {
+    Pose p = Pose::Zero();
+    p[0] = radius * std::cos(angle);
+    p[1] = radius * std::sin(angle);
+    return p;
+  };
+  const double end = -10.0 * std::numbers::pi / 180.0;  // X reverses at angle 0
+  RampRoomMeter meter(m, at(end - 2 * w * T));
+  (void)meter.next(at(end - w * T));
+  const RampRoom r = meter.next(at(end));
+  const double vx = v * std::sin(10.0 * std::numbers::pi / 180.0);
+  const double fx = std::cos(10.0 * std::numbers::pi / 180.0);
+  const double vy = v * std::cos(10.0 * std::numbers::pi / 180.0);
+  EXPECT_NEAR(r.r0, amax / vy, 0.01 * amax / vy);  // Y's, at K = 0
+  const double at_k1 = r.r0 * (1.0 - r.down);
+  EXPECT_NEAR(at_k1, amax / vx * (1.0 - fx), 0.02 * amax / vx * (1.0 - fx));
+  EXPECT_GT(at_k1, 2.0 * (amax / vy) * (1.0 - fx));  // not Y's rate times X's share
 }
 
 // An axis at rest puts no bound on the ramp; the other axes do.
