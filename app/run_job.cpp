@@ -368,6 +368,8 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
 
   // Planner thread: plan, coarse-interpolate, quantize, keep the buffer
   // full; the RT thread starts once half the buffer (or the whole job) is in.
+  // The override first: one above 100 % is planned for from the first entry.
+  kernel.set_feed_override(options.feed_override_pct / 100.0);  // before start: no ramp
   PlannerFeed feed(machine, *buffer, kernel);
   if (options.segments) {
     feed.start(options.segments, ropt.start, options.program);
@@ -377,7 +379,6 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   feed.wait_prefilled();
   rt::RtOptions rt_options;
   rt_options.try_realtime = options.realtime;
-  kernel.set_feed_override(options.feed_override_pct / 100.0);  // before start: no ramp
   kernel.start(rt_options);
 
   // Drain the trace while the job runs: CSV, deviation, progress.
