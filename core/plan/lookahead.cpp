@@ -15,10 +15,11 @@ namespace lcnc {
 namespace {
 
 // The trapezoid v0 → vc → v1 with (nearly) the highest vc ≤ v_max that fits
-// in L at acceleration a(vc) and deceleration d(vc). Two fixed-point steps:
-// the peak at the accelerations of max(v0, v1) overshoots (they are the
-// largest); the peak at the accelerations of that overshoot is safe (theirs
-// are no larger than at the final speed) and within a hair of the optimum.
+// in L at acceleration a and deceleration d allowed over [v0, vc] and
+// [v1, vc]. Both fall as vc rises. Two fixed-point steps: the peak at the
+// accelerations of max(v0, v1) overshoots (they are the largest); the peak
+// at the accelerations of that overshoot is safe (theirs are no larger than
+// at the final speed) and within a hair of the optimum.
 void fit_profile(const SegmentLimits& lim, double v_max, double L, double v0, double v1,
                  Trapezoid& out) {
   auto fits = [&](double vc, const Accel& a) {
@@ -27,16 +28,17 @@ void fit_profile(const SegmentLimits& lim, double v_max, double L, double v0, do
   auto peak = [&](const Accel& a) {
     return std::sqrt(Trapezoid::peak_sqr(L, a.accel, a.decel, v0, v1));
   };
+  auto at = [&](double vc) { return lim.at(vc, v0, v1); };
   const double lo = std::max(v0, v1);
   double vc = std::max(lo, v_max);
-  Accel at_vc = lim.at(vc);
+  Accel at_vc = at(vc);
   if (!fits(vc, at_vc)) {
-    const double over = std::min(v_max, peak(lim.at(lo)));
-    vc = std::max(lo, std::min(v_max, peak(lim.at(over))));
-    at_vc = lim.at(vc);
+    const double over = std::min(v_max, peak(at(lo)));
+    vc = std::max(lo, std::min(v_max, peak(at(over))));
+    at_vc = at(vc);
     if (!fits(vc, at_vc)) {
       vc = lo;
-      at_vc = lim.at(vc);
+      at_vc = at(vc);
     }
   }
   out.set(L, at_vc.accel, at_vc.decel, v0, vc, v1);
@@ -258,9 +260,10 @@ SourceStatus Lookahead::next(const PlannedSegment*& out) {
       break;
     case Node::Shape::SpeedUp:
     case Node::Shape::SlowDown: {
-      // v_exit (v_entry) is the reach at the accelerations of that speed
+      // v_exit (v_entry) is the reach at the accelerations over [v_entry,
+      // v_exit] ([v_exit, v_entry])
       const double peak = std::max(v_entry, v_exit);
-      const Accel a = s.lim.at(peak);
+      const Accel a = s.lim.at(peak, v_entry, v_exit);
       p.profile.set(s.length, a.accel, a.decel, v_entry, peak, v_exit);
       break;
     }

@@ -1,6 +1,7 @@
 #include "plan/segment_limits.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -50,13 +51,16 @@ struct ArcAxis {
   double a_axis = 0.0;  // amax_i
   double g = 0.0;       // sqrt(u_i² + w_i²)
   double t_lo = 0.0, t_hi = 0.0, n_lo = 0.0, n_hi = 0.0;  // ranges over the sweep
+  std::array<double, 2> t_end{}, n_end{};  // t_i, n_i at the two ends of the sweep
 };
 
 // The box bounds of one axis as lines in a_n, x = ±t over the sweep (+
 // speeding up, − slowing down):
-//   a ≤ (amax − a_n·max(0, n_hi)) / (ρ·x_hi)   (x_hi > 0)
-//   a ≤ (amax + a_n·min(0, n_lo)) / (ρ·(−x_lo)) (x_lo < 0)
-// with a_n = c·x. A side the tangent never
+//   a ≤ (amax − a_n·n_hi) / (ρ·x_hi)    (x_hi > 0)
+//   a ≤ (amax + a_n·n_lo) / (ρ·(−x_lo))  (x_lo < 0)
+// with a_n = c·x: a line falls in x where the centripetal part hinders
+// (SegmentLimits takes it at the top of a phase's speeds), rises where it
+// helps (taken at the bottom). A side the tangent never
 // points to gives no line (p = ∞). Speeding up, x = t: x_hi = t_hi, x_lo =
 // t_lo; slowing down the two swap sides (x_hi = −t_lo, x_lo = −t_hi), so one
 // division per side of t serves both.
@@ -64,7 +68,7 @@ void box_lines(const ArcAxis& x, double rho, double c, ArcAxisBound& b) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   b.p_up = b.p_down = {kInf, kInf};
   b.q_up = b.q_down = {0.0, 0.0};
-  const double q_hi = std::max(0.0, x.n_hi) * c, q_lo = -std::min(0.0, x.n_lo) * c;
+  const double q_hi = x.n_hi * c, q_lo = -x.n_lo * c;
   if (x.t_hi > 1e-15) {  // speeding up: its first line; slowing down: its second
     const double per = 1.0 / (rho * x.t_hi);
     b.p_up[0] = b.p_down[1] = x.a_axis * per;
@@ -77,6 +81,54 @@ void box_lines(const ArcAxis& x, double rho, double c, ArcAxisBound& b) {
     b.q_up[1] = q_lo * per;
     b.q_down[0] = q_hi * per;
   }
+}
+
+
+// The box at the two ends of a short sweep (≤ kEndBoxSweep). Per bound σ
+// (+1: the axis's acceleration ≤ amax, −1: ≥ −amax) the axis sees
+// f(φ) = σ·(ρ·a_t·t_i(φ) + a_n·n_i(φ)), a sinusoid in φ of amplitude at most
+// g·(ρ·|a_t| + a_n); over [0, w] it exceeds the larger of its two end values
+// by at most amplitude·(1 − cos(w/2)) ≤ amplitude·μ/g, μ = g·w²/8. So an a
+// (a_t = s·a, s = +1 speeding up, −1 slowing down) keeps the axis within
+// amax over the whole sweep when at both ends e
+//
+//     ρ·a·(σ·s·t_e + μ) + a_n·(σ·n_e + μ) ≤ amax.
+//
+// Where σ·s·t_e + μ > 0 that is a line in x = v², a ≤ p − q·x (q < 0 where
+// the centripetal part helps, as in box_lines); where it is ≤ 0 the bound holds at any a as
+// long as a_n·(σ·n_e + μ) ≤ amax. Tighter than the sweep's separate ranges
+// of t and n (box_lines) by about a_n·w/t on arcs near their centripetal
+// limit — the CAM-chord blends of a curve. Used when each end, for each
+// side, gives one line (|t_e| > μ: two lines a side, as box_lines), and the
+// a-free bounds hold at v_max; else box_lines. Returns whether it was used.
+constexpr double kEndBoxSweep = 0.1;  // rad: μ ≤ 0.00125·g
+
+bool end_box_lines(const ArcAxis& x, double rho, double c, double x_max, double sweep,
+                   ArcAxisBound& b) {
+  if (sweep > kEndBoxSweep) return false;
+  const double mu = x.g * sweep * sweep / 8.0;
+  const double a_n_max = c * x_max;
+  for (int e = 0; e < 2; ++e) {
+    if (std::abs(x.t_end[e]) <= mu) return false;
+    // the bound whose a-coefficient is ≤ 0 must hold with a free
+    if (a_n_max * (std::abs(x.n_end[e]) + mu) > x.a_axis) return false;
+  }
+  for (int e = 0; e < 2; ++e) {
+    for (const double side : {1.0, -1.0}) {
+      // σ with σ·s·t_e > 0
+      const double sigma = side * x.t_end[e] > 0.0 ? 1.0 : -1.0;
+      const double per = 1.0 / (rho * (std::abs(x.t_end[e]) + mu));
+      const double q = (sigma * x.n_end[e] + mu) * c * per;
+      if (side > 0) {
+        b.p_up[e] = x.a_axis * per;
+        b.q_up[e] = q;
+      } else {
+        b.p_down[e] = x.a_axis * per;
+        b.q_down[e] = q;
+      }
+    }
+  }
+  return true;
 }
 
 }  // namespace
@@ -132,6 +184,9 @@ void segment_limits(const SegmentGeometry& geo, const MachineConfig& machine, Se
       x.g = g;
       sinusoid_range(wi, -ui, g, geo, x.t_lo, x.t_hi);   // t = −sin φ·u + cos φ·w
       sinusoid_range(-ui, -wi, g, geo, x.n_lo, x.n_hi);  // n = −cos φ·u − sin φ·w
+      const double cs = geo.cos_sweep(), sn = geo.sin_sweep();
+      x.t_end = {wi, -sn * ui + cs * wi};
+      x.n_end = {-ui, -cs * ui - sn * wi};
       const double t_abs = std::max(std::abs(x.t_lo), std::abs(x.t_hi));
       const double n_abs = std::max(std::abs(x.n_lo), std::abs(x.n_hi));
       v_max = std::min(v_max, ax.max_velocity / (rho * t_abs + std::abs(lin[i])));
@@ -153,7 +208,7 @@ void segment_limits(const SegmentGeometry& geo, const MachineConfig& machine, Se
   for (int j = 0; j < arc_axis_count; ++j) {
     const ArcAxis& x = arc_axes[j];
     ArcAxisBound& ax = lim.axes[lim.axis_count++];
-    box_lines(x, rho, c, ax);
+    if (!end_box_lines(x, rho, c, v_max * v_max, geo.sweep_rad(), ax)) box_lines(x, rho, c, ax);
     const double by_norm = x.a_axis / (x.g * rho);
     ax.b = by_norm * by_norm;
     ax.cap = by_norm;

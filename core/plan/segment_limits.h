@@ -11,10 +11,13 @@
 // axis within amax_i:
 //   |·| ≤ g_i·sqrt((ρ·a_t)² + a_n²),  g_i = sqrt(u_i² + w_i²)   (long arcs)
 //   t_i ∈ [t_lo, t_hi], n_i ∈ [n_lo, n_hi] over the sweep, a_n anywhere in
-//   [0, a_n(v)]: the extremes of ρ·a_t·t_i + a_n·n_i over that box, signs
-//   kept                                                         (short arcs)
-// Both fall as v rises, so a bound taken at the top speed of a segment holds
-// over all of it.
+//   [a_n(v_lo), a_n(v)]: the extremes of ρ·a_t·t_i + a_n·n_i over that box,
+//   signs kept                                                   (short arcs)
+//   or, on a sweep ≤ 0.1 rad, the same at its two ends plus what a sinusoid
+//   can bulge between them                          (CAM-chord blends: tighter)
+// The norm bound falls as v rises; a box line falls where the centripetal
+// part hinders the axis and rises where it helps, so over a phase of speeds
+// [v_lo, v] the first are taken at v, the second at v_lo.
 // The second is what makes a short blend arc, whose direction hardly turns,
 // as fast as the axes allow — and it differs for speeding up and slowing
 // down, where the centripetal part helps one and hinders the other. The
@@ -63,17 +66,20 @@ struct SegmentLimits {
   double v_max = 0.0;  // path units/s: the highest speed the axes allow
 
   // Tangential acceleration (speeding up) and deceleration (slowing down,
-  // > 0) allowed while the speed stays ≤ v (planned units): on an arc,
-  // slower means less centripetal load; on a line both are the same
+  // > 0) allowed at every speed in [acc_from, v] and [dec_from, v]
+  // respectively (planned units): on an arc the centripetal part grows with
+  // the speed, and where it hinders an axis the bound is taken at the top
+  // of the range, where it helps at the bottom; on a line both are the same
   // whatever v. Per arc axis the larger of its two bounds (both are true).
-  [[nodiscard]] Accel at(double v) const noexcept {
-    const double x = v * v;
+  [[nodiscard]] Accel at(double v, double acc_from, double dec_from) const noexcept {
+    const double x = v * v, x_acc = acc_from * acc_from, x_dec = dec_from * dec_from;
     Accel a{a_linear, a_linear};
     for (int j = 0; j < axis_count; ++j) {
       const ArcAxisBound& ax = axes[j];
-      const double up = std::min(ax.p_up[0] - ax.q_up[0] * x, ax.p_up[1] - ax.q_up[1] * x);
-      const double down =
-          std::min(ax.p_down[0] - ax.q_down[0] * x, ax.p_down[1] - ax.q_down[1] * x);
+      const double up = std::min(line(ax.p_up[0], ax.q_up[0], x, x_acc),
+                                 line(ax.p_up[1], ax.q_up[1], x, x_acc));
+      const double down = std::min(line(ax.p_down[0], ax.q_down[0], x, x_dec),
+                                   line(ax.p_down[1], ax.q_down[1], x, x_dec));
       double n = 0.0;  // the norm bound, needed only where a box bound falls below its cap
       if (up < ax.cap || down < ax.cap) {
         const double cx = c * x;
@@ -84,13 +90,16 @@ struct SegmentLimits {
     }
     return {std::max(0.0, a.accel), std::max(0.0, a.decel)};
   }
+  // At every speed from rest to v.
+  [[nodiscard]] Accel at(double v) const noexcept { return at(v, 0.0, 0.0); }
   // The speed reached from v over length L speeding up (or, read backward,
   // the entry from which v is reached slowing down) at the acceleration
-  // allowed at the speed reached — safe, since it falls as the speed rises:
-  // v'² = v² + 2L·a(v'), solved exactly. a(x) is a min over axes of a max
-  // of two bounds, each falling in x, so x' is the min over axes of the max
-  // of the two x' — a linear equation per box line, a quadratic for the
-  // norm. Never below v; not capped at v_max.
+  // allowed over [v, v'] — at(v', v, v) — solved exactly: v'² = v² +
+  // 2L·a(v'). a is a min over axes of a max of two bounds, each falling in
+  // x' = v'² (a box line where the centripetal part helps is taken at v and
+  // does not depend on x'), so x' is the min over axes of the max of the two
+  // x' — a linear equation per box line, a quadratic for the norm. Never
+  // below v; not capped at v_max.
   [[nodiscard]] double reach_up(double v, double L) const noexcept {
     return std::sqrt(reach_sqr(v * v, L, true));
   }
@@ -113,6 +122,15 @@ struct SegmentLimits {
   int axis_count = 0;
 
  private:
+  // A box line a ≤ p − q·x over speeds² [x_lo, x]: where q ≥ 0 (the
+  // centripetal part hinders) its least value is at x, else at x_lo.
+  [[nodiscard]] static double line(double p, double q, double x, double x_lo) noexcept {
+    return p - q * (q >= 0.0 ? x : x_lo);
+  }
+  // x' = x + 2L·(p − q·x') for q ≥ 0; x + 2L·(p − q·x) for q < 0.
+  [[nodiscard]] static double reach_line(double p, double q, double x, double two_l) noexcept {
+    return q >= 0.0 ? (x + two_l * p) / (1.0 + two_l * q) : x + two_l * (p - q * x);
+  }
   [[nodiscard]] double reach_sqr(double x, double L, bool up) const noexcept {
     const double two_l = 2.0 * L;
     double x1 = x + two_l * a_linear;
@@ -120,8 +138,7 @@ struct SegmentLimits {
       const ArcAxisBound& ax = axes[j];
       const auto& p = up ? ax.p_up : ax.p_down;
       const auto& q = up ? ax.q_up : ax.q_down;
-      const double box =
-          std::min((x + two_l * p[0]) / (1.0 + two_l * q[0]), (x + two_l * p[1]) / (1.0 + two_l * q[1]));
+      const double box = std::min(reach_line(p[0], q[0], x, two_l), reach_line(p[1], q[1], x, two_l));
       double xj = box;
       // the norm's x' is at most x + 2L·cap: asked only when that could beat the box
       if (box < x + two_l * ax.cap) {

@@ -27,6 +27,8 @@ struct ReferenceLimits {
   bool arc = false;
   double rho = 0.0, radius = 0.0;
   std::array<double, 3> a_axis{}, g{}, t_lo{}, t_hi{}, n_lo{}, n_hi{};
+  std::array<std::array<double, 2>, 3> t_end{}, n_end{};
+  double sweep = 0.0;
 
   static void sinusoid_range(double a, double b, double sweep, double& lo, double& hi) {
     constexpr double kPi = 3.14159265358979323846;
@@ -79,6 +81,12 @@ struct ReferenceLimits {
       a_axis[i] = m.axes[i].max_acceleration;
       sinusoid_range(wi, -ui, geo.sweep_rad(), t_lo[i], t_hi[i]);
       sinusoid_range(-ui, -wi, geo.sweep_rad(), n_lo[i], n_hi[i]);
+      // t and n at the ends (φ = 0 and the sweep), from the angle
+      for (int e = 0; e < 2; ++e) {
+        const double phi = e == 0 ? 0.0 : geo.sweep_rad();
+        t_end[i][e] = -std::sin(phi) * ui + std::cos(phi) * wi;
+        n_end[i][e] = -std::cos(phi) * ui - std::sin(phi) * wi;
+      }
       const double t_abs = std::max(std::abs(t_lo[i]), std::abs(t_hi[i]));
       const double n_abs = std::max(std::abs(n_lo[i]), std::abs(n_hi[i]));
       v_max = std::min(v_max, m.axes[i].max_velocity / (rho * t_abs + std::abs(lin[i])));
@@ -86,19 +94,46 @@ struct ReferenceLimits {
     }
     if (std::isfinite(a_n_max))
       v_max = std::min(v_max, std::sqrt(plan::kArcNormalShare * a_n_max * radius) / rho);
+    sweep = geo.sweep_rad();
   }
 
-  [[nodiscard]] double tangential(double v, double sign) const {
+  // The box at the ends of a short sweep with the sinusoid's bulge μ
+  // between them, for a_n anywhere in [a_lo, a_hi]; NaN where it does not
+  // apply (segment_limits.cpp).
+  [[nodiscard]] double end_box(int i, double a_lo, double a_hi, double sign) const {
+    constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+    if (sweep > 0.1) return kNaN;
+    const double mu = g[i] * sweep * sweep / 8.0;
+    const double vp = rho * v_max;
+    const double a_n_top = vp * vp / radius;
+    double a = std::numeric_limits<double>::infinity();
+    for (int e = 0; e < 2; ++e) {
+      const double t = t_end[i][e], n = n_end[i][e];
+      if (std::abs(t) <= mu || a_n_top * (std::abs(n) + mu) > a_axis[i]) return kNaN;
+      const double sigma = sign * t > 0.0 ? 1.0 : -1.0;
+      const double k = sigma * n + mu;  // the worst a_n: the top where it hinders
+      a = std::min(a, (a_axis[i] - (k >= 0.0 ? a_hi : a_lo) * k) / (rho * (std::abs(t) + mu)));
+    }
+    return std::max(0.0, a);
+  }
+
+  // Allowed at every speed in [v_lo, v].
+  [[nodiscard]] double tangential(double v, double sign, double v_lo = 0.0) const {
     if (!arc) return a_linear;
-    const double vp = rho * v;
-    const double a_n = vp * vp / radius;
+    const double a_n = (rho * v) * (rho * v) / radius;
+    const double a_lo = (rho * v_lo) * (rho * v_lo) / radius;
     double a_t = a_linear;
     for (int i = 0; i < 3; ++i) {
       if (g[i] <= 1e-15) continue;
       const double by_norm = a_axis[i] / g[i];
       const double a1 = std::sqrt(std::max(0.0, by_norm * by_norm - a_n * a_n)) / rho;
-      const double a2 = box_bound(a_axis[i], rho, sign, t_lo[i], t_hi[i],
-                                  std::min(0.0, a_n * n_lo[i]), std::max(0.0, a_n * n_hi[i]));
+      double a2 = end_box(i, a_lo, a_n, sign);
+      if (std::isnan(a2)) {
+        // the extremes of a_n·n over the sweep and [a_lo, a_n]
+        const double c_hi = std::max(a_lo * n_hi[i], a_n * n_hi[i]);
+        const double c_lo = std::min(a_lo * n_lo[i], a_n * n_lo[i]);
+        a2 = box_bound(a_axis[i], rho, sign, t_lo[i], t_hi[i], c_lo, c_hi);
+      }
       a_t = std::min(a_t, std::max(a1, a2));
     }
     return a_t;
@@ -111,10 +146,36 @@ Pose pose(const Vec3& p) {
   return q;
 }
 
+// What the limits are for: on an arc, at any speed up to v and any point of
+// the sweep, the tangential acceleration allowed (either way) and the
+// centripetal one keep every axis within its acceleration, sampled at 64
+// points of the sweep and at a_n from 0 to its value at v.
+void expect_within_axes(const SegmentGeometry& geo, const MachineConfig& m, double v_lo, double v,
+                        const Accel& a) {
+  if (!geo.is_arc() || geo.plane_speed_ratio() <= 0.0) return;
+  const double rho = geo.plane_speed_ratio();
+  const double a_n_lo = (rho * v_lo) * (rho * v_lo) / geo.radius();
+  const double a_n_top = (rho * v) * (rho * v) / geo.radius();
+  for (int k = 0; k <= 64; ++k) {
+    const double phi = geo.sweep_rad() * k / 64.0;
+    for (int i = 0; i < 3; ++i) {
+      const double t = -std::sin(phi) * geo.u()[i] + std::cos(phi) * geo.w()[i];
+      const double n = -std::cos(phi) * geo.u()[i] - std::sin(phi) * geo.w()[i];
+      for (const double share : {0.0, 0.5, 1.0}) {
+        const double a_n = a_n_lo + share * (a_n_top - a_n_lo);
+        for (const double a_t : {a.accel, -a.decel}) {
+          ASSERT_LE(std::abs(rho * a_t * t + a_n * n), m.axes[i].max_acceleration * (1.0 + 1e-9))
+              << "axis " << i << " φ " << phi << " v " << v_lo << "…" << v << " a_t " << a_t;
+        }
+      }
+    }
+  }
+}
+
 // Checks segment_limits() against the reference at speeds from rest to v_max
 // (beyond it the look-ahead never asks), and its reach: v'² = v² + 2L·a(v')
-// — and no faster speed satisfies it, since a(v) falls as v rises; a reach
-// past v_max says that v_max is reachable.
+// over [v, v'] — and no faster speed satisfies it, since a(v') falls as v'
+// rises; a reach past v_max says that v_max is reachable.
 void expect_same_limits(const Segment& seg, const MachineConfig& m, std::mt19937& rng) {
   const SegmentGeometry geo(seg);
   const SegmentLimits lim = segment_limits(geo, m);
@@ -128,10 +189,21 @@ void expect_same_limits(const Segment& seg, const MachineConfig& m, std::mt19937
     const Accel a = lim.at(v);
     ASSERT_NEAR(a.accel, ref.tangential(v, +1.0), tol) << "v " << v;
     ASSERT_NEAR(a.decel, ref.tangential(v, -1.0), tol) << "v " << v;
+    expect_within_axes(geo, m, 0.0, v, a);
+    // over a phase of speeds [v_lo, v]: where the centripetal part helps
+    // an axis, more
+    const double v_lo = share(rng) * v;
+    const Accel ar = lim.at(v, v_lo, v_lo);
+    ASSERT_NEAR(ar.accel, ref.tangential(v, +1.0, v_lo), tol) << "v " << v_lo << "…" << v;
+    ASSERT_NEAR(ar.decel, ref.tangential(v, -1.0, v_lo), tol) << "v " << v_lo << "…" << v;
+    ASSERT_GE(ar.accel, a.accel - tol);
+    ASSERT_GE(ar.decel, a.decel - tol);
+    expect_within_axes(geo, m, v_lo, v, ar);
     const double L = std::pow(10.0, -3.0 * length(rng)) * geo.length();
     for (const bool up : {true, false}) {
       const double v1 = up ? lim.reach_up(v, L) : lim.reach_down(v, L);
-      auto a_at = [&](double u) { return ref.tangential(u, up ? 1.0 : -1.0); };
+      // the acceleration over [v, u]
+      auto a_at = [&](double u) { return ref.tangential(u, up ? 1.0 : -1.0, v); };
       ASSERT_GE(v1, v);
       if (v1 > lim.v_max) {
         ASSERT_LE(lim.v_max * lim.v_max, v * v + 2.0 * L * a_at(lim.v_max) + 1e-9) << "v " << v;
