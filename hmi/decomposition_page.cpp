@@ -9,13 +9,13 @@
 #include <QVBoxLayout>
 
 #include <algorithm>
-#include <fstream>
 
 #include "decompose/decompose_tolerances.h"
 #include "decompose/kinematics_table.h"
 #include "dxf/dxf_reader.h"
 #include "hmi/decomposition_view.h"
 #include "hmi/page_support.h"
+#include "hmi/replace_file.h"
 #include "ui_decomposition_page.h"
 
 namespace lcnc::hmi {
@@ -207,22 +207,10 @@ bool DecompositionPage::export_table(const QString& path) {
     show_message(tr("Nothing to export: decompose a drawing first."), true);
     return false;
   }
-  // written beside, then renamed: an existing file is never left half-written
-  const std::string tmp = path.toStdString() + ".part";
-  {
-    std::ofstream f(tmp, std::ios::binary);
-    std::vector<const decompose::KinematicsTable*> tables;
-    for (const decompose::ContourResult& c : part_->contours) tables.push_back(&c.table);
-    decompose::write_csv(f, tables);
-    f.flush();
-    if (!f) {
-      std::remove(tmp.c_str());
-      show_message(tr("Cannot write %1.").arg(path), true);
-      return false;
-    }
-  }
-  if (std::rename(tmp.c_str(), path.toStdString().c_str()) != 0) {
-    std::remove(tmp.c_str());
+  std::vector<const decompose::KinematicsTable*> tables;
+  for (const decompose::ContourResult& c : part_->contours) tables.push_back(&c.table);
+  std::string why;
+  if (!replace_file(path.toStdString(), [&](std::ostream& f) { decompose::write_csv(f, tables); }, why)) {
     show_message(tr("Cannot write %1.").arg(path), true);
     return false;
   }

@@ -3,8 +3,6 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 
 #include <QSqlDatabase>
 #include <QSqlError>
@@ -12,6 +10,7 @@
 #include <QString>
 #include <QVariant>
 
+#include "hmi/replace_file.h"
 #include "holes/hole_table.h"
 
 namespace lcnc::hmi {
@@ -322,16 +321,9 @@ Status ProcessDatabase::export_csv(const std::string& path) const {
   if (!all) return all.error();
   std::vector<HoleProcessParams> rows;
   for (const HoleRecord& r : *all) rows.push_back(r.params);
-  const std::string tmp = path + ".part";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << write_hole_table(rows);
-    out.flush();
-    if (!out) return make_error(ErrorCode::FileNotFound, "cannot write '" + tmp + "'", path);
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) return make_error(ErrorCode::FileNotFound, "cannot replace '" + path + "': " + ec.message(), path);
+  std::string why;
+  if (!replace_file(path, [&](std::ostream& out) { out << write_hole_table(rows); }, why))
+    return make_error(ErrorCode::FileNotFound, why, path);
   return {};
 }
 

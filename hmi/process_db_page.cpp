@@ -6,9 +6,9 @@
 #include <QItemSelectionModel>
 
 #include <filesystem>
-#include <fstream>
 
 #include "hmi/page_support.h"
+#include "hmi/replace_file.h"
 #include "holes/hole_table.h"
 #include "ui_process_db_page.h"
 
@@ -72,13 +72,11 @@ std::string ProcessDbPage::send_to_controller() {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   const std::string path = (dir / "holes_run.csv").string();
-  {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    out << write_hole_table(rows);
-    if (!out) {
-      show_message(tr("Cannot write %1.").arg(QString::fromStdString(path)), true);
-      return {};
-    }
+  // replaced whole: the controller may still be reading the last one sent
+  std::string why;
+  if (!replace_file(path, [&](std::ostream& out) { out << write_hole_table(rows); }, why)) {
+    show_message(tr("Cannot write %1.").arg(QString::fromStdString(path)), true);
+    return {};
   }
   if (!link_.poll() || link_.send(shm::CommandType::Load, 0.0, 0, path) == 0) {
     show_message(tr("Not sent: no link to the controller."), true);

@@ -171,6 +171,9 @@ TEST(ProcessDbScreen, SendsTheHolesWithTheirFocusOffsetsToTheController) {
   ProcessDbPage page(*db, shm);
   std::string sent;
   EXPECT_TRUE(wait_until([&] { return !(sent = page.send_to_controller()).empty(); })) << page.message().toStdString();
+  // sent again at once (a double click): the table is replaced whole, so
+  // the daemon, reading the first, never sees it half-written
+  EXPECT_EQ(page.send_to_controller(), sent);
   EXPECT_TRUE(page.message().contains("2 holes (1 with a measured focus offset)")) << page.message().toStdString();
   Result<std::vector<HoleProcessParams>> rows = read_hole_table(sent);
   ASSERT_TRUE(static_cast<bool>(rows)) << rows.error().to_string();
