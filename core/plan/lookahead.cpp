@@ -97,7 +97,8 @@ void Lookahead::set_feed_scale(double k) {
   head_ = (head_ + handed_) & mask_;
   size_ -= handed_;
   released_ = handed_ = 0;
-  x_start_ = x_from;
+  // what a raise before the next release starts from (handed_ = 0 there)
+  x_start_ = x_released_from_ = x_from;
   if (size_ == 0) return;
   braking_length_ = 0.0;
   tail_length_ = 0.0;
