@@ -16,6 +16,28 @@ namespace {
 
 // The facade chains every stage: G64 corners come out blended, G61 ones
 // stopped, and every planned segment is observable.
+// A planner reading `segs` in order.
+Planner planner_over(const MachineConfig& m, const std::vector<Segment>& segs, std::size_t& i) {
+  return Planner(m, [&segs, &i](Segment& out) {
+    if (i == segs.size()) return SourceStatus::End;
+    out = segs[i++];
+    return SourceStatus::Item;
+  });
+}
+
+// A blended line at 100 mm/s from `at` along +X by `dx`; `at` moves to its end.
+Segment blended_x_line(Pose& at, double dx) {
+  Segment s;
+  s.kind = MotionKind::Linear;
+  s.feed_mm_s = 100.0;
+  s.path_mode = PathMode::Blend;
+  s.blend_tolerance_mm = 0.01;
+  s.start = at;
+  at[0] += dx;
+  s.end = at;
+  return s;
+}
+
 TEST(Planner, ChainsMergerBlenderLookaheadAndInterpolator) {
   const auto m = testing::test_machine(100.0, 2000.0);
   std::vector<Segment> segs(2);
@@ -393,22 +415,11 @@ namespace {
 TEST(Planner, ARaisedOverrideIsPlannedForFromWhereThePlanStandsWithoutAJump) {
   const auto m = testing::test_machine(500.0, 5000.0);
   std::vector<Segment> segs;
-  for (int k = 0; k < 4000; ++k) {
-    Segment s;
-    s.kind = MotionKind::Linear;
-    s.feed_mm_s = 100.0;
-    s.path_mode = PathMode::Blend;
-    s.blend_tolerance_mm = 0.01;
-    s.start << 10 + 0.05 * k, 10, 5, 0, 0, 0;
-    s.end << 10 + 0.05 * (k + 1), 10, 5, 0, 0, 0;
-    segs.push_back(s);
-  }
+  Pose at = Pose::Zero();
+  at << 10, 10, 5, 0, 0, 0;
+  for (int k = 0; k < 4000; ++k) segs.push_back(blended_x_line(at, 0.05));
   std::size_t i = 0;
-  Planner planner(m, [&](Segment& out) {
-    if (i == segs.size()) return SourceStatus::End;
-    out = segs[i++];
-    return SourceStatus::Item;
-  });
+  Planner planner = planner_over(m, segs, i);
   const double T = m.period_s();
   PeriodSample s;
   double prev_x = 10.0, prev_v = 0.0, worst_dv = 0.0;
@@ -451,28 +462,14 @@ TEST(Planner, ADwellIsPlannedAtOneHundredPercentWhateverTheOverride) {
   std::vector<Segment> segs;
   Pose at = Pose::Zero();
   at << 10, 10, 5, 0, 0, 0;
-  for (int k = 0; k < 1100; ++k) {
-    Segment line;
-    line.kind = MotionKind::Linear;
-    line.feed_mm_s = 100.0;
-    line.path_mode = PathMode::Blend;
-    line.blend_tolerance_mm = 0.01;
-    line.start = at;
-    at[0] += 0.05;
-    line.end = at;
-    segs.push_back(line);
-  }
+  for (int k = 0; k < 1100; ++k) segs.push_back(blended_x_line(at, 0.05));
   Segment dwell;
   dwell.kind = MotionKind::Dwell;
   dwell.dwell_s = 0.01;
   dwell.start = dwell.end = at;
   segs.push_back(dwell);
   std::size_t i = 0;
-  Planner planner(m, [&](Segment& out) {
-    if (i == segs.size()) return SourceStatus::End;
-    out = segs[i++];
-    return SourceStatus::Item;
-  });
+  Planner planner = planner_over(m, segs, i);
   planner.set_feed_scale(1.5);
   PeriodSample s;
   std::size_t dwelling = 0, fast = 0;
