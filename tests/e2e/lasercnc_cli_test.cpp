@@ -111,8 +111,18 @@ TEST(LasercncRun, SampleJobRunsWithExactStepsAndAnHonestReport) {
   // within the axis limits.
   const std::vector<TraceRow> rows = read_trace(trace);
   ASSERT_EQ(rows.size(), j["periods"].get<std::size_t>());
-  for (std::size_t k = 0; k < rows.size(); ++k)
-    ASSERT_NEAR(rows[k].t, static_cast<double>(k + 1) * period, 1e-9) << "row " << k;
+  // each row one period later, or longer where the RT slowed for a
+  // planner that fell behind (a loaded or sanitized build)
+  const bool starved = j["starvations"].get<long long>() > 0;
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    if (!starved) {
+      ASSERT_NEAR(rows[k].t, static_cast<double>(k + 1) * period, 1e-9) << "row " << k;
+    } else {
+      const double dt = rows[k].t - (k == 0 ? 0.0 : rows[k - 1].t);
+      ASSERT_GE(dt, period - 1e-9) << "row " << k;
+    }
+  }
+  EXPECT_NEAR(rows.back().t, j["cycle_time_s"].get<double>(), 1e-9);
   expect_within_velocity_limits(rows);
   EXPECT_NEAR(rows.back().x, 500.0, 1e-9);
   EXPECT_NEAR(rows.back().z, 25.0, 1e-9);
