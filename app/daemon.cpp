@@ -21,6 +21,8 @@
 #include "plan/motion_check.h"
 #include "plan/path_check.h"
 #include "plan/program_source.h"
+#include "rt/hal_block.h"
+#include "rt/kernel_control.h"
 #include "rt/rt_kernel.h"
 #include "rt/shm_command.h"
 #include "rt/shm_interface.h"
@@ -60,11 +62,25 @@ struct Daemon::Impl {
   const shm::CommandLimits limits = command_limits(machine);  // what a frame may ask of it
   shm::ShmOwner shm;
   std::array<std::int64_t, kAxisCount> start_steps{};
-  std::unique_ptr<rt::PositionBuffer> buffer = std::make_unique<rt::PositionBuffer>();
-  std::unique_ptr<rt::RtLogRing> rt_log = std::make_unique<rt::RtLogRing>();
-  std::unique_ptr<rt::TraceRing> trace = std::make_unique<rt::TraceRing>();  // the RT's, for the job's check
+  // The kernel's position buffer, log and trace (the RT's, for the job's
+  // check): the daemon's own beside its RT thread on the simulated machine;
+  // with --hal, those of the HAL segment, whose kernel is the HAL
+  // component's.
+  struct OwnRings {
+    rt::PositionBuffer buffer;
+    rt::RtLogRing log;
+    rt::TraceRing trace;
+  };
+  std::unique_ptr<OwnRings> own;
+  std::optional<shm::HalSegment> hal;
+  rt::PositionBuffer* buffer = nullptr;
+  rt::RtLogRing* rt_log = nullptr;
+  rt::TraceRing* trace = nullptr;
   std::unique_ptr<drivers::SimMachine> sim;
-  std::unique_ptr<rt::RtKernel> kernel;
+  std::unique_ptr<rt::RtKernel> rt_kernel;       // the simulated machine's
+  std::unique_ptr<rt::KernelControl> hal_kernel;  // --hal: the component's, through the port
+  rt::KernelControl* kernel = nullptr;
+  bool hal_attached_seen = false;
   std::unique_ptr<PlannerFeed> feed;
   std::unique_ptr<CncModbusHost> modbus;  // the PLC/MES slave, when asked for
   bool realtime = true;
@@ -88,6 +104,18 @@ struct Daemon::Impl {
   shm::JobStatus job{};
 
   Impl(MachineConfig m, shm::ShmOwner owner) : machine(std::move(m)), shm(std::move(owner)) {}
+
+  // The axes present and not homed, "X Y"; empty when all are.
+  std::string unhomed() const {
+    std::string out;
+    const std::uint32_t homed = kernel->homed_mask();
+    for (int i = 0; i < kAxisCount; ++i) {
+      if (!machine.axes[i].present || (homed >> i & 1u) != 0) continue;
+      if (!out.empty()) out += ' ';
+      out += kAxisLetters[i];
+    }
+    return out;
+  }
 
   Pose position() const {
     Pose p = Pose::Zero();
@@ -273,6 +301,11 @@ struct Daemon::Impl {
         return refuse("load refused: a load comes through the command ring");
       case shm::CommandType::Start: {
         if (pending) return refuse("start refused: a program is being loaded");
+        if (hal && hal->attached() == 0)
+          return refuse("start refused: no HAL component runs the kernel (loadrt lasercnc segment=" +
+                        shm.name() + ", addf lasercnc.update to a thread, start)");
+        if (const std::string u = unhomed(); !u.empty())
+          return refuse("start refused: not homed: " + u + " (home every axis, or set [machine] allow_unhomed)");
         if (!program) return refuse("start refused: no program loaded");
         if (job_active || st != shm::MachineState::Idle)
           return refuse(std::string("start refused: the machine is ") + state_name(st));
@@ -447,6 +480,33 @@ struct Daemon::Impl {
     }
   }
 
+  // --hal: says when the component attaches and when its process goes.
+  void follow_hal() {
+    if (!hal) return;
+    const pid_t pid = hal->attached();
+    if ((pid != 0) == hal_attached_seen) return;
+    hal_attached_seen = pid != 0;
+    if (pid != 0) {
+      logger()->info("lasercncd: the HAL component (process {}) runs the kernel; unhomed: {}", pid,
+                     unhomed().empty() ? "none" : unhomed());
+    } else {
+      logger()->error("lasercncd: the HAL component has gone: no kernel runs");
+      if (job_active) {
+        feed->abort();
+        job_active = false;
+        start_pending = false;
+        motion.reset();
+        path.reset();
+        job.job_active = false;
+        job.last_outcome = shm::JobOutcome::Failed;
+        job.last_fault = static_cast<std::uint16_t>(ErrorCode::RtShmLink);
+        const char* msg = "job failed: the HAL component that ran the kernel has gone (rtapi_app ended)";
+        copy_text(job.message, msg);
+        event(job.last_fault, 0, 0, msg);
+      }
+    }
+  }
+
   // Starts the kernel on a job once it is planned far enough ahead; ends the
   // job when the kernel says so.
   void follow_job() {
@@ -550,13 +610,35 @@ Result<std::unique_ptr<Daemon>> Daemon::create(const DaemonOptions& options) {
   }
   StepQuantizer q(d.machine, Pose::Zero());
   for (int i = 0; i < kAxisCount; ++i) d.start_steps[i] = q.commanded(i);
-  // the simulated machine wired as a real one: hard limits beyond the soft
-  // ones, a home switch per axis (drivers/sim_machine.h)
-  d.sim = std::make_unique<drivers::SimMachine>(d.start_steps, drivers::wired_switches(d.machine));
-  d.kernel = std::make_unique<rt::RtKernel>(d.machine, *d.buffer, *d.sim, d.trace.get(), d.start_steps);
-  d.kernel->set_log(d.rt_log.get());
-  d.kernel->set_status(&d.shm.block().status);
-  d.kernel->set_estop_word(&d.shm.block().estop.requests);
+  if (options.hal) {
+    // the kernel runs in the HAL component; this side plans, streams and
+    // commands it through the HAL segment
+    const std::string file = options.machine_file.empty() ? default_machine_file() : options.machine_file;
+    std::error_code ec;
+    const std::filesystem::path abs = std::filesystem::absolute(file, ec);
+    Result<shm::HalSegment> seg = shm::HalSegment::create(d.shm.name(), abs.string(), d.start_steps);
+    if (!seg) return seg.error();
+    d.hal.emplace(std::move(seg).value());
+    shm::HalBlock& hb = d.hal->block();
+    d.buffer = &hb.buffer;
+    d.rt_log = &hb.log;
+    d.trace = &hb.trace;
+    d.hal_kernel = std::make_unique<rt::KernelControl>(d.machine, hb.port);
+    d.kernel = d.hal_kernel.get();
+  } else {
+    d.own = std::make_unique<Impl::OwnRings>();
+    d.buffer = &d.own->buffer;
+    d.rt_log = &d.own->log;
+    d.trace = &d.own->trace;
+    // the simulated machine wired as a real one: hard limits beyond the
+    // soft ones, a home switch per axis (drivers/sim_machine.h)
+    d.sim = std::make_unique<drivers::SimMachine>(d.start_steps, drivers::wired_switches(d.machine));
+    d.rt_kernel = std::make_unique<rt::RtKernel>(d.machine, *d.buffer, *d.sim, d.trace, d.start_steps);
+    d.rt_kernel->set_log(d.rt_log);
+    d.rt_kernel->set_status(&d.shm.block().status);
+    d.rt_kernel->set_estop_word(&d.shm.block().estop.requests);
+    d.kernel = d.rt_kernel.get();
+  }
   d.feed = std::make_unique<PlannerFeed>(d.machine, *d.buffer, *d.kernel);
   d.shm.block().job.store(d.job);
   if (options.modbus) {
@@ -579,10 +661,18 @@ int Daemon::run(const std::atomic<bool>& quit) {
   o.try_realtime = d.realtime;
   o.exit_at_end = false;
   o.start_running = false;
-  d.kernel->start(o);
-  if (!d.kernel->warning().empty()) logger()->warn("{}", d.kernel->warning());
-  logger()->info("lasercncd: machine '{}', period {} us, ready", d.machine.name,
-                 d.machine.period_ns / 1000);
+  if (d.rt_kernel) {
+    d.rt_kernel->start(o);
+    if (!d.rt_kernel->warning().empty()) logger()->warn("{}", d.rt_kernel->warning());
+    logger()->info("lasercncd: machine '{}', period {} us, ready", d.machine.name, d.machine.period_ns / 1000);
+  } else {
+    logger()->info("lasercncd: machine '{}', period {} us; the kernel runs in LinuxCNC's HAL: "
+                   "loadrt lasercnc segment={}, then addf lasercnc.update to a thread of that period",
+                   d.machine.name, d.machine.period_ns / 1000, d.shm.name());
+    if (d.machine.allow_unhomed)
+      logger()->warn("lasercncd: [machine] allow_unhomed = true: jobs run from wherever the axes stood at "
+                     "power-on, without homing; soft limits are only as good as that position");
+  }
   shm::ShmBlock& block = d.shm.block();
   while (!quit.load()) {
     block.header.heartbeat.fetch_add(1, std::memory_order_relaxed);
@@ -592,6 +682,7 @@ int Daemon::run(const std::atomic<bool>& quit) {
     d.drain_trace();
     d.follow_job();
     d.drain_rt_log();
+    d.follow_hal();
     block.job.store(d.job);
     std::this_thread::sleep_for(kTick);
   }
@@ -607,8 +698,10 @@ int Daemon::run(const std::atomic<bool>& quit) {
   }
   d.finish_load(true);  // a regular file's read ends: the loader is joined
   d.feed->abort();
-  d.kernel->shutdown();
-  d.kernel->join();
+  if (d.rt_kernel) {
+    d.rt_kernel->shutdown();
+    d.rt_kernel->join();
+  }
   d.drain_rt_log();
   return 0;
 }

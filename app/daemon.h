@@ -24,6 +24,10 @@ struct DaemonOptions {
   std::string machine_file;  // empty: the default machine
   std::string shm_name;      // empty: shm::kDefaultName
   bool realtime = true;      // try SCHED_FIFO + mlockall
+  // The RT kernel runs in LinuxCNC's HAL (drivers/hal/, `loadrt lasercnc`),
+  // on real drives: this process starts no RT thread and shares the
+  // kernel's port, buffer, trace and log in the segment "<shm_name>.hal".
+  bool hal = false;
   // The Modbus slave for a PLC or MES (app/cnc_modbus_host.h); none if unset.
   std::optional<drivers::Endpoint> modbus;
   // Folders a `load` may take programs from (any depth); empty: anywhere

@@ -19,11 +19,16 @@ std::atomic<bool> g_quit{false};
 extern "C" void on_signal(int) { g_quit.store(true); }
 
 constexpr const char* kUsage =
-    "usage: lasercncd [--machine FILE] [--shm NAME] [--no-realtime] [--modbus ENDPOINT]\n"
+    "usage: lasercncd [--machine FILE] [--shm NAME] [--no-realtime] [--hal] [--modbus ENDPOINT]\n"
     "                 [--programs DIR]...\n"
     "  --machine      machine config (default: share/machines/default.toml)\n"
     "  --shm          shared-memory segment name (default /lasercnc)\n"
     "  --no-realtime  do not ask for SCHED_FIFO / mlockall\n"
+    "  --hal          real drives through LinuxCNC's HAL: no RT thread here; the\n"
+    "                 HAL component runs the kernel (loadrt lasercnc segment=NAME,\n"
+    "                 addf lasercnc.update to a thread of the machine's period).\n"
+    "                 The axes come up unhomed; a job is refused until each is homed\n"
+    "                 (or the machine sets [machine] allow_unhomed = true)\n"
     "  --modbus       serve the register map's cnc device to a PLC or MES:\n"
     "                 tcp:HOST:PORT (port 0: any free one; bind 127.0.0.1 unless\n"
     "                 another address is given) or rtu:DEVICE[:BAUD[:PARITY]]\n"
@@ -47,6 +52,8 @@ int main(int argc, char** argv) {
       opt.modbus = *ep;
     } else if (a == "--programs" && i + 1 < argc) {
       opt.program_dirs.emplace_back(argv[++i]);
+    } else if (a == "--hal") {
+      opt.hal = true;
     } else if (a == "--no-realtime") {
       opt.realtime = false;
     } else if (a == "--help" || a == "-h") {

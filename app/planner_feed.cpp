@@ -14,7 +14,7 @@
 namespace lcnc::app {
 
 PlannerFeed::PlannerFeed(const MachineConfig& machine, rt::PositionBuffer& buffer,
-                         rt::RtKernel& kernel)
+                         rt::KernelControl& kernel)
     : machine_(machine), buffer_(buffer), kernel_(kernel) {}
 
 PlannerFeed::~PlannerFeed() { abort(); }

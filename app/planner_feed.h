@@ -42,7 +42,7 @@ struct PlannedJob {
 
 class PlannerFeed {
  public:
-  PlannerFeed(const MachineConfig& machine, rt::PositionBuffer& buffer, rt::RtKernel& kernel);
+  PlannerFeed(const MachineConfig& machine, rt::PositionBuffer& buffer, rt::KernelControl& kernel);
   ~PlannerFeed();  // aborts and joins
   PlannerFeed(const PlannerFeed&) = delete;
   PlannerFeed& operator=(const PlannerFeed&) = delete;
@@ -102,7 +102,7 @@ class PlannerFeed {
 
   const MachineConfig& machine_;
   rt::PositionBuffer& buffer_;
-  rt::RtKernel& kernel_;
+  rt::KernelControl& kernel_;
   PlannedJob result_;
   std::atomic<bool> abort_{false};
   std::atomic<bool> done_{false};

@@ -25,16 +25,16 @@ inline timespec to_timespec(std::int64_t ns) noexcept {
 }  // namespace
 
 RtKernel::RtKernel(const MachineConfig& machine, PositionBuffer& buffer, PulseSink& sink,
-                   TraceRing* trace, const std::array<std::int64_t, kAxisCount>& start_steps)
-    : period_ns_(machine.period_ns),
-      period_s_(machine.period_s()),
-      ramp_(machine),
+                   TraceRing* trace, const std::array<std::int64_t, kAxisCount>& start_steps,
+                   KernelPort* port)
+    : KernelControl(machine, port != nullptr ? *port : own_port_),
+      period_ns_(machine.period_ns),
       buffer_(buffer),
       sink_(sink),
       trace_(trace),
       dda_(machine.dda),
       pos_steps_(start_steps) {
-  target_k_.store(ramp_.clamp_target(1.0), std::memory_order_relaxed);
+  port_.target_k.store(ramp_.clamp_target(1.0), std::memory_order_relaxed);
   max_pulses_ = machine.dda.max_pulses();
   comp_.reserve(kAxisCount);
   for (int i = 0; i < kAxisCount; ++i) {
@@ -44,7 +44,7 @@ RtKernel::RtKernel(const MachineConfig& machine, PositionBuffer& buffer, PulseSi
   std::uint32_t known = 0;
   for (int i = 0; i < kAxisCount; ++i) {
     const AxisConfig& ax = machine.axes[i];
-    pos_pub_[i].store(start_steps[i], std::memory_order_relaxed);
+    port_.pos_pub[i].store(start_steps[i], std::memory_order_relaxed);
     units_per_step_[i] = 1.0 / (ax.present ? ax.steps_per_unit : 1.0);
     if (!ax.present) continue;
     AxisLimits& l = axes_[i];
@@ -62,8 +62,6 @@ RtKernel::RtKernel(const MachineConfig& machine, PositionBuffer& buffer, PulseSi
     const double fastest = std::max({l.jog_speed, std::abs(l.search_speed), std::abs(l.latch_speed)});
     l.accel = std::max(0.5 * ax.max_acceleration * spu,
                        ax.max_acceleration * spu - ramp_.rate_per_s() * fastest);
-    if (ax.max_velocity > 0.0 && ax.max_acceleration > 0.0)
-      brake_wait_s_ = std::max(brake_wait_s_, ax.max_velocity / ax.max_acceleration);
     l.home_steps = std::llround(ax.home_position_or_default() * spu);
     // A rotary axis that wraps has no travel limits.
     if (ax.wrap) {
@@ -74,7 +72,7 @@ RtKernel::RtKernel(const MachineConfig& machine, PositionBuffer& buffer, PulseSi
   }
   axes_mask_ = known;
   // The simulated machine's position is known at power-on.
-  homed_.store(known, std::memory_order_relaxed);
+  port_.homed.store(known, std::memory_order_relaxed);
 }
 
 RtKernel::~RtKernel() {
@@ -82,36 +80,22 @@ RtKernel::~RtKernel() {
   join();
 }
 
-std::size_t RtKernel::braking_reserve(double k) const noexcept {
-  // Entries consumed while K ramps linearly to 0 at ρ_max: ∫ K/T dt =
-  // K²/(2ρT); before that, while the plan itself brakes at an axis's full
-  // deceleration, K may have to wait (no room to fall): at most the longest
-  // such braking, vmax/amax, at K.
-  const double n = k * k / (2.0 * ramp_.rate_per_s() * period_s_) + k * brake_wait_s_ / period_s_;
-  return static_cast<std::size_t>(std::ceil(n)) + 64;
-}
-
-RtFault RtKernel::fault() const noexcept {
-  RtFault f;
-  const std::uint16_t code = fault_code_.load(std::memory_order_acquire);
-  f.active = code != 0;
-  f.code = static_cast<ErrorCode>(code);
-  f.axis = fault_axis_.load(std::memory_order_relaxed);
-  f.line = fault_line_.load(std::memory_order_relaxed);
-  return f;
+void RtKernel::begin(const RtOptions& options) noexcept {
+  options_ = options;
+  // The run begins at the override already asked for, with no ramp.
+  begin_at_override();
+  state_now_ = options.start_running ? MachineState::Running : MachineState::Idle;
+  port_.state.store(state_now_, std::memory_order_release);
+  if (!options.start_homed) port_.homed.store(0, std::memory_order_relaxed);
+  // requests made before the kernel ran are not this run's
+  if (estop_word_ != nullptr) estop_seen_ = estop_word_->load(std::memory_order_acquire);
 }
 
 void RtKernel::start(const RtOptions& options) {
   warning_.clear();
   schedule_ = RtSchedule::Normal;
-  options_ = options;
-  // The run begins at the override already asked for, with no ramp. The
-  // thread's creation below orders these writes before its first read.
-  begin_at_override();
-  state_now_ = options.start_running ? MachineState::Running : MachineState::Idle;
-  state_.store(state_now_, std::memory_order_release);
-  // requests made before the kernel ran are not this run's
-  if (estop_word_ != nullptr) estop_seen_ = estop_word_->load(std::memory_order_acquire);
+  // The thread's creation below orders begin()'s writes before its first read.
+  begin(options);
   if (!options.try_realtime) {
     warning_ = "real-time scheduling not requested: normal scheduling";
   } else if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
@@ -148,11 +132,10 @@ void RtKernel::run(const RtOptions& options) noexcept {
   // given); after that each deadline is t0 + machine time so far, rounded
   // once (no drift).
   const std::int64_t t0 = options.epoch_ns > 0 ? options.epoch_ns : to_ns(now) + period_ns_;
-  double machine_ns = 0.0;  // Σ lengths of the periods before this one
   publish_status(true);
-  while (!shutdown_requested_.load(std::memory_order_relaxed)) {
+  while (!port_.shutdown_requested.load(std::memory_order_relaxed)) {
     // 1. sleep to the absolute deadline
-    const std::int64_t deadline = t0 + std::llround(machine_ns);
+    const std::int64_t deadline = t0 + std::llround(machine_ns_);
     const timespec until = to_timespec(deadline);
     if (options.virtual_time) wait_for_producer();
     // a period already due (catching up after a stall) starts at once: on a
@@ -173,78 +156,90 @@ void RtKernel::run(const RtOptions& options) noexcept {
     if (slept) {
       latency_.add(late);
     } else if (!options.virtual_time) {
-      catch_up_.fetch_add(1, std::memory_order_relaxed);
+      port_.catch_up.fetch_add(1, std::memory_order_relaxed);
     }
-    // 3–4. commands and inputs
-    take_commands();
-    take_inputs();
-    // 5. the period's motion
-    Motion m;
-    if (on_path_state()) {
-      path_motion(m);
-    } else if (state_now_ == MachineState::Jog || state_now_ == MachineState::Homing) {
-      axis_motion(m);
-    }
-    if (flushing_) flush_some();
-    // 6. limits
-    guard_limits(m);
-    const double length_ns = m.nominal ? static_cast<double>(period_ns_) : period_ns_ / k_;
+    if (!period(to_ns(now), late)) break;
+  }
+  end_periods();
+}
+
+void RtKernel::end_periods() noexcept {
+  publish_status(true);
+  if (options_.on_loop_exit) options_.on_loop_exit();
+  // release pairs with finished()'s acquire: counters and positions written
+  // above are visible to a thread that sees finished.
+  port_.finished.store(true, std::memory_order_release);
+}
+
+bool RtKernel::period(std::int64_t wake_ns, std::int64_t late) noexcept {
+  const RtOptions& options = options_;
+  // 3–4. commands and inputs
+  take_commands();
+  take_inputs();
+  // 5. the period's motion
+  Motion m;
+  if (on_path_state()) {
+    path_motion(m);
+  } else if (state_now_ == MachineState::Jog || state_now_ == MachineState::Homing) {
+    axis_motion(m);
+  }
+  if (flushing_) flush_some();
+  // 6. limits
+  guard_limits(m);
+  const double length_ns = m.nominal ? static_cast<double>(period_ns_) : period_ns_ / k_;
+  if (late >= 0) {
     // woken after the period's end: an overrun
-    if (static_cast<double>(late) > length_ns) overruns_.fetch_add(1, std::memory_order_relaxed);
+    if (static_cast<double>(late) > length_ns) port_.overruns.fetch_add(1, std::memory_order_relaxed);
     // a stall makes the periods after it late too, catching up: log the
     // streak once, where it starts
     if (late > kLateLogNs && !late_streak_) log(RtLogCode::LateWakeup, late);
     late_streak_ = static_cast<double>(late) > length_ns;
-    // 7–8. the period's work
-    machine_ns += length_ns;
-    cycle(m, length_ns, std::llround(machine_ns));
-    periods_.store(++period_, std::memory_order_relaxed);
-    publish_status(false);
-    timespec done{};
-    clock_gettime(CLOCK_MONOTONIC, &done);
-    compute_.add(to_ns(done) - to_ns(now));
-    if (end_seen_) {
-      end_seen_ = false;
-      last_job_completed_.store(true, std::memory_order_relaxed);
-      jobs_ended_.fetch_add(1, std::memory_order_release);
-      if (options.exit_at_end) break;
-      set_state(MachineState::Idle);
-    }
-    // a one-shot run ends once a stop or an e-stop has settled
-    if (options.exit_at_end && job_aborted_ && !flushing_) break;
-    // 9. ramp K toward the next period's target: the operator's override
-    // over what the next entry is planned at, eq. (0) of feed_override.h,
-    // as fast as that entry's room allows. relaxed pairs with
-    // set_feed_override()'s relaxed store: only the value is read.
-    double target = target_k_.load(std::memory_order_relaxed);
-    if (hold_ || stopping_ || starving_) target = 0.0;
-    RampRoom room;  // jogs, homing: the ramp's own rate
-    if (on_path_state()) {
-      if (const PeriodIncrement* next = buffer_.front()) {
-        k_plan_ = next->k_plan;
-        room = next->ramp;
-      } else {
-        room = m.inc.ramp;  // none queued: the last entry's
-      }
-    } else {
-      k_plan_ = 1.0f;  // jogs and homing are not planned
-    }
-    k_ = ramp_.step(k_, ramp_.period_scale(target, k_plan_), length_ns * 1e-9, room);
-    k_now_.store(k_ * k_plan_, std::memory_order_relaxed);
   }
-  publish_status(true);
-  if (options.on_loop_exit) options.on_loop_exit();
-  // release pairs with finished()'s acquire: counters and positions written
-  // above are visible to a thread that sees finished.
-  finished_.store(true, std::memory_order_release);
+  // 7–8. the period's work
+  machine_ns_ += length_ns;
+  cycle(m, length_ns, std::llround(machine_ns_));
+  port_.periods.store(++period_, std::memory_order_relaxed);
+  publish_status(false);
+  timespec done{};
+  clock_gettime(CLOCK_MONOTONIC, &done);
+  compute_.add(to_ns(done) - wake_ns);
+  if (end_seen_) {
+    end_seen_ = false;
+    port_.last_job_completed.store(true, std::memory_order_relaxed);
+    port_.jobs_ended.fetch_add(1, std::memory_order_release);
+    if (options.exit_at_end) return false;
+    set_state(MachineState::Idle);
+  }
+  // a one-shot run ends once a stop or an e-stop has settled
+  if (options.exit_at_end && job_aborted_ && !flushing_) return false;
+  // 9. ramp K toward the next period's target: the operator's override
+  // over what the next entry is planned at, eq. (0) of feed_override.h,
+  // as fast as that entry's room allows. relaxed pairs with
+  // set_feed_override()'s relaxed store: only the value is read.
+  double target = port_.target_k.load(std::memory_order_relaxed);
+  if (hold_ || stopping_ || starving_) target = 0.0;
+  RampRoom room;  // jogs, homing: the ramp's own rate
+  if (on_path_state()) {
+    if (const PeriodIncrement* next = buffer_.front()) {
+      k_plan_ = next->k_plan;
+      room = next->ramp;
+    } else {
+      room = m.inc.ramp;  // none queued: the last entry's
+    }
+  } else {
+    k_plan_ = 1.0f;  // jogs and homing are not planned
+  }
+  k_ = ramp_.step(k_, ramp_.period_scale(target, k_plan_), length_ns * 1e-9, room);
+  port_.k_now.store(k_ * k_plan_, std::memory_order_relaxed);
+  return true;
 }
 
 void RtKernel::begin_at_override() noexcept {
   const PeriodIncrement* first = buffer_.front();
   k_plan_ = first != nullptr ? first->k_plan : 1.0f;
-  const double e = target_k_.load(std::memory_order_relaxed);
+  const double e = port_.target_k.load(std::memory_order_relaxed);
   k_ = e > 0.0 ? ramp_.period_scale(e, k_plan_) : 0.0;
-  k_now_.store(k_ * k_plan_, std::memory_order_relaxed);
+  port_.k_now.store(k_ * k_plan_, std::memory_order_relaxed);
 }
 
 std::size_t RtKernel::refill_level() const noexcept {
@@ -253,21 +248,21 @@ std::size_t RtKernel::refill_level() const noexcept {
 
 void RtKernel::wait_for_producer() const noexcept {
   const std::size_t enough = refill_level();
-  while (!shutdown_requested_.load(std::memory_order_relaxed) &&
-         streaming_.load(std::memory_order_acquire) && buffer_.size() < enough)
+  while (!port_.shutdown_requested.load(std::memory_order_relaxed) &&
+         port_.streaming.load(std::memory_order_acquire) && buffer_.size() < enough)
     sched_yield();
 }
 
 void RtKernel::log(RtLogCode code, std::int64_t value, int axis, std::uint32_t line) noexcept {
   if (log_ == nullptr) return;
   if (!log_->try_push(RtLogRecord{period_, code, static_cast<std::int8_t>(axis), line, value}))
-    log_drops_.fetch_add(1, std::memory_order_relaxed);
+    port_.log_drops.fetch_add(1, std::memory_order_relaxed);
 }
 
 void RtKernel::set_state(MachineState s) noexcept {
   if (s == state_now_) return;
   state_now_ = s;
-  state_.store(s, std::memory_order_release);
+  port_.state.store(s, std::memory_order_release);
   log(RtLogCode::StateChange, static_cast<std::int64_t>(s));
   publish_status(true);
 }
@@ -285,7 +280,7 @@ void RtKernel::take_commands() noexcept {
   }
   RtCommand c;
   const MachineState s = state_now_;
-  while (commands_.try_pop(c)) {
+  while (port_.commands.try_pop(c)) {
     const int axis = c.axis;
     const bool axis_ok = axis >= 0 && axis < kAxisCount && axes_[axis].present;
     bool refused = false;
@@ -301,7 +296,7 @@ void RtKernel::take_commands() noexcept {
           refused = true;
           break;
         }
-        fault_code_.store(0, std::memory_order_release);
+        port_.fault_code.store(0, std::memory_order_release);
         hold_ = stopping_ = starving_ = job_aborted_ = false;
         end_seen_ = false;
         // a job starts at rest: at the operator's override, no ramp
@@ -335,7 +330,7 @@ void RtKernel::take_commands() noexcept {
         }
         const AxisLimits& l = axes_[axis];
         std::int64_t target = pos_steps_[axis] + std::llround(c.value / units_per_step_[axis]);
-        if ((homed_.load(std::memory_order_relaxed) >> axis) & 1u) {
+        if ((port_.homed.load(std::memory_order_relaxed) >> axis) & 1u) {
           const std::int64_t clamped = std::clamp(target, std::min(l.min_steps, pos_steps_[axis]),
                                                   std::max(l.max_steps, pos_steps_[axis]));
           if (clamped != target) log(RtLogCode::JogShort, std::llabs(target - clamped), axis);
@@ -354,7 +349,7 @@ void RtKernel::take_commands() noexcept {
         }
         move_axis_ = axis;
         move_abort_ = false;
-        homed_.fetch_and(~(1u << axis), std::memory_order_relaxed);
+        port_.homed.fetch_and(~(1u << axis), std::memory_order_relaxed);
         home_travel_ = 0;
         const AxisLimits& l = axes_[axis];
         if (inputs_.home[axis]) {
@@ -373,22 +368,29 @@ void RtKernel::take_commands() noexcept {
   }
   if (reset_asked_ && !flushing_ && state_now_ == MachineState::EStop) {
     reset_asked_ = false;
-    fault_code_.store(0, std::memory_order_release);
+    port_.fault_code.store(0, std::memory_order_release);
     set_state(MachineState::Idle);
   }
 }
 
 void RtKernel::take_inputs() noexcept {
   inputs_ = sink_.read_inputs();
-  if (inputs_.estop && state_now_ != MachineState::EStop) enter_estop(ErrorCode::RtEstop, -1, line_);
+  if (state_now_ == MachineState::EStop) return;
+  if (inputs_.estop) {
+    enter_estop(ErrorCode::RtEstop, -1, line_);
+  } else if (inputs_.amp_fault) {
+    enter_estop(ErrorCode::RtAmpFault, -1, line_);
+  } else if (inputs_.following_error_axis >= 0) {
+    enter_estop(ErrorCode::RtFollowingError, inputs_.following_error_axis, line_);
+  }
 }
 
 void RtKernel::set_fault(ErrorCode code, int axis, std::uint32_t line) noexcept {
   // the first fault stands until Reset or StartJob
-  if (fault_code_.load(std::memory_order_relaxed) != 0) return;
-  fault_axis_.store(static_cast<std::int8_t>(axis), std::memory_order_relaxed);
-  fault_line_.store(line, std::memory_order_relaxed);
-  fault_code_.store(static_cast<std::uint16_t>(code), std::memory_order_release);
+  if (port_.fault_code.load(std::memory_order_relaxed) != 0) return;
+  port_.fault_axis.store(static_cast<std::int8_t>(axis), std::memory_order_relaxed);
+  port_.fault_line.store(line, std::memory_order_relaxed);
+  port_.fault_code.store(static_cast<std::uint16_t>(code), std::memory_order_release);
   log(RtLogCode::Fault, static_cast<std::int64_t>(code), axis, line);
 }
 
@@ -399,8 +401,8 @@ void RtKernel::enter_estop(ErrorCode code, int axis, std::uint32_t line) noexcep
   if (on_path_state() || stopping_) {
     flushing_ = true;
     job_aborted_ = true;
-    last_job_completed_.store(false, std::memory_order_relaxed);
-    jobs_ended_.fetch_add(1, std::memory_order_release);
+    port_.last_job_completed.store(false, std::memory_order_relaxed);
+    port_.jobs_ended.fetch_add(1, std::memory_order_release);
   }
   hold_ = stopping_ = starving_ = false;
   move_ = AxisMove{};
@@ -418,11 +420,11 @@ void RtKernel::begin_stop(ErrorCode code, int axis, std::uint32_t line) noexcept
 void RtKernel::path_motion(Motion& m) noexcept {
   m.on_path = true;
   // the buffer's braking reserve while a producer streams
-  const bool streaming = streaming_.load(std::memory_order_acquire);
+  const bool streaming = port_.streaming.load(std::memory_order_acquire);
   const std::size_t fill = buffer_.size();
   if (!stopping_ && streaming && !starving_ && fill < braking_reserve(k_)) {
     starving_ = true;
-    starvations_.fetch_add(1, std::memory_order_relaxed);
+    port_.starvations.fetch_add(1, std::memory_order_relaxed);
     log(RtLogCode::StarveBegin, static_cast<std::int64_t>(fill), -1, line_);
   } else if (starving_ && (!streaming || fill >= refill_level())) {
     starving_ = false;
@@ -432,24 +434,25 @@ void RtKernel::path_motion(Motion& m) noexcept {
   // PeriodIncrement; empty while the job runs → underrun: hold position
   m.held = ramp_.holds(k_);
   if (m.held) {
-    held_periods_.fetch_add(1, std::memory_order_relaxed);
+    port_.held_periods.fetch_add(1, std::memory_order_relaxed);
     if (stopping_) {
       // at rest on the path: discard the rest of the job
       stopping_ = false;
       flushing_ = true;
       job_aborted_ = true;
-      last_job_completed_.store(false, std::memory_order_relaxed);
-      jobs_ended_.fetch_add(1, std::memory_order_release);
+      port_.last_job_completed.store(false, std::memory_order_relaxed);
+      port_.jobs_ended.fetch_add(1, std::memory_order_release);
       set_state(MachineState::Idle);
     }
   } else if (buffer_.try_pop(m.inc)) {
-    motion_periods_.fetch_add(1, std::memory_order_relaxed);
-    segment_.store(m.inc.segment, std::memory_order_relaxed);
+    port_.motion_periods.fetch_add(1, std::memory_order_relaxed);
+    port_.segment.store(m.inc.segment, std::memory_order_relaxed);
+    port_.line.store(m.inc.line, std::memory_order_relaxed);
     line_ = m.inc.line;
     end_seen_ = m.inc.end_of_program;
   } else {
     m.underrun = true;
-    underruns_.fetch_add(1, std::memory_order_relaxed);
+    port_.underruns.fetch_add(1, std::memory_order_relaxed);
   }
   // this period's length: T/K; T while held, and for a dwell, whose time is
   // a process parameter (a pierce) that the override must not change
@@ -517,9 +520,9 @@ void RtKernel::homing_step() noexcept {
       if (move_.done()) {
         // re-base the coordinate: the latch position is home_steps
         pos_steps_[a] = l.home_steps + (pos_steps_[a] - home_latch_);
-        pos_pub_[a].store(pos_steps_[a], std::memory_order_relaxed);
+        port_.pos_pub[a].store(pos_steps_[a], std::memory_order_relaxed);
         comp_now_[a] = comp_[a].correction_steps(pos_steps_[a]);  // a coordinate, not a move
-        homed_.fetch_or(1u << a, std::memory_order_relaxed);
+        port_.homed.fetch_or(1u << a, std::memory_order_relaxed);
         log(RtLogCode::Homed, l.home_steps, a);
         move_axis_ = -1;
         set_state(MachineState::Idle);
@@ -535,11 +538,11 @@ void RtKernel::flush_some() noexcept {
   PeriodIncrement dropped;
   for (int i = 0; i < 512 && buffer_.try_pop(dropped); ++i) {
   }
-  if (!streaming_.load(std::memory_order_acquire) && buffer_.empty()) flushing_ = false;
+  if (!port_.streaming.load(std::memory_order_acquire) && buffer_.empty()) flushing_ = false;
 }
 
 void RtKernel::guard_limits(Motion& m) noexcept {
-  const std::uint32_t homed = homed_.load(std::memory_order_relaxed);
+  const std::uint32_t homed = port_.homed.load(std::memory_order_relaxed);
   for (int i = 0; i < kAxisCount; ++i) {
     const std::int32_t s = m.inc.steps[i];
     if (s == 0) continue;
@@ -584,7 +587,7 @@ void RtKernel::cycle(const Motion& m, double length_ns, std::int64_t end_ns) noe
   float power = m.on_path ? m.inc.power_pct : 0.0f;
   if (m.on_path && m.inc.power_cap_pct > 0.0f)
     power = std::min(m.inc.power_cap_pct, power * static_cast<float>(k_));
-  if (laser_inhibit_.load(std::memory_order_relaxed)) power = 0.0f;
+  if (port_.laser_inhibit.load(std::memory_order_relaxed)) power = 0.0f;
   frame_.power_pct = power;
   power_now_ = power;
   sink_.emit(frame_);
@@ -595,17 +598,17 @@ void RtKernel::cycle(const Motion& m, double length_ns, std::int64_t end_ns) noe
     const std::int64_t d = m.inc.steps[i];
     if (pulses != 0) {
       emitted_[i] += pulses;
-      emitted_pub_[i].store(emitted_[i], std::memory_order_relaxed);
+      port_.emitted_pub[i].store(emitted_[i], std::memory_order_relaxed);
     }
     if (d == 0) continue;
     pos_steps_[i] += d;
-    pos_pub_[i].store(pos_steps_[i], std::memory_order_relaxed);
+    port_.pos_pub[i].store(pos_steps_[i], std::memory_order_relaxed);
     if (state_now_ == MachineState::Homing && i == move_axis_) home_travel_ += d;
   }
-  machine_time_ns_.store(end_ns, std::memory_order_relaxed);
+  port_.machine_time_ns.store(end_ns, std::memory_order_relaxed);
   if (power > 0.0f) {
     laser_on_exact_ns_ += length_ns;
-    laser_on_ns_.store(std::llround(laser_on_exact_ns_), std::memory_order_relaxed);
+    port_.laser_on_ns.store(std::llround(laser_on_exact_ns_), std::memory_order_relaxed);
   }
   if (trace_ != nullptr) {
     TraceRecord rec;
@@ -619,7 +622,7 @@ void RtKernel::cycle(const Motion& m, double length_ns, std::int64_t end_ns) noe
     rec.underrun = m.underrun;
     rec.held = m.held;
     rec.on_path = m.on_path && !m.held && !m.underrun;
-    if (!trace_->try_push(rec)) trace_drops_.fetch_add(1, std::memory_order_relaxed);
+    if (!trace_->try_push(rec)) port_.trace_drops.fetch_add(1, std::memory_order_relaxed);
   }
 }
 
@@ -634,21 +637,21 @@ void RtKernel::publish_status(bool force) noexcept {
   }
   shm::Status st;
   st.state = state_now_;
-  st.fault = fault_code_.load(std::memory_order_relaxed);
-  st.fault_axis = fault_axis_.load(std::memory_order_relaxed);
+  st.fault = port_.fault_code.load(std::memory_order_relaxed);
+  st.fault_axis = port_.fault_axis.load(std::memory_order_relaxed);
   st.line = line_;
   st.periods = period_;
-  st.underruns = underruns_.load(std::memory_order_relaxed);
-  st.starvations = starvations_.load(std::memory_order_relaxed);
-  st.homed_mask = homed_.load(std::memory_order_relaxed);
+  st.underruns = port_.underruns.load(std::memory_order_relaxed);
+  st.starvations = port_.starvations.load(std::memory_order_relaxed);
+  st.homed_mask = port_.homed.load(std::memory_order_relaxed);
   st.axes_mask = axes_mask_;
   for (int i = 0; i < kAxisCount; ++i) {
     st.pos_steps[i] = pos_steps_[i];
     st.pos[i] = static_cast<double>(pos_steps_[i]) * units_per_step_[i];
   }
   st.feed_override = k_ * k_plan_;
-  st.feed_override_target = target_k_.load(std::memory_order_relaxed);
-  st.machine_time_s = static_cast<double>(machine_time_ns_.load(std::memory_order_relaxed)) * 1e-9;
+  st.feed_override_target = port_.target_k.load(std::memory_order_relaxed);
+  st.machine_time_s = static_cast<double>(port_.machine_time_ns.load(std::memory_order_relaxed)) * 1e-9;
   st.buffer_fill = static_cast<std::uint32_t>(buffer_.size());
   st.power_pct = power_now_;
   st.latency_p50_us = static_cast<float>(lat_p50_);

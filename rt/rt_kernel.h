@@ -52,6 +52,8 @@
 #include "plan/period_increment.h"
 #include "rt/dda.h"
 #include "rt/feed_override.h"
+#include "rt/kernel_control.h"
+#include "rt/kernel_port.h"
 #include "rt/axis_move.h"
 #include "rt/latency_histogram.h"
 #include "rt/pitch_compensation.h"
@@ -83,33 +85,6 @@ using TraceRing = SpscRing<TraceRecord, kTraceRingCapacity>;
 
 enum class RtSchedule : std::uint8_t { Fifo, Normal };
 
-using shm::MachineState;
-
-// What the control thread asks of the kernel (rt::RtKernel::command).
-enum class RtCommandType : std::uint8_t {
-  StartJob,  // Idle → Running: the position buffer holds (the start of) a job
-  Hold,      // feed hold: ramp to 0 along the path and hold
-  Resume,    // release a feed hold
-  Stop,      // ramp to rest along the path, discard the rest of the job → Idle
-  EStop,     // this period: no more motion, laser off; the job is discarded
-  Reset,     // EStop → Idle
-  Jog,       // Idle: move `axis` by `value` (mm or deg) at its jog speed
-  Home,      // Idle: home `axis` (search, back off, latch)
-};
-struct RtCommand {
-  RtCommandType type = RtCommandType::Stop;
-  std::int8_t axis = 0;
-  double value = 0.0;
-};
-using RtCommandRing = SpscRing<RtCommand, 16>;
-
-// The fault that ended motion, if any.
-struct RtFault {
-  ErrorCode code = ErrorCode::Internal;
-  int axis = -1;          // axis index, −1 if none
-  std::uint32_t line = 0; // program line, 0 if none
-  bool active = false;
-};
 
 // Status publication period (periods): ~5 ms at 75 µs.
 inline constexpr std::uint64_t kStatusEvery = 64;
@@ -127,6 +102,9 @@ struct RtOptions {
   bool exit_at_end = true;
   // Begin Running (the buffer holds a job); otherwise Idle until StartJob.
   bool start_running = true;
+  // Every axis's position known at start (the simulated machine); false for
+  // real drives: unhomed until each axis is homed.
+  bool start_homed = true;
   // The first period's deadline (its work runs then), CLOCK_MONOTONIC ns;
   // 0: one period after the thread starts. Kernels given the same epoch and
   // period share their period boundaries — two axis groups on one time base.
@@ -140,10 +118,19 @@ struct RtOptions {
   bool virtual_time = false;
 };
 
-class RtKernel {
+// The kernel's own port, a base so that it is built before KernelControl
+// refers to it.
+struct OwnKernelPort {
+  KernelPort own_port_;
+};
+
+class RtKernel : private OwnKernelPort, public KernelControl {
  public:
+  // `port`: the port shared with the control side when it is not this
+  // object's own (a shared-memory segment); it outlives the kernel.
   RtKernel(const MachineConfig& machine, PositionBuffer& buffer, PulseSink& sink,
-           TraceRing* trace, const std::array<std::int64_t, kAxisCount>& start_steps);
+           TraceRing* trace, const std::array<std::int64_t, kAxisCount>& start_steps,
+           KernelPort* port = nullptr);
   ~RtKernel();
   RtKernel(const RtKernel&) = delete;
   RtKernel& operator=(const RtKernel&) = delete;
@@ -151,9 +138,6 @@ class RtKernel {
   // Where the RT thread logs (state changes, underruns, late wake-ups); set
   // before start(). Null: no log.
   void set_log(RtLogRing* log) noexcept { log_ = log; }
-  [[nodiscard]] std::uint64_t log_drops() const noexcept {
-    return log_drops_.load(std::memory_order_relaxed);
-  }
 
   // Where the RT thread publishes its status (the shm block's seqlock); set
   // before start(). Null: none.
@@ -170,115 +154,26 @@ class RtKernel {
   void start(const RtOptions& options = {});
   // Waits for the thread to finish (end of a one-shot job, or shutdown()).
   void join();
+  // Driven by a periodic thread of someone else's (a HAL thread) instead of
+  // start(): begin() once, then period() once each period on that thread —
+  // `late`: its wake-up after the deadline, ns, or < 0 where not measured —
+  // until it returns false (a one-shot run's end) or the thread stops; then
+  // end_periods(). period() is the RT path: it never allocates, locks or
+  // blocks.
+  void begin(const RtOptions& options) noexcept;
+  [[nodiscard]] bool period(std::int64_t wake_ns, std::int64_t late) noexcept;
+  void end_periods() noexcept;
   // Ends the thread after the current period (holding position).
-  void shutdown() noexcept { shutdown_requested_.store(true, std::memory_order_relaxed); }
+  void shutdown() noexcept { port_.shutdown_requested.store(true, std::memory_order_relaxed); }
 
-  // A command for the RT thread, executed at the start of its next period.
-  // From one control thread only (single producer). False if the ring is
-  // full (16 pending commands).
-  bool command(const RtCommand& c) noexcept { return commands_.try_push(c); }
-
-  // The producer of the position buffer streams a job that is longer than
-  // the buffer: while streaming, the kernel keeps a braking reserve in the
-  // buffer and decelerates along the path when the fill drops below it
-  // (DESIGN §5.3). stream_end() after the job's last entry is pushed (or
-  // the producer gave up): the kernel then runs the buffer dry, and a
-  // stopped job's flush completes.
-  void stream_begin() noexcept { streaming_.store(true, std::memory_order_release); }
-  void stream_end() noexcept { streaming_.store(false, std::memory_order_release); }
-  // Laser output off from the next period on, whatever the job commands (a
-  // lost or alarming laser source: the job then stops along the path with
-  // the beam off; a run's kernel is not used again). From any thread.
-  void laser_inhibit() noexcept { laser_inhibit_.store(true, std::memory_order_relaxed); }
-  // Entries the kernel keeps in the buffer to brake from K to 0 along the
-  // path at the override ramp: K²/(2ρT) plus a margin.
-  [[nodiscard]] std::size_t braking_reserve(double k) const noexcept;
-
-  [[nodiscard]] MachineState state() const noexcept { return state_.load(std::memory_order_acquire); }
-  // The last fault (code, axis, line), cleared by Reset/StartJob.
-  [[nodiscard]] RtFault fault() const noexcept;
-  // Axes whose position is known (homed, or known at start): bit per axis.
-  [[nodiscard]] std::uint32_t homed_mask() const noexcept { return homed_.load(std::memory_order_relaxed); }
-  // Jobs that have ended (at their end, by a stop or by an e-stop).
-  [[nodiscard]] std::uint32_t jobs_ended() const noexcept { return jobs_ended_.load(std::memory_order_acquire); }
-  // The last job ended ran to its end (not stopped, not e-stopped). Written
-  // before jobs_ended() counts it: read after seeing that count.
-  [[nodiscard]] bool last_job_completed() const noexcept {
-    return last_job_completed_.load(std::memory_order_relaxed);
-  }
-
-  // Feed override E (1 = 100 %), from any thread, lock-free. Clamped to
-  // 0 … machine.max_feed_override (FeedOverrideRamp::clamp_target); 0 is a
-  // feed hold. The RT thread scales the periods of what is planned (at
-  // K = min(1, E / the override an entry is planned at), ramped); the
-  // planner plans for E above 1 (app/planner_feed.h). Set before start(),
-  // the run begins at it with no ramp. Default 1.
-  void set_feed_override(double k) noexcept {
-    // relaxed: a lone value, read by the RT thread's relaxed load in run();
-    // nothing else is published with it.
-    target_k_.store(ramp_.clamp_target(k), std::memory_order_relaxed);
-  }
-  // The override asked for (clamped), which the planner plans for.
-  [[nodiscard]] double feed_override_target() const noexcept {
-    return target_k_.load(std::memory_order_relaxed);
-  }
-  // The override the machine runs at now: the period scale times the
-  // override the running entries are planned at.
-  [[nodiscard]] double feed_override() const noexcept {
-    return k_now_.load(std::memory_order_relaxed);
-  }
-  [[nodiscard]] const FeedOverrideRamp& override_ramp() const noexcept { return ramp_; }
-
-  [[nodiscard]] bool finished() const noexcept { return finished_.load(std::memory_order_acquire); }
   [[nodiscard]] RtSchedule schedule() const noexcept { return schedule_; }
   [[nodiscard]] const std::string& warning() const noexcept { return warning_; }
-
-  // Live counters (relaxed snapshots; exact after join()).
-  [[nodiscard]] std::uint64_t periods() const noexcept { return periods_.load(std::memory_order_relaxed); }
-  [[nodiscard]] std::uint64_t motion_periods() const noexcept {
-    return motion_periods_.load(std::memory_order_relaxed);
-  }
-  [[nodiscard]] std::uint64_t underruns() const noexcept { return underruns_.load(std::memory_order_relaxed); }
-  // Times the buffer fell below its braking reserve while streaming.
-  [[nodiscard]] std::uint64_t starvations() const noexcept { return starvations_.load(std::memory_order_relaxed); }
-  [[nodiscard]] std::uint64_t overruns() const noexcept { return overruns_.load(std::memory_order_relaxed); }
-  // Periods that were already due when the last one ended (catching up after
-  // a stall): started at once, without a sleep, so without a wake-up latency.
-  [[nodiscard]] std::uint64_t catch_up_periods() const noexcept {
-    return catch_up_.load(std::memory_order_relaxed);
-  }
-  [[nodiscard]] std::uint64_t trace_drops() const noexcept { return trace_drops_.load(std::memory_order_relaxed); }
-  [[nodiscard]] std::uint32_t current_segment() const noexcept {
-    return segment_.load(std::memory_order_relaxed);
-  }
-  // Machine time: Σ of the executed periods' lengths (T/K, T while held), and
-  // the part of it with the laser on.
-  [[nodiscard]] std::int64_t machine_time_ns() const noexcept {
-    return machine_time_ns_.load(std::memory_order_relaxed);
-  }
-  [[nodiscard]] std::int64_t laser_on_ns() const noexcept {
-    return laser_on_ns_.load(std::memory_order_relaxed);
-  }
-  // Periods held by the feed override (K < K_min).
-  [[nodiscard]] std::uint64_t held_periods() const noexcept {
-    return held_periods_.load(std::memory_order_relaxed);
-  }
 
   // Valid after join().
   [[nodiscard]] const LatencyHistogram& latency() const noexcept { return latency_; }
   // Compute time of each period's work: from the wake-up to the end of the
   // cycle (pop, DDA for every axis, emit, publish), in 10 ns buckets.
   [[nodiscard]] const LatencyHistogram& compute_time() const noexcept { return compute_; }
-  // Commanded position, machine coordinates (steps); relaxed snapshot.
-  [[nodiscard]] std::int64_t position_steps(int axis) const noexcept {
-    return pos_pub_[axis].load(std::memory_order_relaxed);
-  }
-  // Net pulses emitted since start, per axis: the commanded motion plus the
-  // change of the pitch correction (homing moves the coordinate, not the
-  // pulses).
-  [[nodiscard]] std::int64_t pulses_emitted(int axis) const noexcept {
-    return emitted_pub_[axis].load(std::memory_order_relaxed);
-  }
 
  private:
   // What step 5 decided for this period.
@@ -335,12 +230,9 @@ class RtKernel {
   };
 
   std::uint32_t period_ns_;
-  double period_s_;
-  FeedOverrideRamp ramp_;
   std::array<AxisLimits, kAxisCount> axes_{};
   std::array<double, kAxisCount> units_per_step_{};
   std::uint32_t axes_mask_ = 0;  // bit per axis present
-  RtCommandRing commands_;
   Seqlock<shm::Status>* status_ = nullptr;
   const std::atomic<std::uint32_t>* estop_word_ = nullptr;
   std::uint32_t estop_seen_ = 0;  // the word's count at start or at the last e-stop taken
@@ -380,7 +272,6 @@ class RtKernel {
   std::uint64_t underrun_since_ = 0;  // first period of the running underrun, 0 if none
   bool was_held_ = false;
   bool late_streak_ = false;  // the last period woke after its end
-  std::atomic<std::uint64_t> log_drops_{0};
   Dda dda_;
   PulseFrame frame_{};
   LatencyHistogram latency_{};
@@ -389,42 +280,9 @@ class RtKernel {
   bool end_seen_ = false;
   double k_ = 1.0;                  // RT thread's period scale K ≤ 1 (feed_override.h)
   float k_plan_ = 1.0f;             // the override the entries now running are planned at
-  double brake_wait_s_ = 0.0;       // longest braking of an axis from vmax at amax
+  double machine_ns_ = 0.0;  // Σ lengths of the periods executed
   double laser_on_exact_ns_ = 0.0;  // RT thread's laser-on time, unrounded
 
-  std::atomic<bool> shutdown_requested_{false};
-  std::atomic<bool> streaming_{false};
-  // laser_inhibit(): relaxed on both sides — one flag, read once a period,
-  // ordering nothing else.
-  std::atomic<bool> laser_inhibit_{false};
-  std::atomic<MachineState> state_{MachineState::Idle};
-  std::atomic<std::uint32_t> homed_{0};
-  std::atomic<std::uint16_t> fault_code_{0};
-  std::atomic<std::int8_t> fault_axis_{-1};
-  std::atomic<std::uint32_t> fault_line_{0};
-  std::atomic<std::uint64_t> starvations_{0};
-  std::atomic<std::uint32_t> jobs_ended_{0};
-  // relaxed: ordered by jobs_ended_'s release increment after it
-  std::atomic<bool> last_job_completed_{false};
-  std::array<std::atomic<std::int64_t>, kAxisCount> pos_pub_{};
-  std::array<std::atomic<std::int64_t>, kAxisCount> emitted_pub_{};
-  std::atomic<bool> finished_{false};
-  std::atomic<std::uint64_t> periods_{0};
-  std::atomic<std::uint64_t> motion_periods_{0};
-  std::atomic<std::uint64_t> underruns_{0};
-  std::atomic<std::uint64_t> overruns_{0};
-  std::atomic<std::uint64_t> catch_up_{0};
-  std::atomic<std::uint64_t> trace_drops_{0};
-  std::atomic<std::uint32_t> segment_{0};
-  // The operator's target K: set_feed_override()'s relaxed store pairs with
-  // run()'s relaxed load (a lone value, nothing published with it).
-  std::atomic<double> target_k_{1.0};
-  // Like the counters: written by the RT thread only, relaxed snapshots.
-  std::atomic<double> k_now_{1.0};
-  std::atomic<std::int64_t> machine_time_ns_{0};
-  std::atomic<std::int64_t> laser_on_ns_{0};
-  std::atomic<std::uint64_t> held_periods_{0};
-  static_assert(std::atomic<double>::is_always_lock_free);
 
   RtSchedule schedule_ = RtSchedule::Normal;
   std::string warning_;

@@ -195,6 +195,7 @@ class ShmOwner {
   ~ShmOwner();  // unmaps and unlinks
   [[nodiscard]] ShmBlock& block() noexcept { return *block_; }
   [[nodiscard]] bool recovered_stale() const noexcept { return recovered_stale_; }
+  [[nodiscard]] const std::string& name() const noexcept { return name_; }
 
  private:
   ShmOwner(std::string name, ShmBlock* block, bool stale)

@@ -16,6 +16,7 @@ packages=(
   qttools5-dev qttools5-dev-tools  # the HMI's translations (Qt Linguist: lupdate, lrelease)
   fonts-wqy-microhei       # the HMI's Chinese text
   ghdl                     # hdl/: VHDL-2008 simulation of the interpolator
+  linuxcnc-uspace linuxcnc-uspace-dev  # LinuxCNC's HAL: real drives (drivers/hal/), the hal tests
   rt-tests                 # cyclictest: the RT latency reference (bench/rt_latency_vs_cyclictest.sh)
 )
 

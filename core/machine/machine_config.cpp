@@ -199,6 +199,9 @@ Status validate_home_and_pitch(const MachineConfig& m, const AxisConfig& a,
   if (!(std::isfinite(home) && home >= a.min && home <= a.max))
     return bad(p + "home_position = " + fmt(home) + "; allowed min … max = " + fmt(a.min) +
                " … " + fmt(a.max) + " " + unit);
+  if (!(std::isfinite(a.following_error) && a.following_error >= 0.0 && a.following_error <= a.max - a.min))
+    return bad(p + "following_error = " + fmt(a.following_error) + "; allowed 0 (not checked) … max − min = " +
+               fmt(a.max - a.min) + " " + unit);
   const double search = a.home_search_velocity_or_default();
   if (!(std::isfinite(search) && search != 0.0 && std::abs(search) <= a.max_velocity))
     return bad(p + "home_search_velocity = " + fmt(search) + "; allowed " +
@@ -311,7 +314,7 @@ bool load_axis(Loader& L, const toml::table& t, Axis axis, AxisConfig& a) {
   const std::string p = std::string("axes.") + letter(axis) + ".";
   if (!L.only_keys(t, p, {"type", "min", "max", "max_velocity", "max_acceleration",
                           "steps_per_unit", "wrap", "home_position", "home_search_velocity",
-                          "home_latch_velocity", "pitch_compensation"}))
+                          "home_latch_velocity", "pitch_compensation", "following_error"}))
     return false;
   a.present = true;
   a.axis = axis;
@@ -328,6 +331,7 @@ bool load_axis(Loader& L, const toml::table& t, Axis axis, AxisConfig& a) {
          L.number(t, p, "max_acceleration", a.max_acceleration, true) &&
          L.number(t, p, "steps_per_unit", a.steps_per_unit, false) &&
          L.boolean(t, p, "wrap", a.wrap) &&
+         L.number(t, p, "following_error", a.following_error, false) &&
          L.optional_number(t, p, "home_position", a.home_position) &&
          L.optional_number(t, p, "home_search_velocity", a.home_search_velocity) &&
          L.optional_number(t, p, "home_latch_velocity", a.home_latch_velocity) &&
@@ -456,7 +460,8 @@ Result<MachineConfig> parse_machine_config(std::string_view text, const std::str
     std::optional<double> max_jerk;
     if (!L.only_keys(*t, "machine.",
                      {"name", "period_us", "path_tolerance_mm", "max_feed_override", "max_jerk",
-                      "startup_code"}) ||
+                      "startup_code", "allow_unhomed"}) ||
+        !L.boolean(*t, "machine.", "allow_unhomed", m.allow_unhomed) ||
         !L.string(*t, "machine.", "startup_code", m.startup_code) ||
         !L.number(*t, "machine.", "max_feed_override", m.max_feed_override, false) ||
         !L.optional_number(*t, "machine.", "max_jerk", max_jerk) ||

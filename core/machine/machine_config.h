@@ -52,6 +52,11 @@ struct AxisConfig {
   double max_acceleration = 0.0;  // mm/s² or deg/s²
   double steps_per_unit = 1000.0; // steps per mm or per degree
   bool wrap = false;              // rotary, continuous: position kept in [min, max)
+  // Largest |commanded − measured| position before the machine stops with a
+  // following error naming the axis, mm or deg; 0: not checked (a machine
+  // without feedback, as the simulated one). Only where there is feedback:
+  // the HAL component's pos-fb pins.
+  double following_error = 0.0;
 
   // Homing. Each is optional in the TOML; when not given the default is
   // derived from the other keys by the *_or_default() functions below, so a
@@ -128,6 +133,12 @@ struct MachineConfig {
   // moves faster within them, below it the RT scales the period
   // (rt/feed_override.h).
   double max_feed_override = 1.0;
+  // Real drives (the HAL component) come up unhomed, and a job is refused
+  // until every axis is homed. true: a machine without home switches runs
+  // from where it stands at power-on, which the daemon says loudly at start
+  // and in every job's start answer. The simulated machine's position is
+  // always known.
+  bool allow_unhomed = false;
   // Jerk limit of the linear axes, mm/s³ (S-curve acceleration by a moving
   // average of the planned path, plan/jerk_filter.h); 0 = none. Planned, like
   // the acceleration, for the highest override: J/K_max³.

@@ -30,6 +30,8 @@ struct MachineInputs {
   std::array<bool, kAxisCount> limit_min{};  // hard limit at the low end of travel
   std::array<bool, kAxisCount> limit_max{};  // hard limit at the high end of travel
   bool estop = false;                        // emergency stop pressed
+  bool amp_fault = false;                    // a drive reports a fault
+  int following_error_axis = -1;             // an axis past its following error, −1 if none
 };
 
 class PulseSink {

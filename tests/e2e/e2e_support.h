@@ -104,24 +104,36 @@ class NoLeakedSegments : public ::testing::Environment {
   }
 };
 
+// Starts args[0] (a path) with args as its argv, stdin from /dev/null and
+// stdout and stderr to the files given (the same one may be both): its pid,
+// or −1.
+inline pid_t spawn(std::vector<std::string> args, const fs::path& out, const fs::path& err) {
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&fa, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (err == out)
+    posix_spawn_file_actions_adddup2(&fa, 1, 2);
+  else
+    posix_spawn_file_actions_addopen(&fa, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = -1;
+  if (posix_spawn(&pid, args[0].c_str(), &fa, nullptr, argv.data(), environ) != 0) pid = -1;
+  posix_spawn_file_actions_destroy(&fa);
+  return pid;
+}
+
 // A lasercncd child process on its own segment (LASERCNCD_EXE), its stderr
 // in a log file of the test's folder; `extra` are further arguments.
 class Daemon {
  public:
   explicit Daemon(std::string shm, std::vector<std::string> extra = {})
       : shm_(std::move(shm)), log_(temp_dir() / ("daemon_" + std::to_string(++count_) + ".log")) {
-    const std::string exe = LASERCNCD_EXE;
-    std::vector<std::string> args = {exe, "--shm", shm_, "--no-realtime"};
+    std::vector<std::string> args = {LASERCNCD_EXE, "--shm", shm_, "--no-realtime"};
     args.insert(args.end(), extra.begin(), extra.end());
-    std::vector<char*> argv;
-    for (std::string& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, 2, log_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-    posix_spawn(&pid_, exe.c_str(), &fa, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&fa);
+    pid_ = spawn(args, "/dev/null", log_);
   }
   ~Daemon() {
     if (pid_ > 0) {
