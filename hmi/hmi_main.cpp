@@ -11,6 +11,8 @@
 // machine of --shm; --probe is the 3D probe's serial device (its RS-232 line
 // protocol). --lang: the operator's language (default: the system's, English
 // when there is no translation for it).
+// --db: the process database (SQLite); default
+// $XDG_DATA_HOME/lasercnc/process.db, i.e. ~/.local/share/lasercnc/process.db.
 // --import merges a hole table (holes/hole_table.h) into the database first.
 // --program opens and plans a program on the program screen; --dxf opens a
 // part on the main + auxiliary axes screen and decomposes it.
@@ -18,6 +20,8 @@
 // offscreen: QT_QPA_PLATFORM=offscreen). Exit codes: 0, 1 the database
 // cannot be opened, 2 bad command line.
 #include <QApplication>
+#include <QDir>
+#include <QStandardPaths>
 #include <QStringList>
 
 #include <cstdio>
@@ -37,7 +41,7 @@
 
 int main(int argc, char** argv) {
   QApplication app(argc, argv);
-  std::string db_path = "lasercnc_process.db";
+  std::string db_path;  // default: the user's data folder
   std::string shm_name = lcnc::shm::kDefaultName;
   QString screenshot_dir;
   std::string import_path;
@@ -78,6 +82,17 @@ int main(int argc, char** argv) {
   if (!lcnc::hmi::install_language(language, &why)) {
     std::fprintf(stderr, "lasercnc-hmi: --lang: %s\n", why.toUtf8().constData());
     return 2;
+  }
+  if (db_path.empty()) {
+    // $XDG_DATA_HOME/lasercnc (~/.local/share/lasercnc): the operator's,
+    // whatever folder the HMI is started from
+    const QString dir = QStandardPaths::writableLocation(QStandardPaths::GenericDataLocation) + "/lasercnc";
+    if (!QDir().mkpath(dir)) {
+      std::fprintf(stderr, "lasercnc-hmi: cannot create %s for the process database (--db FILE)\n",
+                   dir.toUtf8().constData());
+      return 1;
+    }
+    db_path = (dir + "/process.db").toStdString();
   }
   auto db = lcnc::hmi::ProcessDatabase::open(db_path);
   if (!db) {

@@ -5,12 +5,18 @@
 #include <QLocale>
 #include <QTranslator>
 
+#include "common/share_path.h"
+
 namespace lcnc::hmi {
 namespace {
 
+// $LASERCNC_QM_DIR, else an installed tree's share/lasercnc/i18n, else the
+// build's.
 QString qm_dir() {
-  const QByteArray env = qgetenv("LASERCNC_QM_DIR");  // an installed copy's
-  return env.isEmpty() ? QStringLiteral(LCNC_HMI_QM_DIR) : QString::fromLocal8Bit(env);
+  const QByteArray env = qgetenv("LASERCNC_QM_DIR");
+  if (!env.isEmpty()) return QString::fromLocal8Bit(env);
+  const QString shared = QString::fromStdString(share_path("i18n"));
+  return QDir(shared).exists() ? shared : QStringLiteral(LCNC_HMI_QM_DIR);
 }
 
 QTranslator* installed = nullptr;

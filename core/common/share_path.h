@@ -1,6 +1,9 @@
 // Where the shipped files are (machine configs, the Modbus register map, the
-// examples): $LASERCNC_SHARE when set (an installed tree), else the source
-// tree's share/ the build was made from.
+// examples, the HAL configurations, the HMI's translations), first found of:
+//   $LASERCNC_SHARE (when set and not empty);
+//   <the executable's folder>/../share/lasercnc (an installed tree: the
+//     .deb's /usr/share/lasercnc, or any `cmake --install` prefix);
+//   the source tree's share/ the build was made from.
 #pragma once
 
 #include <string>

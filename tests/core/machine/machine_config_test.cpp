@@ -286,6 +286,32 @@ TEST(MachineConfigHoming, RangeChecksNameKeyValueAndRange) {
   }
 }
 
+// Real drives (lasercncd --hal): the following-error limit per axis (0, the
+// default, is not checked; up to the axis's travel) and the switch that lets
+// a machine without home switches run unhomed.
+TEST(MachineConfigHoming, FollowingErrorAndAllowUnhomedAreReadAndChecked) {
+  auto plain = parse_machine_config(kMinimal, "m.toml");
+  ASSERT_TRUE(plain);
+  EXPECT_EQ(plain->axes[0].following_error, 0.0);
+  EXPECT_FALSE(plain->allow_unhomed);
+  std::string text = with_x("following_error = 0.25\n");
+  text.replace(text.find("period_us = 75"), 14, "period_us = 75\nallow_unhomed = true");
+  auto m = parse_machine_config(text, "m.toml");
+  ASSERT_TRUE(m) << m.error().to_string();
+  EXPECT_DOUBLE_EQ(m->axes[0].following_error, 0.25);
+  EXPECT_TRUE(m->allow_unhomed);
+  for (const char* bad : {"following_error = -1\n", "following_error = 101\n"}) {
+    auto r = parse_machine_config(with_x(bad), "m.toml");
+    ASSERT_FALSE(r) << bad;
+    EXPECT_NE(r.error().message.find("axes.X.following_error"), std::string::npos) << r.error().message;
+  }
+  std::string typed = kMinimal;
+  typed.replace(typed.find("period_us = 75"), 14, "period_us = 75\nallow_unhomed = 1");
+  auto t = parse_machine_config(typed, "m.toml");
+  ASSERT_FALSE(t);
+  EXPECT_NE(t.error().message.find("allow_unhomed"), std::string::npos) << t.error().message;
+}
+
 TEST(MachineConfigHoming, WrongTypeAndMisspeltKeyAreErrors) {
   auto m = parse_machine_config(with_x("home_position = \"left\"\n"), "m.toml");
   ASSERT_FALSE(m);
