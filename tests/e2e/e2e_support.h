@@ -104,16 +104,19 @@ class NoLeakedSegments : public ::testing::Environment {
   }
 };
 
-// Starts args[0] (a path) with args as its argv, stdin from /dev/null and
-// stdout and stderr to the files given (the same one may be both): its pid,
-// or −1.
-inline pid_t spawn(std::vector<std::string> args, const fs::path& out, const fs::path& err) {
+// Starts args[0] (a path) with args as its argv, stdin from `in` (a file
+// descriptor; −1: /dev/null) and stdout and stderr to the files given (the
+// same one may be both): its pid, or −1.
+inline pid_t spawn(std::vector<std::string> args, const fs::path& out, const fs::path& err, int in = -1) {
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
+  if (in >= 0)
+    posix_spawn_file_actions_adddup2(&fa, in, 0);
+  else
+    posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
   posix_spawn_file_actions_addopen(&fa, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   if (err == out)
     posix_spawn_file_actions_adddup2(&fa, 1, 2);

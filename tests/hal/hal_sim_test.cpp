@@ -98,18 +98,32 @@ class HalSession {
             "net y-fb => sampler.0.pin.9\n"
             "net z-fb => sampler.0.pin.10\n"
             "setp sampler.0.enable 0\n"
-            "start\n"
-            "loadusr -w sleep 100000\n";
+            "start\n";
     const fs::path file = temp_dir() / "session.hal";
     std::ofstream(file) << text.str();
     log_ = temp_dir() / "halrun.log";
-    pid_ = spawn({"/usr/bin/halrun", "-f", file.string()}, log_, log_);
+    // -I: after the file, commands from stdin — a pipe held open until the
+    // session ends; its end ends halrun, which unloads HAL and stops it
+    int p[2] = {-1, -1};
+    if (pipe2(p, O_CLOEXEC) == 0) {
+      stdin_ = p[1];
+      pid_ = spawn({"/usr/bin/halrun", "-I", "-f", file.string()}, log_, log_, p[0]);
+      close(p[0]);
+    }
   }
   ~HalSession() {
-    run_program("/usr/bin/halrun", "-U");
-    if (pid_ > 0) {
-      kill(pid_, SIGTERM);
-      waitpid(pid_, nullptr, 0);
+    if (stdin_ >= 0) close(stdin_);
+    bool ended = false;
+    for (int i = 0; i < 100 && pid_ > 0 && !ended; ++i) {
+      ended = waitpid(pid_, nullptr, WNOHANG) == pid_;
+      if (!ended) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    if (!ended) {
+      run_program("/usr/bin/halrun", "-U");
+      if (pid_ > 0) {
+        kill(pid_, SIGKILL);
+        waitpid(pid_, nullptr, 0);
+      }
     }
   }
   // The threads run with the component in them.
@@ -125,6 +139,7 @@ class HalSession {
 
  private:
   pid_t pid_ = -1;
+  int stdin_ = -1;
   fs::path log_;
 };
 
@@ -427,6 +442,41 @@ TEST_F(HalSim, AnAmpFaultStopsTheMachineUntilItClearsAndIsReset) {
   ASSERT_EQ(send("reset").exit_code, 0);
   EXPECT_TRUE(wait_for([&] { return status(shm_.name()).value("state", "") == "idle"; }, 5));
   EXPECT_TRUE(wait_for([&] { return getp("lasercnc.enable") == "TRUE"; }, 5));
+}
+
+// Every lasercnc.* pin or function the shipped HAL configurations name
+// (sim, parport, Mesa 7i76E) is one the component makes.
+TEST_F(HalSim, TheShippedConfigurationsNameOnlyPinsTheComponentHas) {
+  const std::string shown = halcmd("show pin lasercnc").out + halcmd("show funct lasercnc").out;
+  std::size_t checked = 0;
+  for (const auto& e : fs::recursive_directory_iterator(std::string(LCNC_SOURCE_DIR) + "/share/hal")) {
+    if (e.path().extension() != ".hal") continue;
+    std::ifstream in(e.path());
+    std::string line;
+    for (int n = 1; std::getline(in, line); ++n) {
+      if (line.rfind("#", 0) == 0) continue;
+      for (std::size_t at = line.find("lasercnc."); at != std::string::npos; at = line.find("lasercnc.", at + 1)) {
+        std::size_t end = at;
+        while (end < line.size() && (std::isalnum(static_cast<unsigned char>(line[end])) || line[end] == '.' ||
+                                     line[end] == '-' || line[end] == '_'))
+          ++end;
+        std::string name = line.substr(at, end - at);
+        if (name.rfind("lasercnc.so", 0) == 0) continue;
+        // the sim machine has X Y Z: an A, B or C pin is checked as X's
+        if (name.size() > 11 && name[10] == '.' && std::string("abc").find(name[9]) != std::string::npos)
+          name[9] = 'x';
+        ++checked;
+        bool found = false;
+        for (std::size_t p = shown.find(" " + name); p != std::string::npos && !found;
+             p = shown.find(" " + name, p + 1)) {
+          const std::size_t after = p + 1 + name.size();
+          found = after == shown.size() || shown[after] == ' ' || shown[after] == '\n';
+        }
+        EXPECT_TRUE(found) << e.path() << ":" << n << ": " << line.substr(at, end - at);
+      }
+    }
+  }
+  EXPECT_GT(checked, 50u);  // 55 names in the three configurations
 }
 
 }  // namespace

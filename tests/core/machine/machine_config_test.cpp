@@ -312,6 +312,21 @@ TEST(MachineConfigHoming, FollowingErrorAndAllowUnhomedAreReadAndChecked) {
   EXPECT_NE(t.error().message.find("allow_unhomed"), std::string::npos) << t.error().message;
 }
 
+// The HAL example machines (share/hal/*/machine.toml) load, check their
+// following errors and start unhomed unless they say otherwise.
+TEST(MachineConfigHoming, TheHalExampleMachinesLoad) {
+  for (const char* dir : {"sim", "parport", "mesa-7i76e"}) {
+    auto m = load_machine_config(kShare + "/hal/" + dir + "/machine.toml");
+    ASSERT_TRUE(m) << dir << ": " << m.error().to_string();
+    EXPECT_EQ(m->period_ns, 1'000'000u) << dir << ": a 1 ms servo thread";
+    EXPECT_FALSE(m->allow_unhomed) << dir;
+    for (const AxisConfig& a : m->axes)
+      if (a.present) {
+        EXPECT_GT(a.following_error, 0.0) << dir;
+      }
+  }
+}
+
 TEST(MachineConfigHoming, WrongTypeAndMisspeltKeyAreErrors) {
   auto m = parse_machine_config(with_x("home_position = \"left\"\n"), "m.toml");
   ASSERT_FALSE(m);
