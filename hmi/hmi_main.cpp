@@ -39,7 +39,45 @@
 #include "hmi/process_db.h"
 #include "rt/shm_interface.h"
 
+namespace {
+
+constexpr const char* kUsage =
+    "usage: lasercnc-hmi [--db FILE] [--shm NAME] [--import HOLES.csv] [--program FILE] [--dxf PART.dxf]\n"
+    "                    [--sensor|--laser|--meter|--head ENDPOINT] [--probe SERIAL]\n"
+    "                    [--machine FILE] [--lang en|zh_CN|ru] [--screenshot DIR]\n";
+
+constexpr const char* kHelp =
+    "The operator HMI of LaserCNC: machine, program, process database, 3D measurement,\n"
+    "focal length, laser and head, main + auxiliary axes. Talks to lasercncd through\n"
+    "shared memory.\n"
+    "  --db FILE          the process database (SQLite); default\n"
+    "                     $XDG_DATA_HOME/lasercnc/process.db (~/.local/share/lasercnc/process.db)\n"
+    "  --shm NAME         the daemon's shared-memory segment (default /lasercnc)\n"
+    "  --import HOLES.csv merge a hole table into the database first\n"
+    "  --program FILE     open and plan a program on the program screen\n"
+    "  --dxf PART.dxf     open a part on the main + auxiliary axes screen and decompose it\n"
+    "  --sensor, --laser, --meter, --head ENDPOINT\n"
+    "                     a real peripheral: tcp:HOST:PORT or rtu:DEV[:BAUD[:PARITY]];\n"
+    "                     without any of them the peripherals are simulators\n"
+    "  --probe SERIAL     the 3D probe's serial device\n"
+    "  --machine FILE     the machine configuration (default: the shipped one)\n"
+    "  --lang LANG        en, zh_CN or ru (default: the system's)\n"
+    "  --screenshot DIR   render every screen to DIR/<screen>.png and exit\n"
+    "                     (works without a display: QT_QPA_PLATFORM=offscreen)\n"
+    "Exit codes: 0 done, 1 the database or a peripheral cannot be opened, 2 bad command line.\n";
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  // before QApplication, which needs a display
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--help" || a == "-h") {
+      std::fputs(kUsage, stdout);
+      std::fputs(kHelp, stdout);
+      return 0;
+    }
+  }
   QApplication app(argc, argv);
   std::string db_path;  // default: the user's data folder
   std::string shm_name = lcnc::shm::kDefaultName;
@@ -71,10 +109,7 @@ int main(int argc, char** argv) {
       else if (a == "--machine") machine_file = v.toStdString();
       else screenshot_dir = v;
     } else {
-      std::fprintf(stderr, "usage: lasercnc-hmi [--db FILE] [--shm NAME] [--import HOLES.csv] "
-                           "[--program FILE] [--dxf PART.dxf] [--sensor|--laser|--meter|--head ENDPOINT]\n"
-                           "                    [--probe SERIAL]"
-                           "                    [--machine FILE] [--lang en|zh_CN|ru] [--screenshot DIR]\n");
+      std::fputs(kUsage, stderr);
       return 2;
     }
   }
