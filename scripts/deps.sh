@@ -18,6 +18,7 @@ packages=(
   ghdl                     # hdl/: VHDL-2008 simulation of the interpolator
   linuxcnc-uspace linuxcnc-uspace-dev  # LinuxCNC's HAL: real drives (drivers/hal/), the hal tests
   rt-tests                 # cyclictest: the RT latency reference (bench/rt_latency_vs_cyclictest.sh)
+  debootstrap              # the package test: a clean Debian 12 to install the .deb in (tests/package)
 )
 
 missing=()
