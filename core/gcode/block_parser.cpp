@@ -13,7 +13,8 @@ namespace {
 
 constexpr const char* kSupportedWords = "G M N X Y Z A B C I J K R F S P Q";
 constexpr const char* kSupportedGCodes =
-    "G0 G1 G2 G3 G4 G17 G18 G19 G20 G21 G54-G59 G61 G61.1 G64 G90 G91 G90.1 G91.1 G93 G94";
+    "G0 G1 G2 G3 G4 G17 G18 G19 G20 G21 G40 G49 G54-G59 G61 G61.1 G64 G80 G90 G91 G90.1 G91.1 "
+    "G93 G94";
 constexpr const char* kSupportedMCodes = "M2 M3 M4 M5 M7 M8 M9 M30";
 
 // Exact powers of ten: a double holds 10^k exactly for k <= 22.
@@ -58,7 +59,9 @@ constexpr std::array<char, 256> kUpper = [] {
 // Modal group of a G code ×10; -1 when outside the subset.
 [[nodiscard]] constexpr int g_group(int tenths) noexcept {
   switch (tenths) {
-    case 0: case 10: case 20: case 30: return group_index(GGroup::Motion);
+    case 0: case 10: case 20: case 30: case 800: return group_index(GGroup::Motion);
+    case 400: return group_index(GGroup::CutterComp);
+    case 490: return group_index(GGroup::ToolLength);
     case 40: return group_index(GGroup::NonModal);
     case 170: case 180: case 190: return group_index(GGroup::Plane);
     case 200: case 210: return group_index(GGroup::Units);

@@ -24,7 +24,9 @@
 
 namespace lcnc::gcode {
 
-// G modal groups of the subset (LinuxCNC numbers in kGGroupNumber).
+// G modal groups of the subset (LinuxCNC numbers in kGGroupNumber). G80
+// (cancel canned cycle) is in the motion group, as in LinuxCNC: after it,
+// axis words need a new G0..G3.
 enum class GGroup : std::uint8_t {
   NonModal,     // 0: G4
   Motion,       // 1: G0 G1 G2 G3
@@ -35,13 +37,15 @@ enum class GGroup : std::uint8_t {
   Units,        // 6: G20 G21
   CoordSystem,  // 12: G54 .. G59
   PathControl,  // 13: G61 G61.1 G64
+  CutterComp,   // 7: G40 (cancel: a safety header's; no compensation to cancel)
+  ToolLength,   // 8: G49 (cancel: likewise)
 };
-inline constexpr int kGGroupCount = 9;
-inline constexpr std::array<int, kGGroupCount> kGGroupNumber = {0, 1, 2, 3, 4, 5, 6, 12, 13};
+inline constexpr int kGGroupCount = 11;
+inline constexpr std::array<int, kGGroupCount> kGGroupNumber = {0, 1, 2, 3, 4, 5, 6, 12, 13, 7, 8};
 inline constexpr std::array<const char*, kGGroupCount> kGGroupName = {
     "non-modal",       "motion",        "plane selection", "distance mode",
     "arc distance mode", "feed rate mode", "units",        "coordinate system",
-    "path control mode"};
+    "path control mode", "cutter radius compensation", "tool length offset"};
 
 [[nodiscard]] constexpr int group_index(GGroup g) noexcept { return static_cast<int>(g); }
 

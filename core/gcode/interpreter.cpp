@@ -114,6 +114,17 @@ bool Interpreter::resolve_motion() {
   const Block& b = *b_;
   block_motion_ = MotionMode::None;
   const int g = b.code(GGroup::Motion);
+  if (g == 800) {
+    // G80: no motion mode (LinuxCNC: axis words with it are an error)
+    motion_ = MotionMode::None;
+    if (b.axis_mask != 0) {
+      return fail(ErrorCode::GcodeSyntax, b.first_axis_word,
+                  "found " + quoted(b.first_axis_word) +
+                      " with G80 (cancel motion mode); expected no axis words with G80, or "
+                      "G0/G1/G2/G3 instead of it");
+    }
+    return true;
+  }
   if (g >= 0) {
     motion_word_ = b.code_word(GGroup::Motion);
     const MotionMode m = g == 0    ? MotionMode::Rapid
@@ -121,15 +132,9 @@ bool Interpreter::resolve_motion() {
                          : g == 20 ? MotionMode::ArcCw
                                    : MotionMode::ArcCcw;
     motion_ = m;
-    if (b.axis_mask == 0) {
-      if (m == MotionMode::ArcCw || m == MotionMode::ArcCcw) {
-        return fail(ErrorCode::GcodeMissingWord, motion_word_,
-                    "found " + quoted_block() + " with " + g_code_name(g) +
-                        " and no axis words; expected the arc's end point (X Y Z words; for a "
-                        "full circle, the start point)");
-      }
-      return true;  // G0 / G1 alone only set the mode
-    }
+    // G0 / G1 alone only set the mode; G2 / G3 with no axis words are a full
+    // circle at the current point (LinuxCNC 2.9), and need a centre
+    if (b.axis_mask == 0 && m != MotionMode::ArcCw && m != MotionMode::ArcCcw) return true;
     block_motion_ = m;
     return true;
   }

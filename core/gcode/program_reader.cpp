@@ -163,7 +163,7 @@ ProgramReader::Next ProgramReader::Impl::read(Segment& out) {
     }
     if (block.empty) continue;
     seen_block = true;
-    if (block.block_delete && options.block_delete) continue;  // '/' line skipped
+    if (block.block_delete && options.block_delete.value_or(machine.block_delete)) continue;  // '/' line skipped
     if (!interp.execute(block, parser.text(), line, pending)) {
       const gcode::Fault& f = interp.fault();
       return fail(f.code, text, f.byte_pos, f.message);

@@ -342,9 +342,9 @@ bool load_axis(Loader& L, const toml::table& t, Axis axis, AxisConfig& a) {
 // modal codes a program may start with, separated by blanks; P and Q only
 // after G64, as numbers. The G-code reader runs it; this only admits it.
 std::string startup_code_problem(const std::string& code) {
-  static constexpr std::array<const char*, 20> kAllowed = {
-      "G17", "G18", "G19", "G20", "G21", "G90", "G91", "G90.1", "G91.1", "G93",
-      "G94", "G54", "G55", "G56", "G57", "G58", "G59", "G61", "G61.1", "G64"};
+  static constexpr std::array<const char*, 23> kAllowed = {
+      "G17", "G18", "G19", "G20", "G21", "G90", "G91", "G90.1", "G91.1", "G93", "G94", "G54",
+      "G55", "G56", "G57", "G58", "G59", "G61", "G61.1", "G64", "G40", "G49", "G80"};
   bool after_g64 = false;
   std::size_t i = 0;
   while (i < code.size()) {
@@ -369,7 +369,8 @@ std::string startup_code_problem(const std::string& code) {
     for (const char* a : kAllowed) known = known || w == a;
     if (!known)
       return "found '" + w + "'; expected only G17 G18 G19 G20 G21 G90 G91 G90.1 G91.1 G93 G94 "
-             "G54…G59 G61 G61.1 G64 [P Q] M5 M9 (modes a program starts in, no motion)";
+             "G54…G59 G61 G61.1 G64 [P Q] G40 G49 G80 M5 M9 (modes a program starts in, no "
+             "motion)";
     after_g64 = w == "G64";
   }
   return {};
@@ -460,8 +461,9 @@ Result<MachineConfig> parse_machine_config(std::string_view text, const std::str
     std::optional<double> max_jerk;
     if (!L.only_keys(*t, "machine.",
                      {"name", "period_us", "path_tolerance_mm", "max_feed_override", "max_jerk",
-                      "startup_code", "allow_unhomed"}) ||
+                      "startup_code", "allow_unhomed", "block_delete"}) ||
         !L.boolean(*t, "machine.", "allow_unhomed", m.allow_unhomed) ||
+        !L.boolean(*t, "machine.", "block_delete", m.block_delete) ||
         !L.string(*t, "machine.", "startup_code", m.startup_code) ||
         !L.number(*t, "machine.", "max_feed_override", m.max_feed_override, false) ||
         !L.optional_number(*t, "machine.", "max_jerk", max_jerk) ||

@@ -124,10 +124,13 @@ struct MachineConfig {
   double path_tolerance_mm = 0.01;  // default G64 P when P is not given
   // Modal codes every program starts with, as if its first line
   // (LinuxCNC's RS274NGC_STARTUP_CODE): only G17 G18 G19 G20 G21 G90 G91
-  // G90.1 G91.1 G93 G94 G54…G59 G61 G61.1 G64 [P Q] M5 M9. Empty: G17 G21
+  // G90.1 G91.1 G93 G94 G54…G59 G61 G61.1 G64 [P Q] G40 G49 G80 M5 M9. Empty: G17 G21
   // G90 G91.1 G94 G54 G61 M5 M9. The shipped machine starts in G64, so a
   // CAM file without one blends within path_tolerance_mm.
   std::string startup_code;
+  // Block delete (LinuxCNC's switch, on by default there): a line that
+  // starts with '/' is skipped. false: such lines run like any other.
+  bool block_delete = true;
   // The highest feed override the operator may set (1 = 100 %). No derate:
   // the plan is at the axes' limits; above 100 % the planner plans the feed
   // moves faster within them, below it the RT scales the period

@@ -160,9 +160,22 @@ TEST(ProgramReader, ArcWithoutCentreOrRadiusIsError) {
   EXPECT_MENTIONS(d, "expected K I");
 }
 
-TEST(ProgramReader, ArcWithoutAxisWordsIsError) {
-  const Diagnostic d = expect_error("G2 I10 F600\n", ErrorCode::GcodeMissingWord, 1, 1);
-  EXPECT_MENTIONS(d, "no axis words");
+// LinuxCNC 2.9: G2/G3 with a centre and no axis words is a full circle at
+// the current point; with neither, or with R alone, an error.
+TEST(ProgramReader, ArcWithoutAxisWordsIsAFullCircleAtTheCurrentPoint) {
+  const auto segs = test::segments("G2 I10 F600\nG18 G3 K-5\n");
+  ASSERT_EQ(segs.size(), 2u);
+  EXPECT_EQ(segs[0].kind, MotionKind::Arc);
+  EXPECT_EQ(segs[0].end, segs[0].start);
+  EXPECT_DOUBLE_EQ(segs[0].center[0], 20.0);  // from X10 Y10
+  EXPECT_DOUBLE_EQ(segs[0].center[1], 10.0);
+  EXPECT_TRUE(segs[0].clockwise);
+  EXPECT_DOUBLE_EQ(segs[1].center[2], 5.0);
+  EXPECT_FALSE(segs[1].clockwise);
+  Diagnostic d = expect_error("G2 F600\n", ErrorCode::GcodeArcMissingCenter, 1, 1);
+  EXPECT_MENTIONS(d, "or R");
+  d = expect_error("G2 R5 F600\n", ErrorCode::GcodeArcRadius, 1, 4);
+  EXPECT_MENTIONS(d, "full circle");
 }
 
 TEST(ProgramReader, CentreWordOfTheNormalAxisIsError) {
@@ -240,8 +253,8 @@ TEST(ProgramReader, UnknownGCodeIsNamed) {
   Diagnostic d = expect_error("G38.2 X10\n", ErrorCode::GcodeUnknownCode, 1, 1);
   EXPECT_EQ(d.message.rfind("G38.2 is not supported", 0), 0u) << d.message;
   EXPECT_MENTIONS(d, "G61.1");  // lists what is supported
-  d = expect_error("G1 G80\n", ErrorCode::GcodeUnknownCode, 1, 4);
-  EXPECT_MENTIONS(d, "G80 is not supported");
+  d = expect_error("G1 G81 X1 Y1 Z-1 R1\n", ErrorCode::GcodeUnknownCode, 1, 4);
+  EXPECT_MENTIONS(d, "G81 is not supported");
   d = expect_error("G59.1\n", ErrorCode::GcodeUnknownCode, 1, 1);
   EXPECT_MENTIONS(d, "G59.1 is not supported");
   d = expect_error("G1.25\n", ErrorCode::GcodeUnknownCode, 1, 1);

@@ -13,6 +13,7 @@ using test::pose;
 using test::run;
 using test::segments;
 using test::start_at;
+using test::expect_error;
 using test::test_machine;
 
 TEST(ProgramReader, M3IsConstantPowerFromS) {
@@ -173,16 +174,42 @@ TEST(ProgramReader, PercentLineMayCarryAComment) {
   EXPECT_EQ(segments("% (start)\nG0 X20\n").size(), 1u);
 }
 
-TEST(ProgramReader, BlockDeleteSkipsSlashLinesWhenOn) {
-  ReaderOptions on = start_at();
-  on.block_delete = true;
-  auto segs = segments("/G1 X20 F600\nG1 X30 F600\n", on);
+// The safety header CAM posts write: the cancels have nothing to cancel.
+TEST(ProgramReader, SafetyHeaderWithG40G49G80IsAccepted) {
+  const auto segs = segments("G17 G21 G40 G49 G80 G90 G94 G54\nG1 X20 F600\n");
+  ASSERT_EQ(segs.size(), 1u);
+  EXPECT_DOUBLE_EQ(segs[0].end[0], 20.0);
+}
+
+// G80 is of the motion group (LinuxCNC): it ends the motion mode in effect,
+// and takes no axis words itself.
+TEST(ProgramReader, G80CancelsTheMotionMode) {
+  EXPECT_EQ(segments("G1 X20 F600\nG80\nG1 X30\n").size(), 2u);
+  expect_error("G1 X10 F600\nG80\nX20\n", ErrorCode::GcodeNoMotionMode, 3, 1);
+  const Diagnostic d = expect_error("G1 X10 F600\nG80 X20\n", ErrorCode::GcodeSyntax, 2, 5);
+  EXPECT_MENTIONS(d, "G80");
+  expect_error("G1 G80 X20 F600\n", ErrorCode::GcodeModalConflict, 1, 4);
+}
+
+TEST(ProgramReader, BlockDeleteSkipsSlashLinesByDefault) {
+  // LinuxCNC's default: a '/' line is not run
+  auto segs = segments("/G1 X20 F600\nG1 X30 F600\n");
   ASSERT_EQ(segs.size(), 1u);
   EXPECT_DOUBLE_EQ(segs[0].end[0], 30.0);
   EXPECT_EQ(segs[0].line, 2u);
-  segs = segments("/G1 X20 F600\nG1 X30 F600\n");
+  // the reader's switch off: the line runs
+  ReaderOptions off = start_at();
+  off.block_delete = false;
+  segs = segments("/G1 X20 F600\nG1 X30 F600\n", off);
   ASSERT_EQ(segs.size(), 2u);
   EXPECT_DOUBLE_EQ(segs[0].end[0], 20.0);
+  // the machine's switch off: the line runs, unless the reader says otherwise
+  MachineConfig m = test::test_machine();
+  m.block_delete = false;
+  EXPECT_EQ(segments("/G1 X20 F600\nG1 X30 F600\n", start_at(), m).size(), 2u);
+  ReaderOptions on = start_at();
+  on.block_delete = true;
+  EXPECT_EQ(segments("/G1 X20 F600\nG1 X30 F600\n", on, m).size(), 1u);
 }
 
 TEST(ProgramReader, CommentsAnywhereAreIgnored) {
@@ -227,7 +254,9 @@ TEST(ProgramReader, DecimalNumbersRoundLikeStrtod) {
 }
 
 TEST(ProgramReader, LineNumbersAreAccepted) {
-  const auto segs = segments("N10 G1 X20 F600\nn20 x30\n/N30 X40\n");
+  ReaderOptions run_deleted = start_at();
+  run_deleted.block_delete = false;
+  const auto segs = segments("N10 G1 X20 F600\nn20 x30\n/N30 X40\n", run_deleted);
   ASSERT_EQ(segs.size(), 3u);
   EXPECT_EQ(segs[1].line, 2u);  // the file line, not the N number
 }

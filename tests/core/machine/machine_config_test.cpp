@@ -312,6 +312,23 @@ TEST(MachineConfigHoming, FollowingErrorAndAllowUnhomedAreReadAndChecked) {
   EXPECT_NE(t.error().message.find("allow_unhomed"), std::string::npos) << t.error().message;
 }
 
+// Block delete: on unless the machine says block_delete = false.
+TEST(MachineConfig, BlockDeleteIsOnByDefaultAndReadAsABoolean) {
+  auto plain = parse_machine_config(kMinimal, "m.toml");
+  ASSERT_TRUE(plain);
+  EXPECT_TRUE(plain->block_delete);
+  std::string text = kMinimal;
+  text.replace(text.find("period_us = 75"), 14, "period_us = 75\nblock_delete = false");
+  auto m = parse_machine_config(text, "m.toml");
+  ASSERT_TRUE(m) << m.error().to_string();
+  EXPECT_FALSE(m->block_delete);
+  std::string typed = kMinimal;
+  typed.replace(typed.find("period_us = 75"), 14, "period_us = 75\nblock_delete = \"off\"");
+  auto t = parse_machine_config(typed, "m.toml");
+  ASSERT_FALSE(t);
+  EXPECT_NE(t.error().message.find("block_delete"), std::string::npos) << t.error().message;
+}
+
 // The HAL example machines (share/hal/*/machine.toml) load, check their
 // following errors and start unhomed unless they say otherwise.
 TEST(MachineConfigHoming, TheHalExampleMachinesLoad) {
