@@ -6,6 +6,7 @@
 #include <cmath>
 #include <system_error>
 
+#include "gcode/expression.h"
 #include "gcode/gcode_tolerances.h"
 
 namespace lcnc::gcode {
@@ -226,6 +227,19 @@ bool BlockParser::read_number(std::uint32_t& i, std::uint32_t letter_at_pos, dou
   const std::uint32_t digits = int_digits + frac;
   const std::uint32_t letter_pos = text_.offset[letter_at_pos];
   if (!any_digit) {
+    // a function name is letters and then '[' (XSIN[30]); a lone letter is
+    // the next word (X F6: X has no number)
+    auto function_at = [&](std::uint32_t k) {
+      while (k < n && c[k] >= 'A' && c[k] <= 'Z') ++k;
+      return k > start + 1 && k < n && c[k] == '[';
+    };
+    if (params_ != nullptr && start < n &&
+        (c[start] == '#' || c[start] == '[' || function_at(start) ||
+         ((c[start] == '+' || c[start] == '-') && start + 1 < n && !is_digit(c[start + 1]) &&
+          c[start + 1] != '.'))) {
+      i = start;
+      return read_expression(i, value);
+    }
     if (start < n && c[start] == '#') {
       return fail(ErrorCode::GcodeUnsupported, text_.offset[start],
                   std::string("found '") + letter +
@@ -363,6 +377,7 @@ bool BlockParser::read_word(std::uint32_t& i, Block& out) {
   const char ch = c[i];
   const std::uint32_t pos = text_.offset[i];
 
+  if (ch == '#' && params_ != nullptr) return read_setting(i, out);
   if (ch < 'A' || ch > 'Z') {
     switch (ch) {
       case '#':
@@ -492,7 +507,52 @@ bool BlockParser::read_word(std::uint32_t& i, Block& out) {
   return true;
 }
 
+// A value through the expression reader (a parameter, [ ], a function).
+bool BlockParser::read_expression(std::uint32_t& i, double& value) {
+  ExpressionReader r(text_, *params_);
+  if (r.real_value(i, value)) return true;
+  const Fault& f = r.fault();
+  return fail(f.code, f.byte_pos, f.message);
+}
+
+// #index = value or #<name> = value (LinuxCNC read_parameter_setting).
+bool BlockParser::read_setting(std::uint32_t& i, Block& out) {
+  const char* c = text_.compact.data();
+  const std::uint32_t n = text_.size;
+  const std::uint32_t at = i;
+  ExpressionReader r(text_, *params_);
+  ParamSet set;
+  ++i;  // '#'
+  if (i < n && c[i] == '<') {
+    if (!r.name(i, set.name)) return fail(r.fault().code, r.fault().byte_pos, r.fault().message);
+  } else {
+    const std::uint32_t index_at = i;
+    double v = 0.0;
+    if (!r.real_value(i, v)) return fail(r.fault().code, r.fault().byte_pos, r.fault().message);
+    const double rounded = std::round(v);
+    if (std::fabs(v - rounded) > kIntegerTol || rounded < 1.0 || rounded > kMaxParameterIndex) {
+      return fail(ErrorCode::GcodeBadValue, text_.offset[index_at],
+                  "found " + quoted(at, i) + ": parameter number " + quoted(index_at, i) +
+                      "; expected a whole number from 1 to " +
+                      std::to_string(kMaxParameterIndex));
+    }
+    set.index = static_cast<int>(rounded);
+  }
+  if (i >= n || c[i] != '=') {
+    return fail(ErrorCode::GcodeSyntax, text_.offset[at],
+                "found " + quoted(at, std::min(n, i + 1)) +
+                    " with no '='; expected a parameter setting such as #1 = 2.5 or #<depth> = "
+                    "-1 (a parameter's value is read only inside a word, e.g. X#1)");
+  }
+  ++i;
+  if (!r.real_value(i, set.value)) return fail(r.fault().code, r.fault().byte_pos, r.fault().message);
+  set.word = Span{at, i};
+  out.sets.push_back(std::move(set));
+  return true;
+}
+
 bool BlockParser::parse(std::string_view line, Block& out) {
+  out.sets.clear();
   out.empty = true;
   out.percent = false;
   out.block_delete = false;

@@ -78,6 +78,17 @@ struct Fault {
 inline constexpr int kLetterCount = 26;
 [[nodiscard]] constexpr int letter_index(char upper) noexcept { return upper - 'A'; }
 
+// A parameter setting of the block (#5 = ..., #<name> = ...): it takes
+// effect after every value of its line has been read (RS274NGC).
+struct ParamSet {
+  int index = 0;      // #index, or 0 for a named one
+  std::string name;   // lower-cased, without < >
+  double value = 0.0;
+  Span word{};
+};
+
+class ParameterReader;
+
 // One parsed block. Word values are as written (program units); codes are
 // stored ×10 (G61.1 -> 611), -1 when the group is not in the block.
 struct Block {
@@ -95,6 +106,7 @@ struct Block {
   std::int16_t m_laser = -1;  // 3, 4 or 5
   bool m7 = false, m8 = false, m9 = false;
   Span m_stop_word{}, m_laser_word{}, m7_word{}, m8_word{}, m9_word{};
+  std::vector<ParamSet> sets;  // in the order written (capacity reused)
 
   [[nodiscard]] bool has(char upper) const noexcept {
     return ((letters >> letter_index(upper)) & 1u) != 0;
@@ -110,6 +122,10 @@ class BlockParser {
   // present_axes: bit index(Axis) set for each axis the machine has.
   explicit BlockParser(std::uint8_t present_axes) : present_axes_(present_axes) {}
 
+  // Where '#' and expressions read their values; without one (nullptr, the
+  // default) a line with '#' or '[' is refused as outside the subset.
+  void set_parameters(const ParameterReader* params) noexcept { params_ = params; }
+
   // Parses `line` (kept by the caller until the next parse) into `out`.
   // false on error; fault() says what and where.
   [[nodiscard]] bool parse(std::string_view line, Block& out);
@@ -121,6 +137,8 @@ class BlockParser {
   bool compact(std::string_view line);
   bool read_number(std::uint32_t& i, std::uint32_t letter_at_pos, double& value);
   bool read_word(std::uint32_t& i, Block& out);
+  bool read_expression(std::uint32_t& i, double& value);
+  bool read_setting(std::uint32_t& i, Block& out);
   bool read_g(Span w, double value, Block& out);
   bool read_m(Span w, double value, Block& out);
   bool malformed_number(std::uint32_t i);
@@ -130,6 +148,7 @@ class BlockParser {
   [[nodiscard]] std::string quoted(std::uint32_t begin, std::uint32_t end) const;
 
   std::uint8_t present_axes_;
+  const ParameterReader* params_ = nullptr;
   LineText text_;
   std::uint32_t words_begin_ = 0;  // compact index of the first word (after '/' and N)
   Fault fault_;

@@ -4,10 +4,13 @@
 #include "gcode/program_reader.h"
 
 #include <algorithm>
+#include <string>
+#include <unordered_map>
 #include <utility>
 
 #include "gcode/arc_geometry.h"
 #include "gcode/block_parser.h"
+#include "gcode/expression.h"
 #include "gcode/gcode_tolerances.h"
 #include "gcode/interpreter.h"
 #include "gcode/line_source.h"
@@ -55,6 +58,37 @@ std::size_t first_content(std::string_view line) {
   return std::string_view::npos;
 }
 
+// The program's parameters: #1 … #5602 (unset ones read 0) and the named
+// ones, global when the name starts with '_', else local (to the program
+// here; to a subroutine's call once O-word calls come).
+class Parameters final : public gcode::ParameterReader {
+ public:
+  Parameters() : numbered_(gcode::kMaxParameterIndex + 1, 0.0) {}
+  [[nodiscard]] double numbered(int index) const override { return numbered_[index]; }
+  [[nodiscard]] bool named(std::string_view name, double& out) const override {
+    const auto& map = name.front() == '_' ? globals_ : locals_;
+    auto it = map.find(std::string(name));
+    if (it == map.end()) return false;
+    out = it->second;
+    return true;
+  }
+  // A line's settings, after all of its values have been read.
+  void apply(const std::vector<gcode::ParamSet>& sets) {
+    for (const gcode::ParamSet& s : sets) {
+      if (s.index > 0) {
+        numbered_[s.index] = s.value;
+      } else {
+        (s.name.front() == '_' ? globals_ : locals_)[s.name] = s.value;
+      }
+    }
+  }
+
+ private:
+  std::vector<double> numbered_;
+  std::unordered_map<std::string, double> globals_;
+  std::unordered_map<std::string, double> locals_;
+};
+
 }  // namespace
 
 struct ProgramReader::Impl {
@@ -66,6 +100,7 @@ struct ProgramReader::Impl {
         source(std::move(src)),
         parser(present_axes(machine)),
         interp(machine, options.start) {
+    parser.set_parameters(&params);
     run_startup();
   }
 
@@ -81,6 +116,7 @@ struct ProgramReader::Impl {
   MachineConfig machine;  // before interp, which keeps a reference to it
   ReaderOptions options;
   std::unique_ptr<gcode::LineSource> source;
+  Parameters params;  // before parser, which reads them
   gcode::BlockParser parser;
   gcode::Block block;
   gcode::Interpreter interp;
@@ -161,9 +197,11 @@ ProgramReader::Next ProgramReader::Impl::read(Segment& out) {
       seen_percent = true;
       continue;
     }
-    if (block.empty) continue;
+    if (block.empty && block.sets.empty()) continue;
     seen_block = true;
     if (block.block_delete && options.block_delete.value_or(machine.block_delete)) continue;  // '/' line skipped
+    params.apply(block.sets);
+    if (block.empty) continue;  // settings only
     if (!interp.execute(block, parser.text(), line, pending)) {
       const gcode::Fault& f = interp.fault();
       return fail(f.code, text, f.byte_pos, f.message);

@@ -275,15 +275,6 @@ TEST(ProgramReader, OWordIsUnsupported) {
   expect_error("N10 o100 call\n", ErrorCode::GcodeUnsupported, 1, 5);
 }
 
-TEST(ProgramReader, ParametersAndExpressionsAreUnsupported) {
-  Diagnostic d = expect_error("#1 = 5\n", ErrorCode::GcodeUnsupported, 1, 1);
-  EXPECT_MENTIONS(d, "parameters");
-  d = expect_error("G1 X#1\n", ErrorCode::GcodeUnsupported, 1, 5);
-  EXPECT_MENTIONS(d, "parameters");
-  d = expect_error("G1 X[1+2]\n", ErrorCode::GcodeUnsupported, 1, 5);
-  EXPECT_MENTIONS(d, "expressions");
-}
-
 TEST(ProgramReader, OtherLettersAreUnsupportedAndSaySo) {
   Diagnostic d = expect_error("T1\n", ErrorCode::GcodeUnsupported, 1, 1);
   EXPECT_MENTIONS(d, "'T1': tool selection (T) is not supported");
