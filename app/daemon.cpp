@@ -205,6 +205,7 @@ struct Daemon::Impl {
   Result<CheckedJob> check(const ProgramSnapshot& p, const Pose& start) const {
     ReaderOptions ropt;
     ropt.start = start;
+    ropt.program_dir = std::filesystem::path(p.name()).parent_path().string();  // not the copy's
     CheckedJob out;
     if (!is_hole_table(p.name())) {
       Result<ProgramSummary> s = check_job_program(p.path(), machine, ropt);
@@ -313,6 +314,7 @@ struct Daemon::Impl {
         // machine has moved (jog, home) since
         ReaderOptions ropt;
         ropt.start = position();
+        ropt.program_dir = std::filesystem::path(program->name()).parent_path().string();
         if (ropt.start != loaded_from) {
           Result<CheckedJob> checked = check(*program, ropt.start);
           if (!checked) return Ack{false, checked.error().code, "start: " + checked.error().to_string()};

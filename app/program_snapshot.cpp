@@ -125,7 +125,7 @@ bool looks_like_program(const std::string& head, bool hole_table) {
   if (k >= eol) return false;
   const char n = head[k];
   return std::isdigit(static_cast<unsigned char>(n)) || n == '+' || n == '-' || n == '.' || n == '#' ||
-         n == '[';
+         n == '[' || ((c == 'o' || c == 'O') && n == '<');  // o<name> sub
 }
 
 Result<std::shared_ptr<const ProgramSnapshot>> ProgramSnapshot::take(const SnapshotRequest& r) {

@@ -424,18 +424,12 @@ bool BlockParser::read_word(std::uint32_t& i, Block& out) {
   };
   switch (ch) {
     case 'O':
-      if (i != words_begin_) {
-        // An O-word can only open a block; after another word it is a stray
-        // letter, most often a zero typed as O ("X1O"). Name the word before.
-        return fail(ErrorCode::GcodeSyntax, pos,
-                    "found a letter 'O' after " + quoted(word_before(i), i) +
-                        ": unexpected 'O' inside the block (a zero typed as the letter O?); "
-                        "expected the digit 0 or a word letter (" + kSupportedWords + ")");
-      }
-      return fail(ErrorCode::GcodeUnsupported, pos,
-                  "found " + rough_word() +
-                      ": O-word subroutines and control flow are not supported; expected "
-                      "plain blocks of " + kSupportedWords + " words");
+      // An O-word opens a line (parse() reads it); after another word it is
+      // a stray letter, most often a zero typed as O ("X1O"). Name the word before.
+      return fail(ErrorCode::GcodeSyntax, pos,
+                  "found a letter 'O' after " + quoted(word_before(i), i) +
+                      ": unexpected 'O' inside the block (a zero typed as the letter O?); "
+                      "expected the digit 0 or a word letter (" + kSupportedWords + ")");
     case 'N':
       return fail(ErrorCode::GcodeSyntax, pos,
                   "found " + rough_word() +
@@ -551,7 +545,10 @@ bool BlockParser::read_setting(std::uint32_t& i, Block& out) {
   return true;
 }
 
-bool BlockParser::parse(std::string_view line, Block& out) {
+// Resets `out`, compacts the line and reads what opens it: a '%' line, '/'
+// and the N number. `i` is left at the first word; false on an error.
+[[gnu::always_inline]] inline bool BlockParser::read_prefix(std::string_view line, Block& out,
+                                                          std::uint32_t& i) {
   out.sets.clear();
   out.empty = true;
   out.percent = false;
@@ -562,7 +559,9 @@ bool BlockParser::parse(std::string_view line, Block& out) {
   out.m_stop = -1;
   out.m_laser = -1;
   out.m7 = out.m8 = out.m9 = false;
+  out.o.kind = OKind::None;
 
+  i = 0;
   if (!compact(line)) return false;
   const char* c = text_.compact.data();
   const std::uint32_t n = text_.size;
@@ -570,6 +569,7 @@ bool BlockParser::parse(std::string_view line, Block& out) {
 
   if (c[0] == '%') {
     out.percent = true;
+    i = n;
     if (n > 1) {
       return fail(ErrorCode::GcodeSyntax, text_.offset[1],
                   "found " + quote(std::string_view(c + 1, n - 1)) +
@@ -579,7 +579,6 @@ bool BlockParser::parse(std::string_view line, Block& out) {
     return true;
   }
 
-  std::uint32_t i = 0;
   if (c[i] == '/') {
     out.block_delete = true;
     ++i;
@@ -595,9 +594,175 @@ bool BlockParser::parse(std::string_view line, Block& out) {
     }
   }
   words_begin_ = i;
+  return true;
+}
+
+bool BlockParser::parse(std::string_view line, Block& out) {
+  std::uint32_t i = 0;
+  if (!read_prefix(line, out, i)) return false;
+  const std::uint32_t n = text_.size;
+  if (i < n && text_.compact[i] == 'O') return read_o(i, out);
   while (i < n) {
     if (!read_word(i, out)) return false;
     out.empty = false;
+  }
+  return true;
+}
+
+bool BlockParser::parse_o_only(std::string_view line, Block& out) {
+  std::uint32_t i = 0;
+  if (!read_prefix(line, out, i)) return false;
+  if (i < text_.size && text_.compact[i] == 'O') return read_o(i, out);
+  return true;
+}
+
+const char* o_keyword(OKind k) noexcept {
+  switch (k) {
+    case OKind::None: return "";
+    case OKind::Sub: return "sub";
+    case OKind::EndSub: return "endsub";
+    case OKind::Return: return "return";
+    case OKind::Call: return "call";
+    case OKind::If: return "if";
+    case OKind::ElseIf: return "elseif";
+    case OKind::Else: return "else";
+    case OKind::EndIf: return "endif";
+    case OKind::While: return "while";
+    case OKind::EndWhile: return "endwhile";
+    case OKind::Do: return "do";
+    case OKind::Repeat: return "repeat";
+    case OKind::EndRepeat: return "endrepeat";
+    case OKind::Break: return "break";
+    case OKind::Continue: return "continue";
+  }
+  return "";
+}
+
+// O label keyword [value]... (LinuxCNC read_o): the label is a number or a
+// <name>; the values are bracketed expressions, read later by o_values().
+bool BlockParser::read_o(std::uint32_t& i, Block& out) {
+  const char* c = text_.compact.data();
+  const std::uint32_t n = text_.size;
+  const std::uint32_t at = i;
+  OWord& o = out.o;
+  o.label.clear();
+  ++i;
+  if (i < n && c[i] == '<') {
+    const std::uint32_t name_at = ++i;
+    while (i < n && c[i] != '>') ++i;
+    if (i == n) {
+      return fail(ErrorCode::GcodeSyntax, text_.offset[at],
+                  "found " + quoted(at, n) + " with no '>' closing the name; expected an O-word "
+                  "such as o<drill_row> call");
+    }
+    if (i == name_at) {
+      return fail(ErrorCode::GcodeSyntax, text_.offset[at],
+                  "found 'O<>': an empty subroutine name; expected a name such as o<drill_row>");
+    }
+    o.label = "<";
+    for (std::uint32_t k = name_at; k < i; ++k) {
+      const char ch = c[k];
+      o.label += ch >= 'A' && ch <= 'Z' ? static_cast<char>(ch - 'A' + 'a') : ch;
+    }
+    o.label += '>';
+    ++i;
+  } else {
+    const std::uint32_t digits_at = i;
+    while (i < n && c[i] == '0') ++i;
+    const std::uint32_t significant = i;
+    while (i < n && is_digit(c[i])) ++i;
+    if (i == digits_at || i - significant > 9) {
+      return fail(ErrorCode::GcodeSyntax, text_.offset[at],
+                  "found " + quoted(at, std::min(n, i + 8)) +
+                      ": an O-word needs a label; expected a number of at most 9 digits or a "
+                      "<name> after O, such as O100 if or o<pierce> call");
+    }
+    o.label = i == significant ? "0" : std::string(c + significant, i - significant);
+  }
+  const std::uint32_t keyword_at = i;
+  while (i < n && c[i] >= 'A' && c[i] <= 'Z') ++i;
+  const std::string_view keyword(c + keyword_at, i - keyword_at);
+  static constexpr std::array<std::pair<std::string_view, OKind>, 15> kKeywords = {{
+      {"SUB", OKind::Sub}, {"ENDSUB", OKind::EndSub}, {"RETURN", OKind::Return},
+      {"CALL", OKind::Call}, {"IF", OKind::If}, {"ELSEIF", OKind::ElseIf},
+      {"ELSE", OKind::Else}, {"ENDIF", OKind::EndIf}, {"WHILE", OKind::While},
+      {"ENDWHILE", OKind::EndWhile}, {"DO", OKind::Do}, {"REPEAT", OKind::Repeat},
+      {"ENDREPEAT", OKind::EndRepeat}, {"BREAK", OKind::Break},
+      {"CONTINUE", OKind::Continue}}};
+  o.kind = OKind::None;
+  for (const auto& [word, kind] : kKeywords) {
+    if (keyword == word) o.kind = kind;
+  }
+  if (o.kind == OKind::None) {
+    return fail(ErrorCode::GcodeSyntax, text_.offset[keyword_at < n ? keyword_at : at],
+                "found " + quoted(at, std::min(n, i + 4)) +
+                    (keyword.empty() ? std::string(" with no keyword")
+                                     : ": unknown O-word keyword " + quote(keyword)) +
+                    "; expected one of sub endsub return call if elseif else endif while "
+                    "endwhile do repeat endrepeat break continue");
+  }
+  o.word = Span{at, i};
+  o.args_begin = i;
+  o.arg_count = 0;
+  // the values: balanced [ ] groups, one after another, nothing else
+  while (i < n) {
+    if (c[i] != '[') {
+      return fail(ErrorCode::GcodeSyntax, text_.offset[i],
+                  "found " + quoted(i, n) + " after " + quoted(o.word) +
+                      "; expected only bracketed values such as [#1 + 2] (and comments) on an "
+                      "O-word line");
+    }
+    const std::uint32_t open_at = i;
+    int depth = 0;
+    do {
+      if (c[i] == '[') ++depth;
+      if (c[i] == ']') --depth;
+      ++i;
+    } while (i < n && depth > 0);
+    if (depth > 0) {
+      return fail(ErrorCode::GcodeSyntax, text_.offset[open_at],
+                  "found '[' with no matching ']' after " + quoted(o.word) +
+                      "; expected each value in [ ] closed on its line");
+    }
+    ++o.arg_count;
+  }
+  std::uint32_t least = 0;
+  std::uint32_t most = 0;
+  switch (o.kind) {
+    case OKind::If: case OKind::ElseIf: case OKind::While: case OKind::Repeat:
+      least = most = 1;
+      break;
+    case OKind::Return: case OKind::EndSub: most = 1; break;
+    case OKind::Call: most = kMaxCallArgs; break;
+    default: break;
+  }
+  if (o.arg_count < least || o.arg_count > most) {
+    const std::string kw = o_keyword(o.kind);
+    std::string expected =
+        least == 1 ? "one bracketed value, such as O100 " + kw + " [#1 LT 3]"
+        : most == 0 ? "nothing after '" + kw + "' but a comment"
+        : most == 1 ? "at most one bracketed value, the one returned"
+                    : "at most " + std::to_string(kMaxCallArgs) + " bracketed arguments";
+    return fail(ErrorCode::GcodeSyntax, text_.offset[at],
+                "found " + quoted(o.word) + " with " + std::to_string(o.arg_count) +
+                    " bracketed value" + (o.arg_count == 1 ? "" : "s") + "; expected " +
+                    expected);
+  }
+  return true;
+}
+
+bool BlockParser::o_values(const Block& b, std::vector<double>& out) {
+  out.clear();
+  if (params_ == nullptr) {
+    return fail(ErrorCode::GcodeUnsupported, text_.byte_pos(b.o.word),
+                "found an O-word with values but no parameters to read them with");
+  }
+  ExpressionReader r(text_, *params_);
+  std::uint32_t i = b.o.args_begin;
+  for (std::uint32_t k = 0; k < b.o.arg_count; ++k) {
+    double v = 0.0;
+    if (!r.real_value(i, v)) return fail(r.fault().code, r.fault().byte_pos, r.fault().message);
+    out.push_back(v);
   }
   return true;
 }

@@ -89,6 +89,27 @@ struct ParamSet {
 
 class ParameterReader;
 
+// An O-word line's keyword (LinuxCNC's O-codes): subroutines and control flow.
+enum class OKind : std::uint8_t {
+  None, Sub, EndSub, Return, Call, If, ElseIf, Else, EndIf,
+  While, EndWhile, Do, Repeat, EndRepeat, Break, Continue
+};
+[[nodiscard]] const char* o_keyword(OKind k) noexcept;  // "sub", "endsub", ...
+
+// A call passes at most #1 … #30 (LinuxCNC).
+inline constexpr std::uint32_t kMaxCallArgs = 30;
+
+// An O-word line: "O100 while [#1 LT 3]", "o<drill> call [2] [0.5]". Its
+// bracketed values are read only when the line runs (o_values()), as
+// LinuxCNC does: a skipped branch's expressions are never evaluated.
+struct OWord {
+  OKind kind = OKind::None;
+  std::string label;             // "100" or "<name>" lower-cased: what matches
+  Span word{};                   // the O-word and its keyword
+  std::uint32_t args_begin = 0;  // compact index of the first '[' value
+  std::uint32_t arg_count = 0;   // bracketed values after the keyword
+};
+
 // One parsed block. Word values are as written (program units); codes are
 // stored ×10 (G61.1 -> 611), -1 when the group is not in the block.
 struct Block {
@@ -107,6 +128,7 @@ struct Block {
   bool m7 = false, m8 = false, m9 = false;
   Span m_stop_word{}, m_laser_word{}, m7_word{}, m8_word{}, m9_word{};
   std::vector<ParamSet> sets;  // in the order written (capacity reused)
+  OWord o;                     // kind None unless an O-word line (then nothing else is set)
 
   [[nodiscard]] bool has(char upper) const noexcept {
     return ((letters >> letter_index(upper)) & 1u) != 0;
@@ -129,6 +151,12 @@ class BlockParser {
   // Parses `line` (kept by the caller until the next parse) into `out`.
   // false on error; fault() says what and where.
   [[nodiscard]] bool parse(std::string_view line, Block& out);
+  // Reads only an O-word line (out.o), leaving any other line unread: how
+  // lines are passed over while skipping a branch or a definition. false on
+  // an error in the line's comments or in its O-word.
+  [[nodiscard]] bool parse_o_only(std::string_view line, Block& out);
+  // The bracketed values of the O-word line just parsed, in order.
+  [[nodiscard]] bool o_values(const Block& b, std::vector<double>& out);
 
   [[nodiscard]] const LineText& text() const noexcept { return text_; }
   [[nodiscard]] const Fault& fault() const noexcept { return fault_; }
@@ -139,6 +167,8 @@ class BlockParser {
   bool read_word(std::uint32_t& i, Block& out);
   bool read_expression(std::uint32_t& i, double& value);
   bool read_setting(std::uint32_t& i, Block& out);
+  bool read_prefix(std::string_view line, Block& out, std::uint32_t& i);
+  bool read_o(std::uint32_t& i, Block& out);
   bool read_g(Span w, double value, Block& out);
   bool read_m(Span w, double value, Block& out);
   bool malformed_number(std::uint32_t i);

@@ -30,6 +30,7 @@ std::unique_ptr<LineSource> LineSource::open_file(const std::string& path, std::
 void LineSource::refill() {
   const std::size_t unread = end_ - begin_;
   if (begin_ > 0 && unread > 0) std::memmove(buf_.data(), buf_.data() + begin_, unread);
+  base_ += begin_;
   begin_ = 0;
   end_ = unread;
   cr_valid_ = false;  // the bytes moved
@@ -39,6 +40,26 @@ void LineSource::refill() {
     eof_ = true;
     if (std::ferror(file_.get()) != 0) read_error_ = std::strerror(errno);
   }
+}
+
+bool LineSource::seek(std::uint64_t offset) {
+  too_long_ = false;
+  first_line_ = offset == 0;
+  cr_valid_ = false;
+  if (offset >= base_ && offset <= base_ + end_) {  // within what is held
+    begin_ = static_cast<std::size_t>(offset - base_);
+    return true;
+  }
+  if (!file_ || std::fseek(file_.get(), static_cast<long>(offset), SEEK_SET) != 0) {
+    read_error_ = file_ ? std::strerror(errno) : "offset beyond the text";
+    begin_ = end_;
+    eof_ = true;
+    return false;
+  }
+  base_ = offset;
+  begin_ = end_ = 0;
+  eof_ = false;
+  return true;
 }
 
 bool LineSource::next(std::string_view& line) {

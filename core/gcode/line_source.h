@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -36,6 +37,14 @@ class LineSource {
   // lines; the text's size in memory.
   [[nodiscard]] std::size_t buffer_bytes() const noexcept { return buf_.capacity(); }
 
+  // Where the next line starts, as a byte offset in the input: what seek()
+  // takes back to read a line again (O-word loops, subroutine returns).
+  [[nodiscard]] std::uint64_t tell() const noexcept { return base_ + begin_; }
+  // The next line starts at `offset` (one tell() returned). Within the chunk
+  // held it moves there; else the file is re-read from there. false when the
+  // file cannot seek (read_error() says why).
+  [[nodiscard]] bool seek(std::uint64_t offset);
+
   static constexpr std::size_t kChunkBytes = 1u << 20;
 
  private:
@@ -48,6 +57,7 @@ class LineSource {
 
   std::unique_ptr<std::FILE, FileCloser> file_;
   std::string buf_;          // file mode: chunk buffer; memory mode: the text
+  std::uint64_t base_ = 0;   // input offset of buf_[0]
   std::size_t begin_ = 0;    // first unread byte
   std::size_t end_ = 0;      // one past the last valid byte
   bool eof_ = false;         // no more bytes beyond end_

@@ -4,6 +4,9 @@
 #include "gcode/program_reader.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -59,14 +62,21 @@ std::size_t first_content(std::string_view line) {
 }
 
 // The program's parameters: #1 … #5602 (unset ones read 0) and the named
-// ones, global when the name starts with '_', else local (to the program
-// here; to a subroutine's call once O-word calls come).
+// ones, global when the name starts with '_', else local to the subroutine
+// call (or the program) that set them. #1 … #30 are a call's arguments: saved
+// at the call, restored at its return.
 class Parameters final : public gcode::ParameterReader {
  public:
-  Parameters() : numbered_(gcode::kMaxParameterIndex + 1, 0.0) {}
+  static constexpr int kArgs = static_cast<int>(gcode::kMaxCallArgs);
+  using Saved = std::array<double, kArgs>;
+
+  Parameters() : numbered_(gcode::kMaxParameterIndex + 1, 0.0), locals_(1) {
+    globals_["_value"] = 0.0;           // what the last call returned
+    globals_["_value_returned"] = 0.0;  // 1 when it returned a value
+  }
   [[nodiscard]] double numbered(int index) const override { return numbered_[index]; }
   [[nodiscard]] bool named(std::string_view name, double& out) const override {
-    const auto& map = name.front() == '_' ? globals_ : locals_;
+    const auto& map = name.front() == '_' ? globals_ : locals_.back();
     auto it = map.find(std::string(name));
     if (it == map.end()) return false;
     out = it->second;
@@ -78,28 +88,96 @@ class Parameters final : public gcode::ParameterReader {
       if (s.index > 0) {
         numbered_[s.index] = s.value;
       } else {
-        (s.name.front() == '_' ? globals_ : locals_)[s.name] = s.value;
+        (s.name.front() == '_' ? globals_ : locals_.back())[s.name] = s.value;
       }
     }
+  }
+  void set_global(const std::string& name, double v) { globals_[name] = v; }
+  // A call: #1 … #30 become `args` (the rest 0), named locals start empty.
+  Saved enter(const std::vector<double>& args) {
+    Saved saved{};
+    for (int i = 0; i < kArgs; ++i) {
+      saved[i] = numbered_[i + 1];
+      numbered_[i + 1] = i < static_cast<int>(args.size()) ? args[i] : 0.0;
+    }
+    locals_.emplace_back();
+    return saved;
+  }
+  void leave(const Saved& saved) {
+    for (int i = 0; i < kArgs; ++i) numbered_[i + 1] = saved[i];
+    locals_.pop_back();
   }
 
  private:
   std::vector<double> numbered_;
   std::unordered_map<std::string, double> globals_;
-  std::unordered_map<std::string, double> locals_;
+  std::vector<std::unordered_map<std::string, double>> locals_;  // one map per call level
 };
+
+// Where a line starts in one of the reader's files: `line` lines come before it.
+struct Location {
+  std::size_t file = 0;
+  std::uint64_t offset = 0;
+  std::uint32_t line = 0;
+};
+
+// An open control structure of the running call (LinuxCNC keeps them by
+// label; here a stack, so a mismatched end is named at once).
+struct Control {
+  gcode::OKind kind = gcode::OKind::If;  // If, While, Do or Repeat
+  std::string label;
+  Location start;          // While: its own line (re-tested); Do, Repeat: the line after
+  std::uint32_t line = 0;  // where it opened, for messages
+  std::int64_t left = 0;   // Repeat: passes still to run after this one
+  std::uint32_t col = 1;   // of its O-word
+};
+
+// A subroutine call in progress (the program itself is frame 0).
+struct Frame {
+  std::string sub;     // the label called ("" for the program)
+  Location return_to;  // the line after the call
+  Parameters::Saved saved{};
+  std::vector<Control> controls;
+};
+
+// Lines passed over unread except for O-words with `label`.
+enum class Skip : std::uint8_t {
+  None,
+  ToSub,      // to "O<label> sub", then into it (a call of a sub defined later, or in its file)
+  SubBody,    // a definition, to its endsub
+  IfBranch,   // a false branch: to the elseif, else or endif
+  ToEndIf,    // after the branch that ran: to the endif
+  LoopEnd,    // a loop not (or no longer) run: to its end (`end`)
+  ToDoTest,   // continue in a do loop: to its closing while
+};
+
+// A program file and the subroutine files it calls.
+struct OpenFile {
+  std::string path;
+  std::unique_ptr<gcode::LineSource> src;  // null while closed (reopened on a jump back)
+};
+
+// Jumps back (loops, calls) with no motion in between before the reader
+// calls it an endless loop: a program may compute, but never hang the reader.
+constexpr std::uint32_t kMaxJumpsWithoutMotion = 1'000'000;
+// Nested calls (LinuxCNC's limit).
+constexpr std::size_t kMaxCallDepth = 10;
+
+std::string o_name(const std::string& label) { return "O" + label; }
 
 }  // namespace
 
 struct ProgramReader::Impl {
   Impl(std::unique_ptr<gcode::LineSource> src, std::string name, const MachineConfig& m,
        const ReaderOptions& opts)
-      : file(std::move(name)),
+      : file(name),
         machine(m),
         options(opts),
-        source(std::move(src)),
         parser(present_axes(machine)),
         interp(machine, options.start) {
+    files.push_back(OpenFile{std::move(name), std::move(src)});
+    in = files[0].src.get();
+    frames.emplace_back();
     parser.set_parameters(&params);
     run_startup();
   }
@@ -107,25 +185,50 @@ struct ProgramReader::Impl {
   enum class State : std::uint8_t { Running, Ended, Failed };
 
   Next read(Segment& out);
-  bool run_line(std::string_view line);
   void run_startup();
   void warn_lines_after_end();
   Next fail(ErrorCode code, std::string_view line, std::uint32_t byte_pos, std::string message);
+  Next fail_o(std::string_view line, std::string message);
+  Next at_file_end();
 
-  std::string file;
+  // O-words: the line just parsed into `block`, which starts at `here`.
+  bool run_o(std::string_view text, const Location& here);
+  bool skip_line(std::string_view text);
+  bool values(std::string_view text);
+  bool call(std::string_view text, const Location& after);
+  bool jump(const Location& to);
+  void start_skip(Skip what, const std::string& label, gcode::OKind end = gcode::OKind::None);
+  Control* find_loop(const std::string& label);
+  gcode::LineSource& src() { return *in; }
+
+  std::string file;  // the file being read (for diagnostics)
   MachineConfig machine;  // before interp, which keeps a reference to it
   ReaderOptions options;
-  std::unique_ptr<gcode::LineSource> source;
+  std::vector<OpenFile> files;  // [0] the program
+  std::size_t cur = 0;          // files[cur] is being read
+  gcode::LineSource* in = nullptr;  // files[cur].src
   Parameters params;  // before parser, which reads them
   gcode::BlockParser parser;
   gcode::Block block;
   gcode::Interpreter interp;
   gcode::SegmentBuffer pending;
 
+  std::vector<Frame> frames;                              // [0] the program
+  std::unordered_map<std::string, Location> subs;        // label -> the line after its "sub"
+  std::unordered_map<std::string, std::uint32_t> sub_lines;  // label -> its "sub" line
+  Skip skip = Skip::None;
+  std::string skip_label;
+  gcode::OKind skip_end = gcode::OKind::None;  // LoopEnd: the keyword that ends the loop
+  Location skip_from;                          // where the skip began (the call, the if …)
+  std::uint32_t skip_col = 1;                  // and the column of its O-word
+  std::vector<double> args;
+  std::uint32_t jumps_without_motion = 0;
+
   State state = State::Running;
   Diagnostic error;
   std::vector<Diagnostic> warnings;
-  std::uint32_t line = 0;
+  std::uint32_t line = 0;        // of files[cur]
+  std::uint32_t main_lines = 0;  // lines of the program file read before its last jump
 
   bool seen_block = false;    // a line with words has been read
   bool seen_percent = false;  // the opening '%' has been read
@@ -142,6 +245,11 @@ ProgramReader::Next ProgramReader::Impl::fail(ErrorCode code, std::string_view t
   return Next::Error;
 }
 
+ProgramReader::Next ProgramReader::Impl::fail_o(std::string_view text, std::string message) {
+  return fail(ErrorCode::GcodeFlow, text, parser.text().byte_pos(block.o.word),
+              std::move(message));
+}
+
 ProgramReader::Next ProgramReader::Impl::read(Segment& out) {
   for (;;) {
     switch (state) {
@@ -151,6 +259,7 @@ ProgramReader::Next ProgramReader::Impl::read(Segment& out) {
     }
     if (!pending.empty()) {
       out = pending.pop();
+      jumps_without_motion = 0;
       return Next::Segment;
     }
     if (ended) {
@@ -159,8 +268,9 @@ ProgramReader::Next ProgramReader::Impl::read(Segment& out) {
       continue;
     }
     std::string_view text;
-    if (!source->next(text)) {
-      if (source->too_long()) {
+    const std::uint64_t line_start = in->tell();
+    if (!in->next(text)) {
+      if (src().too_long()) {
         error = make_error(ErrorCode::GcodeSyntax,
                            "found a line longer than " + std::to_string(gcode::kMaxLineBytes) +
                                " bytes (no line end within it); expected program lines of at "
@@ -170,25 +280,31 @@ ProgramReader::Next ProgramReader::Impl::read(Segment& out) {
         state = State::Failed;
         return Next::Error;
       }
-      if (!source->read_error().empty()) {
+      if (!src().read_error().empty()) {
         error = make_error(ErrorCode::FileNotFound,
                            "reading stopped after line " + std::to_string(line) + ": " +
-                               source->read_error() + "; expected to read the whole program",
+                               src().read_error() + "; expected to read the whole program",
                            file, line + 1, 0);
         state = State::Failed;
         return Next::Error;
       }
-      state = State::Ended;
+      if (at_file_end() == Next::Error) return Next::Error;
       continue;
     }
     ++line;
     pending.clear();
+    if (skip != Skip::None) {
+      if (!skip_line(text)) return Next::Error;
+      continue;
+    }
     if (!parser.parse(text, block)) {
       const gcode::Fault& f = parser.fault();
       return fail(f.code, text, f.byte_pos, f.message);
     }
     if (block.percent) {
-      // The first '%' opens the program, the next one ends it (LinuxCNC).
+      // The first '%' opens the program, the next one ends it (LinuxCNC);
+      // a subroutine file's are passed over.
+      if (cur != 0) continue;
       if (seen_block || seen_percent) {
         ended = true;
         end_line = line;
@@ -197,9 +313,16 @@ ProgramReader::Next ProgramReader::Impl::read(Segment& out) {
       seen_percent = true;
       continue;
     }
+    const bool deleted = block.block_delete && options.block_delete.value_or(machine.block_delete);
+    if (block.o.kind != gcode::OKind::None) {
+      seen_block = true;
+      if (deleted) continue;
+      if (!run_o(text, Location{cur, line_start, line - 1})) return Next::Error;
+      continue;
+    }
     if (block.empty && block.sets.empty()) continue;
     seen_block = true;
-    if (block.block_delete && options.block_delete.value_or(machine.block_delete)) continue;  // '/' line skipped
+    if (deleted) continue;  // '/' line skipped
     params.apply(block.sets);
     if (block.empty) continue;  // settings only
     if (!interp.execute(block, parser.text(), line, pending)) {
@@ -213,6 +336,403 @@ ProgramReader::Next ProgramReader::Impl::read(Segment& out) {
       end_what += " on line " + std::to_string(line);
     }
   }
+}
+
+// The end of the file being read: the program's end, or an error when a
+// subroutine, a skip or a control structure is still open.
+ProgramReader::Next ProgramReader::Impl::at_file_end() {
+  auto fail_here = [&](const Location& at, std::string message, std::uint32_t col = 1) {
+    error = make_error(ErrorCode::GcodeFlow, std::move(message), files[at.file].path,
+                       at.line + 1, col);
+    pending.clear();
+    state = State::Failed;
+    return Next::Error;
+  };
+  const std::string where = "found the end of " + file;
+  switch (skip) {
+    case Skip::None: break;
+    case Skip::ToSub: {
+      std::string looked = "not defined before the call, not later in " + file;
+      if (skip_label.front() == '<') {
+        looked += ", and no file " + skip_label.substr(1, skip_label.size() - 2) +
+                  ".ngc in the program's folder or machine.subroutine_path";
+      }
+      return fail_here(skip_from,
+                       "subroutine " + o_name(skip_label) + " not found: " + looked +
+                           "; expected " + o_name(skip_label) + " sub … " + o_name(skip_label) +
+                           " endsub",
+                       skip_col);
+    }
+    case Skip::SubBody:
+      return fail_here(skip_from, where + " inside the definition of " + o_name(skip_label) +
+                                      "; expected " + o_name(skip_label) + " endsub", skip_col);
+    case Skip::IfBranch:
+    case Skip::ToEndIf:
+      return fail_here(skip_from, where + " before " + o_name(skip_label) +
+                                      " endif; expected one for this " + o_name(skip_label) +
+                                      " if", skip_col);
+    case Skip::LoopEnd:
+    case Skip::ToDoTest:
+      return fail_here(skip_from, where + " before " + o_name(skip_label) + " " +
+                                      o_keyword(skip_end == gcode::OKind::None
+                                                    ? gcode::OKind::While
+                                                    : skip_end) +
+                                      "; expected the end of this loop", skip_col);
+  }
+  Frame& f = frames.back();
+  if (frames.size() > 1) {
+    return fail_here(Location{cur, 0, line}, where + " inside subroutine " + o_name(f.sub) +
+                                                 " (called from " +
+                                                 files[f.return_to.file].path + ":" +
+                                                 std::to_string(f.return_to.line) +
+                                                 "); expected " + o_name(f.sub) + " endsub");
+  }
+  if (!f.controls.empty()) {
+    const Control& c = f.controls.back();
+    const char* end = c.kind == gcode::OKind::If ? "endif"
+                      : c.kind == gcode::OKind::While ? "endwhile"
+                      : c.kind == gcode::OKind::Do ? "while"
+                      : "endrepeat";
+    return fail_here(Location{0, 0, c.line - 1},
+                     where + " with " + o_name(c.label) + " " + o_keyword(c.kind) +
+                         " still open; expected " + o_name(c.label) + " " + end + " before it",
+                     c.col);
+  }
+  state = State::Ended;
+  return Next::End;
+}
+
+void ProgramReader::Impl::start_skip(Skip what, const std::string& label, gcode::OKind end) {
+  skip = what;
+  skip_label = label;
+  skip_end = end;
+  skip_from = Location{cur, 0, line - 1};
+  skip_col = column_of(parser.text().original, parser.text().byte_pos(block.o.word));
+}
+
+bool ProgramReader::Impl::values(std::string_view text) {
+  if (parser.o_values(block, args)) return true;
+  const gcode::Fault& f = parser.fault();
+  fail(f.code, text, f.byte_pos, f.message);
+  return false;
+}
+
+// To a line read before (a loop's start, a call's return) or a subroutine.
+bool ProgramReader::Impl::jump(const Location& to) {
+  if (++jumps_without_motion > kMaxJumpsWithoutMotion) {
+    error = make_error(ErrorCode::GcodeFlow,
+                       "found " + std::to_string(kMaxJumpsWithoutMotion) +
+                           " loop passes or calls in a row without a move: an endless loop; "
+                           "expected each loop to end (check its condition)",
+                       file, line, 1);
+    state = State::Failed;
+    return false;
+  }
+  OpenFile& f = files[to.file];
+  if (!f.src) {
+    std::string why;
+    f.src = gcode::LineSource::open_file(f.path, why);
+    if (!f.src) {
+      error = make_error(ErrorCode::FileNotFound,
+                         "cannot reopen subroutine file '" + f.path + "': " + why, file, line, 1);
+      state = State::Failed;
+      return false;
+    }
+  }
+  if (!f.src->seek(to.offset)) {
+    error = make_error(ErrorCode::FileNotFound,
+                       "cannot go back in '" + f.path + "': " + f.src->read_error(), file, line,
+                       1);
+    state = State::Failed;
+    return false;
+  }
+  if (cur == 0) main_lines = std::max(main_lines, line);  // leaving, or going back in, the program
+  cur = to.file;
+  in = f.src.get();
+  file = f.path;
+  line = to.line;
+  // Subroutine files no call in progress reads are closed (their buffer freed).
+  for (std::size_t i = 1; i < files.size(); ++i) {
+    if (i == cur || !files[i].src) continue;
+    const bool in_use = std::any_of(frames.begin(), frames.end(),
+                                    [&](const Frame& fr) { return fr.return_to.file == i; });
+    if (!in_use) files[i].src.reset();
+  }
+  return true;
+}
+
+Control* ProgramReader::Impl::find_loop(const std::string& label) {
+  auto& cs = frames.back().controls;
+  for (auto it = cs.rbegin(); it != cs.rend(); ++it) {
+    if (it->label == label && it->kind != gcode::OKind::If) return &*it;
+  }
+  return nullptr;
+}
+
+// "o<name> call [args]": a new frame, then to the subroutine: defined
+// already, else its file <name>.ngc, else later in this file (LinuxCNC's order).
+bool ProgramReader::Impl::call(std::string_view text, const Location& after) {
+  const std::string& label = block.o.label;
+  if (frames.size() > kMaxCallDepth) {
+    fail_o(text, "found " + o_name(label) + " call nested " + std::to_string(kMaxCallDepth + 1) +
+                     " deep; expected at most " + std::to_string(kMaxCallDepth) +
+                     " calls in progress (a subroutine calling itself without end?)");
+    return false;
+  }
+  if (!values(text)) return false;
+  Frame f;
+  f.sub = label;
+  f.return_to = after;
+  f.saved = params.enter(args);
+  frames.push_back(std::move(f));
+  params.set_global("_value", 0.0);
+  params.set_global("_value_returned", 0.0);
+  if (auto it = subs.find(label); it != subs.end()) return jump(it->second);
+  if (label.front() == '<') {
+    const std::string name = label.substr(1, label.size() - 2) + ".ngc";
+    std::vector<std::filesystem::path> dirs;
+    dirs.push_back(options.program_dir.empty()
+                       ? std::filesystem::path(files[0].path).parent_path()
+                       : std::filesystem::path(options.program_dir));
+    for (const std::string& d : machine.subroutine_path) dirs.emplace_back(d);
+    for (const auto& dir : dirs) {
+      std::error_code ec;
+      const std::filesystem::path candidate = dir / name;  // a bare program name: the working folder
+      if (!std::filesystem::is_regular_file(candidate, ec)) continue;
+      const std::string path = candidate.string();
+      std::size_t index = 0;
+      while (index < files.size() && files[index].path != path) ++index;
+      if (index == files.size()) files.push_back(OpenFile{path, nullptr});
+      if (!jump(Location{index, 0, 0})) return false;
+      start_skip(Skip::ToSub, label);
+      skip_from = Location{after.file, 0, after.line - 1};
+      return true;
+    }
+  }
+  if (cur != 0) {
+    fail_o(text, "subroutine " + o_name(label) + " not found: not defined before the call and no "
+                 "file for it; expected it defined in the program or in its own file " +
+                 (label.front() == '<' ? label.substr(1, label.size() - 2) + ".ngc" : "") +
+                 " in the program's folder or machine.subroutine_path");
+    return false;
+  }
+  start_skip(Skip::ToSub, label);  // later in the program (LinuxCNC's forward search)
+  return true;
+}
+
+bool ProgramReader::Impl::run_o(std::string_view text, const Location& here) {
+  using gcode::OKind;
+  const gcode::OWord& o = block.o;
+  const std::string& label = o.label;
+  const std::string name = o_name(label);
+  const Location after{cur, src().tell(), line};
+  const std::uint32_t col = column_of(text, parser.text().byte_pos(o.word));
+  Frame& f = frames.back();
+  auto& cs = f.controls;
+  auto expect_top = [&](OKind opened, const char* what) -> Control* {
+    if (!cs.empty() && cs.back().label == label && cs.back().kind == opened) return &cs.back();
+    std::string open_now = cs.empty() ? std::string("none is open")
+                                      : o_name(cs.back().label) + " " + o_keyword(cs.back().kind) +
+                                            " (line " + std::to_string(cs.back().line) +
+                                            ") is the one open";
+    fail_o(text, "found " + name + " " + what + " with no " + name + " " + o_keyword(opened) +
+                     " open here (" + open_now + "); expected each " + what +
+                     " to close the structure opened last, with the same label");
+    return nullptr;
+  };
+  switch (o.kind) {
+    case OKind::None: return true;
+    case OKind::Sub: {
+      if (frames.size() > 1) {
+        fail_o(text, "found " + name + " sub inside subroutine " + o_name(f.sub) +
+                         "; expected subroutine definitions outside any other");
+        return false;
+      }
+      if (auto it = sub_lines.find(label); it != sub_lines.end() && it->second != line) {
+        fail_o(text, "found a second definition of " + name + " (the first is on line " +
+                         std::to_string(it->second) + "); expected each subroutine defined once");
+        return false;
+      }
+      subs[label] = after;
+      sub_lines[label] = line;
+      start_skip(Skip::SubBody, label);
+      return true;
+    }
+    case OKind::EndSub:
+    case OKind::Return: {
+      if (frames.size() == 1) {
+        fail_o(text, "found " + name + " " + o_keyword(o.kind) +
+                         " outside a subroutine; expected it only inside " + name + " sub");
+        return false;
+      }
+      // a return may carry any label (LinuxCNC: it leaves the running call);
+      // an endsub closes its own sub
+      if (o.kind == gcode::OKind::EndSub && label != f.sub) {
+        fail_o(text, "found " + name + " endsub inside subroutine " + o_name(f.sub) +
+                         "; expected " + o_name(f.sub) + " endsub");
+        return false;
+      }
+      if (!values(text)) return false;
+      params.leave(f.saved);
+      params.set_global("_value", args.empty() ? 0.0 : args.front());
+      params.set_global("_value_returned", args.empty() ? 0.0 : 1.0);
+      const Location back = f.return_to;
+      frames.pop_back();
+      return jump(back);
+    }
+    case OKind::Call: return call(text, after);
+    case OKind::If: {
+      if (!values(text)) return false;
+      cs.push_back(Control{OKind::If, label, here, line, 0, col});
+      if (args[0] == 0.0) start_skip(Skip::IfBranch, label);
+      return true;
+    }
+    case OKind::ElseIf:
+    case OKind::Else:
+      // reached by running: the branch before it ran, so the rest is skipped
+      if (expect_top(OKind::If, o_keyword(o.kind)) == nullptr) return false;
+      start_skip(Skip::ToEndIf, label);
+      return true;
+    case OKind::EndIf:
+      if (expect_top(OKind::If, "endif") == nullptr) return false;
+      cs.pop_back();
+      return true;
+    case OKind::While: {
+      if (!values(text)) return false;
+      if (!cs.empty() && cs.back().label == label && cs.back().kind == OKind::Do) {
+        // the end of a do loop: back to its first line while true
+        if (args[0] != 0.0) return jump(cs.back().start);
+        cs.pop_back();
+        return true;
+      }
+      if (args[0] == 0.0) {
+        start_skip(Skip::LoopEnd, label, OKind::EndWhile);
+        return true;
+      }
+      cs.push_back(Control{OKind::While, label, here, line, 0, col});
+      return true;
+    }
+    case OKind::EndWhile: {
+      Control* c = expect_top(OKind::While, "endwhile");
+      if (c == nullptr) return false;
+      const Location back = c->start;  // the while line, tested again
+      cs.pop_back();
+      return jump(back);
+    }
+    case OKind::Do:
+      cs.push_back(Control{OKind::Do, label, after, line, 0, col});
+      return true;
+    case OKind::Repeat: {
+      if (!values(text)) return false;
+      const double n = std::round(args[0]);
+      if (!(n >= 1.0)) {
+        start_skip(Skip::LoopEnd, label, OKind::EndRepeat);
+        return true;
+      }
+      cs.push_back(Control{OKind::Repeat, label, after, line,
+                           static_cast<std::int64_t>(std::min(n, 1e15)) - 1, col});
+      return true;
+    }
+    case OKind::EndRepeat: {
+      Control* c = expect_top(OKind::Repeat, "endrepeat");
+      if (c == nullptr) return false;
+      if (c->left > 0) {
+        --c->left;
+        return jump(c->start);
+      }
+      cs.pop_back();
+      return true;
+    }
+    case OKind::Break:
+    case OKind::Continue: {
+      Control* loop = find_loop(label);
+      if (loop == nullptr) {
+        fail_o(text, "found " + name + " " + o_keyword(o.kind) + " outside any loop " + name +
+                         "; expected it inside " + name + " while, do or repeat");
+        return false;
+      }
+      while (&cs.back() != loop) cs.pop_back();  // the ifs inside the loop end here
+      const OKind kind = loop->kind;
+      const OKind end = kind == OKind::While ? OKind::EndWhile
+                        : kind == OKind::Do  ? OKind::While
+                                             : OKind::EndRepeat;
+      if (o.kind == OKind::Break) {
+        cs.pop_back();
+        start_skip(Skip::LoopEnd, label, end);
+        return true;
+      }
+      if (kind == OKind::While) {  // continue: the while line tests again
+        const Location back = loop->start;
+        cs.pop_back();
+        return jump(back);
+      }
+      if (kind == OKind::Do) {  // continue: to the closing while's test
+        start_skip(Skip::ToDoTest, label, OKind::While);
+        return true;
+      }
+      if (loop->left > 0) {
+        --loop->left;
+        return jump(loop->start);
+      }
+      cs.pop_back();
+      start_skip(Skip::LoopEnd, label, end);
+      return true;
+    }
+  }
+  return true;
+}
+
+// A line while skipping: only an O-word with the label sought counts.
+bool ProgramReader::Impl::skip_line(std::string_view text) {
+  using gcode::OKind;
+  if (!parser.parse_o_only(text, block)) {
+    const gcode::Fault& f = parser.fault();
+    fail(f.code, text, f.byte_pos, f.message);
+    return false;
+  }
+  const gcode::OWord& o = block.o;
+  if (o.kind == OKind::None || o.label != skip_label) return true;
+  auto& cs = frames.back().controls;
+  switch (skip) {
+    case Skip::None: return true;
+    case Skip::ToSub:
+      if (o.kind != OKind::Sub) return true;
+      subs[o.label] = Location{cur, src().tell(), line};
+      sub_lines[o.label] = line;
+      skip = Skip::None;  // and into the subroutine
+      return true;
+    case Skip::SubBody:
+      if (o.kind == OKind::EndSub) skip = Skip::None;
+      return true;
+    case Skip::IfBranch:
+      if (o.kind == OKind::ElseIf) {
+        if (!values(text)) return false;
+        if (args[0] != 0.0) skip = Skip::None;
+      } else if (o.kind == OKind::Else) {
+        skip = Skip::None;
+      } else if (o.kind == OKind::EndIf) {
+        skip = Skip::None;
+        cs.pop_back();
+      }
+      return true;
+    case Skip::ToEndIf:
+      if (o.kind == OKind::EndIf) {
+        skip = Skip::None;
+        cs.pop_back();
+      }
+      return true;
+    case Skip::LoopEnd:
+      if (o.kind == skip_end) skip = Skip::None;
+      return true;
+    case Skip::ToDoTest:
+      if (o.kind != OKind::While) return true;
+      skip = Skip::None;
+      if (!values(text)) return false;
+      if (args[0] != 0.0) return jump(cs.back().start);
+      cs.pop_back();
+      return true;
+  }
+  return true;
 }
 
 // The machine's startup modes (MachineConfig::startup_code, admitted by the
@@ -246,7 +766,7 @@ void ProgramReader::Impl::warn_lines_after_end() {
   std::uint32_t first_col = 0;
   std::string first_text;
   std::string_view text;
-  while (source->next(text)) {
+  while (src().next(text)) {
     ++line;
     const std::size_t at = first_content(text);
     if (at == std::string_view::npos) continue;
@@ -260,8 +780,8 @@ void ProgramReader::Impl::warn_lines_after_end() {
       first_text = gcode::quote(excerpt);
     }
   }
-  if (count == 0 && !source->too_long()) return;
-  if (source->too_long()) {
+  if (count == 0 && !src().too_long()) return;
+  if (src().too_long()) {
     // Not run either; but a file that goes on without line ends is worth a word.
     ++line;
     if (count++ == 0) {
@@ -307,7 +827,9 @@ std::unique_ptr<ProgramReader> ProgramReader::from_string(std::string text, std:
 ProgramReader::Next ProgramReader::next(Segment& out) { return impl_->read(out); }
 const Diagnostic& ProgramReader::error() const { return impl_->error; }
 const std::vector<Diagnostic>& ProgramReader::warnings() const { return impl_->warnings; }
-std::uint32_t ProgramReader::lines_read() const { return impl_->line; }
+std::uint32_t ProgramReader::lines_read() const {
+  return impl_->cur == 0 ? std::max(impl_->main_lines, impl_->line) : impl_->main_lines;
+}
 
 Result<ProgramSummary> check_program(const std::string& path, const MachineConfig& machine,
                                      ReaderOptions options) {

@@ -1,7 +1,8 @@
 // The G-code front end: RS274NGC as LinuxCNC reads it, for a subset (G0 G1
 // G2 G3 G4 G17-19 G20/21 G90/91 G90.1/91.1 G54-59 G61 G61.1 G64 G93 G94, the
 // safety header's cancels G40 G49 G80, F S, M2 M3 M4 M5 M7 M8 M9 M30, X Y Z
-// A B C, N numbers, comments, '/' block delete). Streams: one Segment at a time, so a program of
+// A B C, N numbers, comments, '/' block delete, parameters and expressions,
+// O-word subroutines and control flow). Streams: one Segment at a time, so a program of
 // millions of lines runs in bounded memory. check_program() reads a whole
 // program once before motion starts, so an error on line 10,000 never stops a
 // part half-cut.
@@ -26,6 +27,9 @@ struct ReaderOptions {
   // '/' lines skipped (true) or run (false); unset: the machine's
   // block_delete (skipped by default, as LinuxCNC does)
   std::optional<bool> block_delete;
+  // The folder searched first for a subroutine's file <name>.ngc; empty: the
+  // program file's own (set it when the program is read from a copy).
+  std::string program_dir;
 };
 
 class ProgramReader {

@@ -9,6 +9,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string_view>
@@ -111,6 +112,28 @@ struct Loader {
     }
     return fail(ErrorCode::ConfigBadValue, n->source(),
                 "'" + std::string(prefix) + std::string(key) + "' must be a string");
+  }
+
+  // Reads an optional array of strings.
+  bool strings(const toml::table& t, std::string_view prefix, std::string_view key,
+               std::vector<std::string>& out) {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) return true;
+    const toml::array* arr = n->as_array();
+    if (arr == nullptr)
+      return fail(ErrorCode::ConfigBadValue, n->source(),
+                  "'" + std::string(prefix) + std::string(key) + "' must be an array of strings");
+    out.clear();
+    for (std::size_t i = 0; i < arr->size(); ++i) {
+      const toml::node& e = *arr->get(i);
+      auto v = e.value<std::string>();
+      if (!v || !e.is_string() || v->empty())
+        return fail(ErrorCode::ConfigBadValue, e.source(),
+                    "'" + std::string(prefix) + std::string(key) + "[" + std::to_string(i) +
+                        "]' must be a non-empty string");
+      out.push_back(*v);
+    }
+    return true;
   }
 
   // Reads an optional number: `out` stays empty when the key is absent.
@@ -461,8 +484,9 @@ Result<MachineConfig> parse_machine_config(std::string_view text, const std::str
     std::optional<double> max_jerk;
     if (!L.only_keys(*t, "machine.",
                      {"name", "period_us", "path_tolerance_mm", "max_feed_override", "max_jerk",
-                      "startup_code", "allow_unhomed", "block_delete"}) ||
+                      "startup_code", "allow_unhomed", "block_delete", "subroutine_path"}) ||
         !L.boolean(*t, "machine.", "allow_unhomed", m.allow_unhomed) ||
+        !L.strings(*t, "machine.", "subroutine_path", m.subroutine_path) ||
         !L.boolean(*t, "machine.", "block_delete", m.block_delete) ||
         !L.string(*t, "machine.", "startup_code", m.startup_code) ||
         !L.number(*t, "machine.", "max_feed_override", m.max_feed_override, false) ||
@@ -477,6 +501,12 @@ Result<MachineConfig> parse_machine_config(std::string_view text, const std::str
                         t->get("period_us")->source().begin.line,
                         t->get("period_us")->source().begin.column);
     m.period_ns = static_cast<std::uint32_t>(std::llround(period_us * 1000.0));
+    const std::filesystem::path config_dir = std::filesystem::path(name).parent_path();
+    for (std::string& dir : m.subroutine_path) {
+      if (std::filesystem::path(dir).is_relative() && !config_dir.empty()) {
+        dir = (config_dir / dir).lexically_normal().string();
+      }
+    }
     // Given means on: 0 is for a config built in code (no key, no limit).
     if (max_jerk && !(*max_jerk >= kMinMaxJerk && *max_jerk <= kMaxMaxJerk))
       return make_error(ErrorCode::ConfigBadValue,

@@ -131,6 +131,10 @@ struct MachineConfig {
   // Block delete (LinuxCNC's switch, on by default there): a line that
   // starts with '/' is skipped. false: such lines run like any other.
   bool block_delete = true;
+  // Folders searched, after the program's own, for the file <name>.ngc of a
+  // subroutine o<name> called before it is defined (LinuxCNC's
+  // SUBROUTINE_PATH). A relative folder is taken from the config file's.
+  std::vector<std::string> subroutine_path;
   // The highest feed override the operator may set (1 = 100 %). No derate:
   // the plan is at the axes' limits; above 100 % the planner plans the feed
   // moves faster within them, below it the RT scales the period

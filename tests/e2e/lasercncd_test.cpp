@@ -116,6 +116,28 @@ TEST(Lasercncd, RunsAJobSentByTheCliAndReportsIt) {
   EXPECT_FALSE(fs::exists("/dev/shm" + shm));  // removed on a clean shutdown
 }
 
+// The daemon reads a private copy of the program, but its subroutine files
+// are looked for beside the original, as for the CLI.
+TEST(Lasercncd, ASubroutineFileBesideTheProgramIsFound) {
+  const std::string shm = shm_name();
+  Daemon d(shm);
+  ASSERT_TRUE(d.ready()) << d.log();
+  fs::create_directories(temp_dir() / "subs_beside");
+  write_program("subs_beside/pierce_square.ngc",
+                "o<pierce_square> sub\nG0 X#1 Y#1\nM3 S60\nG1 X[#1 + 10] F6000\nG1 Y[#1 + 10]\n"
+                "M5\no<pierce_square> endsub\n");
+  const fs::path job = write_program(
+      "subs_beside/job.ngc", "G21 G90 G64 P0.01\no<pierce_square> call [10]\no<pierce_square> call [30]\nM2\n");
+  CmdResult r = lasercnc("send load " + job.string() + " --shm " + shm);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = lasercnc("send start --wait --shm " + shm);
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const nlohmann::json s = status(shm);
+  EXPECT_NEAR(s["position"][0].get<double>(), 40.0, 1e-9);
+  EXPECT_NEAR(s["position"][1].get<double>(), 40.0, 1e-9);
+  EXPECT_EQ(d.stop(SIGTERM), 0) << d.log();
+}
+
 // A hole table loaded like a program (the HMI sends the process database's
 // holes so): built into the drilling job, checked, run; a bad row is
 // refused with its line.

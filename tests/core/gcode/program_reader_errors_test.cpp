@@ -269,10 +269,9 @@ TEST(ProgramReader, UnknownMCodeIsNamed) {
   EXPECT_MENTIONS(d, "'M3.5'");
 }
 
-TEST(ProgramReader, OWordIsUnsupported) {
-  Diagnostic d = expect_error("O100 sub\n", ErrorCode::GcodeUnsupported, 1, 1);
-  EXPECT_MENTIONS(d, "O-word subroutines and control flow are not supported");
-  expect_error("N10 o100 call\n", ErrorCode::GcodeUnsupported, 1, 5);
+TEST(ProgramReader, ACallOfASubroutineNeverDefinedIsAnErrorAtTheCall) {
+  Diagnostic d = expect_error("G1 X20 F600\nN10 o100 call\n", ErrorCode::GcodeFlow, 2, 5);
+  EXPECT_MENTIONS(d, "subroutine O100 not found");
 }
 
 TEST(ProgramReader, OtherLettersAreUnsupportedAndSaySo) {

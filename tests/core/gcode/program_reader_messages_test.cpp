@@ -104,11 +104,11 @@ TEST(ProgramReaderMessages, LetterOAfterANumberIsAStrayLetterNotAnOWord) {
   EXPECT_MENTIONS(d, "found a letter 'O' after 'X1'");
   EXPECT_MENTIONS(d, "unexpected 'O'");
   EXPECT_EQ(d.message.find("O-word subroutines"), std::string::npos) << d.message;
-  // an O-word opening a block is still named as one
-  d = expect_error("O100 sub\n", ErrorCode::GcodeUnsupported, 1, 1);
-  EXPECT_MENTIONS(d, "O-word subroutines");
-  d = expect_error("N10 O100 sub\n", ErrorCode::GcodeUnsupported, 1, 5);
-  EXPECT_MENTIONS(d, "O-word subroutines");
+  // an O-word opening a block is read as one
+  d = expect_error("O100 sub\n", ErrorCode::GcodeFlow, 1, 1);
+  EXPECT_MENTIONS(d, "inside the definition of O100");
+  d = expect_error("N10 O100 sub\n", ErrorCode::GcodeFlow, 1, 5);
+  EXPECT_MENTIONS(d, "expected O100 endsub");
 }
 
 }  // namespace

@@ -329,6 +329,20 @@ TEST(MachineConfig, BlockDeleteIsOnByDefaultAndReadAsABoolean) {
   EXPECT_NE(t.error().message.find("block_delete"), std::string::npos) << t.error().message;
 }
 
+TEST(MachineConfig, SubroutinePathIsTakenFromTheConfigFilesFolder) {
+  std::string text = kMinimal;
+  text.replace(text.find("period_us = 75"), 14,
+               "period_us = 75\nsubroutine_path = [\"subs\", \"/opt/ngc\"]");
+  auto m = parse_machine_config(text, "/etc/lasercnc/m.toml");
+  ASSERT_TRUE(m) << m.error().to_string();
+  EXPECT_EQ(m->subroutine_path, (std::vector<std::string>{"/etc/lasercnc/subs", "/opt/ngc"}));
+  std::string bad = kMinimal;
+  bad.replace(bad.find("period_us = 75"), 14, "period_us = 75\nsubroutine_path = [\"subs\", 3]");
+  auto b = parse_machine_config(bad, "m.toml");
+  ASSERT_FALSE(b);
+  EXPECT_NE(b.error().message.find("subroutine_path[1]"), std::string::npos) << b.error().message;
+}
+
 // The HAL example machines (share/hal/*/machine.toml) load, check their
 // following errors and start unhomed unless they say otherwise.
 TEST(MachineConfigHoming, TheHalExampleMachinesLoad) {
