@@ -18,6 +18,7 @@
 #include "app/control_client.h"
 #include "app/decompose_cli.h"
 #include "app/drill_cli.h"
+#include "app/moves_list.h"
 #include "app/run_job.h"
 #include "drivers/modbus/endpoint_spec.h"
 #include "gcode/program_reader.h"
@@ -31,7 +32,7 @@ constexpr const char* kUsage =
     "                       [--feed-override PCT] [--trace FILE.csv] [--json]\n"
     "                       [--[no-]progress] [--no-realtime]\n"
     "                       [--devices | --laser ENDPOINT [--power-meter ENDPOINT]]\n"
-    "  lasercnc check PROGRAM [--machine FILE]\n"
+    "  lasercnc check PROGRAM [--machine FILE] [--moves FILE]\n"
     "  lasercnc status [--json] [--shm NAME]\n"
     "  lasercnc send CMD [ARG...] [--wait] [--timeout S] [--shm NAME]\n"
     "       CMD: load PROGRAM | start | hold | resume | stop | estop | reset |\n"
@@ -45,6 +46,9 @@ constexpr const char* kUsage =
     "  run     plans PROGRAM, runs it on the simulated machine with the real RT thread\n"
     "          and prints the report (--json: as one JSON object on stdout)\n"
     "  check   reads the whole program and reports the first error, runs nothing\n"
+    "          (--moves: also writes its canonical moves, a line each: LINE rapid|feed\n"
+    "          X Y Z A B C, LINE arc X Y Z A B C CX CY CZ PLANE TURNS, LINE dwell S;\n"
+    "          - for standard output)\n"
     "  status  the state of lasercncd (machine, job, latency)\n"
     "  send    a command to lasercncd; prints its answer (--wait: start waits for the job)\n"
     "  drill   runs the holes of a process-database table (CSV) as one drilling job\n"
@@ -135,6 +139,7 @@ int main(int argc, char** argv) {
 
   lcnc::app::RunOptions opt;
   bool json = false;
+  std::string moves_file;
   bool show_progress = isatty(STDERR_FILENO) != 0;
   for (int i = 2; i < argc; ++i) {
     const std::string_view a = argv[i];
@@ -166,6 +171,10 @@ int main(int argc, char** argv) {
       std::optional<double> pct;
       if (!number(pct)) return usage_error("--feed-override needs a number (%, e.g. 150)");
       opt.feed_override_pct = *pct;
+    } else if (a == "--moves" && cmd == "check") {
+      auto v = value();
+      if (!v) return usage_error("--moves needs a file (- for standard output)");
+      moves_file = *v == "-" ? "/dev/stdout" : std::string(*v);
     } else if (a == "--json") {
       json = true;
     } else if (a == "--no-progress") {
@@ -204,6 +213,14 @@ int main(int argc, char** argv) {
       return 1;
     }
     for (const auto& w : summary->warnings) std::fprintf(stderr, "%s\n", w.to_string().c_str());
+    if (!moves_file.empty()) {
+      std::fflush(stdout);
+      if (lcnc::Status st = lcnc::app::write_moves(opt.program, *machine, moves_file); !st) {
+        std::fprintf(stderr, "%s\n", st.error().to_string().c_str());
+        return st.error().code == lcnc::ErrorCode::OutputIsInput ? 2 : 1;
+      }
+      if (moves_file == "/dev/stdout") return 0;
+    }
     std::printf("%s: OK, %u lines, %llu segments, path %.3f mm\n", opt.program.c_str(),
                 summary->lines, static_cast<unsigned long long>(summary->segments),
                 summary->path_length_mm);
