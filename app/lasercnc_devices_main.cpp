@@ -58,6 +58,9 @@ std::unique_ptr<Sim> must(Result<std::unique_ptr<Sim>> made) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // before any device serves: a SIGTERM as soon as one answers stops cleanly
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
   std::string map_path = default_register_map_path();
   std::string host = "127.0.0.1";
   int base_port = 0;
@@ -142,8 +145,6 @@ int main(int argc, char** argv) {
       return 1;
     }
 
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
   std::printf("lasercnc-devices: virtual devices (simulators) running, register map %s\n",
               map_path.c_str());
   for (std::size_t i = 0; i < all.size(); ++i) {

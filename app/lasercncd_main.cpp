@@ -38,6 +38,12 @@ constexpr const char* kUsage =
 }  // namespace
 
 int main(int argc, char** argv) {
+  // First of all: the segment appears during create(), and a supervisor may
+  // send SIGTERM the moment it sees it; that must be a clean shutdown too.
+  struct sigaction sa {};
+  sa.sa_handler = on_signal;
+  sigaction(SIGTERM, &sa, nullptr);
+  sigaction(SIGINT, &sa, nullptr);
   lcnc::app::DaemonOptions opt;
   for (int i = 1; i < argc; ++i) {
     const std::string_view a = argv[i];
@@ -71,9 +77,5 @@ int main(int argc, char** argv) {
   }
   if ((*daemon)->recovered_stale())
     std::fprintf(stderr, "lasercncd: recovered a stale segment left by a daemon that died\n");
-  struct sigaction sa {};
-  sa.sa_handler = on_signal;
-  sigaction(SIGTERM, &sa, nullptr);
-  sigaction(SIGINT, &sa, nullptr);
   return (*daemon)->run(g_quit);
 }

@@ -631,6 +631,24 @@ TEST(Lasercncd, AKilledDaemonsSegmentIsRemovedByTheTest) {
   EXPECT_FALSE(fs::exists("/dev/shm" + shm));
 }
 
+// A supervisor (a test, systemd, a package script) may send SIGTERM the
+// moment the segment appears, while the daemon is still starting its
+// threads: that too is a clean shutdown (exit 0, segment removed), never a
+// death by the signal's default action.
+TEST(Lasercncd, SigtermTheMomentTheSegmentAppearsIsACleanShutdown) {
+  for (int round = 0; round < 5; ++round) {
+    const std::string shm = shm_name() + "_" + std::to_string(round);
+    Daemon d(shm);
+    const auto until = std::chrono::steady_clock::now() + 10s;
+    while (!fs::exists("/dev/shm" + shm) && std::chrono::steady_clock::now() < until) {
+    }
+    ASSERT_TRUE(fs::exists("/dev/shm" + shm)) << d.log();
+    EXPECT_EQ(d.stop(SIGTERM, /*keep_segment=*/true), 0) << "round " << round << ": " << d.log();
+    EXPECT_FALSE(fs::exists("/dev/shm" + shm)) << "round " << round;
+    shm_unlink(shm.c_str());
+  }
+}
+
 const auto* const kNoLeaks = ::testing::AddGlobalTestEnvironment(new e2e::NoLeakedSegments);
 
 TEST(Lasercncd, StatusWithoutDaemonSaysSo) {
