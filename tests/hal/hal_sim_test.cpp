@@ -374,7 +374,13 @@ TEST_F(HalSim, EstopInStopsTheMotionWithinOnePeriod) {
   ASSERT_EQ(send("load " + kSim + "/sample.ngc").exit_code, 0);
   Sampling sampling;
   ASSERT_EQ(send("start").exit_code, 0);
-  ASSERT_TRUE(wait_for([&] { return std::stoi(getp("lasercnc.line")) >= 5; }, 30));  // cutting the outline
+  // Cutting the outline's first side (line 5, X20 → X120 at 30 mm/s): the
+  // line pin turns 5 while the axis still stands at the G0's end (the ramp's
+  // first step takes 7 periods at 400 mm/s²), so wait until X is 10 mm in,
+  // at full speed with 2.9 s of the line left.
+  ASSERT_TRUE(wait_for([&] { return std::stoi(getp("lasercnc.line")) >= 5; }, 30));
+  const double x0 = std::stod(getp("lasercnc.x.pos-cmd"));
+  ASSERT_TRUE(wait_for([&] { return std::stod(getp("lasercnc.x.pos-cmd")) > x0 + 10.0; }, 10));
   ASSERT_EQ(halcmd("sets estop-chain 1").exit_code, 0);
   ASSERT_TRUE(wait_for([&] { return status(shm_.name()).value("state", "") == "e-stop"; }, 5));
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
