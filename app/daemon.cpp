@@ -315,7 +315,8 @@ struct Daemon::Impl {
         ReaderOptions ropt;
         ropt.start = position();
         ropt.program_dir = std::filesystem::path(program->name()).parent_path().string();
-        if (ropt.start != loaded_from) {
+        // (and whenever a parameter file may have changed the offsets since)
+        if (ropt.start != loaded_from || !machine.parameter_file.empty()) {
           Result<CheckedJob> checked = check(*program, ropt.start);
           if (!checked) return Ack{false, checked.error().code, "start: " + checked.error().to_string()};
           loaded = std::move(checked).value();
@@ -328,7 +329,9 @@ struct Daemon::Impl {
           Result<std::unique_ptr<PathCheck>> p = PathCheck::for_program(program->path(), machine, ropt);
           if (!p) return Ack{false, p.error().code, "start: " + p.error().to_string()};
           path = std::move(p).value();
-          feed->start(program->path(), ropt);
+          ReaderOptions job = ropt;
+          job.keep_parameters = true;  // what it sets outlives it (machine.parameter_file)
+          feed->start(program->path(), job);
         }
         job_active = true;
         start_pending = true;
@@ -539,6 +542,7 @@ struct Daemon::Impl {
     }
     feed->abort();  // a stopped job: the planner stops; a finished one has
     const PlannedJob& planned = feed->result();
+    for (const Diagnostic& w : planned.warnings) logger()->warn("job: {}", w.to_string());
     job_active = false;
     start_pending = false;
     const rt::RtFault f = kernel->fault();

@@ -31,6 +31,7 @@ void PlannerFeed::start(const std::string& program, const ReaderOptions& options
     source = [this, ps](Segment& out) {
       const SourceStatus st = ps->next(out);
       if (st == SourceStatus::Error) source_error_ = ps->error();
+      if (st == SourceStatus::End) result_.warnings = ps->warnings();
       return st;
     };
     return true;

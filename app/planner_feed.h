@@ -38,6 +38,9 @@ struct PlannedJob {
   // (stopped_short()); says the axis, what it would have done and the line.
   bool limit = false;
   Diagnostic limit_error;
+  // The program's reader's warnings at its end (e.g. the parameter file
+  // could not be written): the job ran, they say what it did not keep.
+  std::vector<Diagnostic> warnings;
 };
 
 class PlannerFeed {

@@ -80,6 +80,7 @@ std::string format_report(const RunReport& r) {
   s += printf_string("  RT latency       p50 %.0f us, p99 %.0f us, max %.1f us (%s)\n",
                      r.latency_p50_us, r.latency_p99_us, r.latency_max_us, r.schedule.c_str());
   if (!r.rt_warning.empty()) s += "  warning          " + r.rt_warning + "\n";
+  for (const std::string& w : r.program_warnings) s += "  warning          " + w + "\n";
   const PeripheralReport& p = r.peripherals;
   if (p.used) {
     s += "  laser source     " + p.laser + (p.simulated ? " (simulator)" : "") + "\n";
@@ -145,6 +146,7 @@ std::string report_json(const RunReport& r) {
   j["latency_us"] = {{"p50", r.latency_p50_us}, {"p99", r.latency_p99_us}, {"max", r.latency_max_us}};
   j["schedule"] = r.schedule;
   j["rt_warning"] = r.rt_warning;
+  j["program_warnings"] = r.program_warnings;
   if (const PeripheralReport& p = r.peripherals; p.used) {
     j["peripherals"] = {
         {"laser", p.laser},

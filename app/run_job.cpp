@@ -374,7 +374,9 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   if (options.segments) {
     feed.start(options.segments, ropt.start, options.program);
   } else {
-    feed.start(options.program, ropt);
+    ReaderOptions job = ropt;
+    job.keep_parameters = true;  // what it sets outlives it (machine.parameter_file)
+    feed.start(options.program, job);
   }
   feed.wait_prefilled();
   rt::RtOptions rt_options;
@@ -458,6 +460,7 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   if (planned.failed) return planned.error;
 
   fill_run_figures(report, kernel, sim, planned, machine, start_steps);
+  for (const Diagnostic& w : planned.warnings) report.program_warnings.push_back(w.to_string());
   if (!laser_fault.empty() && report.fault.empty()) report.fault = "laser source: " + laser_fault;
   report.max_deviation_mm = path.max_mm();
   motion.finish();

@@ -92,6 +92,7 @@ struct RunReport {
   std::string fault;       // what stopped the job early (soft/hard limit, e-stop); empty if none
   std::string schedule;    // "SCHED_FIFO" or "normal"
   std::string rt_warning;  // why real-time scheduling was not had
+  std::vector<std::string> program_warnings;  // the reader's (lines after the end, the parameter file)
   PeripheralReport peripherals;  // used: the laser source was linked
 };
 

@@ -12,11 +12,12 @@
 namespace lcnc::gcode {
 namespace {
 
-constexpr const char* kSupportedWords = "G M N X Y Z A B C I J K R F S P Q";
+constexpr const char* kSupportedWords = "G M N X Y Z A B C I J K R F S P Q T H L";
 constexpr const char* kSupportedGCodes =
-    "G0 G1 G2 G3 G4 G17 G18 G19 G20 G21 G40 G49 G54-G59 G61 G61.1 G64 G80 G90 G91 G90.1 G91.1 "
-    "G93 G94";
-constexpr const char* kSupportedMCodes = "M2 M3 M4 M5 M7 M8 M9 M30";
+    "G0 G1 G2 G3 G4 G10 G17 G18 G19 G20 G21 G28 G28.1 G30 G30.1 G40 G43 G43.1 G43.2 G49 G52 "
+    "G53 G54-G59 G59.1 G59.2 G59.3 G61 G61.1 G64 G73 G80 G81 G82 G83 G85 G89 G90 G91 G90.1 "
+    "G91.1 G92 G92.1 G92.2 G92.3 G93 G94 G98 G99";
+constexpr const char* kSupportedMCodes = "M2 M3 M4 M5 M6 M7 M8 M9 M30 M61";
 
 // Exact powers of ten: a double holds 10^k exactly for k <= 22.
 constexpr double kPow10[] = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
@@ -60,13 +61,18 @@ constexpr std::array<char, 256> kUpper = [] {
 // Modal group of a G code ×10; -1 when outside the subset.
 [[nodiscard]] constexpr int g_group(int tenths) noexcept {
   switch (tenths) {
-    case 0: case 10: case 20: case 30: case 800: return group_index(GGroup::Motion);
+    case 0: case 10: case 20: case 30: case 800:
+    case 730: case 810: case 820: case 830: case 850: case 890:
+      return group_index(GGroup::Motion);
+    case 980: case 990: return group_index(GGroup::RetractMode);
     case 400: return group_index(GGroup::CutterComp);
-    case 490: return group_index(GGroup::ToolLength);
-    case 40: return group_index(GGroup::NonModal);
+    case 430: case 431: case 432: case 490: return group_index(GGroup::ToolLength);
+    case 40: case 100: case 280: case 281: case 300: case 301: case 520: case 530:
+    case 920: case 921: case 922: case 923:
+      return group_index(GGroup::NonModal);
     case 170: case 180: case 190: return group_index(GGroup::Plane);
     case 200: case 210: return group_index(GGroup::Units);
-    case 540: case 550: case 560: case 570: case 580: case 590:
+    case 540: case 550: case 560: case 570: case 580: case 590: case 591: case 592: case 593:
       return group_index(GGroup::CoordSystem);
     case 610: case 611: case 640: return group_index(GGroup::PathControl);
     case 900: case 910: return group_index(GGroup::Distance);
@@ -342,6 +348,12 @@ bool BlockParser::read_m(Span w, double value, Block& out) {
       out.m_laser = static_cast<std::int16_t>(code);
       out.m_laser_word = w;
       return true;
+    case 6:
+    case 61:
+      if (out.m_tool >= 0) return conflict(out.m_tool, 6, "tool change");
+      out.m_tool = static_cast<std::int16_t>(code);
+      out.m_tool_word = w;
+      return true;
     case 7:
     case 8:
     case 9: {
@@ -434,20 +446,10 @@ bool BlockParser::read_word(std::uint32_t& i, Block& out) {
       return fail(ErrorCode::GcodeSyntax, pos,
                   "found " + rough_word() +
                       " after other words; expected the line number N first in the block");
-    case 'T':
-      return fail(ErrorCode::GcodeUnsupported, pos,
-                  "found " + rough_word() + ": tool selection (T) is not supported; expected " +
-                      kSupportedWords + " words");
-    case 'H':
     case 'D':
       return fail(ErrorCode::GcodeUnsupported, pos,
                   "found " + rough_word() +
-                      ": tool length and cutter radius offsets (H, D) are not supported; "
-                      "expected " + kSupportedWords + " words");
-    case 'L':
-      return fail(ErrorCode::GcodeUnsupported, pos,
-                  "found " + rough_word() +
-                      ": L words (G10 data, canned-cycle repeats) are not supported; expected " +
+                      ": cutter radius compensation (G41/G42 D) is not supported yet; expected " +
                       kSupportedWords + " words");
     case 'U':
     case 'V':
@@ -558,6 +560,7 @@ bool BlockParser::read_setting(std::uint32_t& i, Block& out) {
   out.g.fill(-1);
   out.m_stop = -1;
   out.m_laser = -1;
+  out.m_tool = -1;
   out.m7 = out.m8 = out.m9 = false;
   out.o.kind = OKind::None;
 

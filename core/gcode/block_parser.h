@@ -28,24 +28,26 @@ namespace lcnc::gcode {
 // (cancel canned cycle) is in the motion group, as in LinuxCNC: after it,
 // axis words need a new G0..G3.
 enum class GGroup : std::uint8_t {
-  NonModal,     // 0: G4
-  Motion,       // 1: G0 G1 G2 G3
+  NonModal,     // 0: G4 G10 G28 G28.1 G30 G30.1 G52 G53 G92 G92.1 G92.2 G92.3
+  Motion,       // 1: G0 G1 G2 G3, G80, canned cycles G73 G81 G82 G83 G85 G89
   Plane,        // 2: G17 G18 G19
   Distance,     // 3: G90 G91
   ArcDistance,  // 4: G90.1 G91.1
   FeedMode,     // 5: G93 G94
   Units,        // 6: G20 G21
-  CoordSystem,  // 12: G54 .. G59
+  CoordSystem,  // 12: G54 .. G59, G59.1 .. G59.3
   PathControl,  // 13: G61 G61.1 G64
   CutterComp,   // 7: G40 (cancel: a safety header's; no compensation to cancel)
-  ToolLength,   // 8: G49 (cancel: likewise)
+  ToolLength,   // 8: G43 G43.1 G43.2 G49
+  RetractMode,  // 10: G98 G99 (canned cycles)
 };
-inline constexpr int kGGroupCount = 11;
-inline constexpr std::array<int, kGGroupCount> kGGroupNumber = {0, 1, 2, 3, 4, 5, 6, 12, 13, 7, 8};
+inline constexpr int kGGroupCount = 12;
+inline constexpr std::array<int, kGGroupCount> kGGroupNumber = {0, 1, 2, 3, 4, 5, 6, 12, 13, 7, 8, 10};
 inline constexpr std::array<const char*, kGGroupCount> kGGroupName = {
     "non-modal",       "motion",        "plane selection", "distance mode",
     "arc distance mode", "feed rate mode", "units",        "coordinate system",
-    "path control mode", "cutter radius compensation", "tool length offset"};
+    "path control mode", "cutter radius compensation", "tool length offset",
+    "canned cycle return mode"};
 
 [[nodiscard]] constexpr int group_index(GGroup g) noexcept { return static_cast<int>(g); }
 
@@ -125,8 +127,9 @@ struct Block {
   std::array<Span, kGGroupCount> g_word{};
   std::int16_t m_stop = -1;   // 2 or 30
   std::int16_t m_laser = -1;  // 3, 4 or 5
+  std::int16_t m_tool = -1;   // 6 (tool change) or 61 (set the tool in the spindle)
   bool m7 = false, m8 = false, m9 = false;
-  Span m_stop_word{}, m_laser_word{}, m7_word{}, m8_word{}, m9_word{};
+  Span m_stop_word{}, m_laser_word{}, m_tool_word{}, m7_word{}, m8_word{}, m9_word{};
   std::vector<ParamSet> sets;  // in the order written (capacity reused)
   OWord o;                     // kind None unless an O-word line (then nothing else is set)
 

@@ -14,9 +14,11 @@ inline constexpr double kTravelTolMm = 1e-9;
 // floating-point noise of the unit and offset arithmetic.
 inline constexpr double kSamePointMm = 1e-9;
 
-// R form: the end point counts as reachable when 2|R| >= chord - this·max(1, chord)
-// (LinuxCNC allows a tiny error for semicircles the same way).
-inline constexpr double kArcReachRel = 1e-6;
+// R form: the end point counts as reachable while half the chord exceeds |R|
+// by at most this (LinuxCNC 2.9's 0.00005 in, in mm and inch programs
+// alike, measured against its interpreter); such an arc is a half circle
+// about the chord's midpoint, through both ends.
+inline constexpr double kArcReachMm = 0.00005 * 25.4;
 
 // IJK form, LinuxCNC's rule (interp_arc.cc): the radius to the end may differ
 // from the radius to the start by up to kArcRadiusAbsMm, or by more as long as

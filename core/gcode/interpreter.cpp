@@ -39,6 +39,22 @@ std::string gnum(double v) {
   return buf;
 }
 
+// The motion mode of a motion-group code ×10 (G80 excluded).
+MotionMode motion_of(int g) {
+  switch (g) {
+    case 0: return MotionMode::Rapid;
+    case 10: return MotionMode::Linear;
+    case 20: return MotionMode::ArcCw;
+    case 30: return MotionMode::ArcCcw;
+    case 730: return MotionMode::Cycle73;
+    case 810: return MotionMode::Cycle81;
+    case 820: return MotionMode::Cycle82;
+    case 830: return MotionMode::Cycle83;
+    case 850: return MotionMode::Cycle85;
+    default: return MotionMode::Cycle89;
+  }
+}
+
 const char* plane_name(Plane p) {
   switch (p) {
     case Plane::ZX: return "ZX plane (G18)";
@@ -50,8 +66,9 @@ const char* plane_name(Plane p) {
 
 }  // namespace
 
-Interpreter::Interpreter(const MachineConfig& machine, const Pose& start)
-    : machine_(machine), pos_(start) {
+Interpreter::Interpreter(const MachineConfig& machine, const Pose& start,
+                         std::vector<double>& numbered)
+    : machine_(machine), pos_(start), numbered_(numbered) {
   for (int a = 0; a < kAxisCount; ++a) {
     const AxisConfig& ax = machine.axes[a];
     if (ax.present && (ax.wrap || (machine.tcp.enabled && a < 3))) {
@@ -87,7 +104,6 @@ std::string Interpreter::quoted_block() const {
   return q;
 }
 
-double Interpreter::length_scale() const noexcept { return inch_ ? kMmPerInch : 1.0; }
 const char* Interpreter::feed_unit() const noexcept { return inch_ ? "in/min" : "mm/min"; }
 
 // --- the block ------------------------------------------------------------
@@ -97,14 +113,23 @@ bool Interpreter::execute(const Block& block, const LineText& text, std::uint32_
   b_ = &block;
   t_ = &text;
   line_ = line;
+  // (The rare steps are tested for here: a dense CAM line of G1 X Y Z F
+  // pays for no call it does not need.)
+  const int non_modal = block.code(GGroup::NonModal);
   if (!resolve_motion()) return false;
-  if (!check_word_use()) return false;
+  if ((block.letters & kDataLetters) != 0 && !check_word_use()) return false;
   if (!set_feed_and_power()) return false;  // G93/G94, F, S, M3-M5, M7-M9
-  if (!dwell(out)) return false;            // G4
+  if ((block.has('T') || block.m_tool >= 0) && !change_tool()) return false;  // T, M6, M61
+  if (non_modal == 40 && !dwell(out)) return false;  // G4
   set_modes();                              // plane, units, coordinate system
+  if (block.code(GGroup::ToolLength) >= 0 && !set_tool_length()) return false;  // G43 … G49
   if (!set_path_control()) return false;    // G61 G61.1 G64
+  if (non_modal > 40 && non_modal != 530 && !run_non_modal(out)) return false;  // G10 G28 G30 G52 G92
   if (block_motion_ != MotionMode::None && !move(out)) return false;
-  if (block.m_stop >= 0) ended_ = true;     // M2 M30
+  if (block.m_stop >= 0) {                  // M2 M30: back in G54 (LinuxCNC)
+    ended_ = true;
+    select_coord_system(0);
+  }
   return true;
 }
 
@@ -114,9 +139,30 @@ bool Interpreter::resolve_motion() {
   const Block& b = *b_;
   block_motion_ = MotionMode::None;
   const int g = b.code(GGroup::Motion);
+  // G10 G28 G30 G52 G92 and G43.1 take the block's axis words as their data:
+  // no motion mode uses them then (LinuxCNC: two codes may not both).
+  const int nm = b.code(GGroup::NonModal);
+  const int tl = b.code(GGroup::ToolLength);
+  axis_words_used_ = (nm > 40 || tl >= 0) && (nm == 100 || nm == 280 || nm == 300 || nm == 520 ||
+                                              nm == 920 || tl == 431);
+  if (axis_words_used_) {
+    if (g >= 0 && g != 800 && b.axis_mask != 0) {
+      const Span at = b.code(GGroup::ToolLength) == 431 ? b.code_word(GGroup::ToolLength)
+                                                        : b.code_word(GGroup::NonModal);
+      return fail(ErrorCode::GcodeModalConflict, b.code_word(GGroup::Motion),
+                  "found " + quoted(b.code_word(GGroup::Motion)) + " and " + quoted(at) +
+                      " in one block, both using its axis words; expected them on two lines");
+    }
+    const MotionMode m = g < 0 ? motion_ : g == 800 ? MotionMode::None : motion_of(g);
+    if (m != motion_) cycle_sticky_ = false;
+    if (!is_cycle(m)) cycle_series_ = false;
+    motion_ = m;
+    return true;
+  }
   if (g == 800) {
     // G80: no motion mode (LinuxCNC: axis words with it are an error)
     motion_ = MotionMode::None;
+    cycle_sticky_ = cycle_series_ = false;
     if (b.axis_mask != 0) {
       return fail(ErrorCode::GcodeSyntax, b.first_axis_word,
                   "found " + quoted(b.first_axis_word) +
@@ -127,10 +173,9 @@ bool Interpreter::resolve_motion() {
   }
   if (g >= 0) {
     motion_word_ = b.code_word(GGroup::Motion);
-    const MotionMode m = g == 0    ? MotionMode::Rapid
-                         : g == 10 ? MotionMode::Linear
-                         : g == 20 ? MotionMode::ArcCw
-                                   : MotionMode::ArcCcw;
+    const MotionMode m = motion_of(g);
+    if (m != motion_) cycle_sticky_ = false;
+    if (!is_cycle(m)) cycle_series_ = false;
     motion_ = m;
     // G0 / G1 alone only set the mode; G2 / G3 with no axis words are a full
     // circle at the current point (LinuxCNC 2.9), and need a centre
@@ -157,21 +202,41 @@ bool Interpreter::check_word_use() {
   const Block& b = *b_;
   const bool is_arc = block_motion_ == MotionMode::ArcCw || block_motion_ == MotionMode::ArcCcw;
   const bool has_g4 = b.code(GGroup::NonModal) == 40;
+  const bool has_g10 = b.code(GGroup::NonModal) == 100;
   const bool has_g64 = b.code(GGroup::PathControl) == 640;
-  if (b.has('P') && !has_g4 && !has_g64 && !is_arc) {
+  const bool has_m61 = b.m_tool == 61;
+  const int tl = b.code(GGroup::ToolLength);
+  const bool cycle = is_cycle(block_motion_);
+  const bool dwell_cycle = block_motion_ == MotionMode::Cycle82 || block_motion_ == MotionMode::Cycle89;
+  const bool peck_cycle = block_motion_ == MotionMode::Cycle83 || block_motion_ == MotionMode::Cycle73;
+  if (b.has('P') && !has_g4 && !has_g64 && !is_arc && !has_g10 && !dwell_cycle) {
     return fail(ErrorCode::GcodeUnsupported, b.span('P'),
                 "found " + quoted(b.span('P')) +
-                    " with no G4, G64, G2 or G3 to use it; P is supported only as G4 dwell "
-                    "seconds, G64 blend tolerance and G2/G3 turns");
+                    " with no G4, G10, G64, G2, G3, G82 or G89 to use it; P is supported only as "
+                    "G4/G82/G89 dwell seconds, G10 system or tool, G64 blend tolerance and G2/G3 "
+                    "turns");
   }
-  if (b.has('Q') && !has_g64) {
+  if (b.has('Q') && !has_g64 && !has_m61 && !peck_cycle) {
     return fail(ErrorCode::GcodeUnsupported, b.span('Q'),
                 "found " + quoted(b.span('Q')) +
-                    " with no G64; Q is supported only as the G64 naive-CAM tolerance "
-                    "(canned cycles are not supported)");
+                    " with no G64, M61, G73 or G83; Q is supported only as the G64 naive-CAM "
+                    "tolerance, M61's tool and the G73/G83 peck depth");
+  }
+  if (b.has('H') && tl != 430 && tl != 432) {
+    return fail(ErrorCode::GcodeUnsupported, b.span('H'),
+                "found " + quoted(b.span('H')) +
+                    " with no G43 or G43.2 to use it; expected H only as the tool whose offset "
+                    "G43 H / G43.2 H applies");
+  }
+  if (b.has('L') && !has_g10 && !cycle) {
+    return fail(ErrorCode::GcodeUnsupported, b.span('L'),
+                "found " + quoted(b.span('L')) +
+                    " with no G10 or canned cycle to use it; expected L only on G10 and as a "
+                    "canned cycle's repeats");
   }
   if (!is_arc) {
     for (char l : {'I', 'J', 'K', 'R'}) {
+      if (l == 'R' && (has_g10 || cycle)) continue;
       if (b.has(l)) {
         return fail(ErrorCode::GcodeUnsupported, b.span(l),
                     "found " + quoted(b.span(l)) +
@@ -288,11 +353,13 @@ void Interpreter::set_modes() {
   const int units = b.code(GGroup::Units);
   if (units >= 0) inch_ = units == 200;
   const int wcs = b.code(GGroup::CoordSystem);
-  if (wcs >= 0) work_offset_ = (wcs - 540) / 10;
+  if (wcs >= 0) select_coord_system(wcs < 590 ? (wcs - 540) / 10 : 5 + (wcs - 590));
   const int dist = b.code(GGroup::Distance);
   if (dist >= 0) absolute_ = dist == 900;
   const int arc_dist = b.code(GGroup::ArcDistance);
   if (arc_dist >= 0) arc_absolute_ = arc_dist == 901;
+  const int retract = b.code(GGroup::RetractMode);
+  if (retract >= 0) retract_old_z_ = retract == 980;
 }
 
 // " mm", or " in (N mm)" in G20, after the largest path tolerance.
@@ -496,11 +563,25 @@ bool Interpreter::check_travel(const Pose& lo, const Pose& hi, const Pose& end) 
 
 bool Interpreter::move(SegmentBuffer& out) {
   const Block& b = *b_;
-  const Pose& offset = machine_.work_offsets[work_offset_];
+  if (is_cycle(block_motion_)) return canned_cycle(out);
+  // G53: this block's axis words are machine coordinates (G0/G1, G90 only)
+  const bool machine_coords = b.code(GGroup::NonModal) == 530;
+  if (machine_coords) {
+    if (block_motion_ != MotionMode::Rapid && block_motion_ != MotionMode::Linear) {
+      return fail(ErrorCode::GcodeSyntax, b.code_word(GGroup::NonModal),
+                  "found " + quoted_block() + ": G53 with an arc; expected G53 with G0 or G1");
+    }
+    if (!absolute_) {
+      return fail(ErrorCode::GcodeSyntax, b.code_word(GGroup::NonModal),
+                  "found " + quoted_block() + " in G91: G53 names machine positions; expected "
+                  "G53 in G90 (absolute)");
+    }
+  }
+  const Pose offset = machine_coords ? Pose::Zero() : offsets_;
   Pose end = pos_;
   for (int a = 0; a < kAxisCount; ++a) {
     if (((b.axis_mask >> a) & 1u) == 0) continue;
-    const double v = b[kAxisLetters[a]] * (a < 3 ? length_scale() : 1.0);
+    const double v = axis_value(a);
     end[a] = absolute_ ? v + offset[a] : pos_[a] + v;
   }
   if ((b.axis_mask & untraveled_axes_) != 0 && !check_magnitude(end)) return false;
@@ -602,12 +683,13 @@ bool Interpreter::arc(const Pose& end_in, SegmentBuffer& out) {
     }
     const double r = b['R'] * length_scale();
     const double abs_r = std::fabs(r);
-    if (2.0 * abs_r < chord - kArcReachRel * std::max(1.0, chord)) {
+    if (chord / 2.0 - abs_r > kArcReachMm) {
       return fail(ErrorCode::GcodeArcRadius, rw,
                   "found " + quoted(rw) + " but the end point is " + num(chord) +
                       " mm from the start: radius " + num(abs_r) + " mm reaches at most " +
                       num(2.0 * abs_r) + " mm; expected |R| >= " + num(chord / 2.0) +
-                      " mm (the radius to the start and to the end)");
+                      " mm, half the chord (less " + gnum(kArcReachMm) +
+                      " mm: then a half circle through both ends)");
     }
     const double half = chord / 2.0;
     const double h = abs_r > half ? std::sqrt(abs_r * abs_r - half * half) : 0.0;
@@ -617,7 +699,7 @@ bool Interpreter::arc(const Pose& end_in, SegmentBuffer& out) {
     c[ia] = (sa + end[ia]) / 2.0 + h * std::cos(turn);
     c[ib] = (sb + end[ib]) / 2.0 + h * std::sin(turn);
   } else {
-    const Pose& offset = machine_.work_offsets[work_offset_];
+    const Pose& offset = offsets_;
     const double ci = b.has(la) ? b[la] * length_scale() : 0.0;
     const double cj = b.has(lb) ? b[lb] * length_scale() : 0.0;
     c[ia] = arc_absolute_ ? ci + offset[ia] : sa + ci;
@@ -679,6 +761,73 @@ bool Interpreter::arc(const Pose& end_in, SegmentBuffer& out) {
   set_segment_feed(s, length_mm, rotary_deg);
   pos_ = end;
   return true;
+}
+
+}  // namespace lcnc::gcode
+
+namespace lcnc::gcode {
+
+// LinuxCNC's predefined named parameters that mean something here (its
+// "Predefined Named Parameters"): read-only views of the modal state.
+bool Interpreter::predefined(std::string_view name, double& out) const {
+  static constexpr std::string_view kAxes[] = {"_x", "_y", "_z", "_a", "_b", "_c"};
+  static constexpr std::string_view kAbsAxes[] = {"_abs_x", "_abs_y", "_abs_z",
+                                                  "_abs_a", "_abs_b", "_abs_c"};
+  for (int a = 0; a < kAxisCount; ++a) {
+    const double scale = a < 3 ? length_scale() : 1.0;
+    if (name == kAxes[a]) {
+      out = (pos_[a] - offsets()[a]) / scale;
+      return true;
+    }
+    if (name == kAbsAxes[a]) {
+      out = pos_[a] / scale;
+      return true;
+    }
+  }
+  const auto flag = [&out](bool b) {
+    out = b ? 1.0 : 0.0;
+    return true;
+  };
+  if (name == "_u" || name == "_v" || name == "_w") return flag(false);
+  if (name == "_current_tool") return out = current_tool_, true;
+  if (name == "_selected_tool") return out = selected_tool_, true;
+  if (name == "_coord_system")
+    return out = coord_system_ < 6 ? 540 + 10 * coord_system_ : 591 + (coord_system_ - 6), true;
+  if (name == "_metric") return flag(!inch_);
+  if (name == "_imperial") return flag(inch_);
+  if (name == "_absolute") return flag(absolute_);
+  if (name == "_incremental") return flag(!absolute_);
+  if (name == "_inverse_time") return flag(inverse_time_);
+  if (name == "_units_per_minute") return flag(!inverse_time_);
+  if (name == "_units_per_rev") return flag(false);
+  if (name == "_ijk_absolute_mode") return flag(arc_absolute_);
+  if (name == "_tool_offset") return flag(tool_length_on_);
+  if (name == "_ccomp") return out = 400, true;
+  if (name == "_plane") return out = plane_ == Plane::ZX ? 180 : plane_ == Plane::YZ ? 190 : 170, true;
+  if (name == "_motion_mode") {
+    switch (motion_) {
+      case MotionMode::Rapid: out = 0; break;
+      case MotionMode::Linear: out = 10; break;
+      case MotionMode::ArcCw: out = 20; break;
+      case MotionMode::ArcCcw: out = 30; break;
+      case MotionMode::None: out = 800; break;
+      case MotionMode::Cycle73: out = 730; break;
+      case MotionMode::Cycle81: out = 810; break;
+      case MotionMode::Cycle82: out = 820; break;
+      case MotionMode::Cycle83: out = 830; break;
+      case MotionMode::Cycle85: out = 850; break;
+      case MotionMode::Cycle89: out = 890; break;
+    }
+    return true;
+  }
+  if (name == "_feed") return out = inverse_time_ ? 0.0 : feed_mm_min_ / length_scale(), true;
+  if (name == "_rpm") return out = power_pct_ * machine_.laser.s_max / 100.0, true;
+  if (name == "_spindle_on") return flag(laser_ != LaserMode::Off);
+  if (name == "_mist") return flag(mist_);
+  if (name == "_flood") return flag(flood_);
+  if (name == "_feed_override" || name == "_speed_override") return flag(true);
+  if (name == "_adaptive_feed" || name == "_feed_hold") return flag(false);
+  return false;
 }
 
 }  // namespace lcnc::gcode

@@ -13,8 +13,15 @@
 // always carry LaserMode::Off (path/segment.h), keeping the programmed power.
 // A move that does not change the position is checked but produces nothing.
 //
-// Coordinates: machine = program + work offset (G54..G59) for G90; machine =
-// current + increment for G91. Lengths are × 25.4 in G20 (X Y Z I J K R, F,
+// Coordinates (LinuxCNC's): machine = program + work offset (G54 … G59.3,
+// set by G10 L2/L20) + axis offset (G92, G52) + tool offset (G43) for G90;
+// machine = current + increment for G91; G53 names machine coordinates for
+// its block. The offsets live in the numbered parameters (#5211 …,
+// #5221 …: gcode/parameter_file.h), where programs read them and the
+// parameter file keeps them; G28/G30 go to the positions #5161/#5181 hold.
+// Tools: T selects one of the machine's tool table, M6 or M61 puts it in the
+// spindle, G43 applies its offset; a tool not in the table is an error at
+// its T, H, P or Q word. Lengths are × 25.4 in G20 (X Y Z I J K R, F,
 // G64 P Q); A B C stay degrees. All words of a block — F too — are read in the
 // units in effect after that block's G20/G21. A feed, once set, keeps its
 // physical speed when the units change later.
@@ -29,32 +36,70 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "gcode/block_parser.h"
+#include "gcode/gcode_tolerances.h"
+#include "gcode/parameter_file.h"
 #include "machine/machine_config.h"
 #include "path/segment.h"
 
 namespace lcnc::gcode {
 
-// What one block produced: at most a dwell and a move.
+// What one block produced: a dwell and a move, or a canned cycle's moves
+// (at most kMaxBlockSegments). Storage is kept from block to block.
 class SegmentBuffer {
  public:
   [[nodiscard]] bool empty() const noexcept { return next_ == count_; }
+  [[nodiscard]] std::size_t size() const noexcept { return count_; }
   void clear() noexcept { count_ = next_ = 0; }
-  Segment& push() noexcept { return items_[count_++]; }
+  // A slot to fill (fill_modal resets it): reused, grown only past the
+  // most a block has needed so far.
+  Segment& push() {
+    if (count_ == items_.size()) items_.emplace_back();
+    return items_[count_++];
+  }
   [[nodiscard]] const Segment& pop() noexcept { return items_[next_++]; }
 
  private:
-  std::array<Segment, 2> items_{};
-  int count_ = 0;
-  int next_ = 0;
+  std::vector<Segment> items_;
+  std::size_t count_ = 0;
+  std::size_t next_ = 0;
 };
 
-enum class MotionMode : std::uint8_t { None, Rapid, Linear, ArcCw, ArcCcw };
+// Motion modes: G0 G1 G2 G3 and the canned cycles G73 G81 G82 G83 G85 G89.
+// Words that only some codes use (check_word_use): P Q H L I J K R.
+inline constexpr std::uint32_t kDataLetters = [] {
+  std::uint32_t m = 0;
+  for (const char c : {'P', 'Q', 'H', 'L', 'I', 'J', 'K', 'R'}) m |= 1u << letter_index(c);
+  return m;
+}();
+
+enum class MotionMode : std::uint8_t {
+  None, Rapid, Linear, ArcCw, ArcCcw, Cycle73, Cycle81, Cycle82, Cycle83, Cycle85, Cycle89
+};
+[[nodiscard]] constexpr bool is_cycle(MotionMode m) noexcept { return m >= MotionMode::Cycle73; }
 
 class Interpreter {
  public:
-  Interpreter(const MachineConfig& machine, const Pose& start);
+  // `numbered`: the program's parameters, indexed by number (#0 unused),
+  // kept by the caller; the offsets are read from them by load_offsets().
+  Interpreter(const MachineConfig& machine, const Pose& start, std::vector<double>& numbered);
+
+  // Takes the coordinate system, the G92 offset (#5210 … #5220) and the
+  // tool table (`tools`: the machine's, with the parameter file's changes,
+  // whose numbers are `changed`) as a job starts.
+  void load_offsets(std::vector<ToolConfig> tools, std::vector<int> changed);
+  // The tools set by G10 L1/L10/L11, now or in an earlier job (from the
+  // parameter file): what the parameter file keeps.
+  [[nodiscard]] std::vector<ToolConfig> changed_tools() const;
+  // A predefined named parameter (#<_x>, #<_current_tool>, …): false when
+  // `name` (lower-cased, with its '_') is none of them.
+  [[nodiscard]] bool predefined(std::string_view name, double& out) const;
+  // #5420 + axis: the position in program coordinates and units (read when
+  // a program asks, not written every block).
+  [[nodiscard]] double position_param(int axis) const;
 
   // Runs a block; its segments are pushed to `out`. false on error (fault()),
   // and then the state is undefined: reading stops.
@@ -72,6 +117,32 @@ class Interpreter {
   bool dwell(SegmentBuffer& out);
   void set_modes();
   bool set_path_control();
+  // Tools (tool_offsets.cpp): T, M6, M61; G43 G43.1 G43.2 G49; G10 L1/L10.
+  bool change_tool();
+  bool set_tool_length();
+  bool set_tool_data();
+  [[nodiscard]] const ToolConfig* find_tool(int number) const;
+  bool tool_number(char letter, int& out);
+  // Coordinate systems (coordinate_systems.cpp): G54 … G59.3, G10 L2/L20,
+  // G92 G92.1 G92.2 G92.3 G52, G28 G28.1 G30 G30.1.
+  void select_coord_system(int index);
+  bool run_non_modal(SegmentBuffer& out);
+  bool set_coord_system_data();
+  bool set_axis_offsets();
+  bool go_home(int first_param, SegmentBuffer& out);
+  // The sum of the three offsets, kept up to date by whatever changes one.
+  [[nodiscard]] const Pose& offsets() const noexcept { return offsets_; }
+  void update_offsets() { offsets_ = origin_ + axis_offset_ + tool_offset_; }
+  // A block's axis word in mm / deg.
+  [[nodiscard]] double axis_value(int axis) const {
+    return (*b_)[kAxisLetters[axis]] * (axis < 3 ? length_scale() : 1.0);
+  }
+  bool rapid_to(const Pose& end, SegmentBuffer& out);
+  // Canned cycles (canned_cycles.cpp).
+  bool canned_cycle(SegmentBuffer& out);
+  bool cycle_words(double& r, double& z, double& p, double& q);
+  void feed_to(const Pose& end, SegmentBuffer& out);
+  void dwell_for(double seconds, SegmentBuffer& out);
   bool move(SegmentBuffer& out);
   bool arc(const Pose& end_in, SegmentBuffer& out);
   bool check_feed();
@@ -86,7 +157,8 @@ class Interpreter {
   bool fail_at(ErrorCode code, std::uint32_t byte_pos, std::string message);
   [[nodiscard]] std::string quoted(Span s) const;
   [[nodiscard]] std::string quoted_block() const;
-  [[nodiscard]] double length_scale() const noexcept;  // mm per program length unit
+  // mm per program length unit
+  [[nodiscard]] double length_scale() const noexcept { return inch_ ? kMmPerInch : 1.0; }
   [[nodiscard]] const char* feed_unit() const noexcept;
   [[nodiscard]] std::string tolerance_unit() const;
 
@@ -104,7 +176,26 @@ class Interpreter {
   bool absolute_ = true;
   bool arc_absolute_ = false;
   bool inverse_time_ = false;
-  int work_offset_ = 0;  // 0 = G54 .. 5 = G59
+  int coord_system_ = 0;  // 0 = G54 … 8 = G59.3
+  std::vector<double>& numbered_;
+  Pose origin_ = Pose::Zero();       // the coordinate system's offset
+  Pose axis_offset_ = Pose::Zero();  // G92 / G52
+  Pose tool_offset_ = Pose::Zero();  // G43
+  Pose offsets_ = Pose::Zero();      // their sum
+  bool tool_length_on_ = false;      // G43 / G43.1 / G43.2 in effect
+  std::vector<ToolConfig> tools_;
+  std::vector<int> changed_tools_;   // numbers of the tools G10 set
+  int selected_tool_ = 0;            // T
+  int current_tool_ = 0;             // in the spindle: M6, M61
+  bool axis_words_used_ = false;     // the block's axis words went to G10/G28/G30/G52/G92/G43.1
+  // Canned cycles: G98 (retract to where Z was, or R if higher) or G99 (to
+  // R); the sticky R, Z, P, Q of the cycle in effect (mm, s), valid while
+  // its mode lasts (a new cycle mode needs R and Z again).
+  bool retract_old_z_ = false;
+  bool cycle_sticky_ = false;
+  bool cycle_series_ = false;        // cycle blocks in a row: cycle_initial_z_ is set
+  double cycle_initial_z_ = 0.0;     // where Z stood before the first of them
+  double cycle_r_ = 0.0, cycle_z_ = 0.0, cycle_p_ = 0.0, cycle_q_ = 0.0;
   PathMode path_mode_ = PathMode::ExactPath;
   double blend_tolerance_mm_ = 0.0;
   double naive_cam_tolerance_mm_ = 0.0;

@@ -17,6 +17,7 @@
 #include "gcode/gcode_tolerances.h"
 #include "gcode/interpreter.h"
 #include "gcode/line_source.h"
+#include "gcode/parameter_file.h"
 
 namespace lcnc {
 
@@ -74,14 +75,22 @@ class Parameters final : public gcode::ParameterReader {
     globals_["_value"] = 0.0;           // what the last call returned
     globals_["_value_returned"] = 0.0;  // 1 when it returned a value
   }
-  [[nodiscard]] double numbered(int index) const override { return numbered_[index]; }
+  [[nodiscard]] double numbered(int index) const override {
+    if (index >= gcode::kParamPosition && index < gcode::kParamPosition + gcode::kParamAxes && interp_ != nullptr)
+      return interp_->position_param(index - gcode::kParamPosition);
+    return numbered_[index];
+  }
   [[nodiscard]] bool named(std::string_view name, double& out) const override {
     const auto& map = name.front() == '_' ? globals_ : locals_.back();
     auto it = map.find(std::string(name));
-    if (it == map.end()) return false;
+    if (it == map.end()) return name.front() == '_' && interp_ != nullptr && interp_->predefined(name, out);
     out = it->second;
     return true;
   }
+  // Where the interpreter keeps its offsets (and reads them back).
+  std::vector<double>& store() { return numbered_; }
+  // The predefined names (#<_x> …) are the interpreter's state.
+  void set_interpreter(const gcode::Interpreter* interp) { interp_ = interp; }
   // A line's settings, after all of its values have been read.
   void apply(const std::vector<gcode::ParamSet>& sets) {
     for (const gcode::ParamSet& s : sets) {
@@ -110,6 +119,7 @@ class Parameters final : public gcode::ParameterReader {
 
  private:
   std::vector<double> numbered_;
+  const gcode::Interpreter* interp_ = nullptr;
   std::unordered_map<std::string, double> globals_;
   std::vector<std::unordered_map<std::string, double>> locals_;  // one map per call level
 };
@@ -174,17 +184,20 @@ struct ProgramReader::Impl {
         machine(m),
         options(opts),
         parser(present_axes(machine)),
-        interp(machine, options.start) {
+        interp(machine, options.start, params.store()) {
     files.push_back(OpenFile{std::move(name), std::move(src)});
     in = files[0].src.get();
     frames.emplace_back();
     parser.set_parameters(&params);
-    run_startup();
+    params.set_interpreter(&interp);
+    if (load_offsets()) run_startup();
   }
 
   enum class State : std::uint8_t { Running, Ended, Failed };
 
   Next read(Segment& out);
+  bool load_offsets();
+  void save_offsets();
   void run_startup();
   void warn_lines_after_end();
   Next fail(ErrorCode code, std::string_view line, std::uint32_t byte_pos, std::string message);
@@ -230,6 +243,7 @@ struct ProgramReader::Impl {
   std::uint32_t line = 0;        // of files[cur]
   std::uint32_t main_lines = 0;  // lines of the program file read before its last jump
 
+  bool saved = false;         // the parameter file written at the end
   bool seen_block = false;    // a line with words has been read
   bool seen_percent = false;  // the opening '%' has been read
   bool ended = false;         // M2, M30 or the closing '%'
@@ -253,7 +267,9 @@ ProgramReader::Next ProgramReader::Impl::fail_o(std::string_view text, std::stri
 ProgramReader::Next ProgramReader::Impl::read(Segment& out) {
   for (;;) {
     switch (state) {
-      case State::Ended: return Next::End;
+      case State::Ended:
+        if (!saved) save_offsets();
+        return Next::End;
       case State::Failed: return Next::Error;
       case State::Running: break;
     }
@@ -739,6 +755,49 @@ bool ProgramReader::Impl::skip_line(std::string_view text) {
 // config's validation), run as if the program's line 0. Anything it would
 // move, or an error, fails the reader at once: a config that bypassed the
 // validation must not move the machine.
+// The offsets a job starts from: the machine config's work offsets and tool
+// table, then what the parameter file kept of earlier jobs.
+bool ProgramReader::Impl::load_offsets() {
+  std::vector<double>& p = params.store();
+  for (int i = 0; i < kWorkOffsetCount; ++i) {
+    for (int a = 0; a < kAxisCount; ++a)
+      p[static_cast<std::size_t>(gcode::coord_param(i) + a)] = machine.work_offsets[i][a];
+  }
+  p[gcode::kParamCoordSystem] = 1.0;
+  std::vector<ToolConfig> tools = machine.tools;
+  std::vector<int> changed;
+  if (!machine.parameter_file.empty()) {
+    Result<gcode::ParameterFileData> kept = gcode::read_parameter_file(machine.parameter_file);
+    if (!kept) {
+      error = kept.error();
+      state = State::Failed;
+      return false;
+    }
+    for (const auto& [index, value] : kept->params) p[static_cast<std::size_t>(index)] = value;
+    for (const ToolConfig& t : kept->tools) {
+      auto it = std::find_if(tools.begin(), tools.end(),
+                             [&t](const ToolConfig& x) { return x.number == t.number; });
+      if (it == tools.end()) continue;  // no longer in the machine's table
+      *it = t;
+      changed.push_back(t.number);
+    }
+  }
+  interp.load_offsets(std::move(tools), std::move(changed));
+  return true;
+}
+
+// The job's reader keeps what the program set for the next job. A failure
+// is a warning: the program ran, its offsets were not kept.
+void ProgramReader::Impl::save_offsets() {
+  saved = true;
+  if (!options.keep_parameters || machine.parameter_file.empty()) return;
+  if (Status st = gcode::write_parameter_file(machine.parameter_file, params.store(),
+                                              interp.changed_tools());
+      !st) {
+    warnings.push_back(st.error());
+  }
+}
+
 void ProgramReader::Impl::run_startup() {
   if (machine.startup_code.empty()) return;
   const std::string& code = machine.startup_code;

@@ -1,8 +1,9 @@
 // The G-code front end: RS274NGC as LinuxCNC reads it, for a subset (G0 G1
-// G2 G3 G4 G17-19 G20/21 G90/91 G90.1/91.1 G54-59 G61 G61.1 G64 G93 G94, the
-// safety header's cancels G40 G49 G80, F S, M2 M3 M4 M5 M7 M8 M9 M30, X Y Z
-// A B C, N numbers, comments, '/' block delete, parameters and expressions,
-// O-word subroutines and control flow). Streams: one Segment at a time, so a program of
+// G2 G3 G4 G17-19 G20/21 G90/91 G90.1/91.1 G54-59.3 G61 G61.1 G64 G93 G94,
+// G10 G28 G30 G52 G53 G92, tools T M6 M61 G43 G49, the safety header's
+// cancels G40 G80, F S, M2 M3 M4 M5 M7 M8 M9 M30, X Y Z A B C, N numbers,
+// comments, '/' block delete, parameters and expressions, O-word
+// subroutines and control flow). Streams: one Segment at a time, so a program of
 // millions of lines runs in bounded memory. check_program() reads a whole
 // program once before motion starts, so an error on line 10,000 never stops a
 // part half-cut.
@@ -30,6 +31,9 @@ struct ReaderOptions {
   // The folder searched first for a subroutine's file <name>.ngc; empty: the
   // program file's own (set it when the program is read from a copy).
   std::string program_dir;
+  // The job's own reading (not a check): at the program's end the offsets
+  // and tools it set are written to the machine's parameter_file.
+  bool keep_parameters = false;
 };
 
 class ProgramReader {

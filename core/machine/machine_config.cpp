@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -333,6 +334,47 @@ bool load_kinematics(Loader& L, const toml::table& t, FiveAxisGeometry& g, TcpCo
   return true;
 }
 
+// [tools.N]: z_offset, x_offset, y_offset (mm), diameter (mm), description.
+// N is the T word, 1 … kMaxToolNumber.
+bool load_tools(Loader& L, const toml::table& t, std::vector<ToolConfig>& tools) {
+  for (const auto& [key, node] : t) {
+    const std::string k(key.str());
+    int number = 0;
+    const auto [end, ec] = std::from_chars(k.data(), k.data() + k.size(), number);
+    if (ec != std::errc{} || end != k.data() + k.size() || number < 1 || number > kMaxToolNumber)
+      return L.fail(ErrorCode::ConfigBadValue, node.source(),
+                    "tools." + k + ": a tool is named by its number; expected [tools.N] with N "
+                    "from 1 to " + std::to_string(kMaxToolNumber) + " (the T word)");
+    const toml::table* tt = L.subtable(t, key.str(), "tools.");
+    if (tt == nullptr) return false;
+    const std::string p = "tools." + k + ".";
+    ToolConfig tool;
+    tool.number = number;
+    double x = 0.0, y = 0.0, z = 0.0;
+    if (!(L.only_keys(*tt, p, {"z_offset", "x_offset", "y_offset", "diameter", "description"}) &&
+          L.number(*tt, p, "z_offset", z, false) && L.number(*tt, p, "x_offset", x, false) &&
+          L.number(*tt, p, "y_offset", y, false) &&
+          L.number(*tt, p, "diameter", tool.diameter_mm, false) &&
+          L.string(*tt, p, "description", tool.description)))
+      return false;
+    tool.offset << x, y, z, 0.0, 0.0, 0.0;
+    for (const double v : {x, y, z}) {
+      if (!(std::fabs(v) <= kMaxToolOffsetMm))
+        return L.fail(ErrorCode::ConfigBadValue, tt->source(),
+                      p + "*_offset = " + fmt(v) + "; allowed −" + fmt(kMaxToolOffsetMm) + " … " +
+                          fmt(kMaxToolOffsetMm) + " mm");
+    }
+    if (!(tool.diameter_mm >= 0.0 && tool.diameter_mm <= kMaxToolOffsetMm))
+      return L.fail(ErrorCode::ConfigBadValue, tt->source(),
+                    p + "diameter = " + fmt(tool.diameter_mm) + "; allowed 0 … " +
+                        fmt(kMaxToolOffsetMm) + " mm");
+    tools.push_back(std::move(tool));
+  }
+  std::sort(tools.begin(), tools.end(),
+            [](const ToolConfig& a, const ToolConfig& b) { return a.number < b.number; });
+  return true;
+}
+
 bool load_axis(Loader& L, const toml::table& t, Axis axis, AxisConfig& a) {
   const std::string p = std::string("axes.") + letter(axis) + ".";
   if (!L.only_keys(t, p, {"type", "min", "max", "max_velocity", "max_acceleration",
@@ -477,14 +519,17 @@ Result<MachineConfig> parse_machine_config(std::string_view text, const std::str
   MachineConfig m;
   m.axes = {};
   m.work_offsets.fill(Pose::Zero());
-  if (!L.only_keys(root, "", {"machine", "dda", "laser", "axes", "kinematics", "work_offsets"})) return L.err;
+  if (!L.only_keys(root, "", {"machine", "dda", "laser", "axes", "kinematics", "work_offsets", "tools"}))
+    return L.err;
 
   if (const toml::table* t = L.subtable(root, "machine")) {
     double period_us = m.period_ns / 1000.0;
     std::optional<double> max_jerk;
     if (!L.only_keys(*t, "machine.",
                      {"name", "period_us", "path_tolerance_mm", "max_feed_override", "max_jerk",
-                      "startup_code", "allow_unhomed", "block_delete", "subroutine_path"}) ||
+                      "startup_code", "allow_unhomed", "block_delete", "subroutine_path",
+                      "parameter_file"}) ||
+        !L.string(*t, "machine.", "parameter_file", m.parameter_file) ||
         !L.boolean(*t, "machine.", "allow_unhomed", m.allow_unhomed) ||
         !L.strings(*t, "machine.", "subroutine_path", m.subroutine_path) ||
         !L.boolean(*t, "machine.", "block_delete", m.block_delete) ||
@@ -506,6 +551,10 @@ Result<MachineConfig> parse_machine_config(std::string_view text, const std::str
       if (std::filesystem::path(dir).is_relative() && !config_dir.empty()) {
         dir = (config_dir / dir).lexically_normal().string();
       }
+    }
+    if (!m.parameter_file.empty() && std::filesystem::path(m.parameter_file).is_relative() &&
+        !config_dir.empty()) {
+      m.parameter_file = (config_dir / m.parameter_file).lexically_normal().string();
     }
     // Given means on: 0 is for a config built in code (no key, no limit).
     if (max_jerk && !(*max_jerk >= kMinMaxJerk && *max_jerk <= kMaxMaxJerk))
@@ -556,9 +605,11 @@ Result<MachineConfig> parse_machine_config(std::string_view text, const std::str
   }
   if (L.failed) return L.err;
   if (const toml::table* t = L.subtable(root, "work_offsets")) {
-    if (!L.only_keys(*t, "work_offsets.", {"G54", "G55", "G56", "G57", "G58", "G59"})) return L.err;
+    if (!L.only_keys(*t, "work_offsets.",
+                     {"G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3"}))
+      return L.err;
     for (int i = 0; i < kWorkOffsetCount; ++i) {
-      const std::string key = "G" + std::to_string(54 + i);
+      const std::string key = kWorkOffsetNames[i];
       const toml::node* n = t->get(key);
       if (n == nullptr) continue;
       const toml::array* arr = n->as_array();
@@ -573,6 +624,10 @@ Result<MachineConfig> parse_machine_config(std::string_view text, const std::str
                           "work_offsets." + key + " must be an array of 6 numbers [X, Y, Z, A, B, C]",
                           name, n->source().begin.line, n->source().begin.column);
     }
+  }
+  if (L.failed) return L.err;
+  if (const toml::table* t = L.subtable(root, "tools")) {
+    if (!load_tools(L, *t, m.tools)) return L.err;
   }
   if (L.failed) return L.err;
   if (Status s = validate(m, name); !s) return s.error();

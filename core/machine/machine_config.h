@@ -105,7 +105,23 @@ struct LaserConfig {
   double s_max = 100.0;  // S word value meaning 100 % power
 };
 
-inline constexpr int kWorkOffsetCount = 6;  // G54 .. G59
+// The work coordinate systems: G54 … G59, G59.1 … G59.3 (LinuxCNC's nine).
+inline constexpr int kWorkOffsetCount = 9;
+inline constexpr std::array<const char*, kWorkOffsetCount> kWorkOffsetNames = {
+    "G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3"};
+
+// A tool of the tool table (LinuxCNC's): on a laser, a nozzle and lens set.
+// G43 applies its offset (machine = program + offsets + tool offset); its
+// diameter is the kerf width cutter compensation will use.
+struct ToolConfig {
+  int number = 0;                 // the T word: 1 … kMaxToolNumber
+  Pose offset = Pose::Zero();     // tool length offset: X Y Z mm (A B C stay 0)
+  double diameter_mm = 0.0;
+  std::string description;
+};
+inline constexpr int kMaxToolNumber = 99999;
+// Largest |tool offset| and diameter, mm: a nozzle is not a metre long.
+inline constexpr double kMaxToolOffsetMm = 1000.0;
 
 // machine.max_jerk range, mm/s³ (0.001 … 10⁷ m/s³). Below the minimum the
 // filter's window would grow past ~10⁵ periods.
@@ -135,6 +151,12 @@ struct MachineConfig {
   // subroutine o<name> called before it is defined (LinuxCNC's
   // SUBROUTINE_PATH). A relative folder is taken from the config file's.
   std::vector<std::string> subroutine_path;
+  // The file that keeps the work offsets (G10, G92, G28.1 / G30.1 positions:
+  // LinuxCNC's parameters #5161 … #5390) and the tool table's changes
+  // (G10 L1/L10/L11) from one job to the next, as LinuxCNC's PARAMETER_FILE.
+  // A relative path is taken from the config file's folder. Empty: none;
+  // every job starts from [work_offsets] and [tools].
+  std::string parameter_file;
   // The highest feed override the operator may set (1 = 100 %). No derate:
   // the plan is at the axes' limits; above 100 % the planner plans the feed
   // moves faster within them, below it the RT scales the period
@@ -157,9 +179,18 @@ struct MachineConfig {
   FiveAxisGeometry kinematics{};
   TcpConfig tcp{};
   std::array<AxisConfig, kAxisCount> axes{};
-  // G54..G59, machine coords of work zero. Zeroed explicitly: `{}` leaves an
-  // Eigen matrix uninitialised.
+  // G54 … G59.3, machine coords of work zero. Zeroed explicitly: `{}` leaves
+  // an Eigen matrix uninitialised. The parameter file, when there is one,
+  // holds the offsets programs and the HMI set since.
   std::array<Pose, kWorkOffsetCount> work_offsets = zero_work_offsets();
+  // [tools.N], sorted by number.
+  std::vector<ToolConfig> tools;
+
+  [[nodiscard]] const ToolConfig* tool(int number) const noexcept {
+    for (const ToolConfig& t : tools)
+      if (t.number == number) return &t;
+    return nullptr;
+  }
 
   [[nodiscard]] const AxisConfig& axis(Axis a) const { return axes[index(a)]; }
   [[nodiscard]] AxisConfig& axis(Axis a) { return axes[index(a)]; }

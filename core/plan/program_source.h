@@ -30,6 +30,9 @@ class ProgramSource {
   [[nodiscard]] SourceStatus next(Segment& out);
   // After Error: the reader's or the expander's diagnostic, with the file.
   [[nodiscard]] Diagnostic error() const;
+  // The reader's warnings so far (lines after the end; after End, a
+  // parameter file that could not be written).
+  [[nodiscard]] const std::vector<Diagnostic>& warnings() const { return reader_->warnings(); }
   // A pull source over this object (which must outlive it).
   [[nodiscard]] SegmentSource source() {
     return [this](Segment& out) { return next(out); };

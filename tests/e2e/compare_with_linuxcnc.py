@@ -7,7 +7,7 @@ arcs with the same plane, centre (within 1e-6 mm) and signed turns, dwells
 of the same time.
 
     compare_with_linuxcnc.py LASERCNC MACHINE.toml PROGRAM... [--at-least N]
-                             [--table FILE.md]
+                             [--table FILE.md] [--tool-table FILE.tbl]
 
 Every program both accept is compared; one that only one of them accepts is
 listed (a program LaserCNC accepts and LinuxCNC refuses is a failure: it
@@ -15,7 +15,9 @@ would run something LinuxCNC calls wrong), except a file LinuxCNC refuses
 only for ending without M2, M30 or '%': LaserCNC ends there, and the moves
 read up to it are compared. Exit 0 when every comparison
 agrees and at least N programs were compared; 1 otherwise. The table (one
-row a program) goes to --table, or to stdout.
+row a program) goes to --table, or to stdout. --tool-table is LinuxCNC's
+tool table for the machine's [tools] (the same numbers; offsets 0, as
+LinuxCNC's interpreter reads a loaded table's alone).
 """
 import os
 import subprocess
@@ -89,6 +91,11 @@ def main():
         i = args.index("--table")
         table = args[i + 1]
         del args[i:i + 2]
+    tool_table = []
+    if "--tool-table" in args:
+        i = args.index("--tool-table")
+        tool_table = ["--tool-table", os.path.abspath(args[i + 1])]
+        del args[i:i + 2]
     if len(args) < 3:
         sys.exit(__doc__)
     lasercnc, machine = os.path.abspath(args[0]), os.path.abspath(args[1])
@@ -100,7 +107,8 @@ def main():
         sys.stderr.write("\r[%d/%d] %-40s" % (k + 1, len(programs), name[:40]))
         ours = subprocess.run([lasercnc, "check", program, "--machine", machine, "--moves", "-"],
                               capture_output=True, text=True, cwd=os.path.dirname(program) or ".")
-        theirs = subprocess.run([sys.executable, os.path.join(HERE, "linuxcnc_canon.py"), program],
+        theirs = subprocess.run([sys.executable, os.path.join(HERE, "linuxcnc_canon.py"), program]
+                                + tool_table,
                                 capture_output=True, text=True)
         if ours.returncode != 0 and theirs.returncode != 0:
             rows.append((name, "-", "both refuse"))

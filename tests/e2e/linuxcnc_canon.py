@@ -4,20 +4,25 @@ linuxcnc-uspace, which its AXIS preview uses) on a G-code program: prints the
 canonical moves in the form of `lasercnc check --moves` (app/moves_list.h),
 full double precision, mm and degrees.
 
-    linuxcnc_canon.py PROGRAM [--units G21|G20]
+    linuxcnc_canon.py PROGRAM [--units G21|G20] [--tool-table FILE]
 
 Exit 0 with the moves on stdout; 1 when LinuxCNC refuses the program (its
 message on stderr); 2 when its only complaint is that the file ends with no
 M2, M30 or closing '%' (LinuxCNC wants one; LaserCNC ends at the file's end),
 the moves read until then on stdout. No INI file and a fresh parameter file: every offset 0,
-the machine at 0, block delete on; subroutine files are looked for in the
+the machine at 0, block delete on; the tool table is FILE (LinuxCNC's format),
+else empty; subroutine files are looked for in the
 program's folder (the working folder is set to it).
 """
+import ctypes
+import math
 import os
 import sys
 import tempfile
 
 import gcode
+
+
 
 INCH = 25.4
 
@@ -31,23 +36,46 @@ class Canon:
         self.line = 0
         self.last = (0.0,) * 6  # the machine starts at 0
         self.out = []
+        # The interpreter hands its canon program coordinates and the offsets
+        # apart (as LinuxCNC's own canon, emccanon, takes them): machine =
+        # rotate_xy(program + G92) + G5x + tool offset.
+        self.g5x = [0.0] * 6
+        self.g92 = [0.0] * 6
+        self.tool = [0.0] * 6
+        self.rotation = 0.0
 
     # what rs274ngc asks of its canon
     def check_abort(self): return False
     def next_line(self, st): self.line = st.sequence_number
     def get_external_angular_units(self): return 1.0
-    def get_external_length_units(self): return 1.0 / INCH
+    # A metric machine, as LaserCNC's: the tool table and the offsets in
+    # #5161 … #5390 are mm. (The canon's calls are in inches whatever this
+    # says: the `gcode` module's own units.)
+    def get_external_length_units(self): return 1.0
     def get_axis_mask(self): return 0x3F  # X Y Z A B C
     def get_block_delete(self): return True
     def get_tool(self, n): return (n,) + (0.0,) * 12 + (0,)
     def set_plane(self, plane): self.plane = plane
+    def set_g5x_offset(self, index, x, y, z, a, b, c, *uvw): self.g5x = [x, y, z, a, b, c]
+    def set_g92_offset(self, x, y, z, a, b, c, *uvw): self.g92 = [x, y, z, a, b, c]
+    def set_xy_rotation(self, theta): self.rotation = theta
+    def tool_offset(self, x, y, z, a, b, c, *uvw): self.tool = [x, y, z, a, b, c]
+
+    def machine(self, p):
+        p = [v + o for v, o in zip(p, self.g92)]
+        if self.rotation:
+            t = math.radians(self.rotation)
+            p[0], p[1] = (p[0] * math.cos(t) - p[1] * math.sin(t),
+                          p[0] * math.sin(t) + p[1] * math.cos(t))
+        return [v + o + l for v, o, l in zip(p, self.g5x, self.tool)]
     def __getattr__(self, name):  # feeds, spindle, coolant, comments: not motion
         if name.startswith("__"):
             raise AttributeError(name)
         return lambda *args: None
 
     def _end(self, kind, x, y, z, a, b, c, extra=""):
-        end = (x * INCH, y * INCH, z * INCH, a, b, c)
+        m = self.machine([x, y, z, a, b, c])
+        end = (m[0] * INCH, m[1] * INCH, m[2] * INCH, m[3], m[4], m[5])
         if kind != "arc" and end == self.last:
             return  # a zero-length move is not motion
         self.last = end
@@ -65,11 +93,29 @@ class Canon:
             y, z, x, cy, cz, cx, name = first_end, second_end, axis_end, first_axis, second_axis, 0.0, "YZ"
         else:
             z, x, y, cz, cx, cy, name = first_end, second_end, axis_end, first_axis, second_axis, 0.0, "ZX"
-        centre = " ".join("%.17g" % (v * INCH) for v in (cx, cy, cz))
+        # the centre through the same offsets (its normal coordinate: 0, unused)
+        m = self.machine([cx, cy, cz, 0.0, 0.0, 0.0])
+        centre = " ".join("%.17g" % (v * INCH) for v in m[:3])
         self._end("arc", x, y, z, a, b, c, " %s %s %d" % (centre, name, rotation))
 
     def dwell(self, seconds):
         self.out.append("%d dwell %.17g" % (self.line, seconds))
+
+
+def load_tool_table(path):
+    """rs274ngc finds a T word's tool in LinuxCNC's tool data, which its task
+    process maps in; alone, as here, the interpreter would read an unmapped
+    table (a segfault at the first T). Map one in this process and load
+    `path` (LinuxCNC's tool table format) into it, or leave it empty. (A
+    table's offsets do not reach this interpreter's G43: it reads them as
+    0, and G10 L1 values as written.)"""
+    lib = ctypes.CDLL("libtooldata.so.0")
+    global _tool_stat  # the map's status block, kept for the process's life
+    _tool_stat = ctypes.create_string_buffer(1 << 20)
+    lib._Z17tool_mmap_creatorPK13EMC_TOOL_STATi(_tool_stat, 0)
+    lib._Z13tooldata_initb(0)
+    if path is not None and lib._Z13tooldata_loadPKcPPc(path.encode(), None) != 0:
+        sys.exit("cannot load the tool table " + path)
 
 
 def main():
@@ -79,9 +125,15 @@ def main():
         i = args.index("--units")
         units = args[i + 1]
         del args[i:i + 2]
+    table = None
+    if "--tool-table" in args:
+        i = args.index("--tool-table")
+        table = os.path.abspath(args[i + 1])
+        del args[i:i + 2]
     if len(args) != 1:
         sys.exit(__doc__)
     program = os.path.abspath(args[0])
+    load_tool_table(table)
     with tempfile.TemporaryDirectory() as tmp:
         var = os.path.join(tmp, "linuxcnc.var")
         open(var, "w").close()

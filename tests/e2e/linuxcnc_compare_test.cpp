@@ -38,8 +38,8 @@ TEST(LinuxcncCanonicalMoves, TheSampleProgramsAndOursGiveLinuxCNCsMoves) {
       programs_under(kSource / "tests/data/linuxcnc_compare") + " '" +
       (kSource / "share/examples/bracket.ngc").string() + "' '" +
       (kSource / "share/hal/sim/sample.ngc").string() + "' '" +
-      (kSource / "tests/vectors/plate.ngc").string() + "' --at-least 135 --table " +
-      table.string();
+      (kSource / "tests/vectors/plate.ngc").string() + "' --at-least 145 --tool-table " +
+      (kSource / "tests/data/machines/ncfiles_tools.tbl").string() + " --table " + table.string();
   const CmdResult r = run_program("/usr/bin/python3", args);
   EXPECT_EQ(r.exit_code, 0) << r.out << r.err << slurp(table);
   EXPECT_NE(r.out.find("0 differ; 0 refused by LinuxCNC alone"), std::string::npos) << r.out;
@@ -47,7 +47,9 @@ TEST(LinuxcncCanonicalMoves, TheSampleProgramsAndOursGiveLinuxCNCsMoves) {
   const std::string t = slurp(table);
   for (const char* row : {"| flowsnake.ngc | 3076 | same", "| arcspiral.ngc | 1003 | same",
                           "| loops_and_subs.ngc | 65 | same", "| arcs_all_planes.ngc | 16 | same",
-                          "| inch_incremental.ngc | 7 | same", "| bracket.ngc | 31 | same"}) {
+                          "| inch_incremental.ngc | 7 | same", "| bracket.ngc | 31 | same",
+                          "| offsets_and_tools.ngc | 36 | same", "| 3D_Chips.ngc | 4684 | same",
+                          "| offsets.ngc | 5 | same", "| canned_cycles.ngc | 101 | same"}) {
     EXPECT_NE(t.find(row), std::string::npos) << row << "\n" << t;
   }
 }

@@ -12,6 +12,7 @@
 namespace lcnc {
 namespace {
 
+using test::expect_error;
 using test::pose;
 using test::segments;
 using test::start_at;
@@ -139,10 +140,19 @@ TEST(ProgramReader, RadiusFormSemicircleAndTinyShortfallAreReachable) {
   auto segs = segments("G2 X120 Y100 R10 F600\n", start_at(100, 100, 10));
   ASSERT_EQ(segs.size(), 1u);
   EXPECT_VEC3_NEAR(segs[0].center, Vec3(110, 100, 10), 1e-9);
-  // 2|R| = 19.9999998 is within 1e-6 · 20 of the 20 mm chord.
-  segs = segments("G2 X120 Y100 R9.9999999 F600\n", start_at(100, 100, 10));
+  // LinuxCNC 2.9 (measured against its interpreter): half the chord may
+  // exceed |R| by 0.00005 in = 0.00127 mm, in mm and inch programs alike;
+  // the arc is then the half circle about the chord's midpoint
+  segs = segments("G2 X120.0025 Y100 R10 F600\n", start_at(100, 100, 10));
   ASSERT_EQ(segs.size(), 1u);
-  EXPECT_VEC3_NEAR(segs[0].center, Vec3(110, 100, 10), 1e-6);
+  EXPECT_VEC3_NEAR(segs[0].center, Vec3(110.00125, 100, 10), 1e-12);
+  Diagnostic d = expect_error("G2 X120.0026 Y100 R10 F600\n", ErrorCode::GcodeArcRadius, 1, 19,
+                              start_at(100, 100, 10));
+  EXPECT_MENTIONS(d, "less 0.00127 mm");
+  segs = segments("G20 G2 X[100 / 25.4 + 2.00009] Y[100 / 25.4] R1 F6\n", start_at(100, 100, 10));
+  ASSERT_EQ(segs.size(), 1u);
+  expect_error("G20 G2 X[100 / 25.4 + 2.00011] Y[100 / 25.4] R1 F6\n", ErrorCode::GcodeArcRadius, 1,
+               46, start_at(100, 100, 10));
 }
 
 TEST(ProgramReader, RadiusFormInG18) {

@@ -1,0 +1,111 @@
+// Canned cycles as LinuxCNC runs them (tests/data/linuxcnc_compare/
+// canned_cycles.ngc runs every case through LinuxCNC's own interpreter in
+// the e2e comparison; these say what a laser user relies on, one by one).
+#include <gtest/gtest.h>
+
+#include "core/gcode/gcode_test_util.h"
+
+namespace lcnc {
+namespace {
+
+using test::expect_error;
+using test::pose;
+using test::segments;
+using test::start_at;
+
+std::string kinds(const std::vector<Segment>& segs) {
+  std::string k;
+  for (const Segment& s : segs)
+    k += s.kind == MotionKind::Rapid ? 'r' : s.kind == MotionKind::Linear ? 'f' : s.kind == MotionKind::Dwell ? 'd' : 'a';
+  return k;
+}
+
+TEST(CannedCycles, G81DrillsEachHoleFromRAndReturnsToR) {
+  // from (10, 10, 10): over the hole at Z10, down to R2, feed to Z-1, back to R2;
+  // the next hole (X only) moves at R
+  const auto segs = segments("G81 X20 Y30 Z1 R2 F300\nX40\n");
+  EXPECT_EQ(kinds(segs), "rrfrrfr");
+  EXPECT_POSE_NEAR(segs[0].end, pose(20, 30, 10), 1e-12);
+  EXPECT_POSE_NEAR(segs[1].end, pose(20, 30, 2), 1e-12);
+  EXPECT_POSE_NEAR(segs[2].end, pose(20, 30, 1), 1e-12);
+  EXPECT_DOUBLE_EQ(segs[2].feed_mm_s, 5.0);
+  EXPECT_POSE_NEAR(segs[3].end, pose(20, 30, 2), 1e-12);
+  EXPECT_POSE_NEAR(segs[4].end, pose(40, 30, 2), 1e-12);
+  EXPECT_POSE_NEAR(segs[6].end, pose(40, 30, 2), 1e-12);
+}
+
+TEST(CannedCycles, G82IsPercussionTheBeamOnThroughTheDwellAndOffOnTheRapids) {
+  const auto segs = segments("M3 S80\nG98 G82 X20 Y30 Z1 R2 P0.4 F300\n");
+  ASSERT_EQ(kinds(segs), "rrfdr");
+  EXPECT_EQ(segs[2].laser, LaserMode::Constant);
+  EXPECT_EQ(segs[3].laser, LaserMode::Constant);
+  EXPECT_DOUBLE_EQ(segs[3].dwell_s, 0.4);
+  EXPECT_DOUBLE_EQ(segs[3].power_pct, 80.0);
+  EXPECT_EQ(segs[4].laser, LaserMode::Off);
+  EXPECT_DOUBLE_EQ(segs[4].end[2], 10.0);  // G98: back to where Z stood
+}
+
+TEST(CannedCycles, G83PecksBackToRAndG73BreaksByAClearance) {
+  // R2 to Z0 in pecks of 0.8: 1.2, 0.4, then 0; G83 back to R between them
+  // and down to 0.254 above the last depth
+  auto segs = segments("G83 X20 Y30 Z0 R2 Q0.8 F300\n");
+  ASSERT_EQ(kinds(segs), "rrfrrfrrfr");
+  EXPECT_NEAR(segs[2].end[2], 1.2, 1e-12);
+  EXPECT_NEAR(segs[3].end[2], 2.0, 1e-12);
+  EXPECT_NEAR(segs[4].end[2], 1.454, 1e-12);
+  EXPECT_NEAR(segs[5].end[2], 0.4, 1e-12);
+  EXPECT_NEAR(segs[8].end[2], 0.0, 1e-12);
+  segs = segments("G73 X20 Y30 Z0 R2 Q0.8 F300\n");
+  ASSERT_EQ(kinds(segs), "rrfrfrfr");
+  EXPECT_NEAR(segs[3].end[2], 1.454, 1e-12);
+  EXPECT_NEAR(segs[5].end[2], 0.654, 1e-12);
+}
+
+TEST(CannedCycles, G85AndG89FeedOut) {
+  auto segs = segments("G98 G85 X20 Y30 Z1 R2 F300\n");
+  ASSERT_EQ(kinds(segs), "rrffr");
+  EXPECT_DOUBLE_EQ(segs[3].end[2], 2.0);
+  EXPECT_DOUBLE_EQ(segs[4].end[2], 10.0);
+  segs = segments("G98 G89 X20 Y30 Z1 R2 P0.5 F300\n");  // G89 feeds out to the clear height
+  ASSERT_EQ(kinds(segs), "rrfdf");
+  EXPECT_DOUBLE_EQ(segs[4].end[2], 10.0);
+}
+
+TEST(CannedCycles, IncrementalRepeatsStepFromHoleToHole) {
+  // G91: R from where Z stood (10 − 4 = 6), Z from R (6 − 3 = 3); L3 holes 5 apart
+  const auto segs = segments("G91 G98 G81 X5 Y0 Z-3 R-4 L3 F300\n");
+  ASSERT_EQ(segs.size(), 12u);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_POSE_NEAR(segs[4 * k].end, pose(15 + 5 * k, 10, 10), 1e-12);
+    EXPECT_POSE_NEAR(segs[4 * k + 2].end, pose(15 + 5 * k, 10, 3), 1e-12);
+  }
+}
+
+TEST(CannedCycles, RZPQAreStickyWithinACycleAndNeededAgainAfterIt) {
+  auto segs = segments("G82 X20 Y30 Z1 R2 P0.4 F300\nX30\nG0 Z10\nG82 X40 Z1 R2 P0.1\n");
+  ASSERT_EQ(kinds(segs), "rrfdrrfdrrrrfdr");
+  EXPECT_DOUBLE_EQ(segs[7].dwell_s, 0.4);
+  EXPECT_DOUBLE_EQ(segs[13].dwell_s, 0.1);
+  Diagnostic d = expect_error("G81 X20 Y30 Z1 R2 F300\nG0 Z10\nG81 X40 Z1\n", ErrorCode::GcodeMissingWord, 3, 1);
+  EXPECT_MENTIONS(d, "no R word");
+  d = expect_error("G82 X20 Y30 Z1 R2 F300\n", ErrorCode::GcodeMissingWord, 1, 1);
+  EXPECT_MENTIONS(d, "no P word");
+  expect_error("G83 X20 Y30 Z1 R2 F300\n", ErrorCode::GcodeMissingWord, 1, 1);
+}
+
+TEST(CannedCycles, BadCyclesAreRefusedWhereTheyStand) {
+  Diagnostic d = expect_error("G81 X20 Y30 Z3 R2 F300\n", ErrorCode::GcodeBadValue, 1, 13);
+  EXPECT_MENTIONS(d, "bottom Z is above the retract plane R");
+  d = expect_error("G18\nG81 X20 Y30 Z1 R2 F300\n", ErrorCode::GcodeUnsupported, 2, 1);
+  EXPECT_MENTIONS(d, "canned cycles in G17");
+  expect_error("G81 X20 Y30 Z1 R2 A5 F300\n", ErrorCode::GcodeSyntax, 1, 19);
+  expect_error("G93 G81 X20 Y30 Z1 R2 F3\n", ErrorCode::GcodeSyntax, 1, 5);
+  expect_error("G81 X20 Y30 Z1 R2 L0 F300\n", ErrorCode::GcodeBadValue, 1, 19);
+  d = expect_error("G83 X20 Y30 Z-400 R2 Q0.0001 F300\n", ErrorCode::GcodeBadValue, 1, 22);
+  EXPECT_MENTIONS(d, "moves from one line");
+  // beyond the travel: the bottom (the test machine's Z starts at 0)
+  expect_error("G81 X20 Y30 Z-1 R2 F300\n", ErrorCode::GcodeBeyondTravel, 1, 13);
+}
+
+}  // namespace
+}  // namespace lcnc
