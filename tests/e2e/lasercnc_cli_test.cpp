@@ -297,6 +297,35 @@ TEST(LasercncRun, MoveBeyondTravelAndMissingFeedNameTheirLines) {
   EXPECT_NE(r.err.find("nofeed.ngc:2:"), std::string::npos) << r.err;
 }
 
+// A job's work offsets outlive it: the machine's parameter file keeps them
+// for the next `lasercnc run` (a new process), and `check` leaves it alone.
+TEST(LasercncRun, WorkOffsetsSetByAJobAreThereForTheNextJob) {
+  std::string cfg = slurp(kShare + "/machines/default.toml");
+  cfg.replace(cfg.find("[machine]\n"), 10, "[machine]\nparameter_file = \"jobs.var\"\n");
+  const fs::path m = write_file("kept.toml", cfg);
+  const fs::path var = temp_dir() / "jobs.var";
+  fs::remove(var);
+  const fs::path setter = write_file("setter.ngc", "G21 G90\nG10 L2 P1 X5 Y2\nG0 X1\nM2\n");
+  const fs::path user = write_file("user.ngc", "G21 G90\nG0 X1\nM2\n");
+  CmdResult r = lasercnc("check " + setter.string() + " --machine " + m.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(fs::exists(var)) << "a check writes nothing";
+  r = lasercnc("run " + setter.string() + " --json --no-progress --machine " + m.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_TRUE(fs::exists(var));
+  EXPECT_NE(slurp(var.string()).find("5221\t5\n"), std::string::npos) << slurp(var.string());
+  // G54 is X5 now: X1 is machine X6, 6 mm from the simulated machine's 0
+  // (without the kept offset, 1 mm)
+  r = lasercnc("run " + user.string() + " --json --no-progress --machine " + m.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NEAR(nlohmann::json::parse(r.out)["path_length_mm"].get<double>(), 6.0, 1e-9);
+  // a malformed file stops the next job before it moves, naming the line
+  std::ofstream(var) << "5221 five\n";
+  r = lasercnc("run " + user.string() + " --no-progress --machine " + m.string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("jobs.var:1:6"), std::string::npos) << r.err;
+}
+
 TEST(LasercncRun, BadMachineConfigIsRejectedWithTheKey) {
   std::string cfg = slurp(kShare + "/machines/default.toml");
   cfg.replace(cfg.find("max_velocity = 500.0"), 20, "max_velocity = 5000.0");
