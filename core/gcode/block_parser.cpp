@@ -383,6 +383,32 @@ bool BlockParser::read_m(Span w, double value, Block& out) {
   }
 }
 
+// @ radius or ^ angle: X and Y in polar coordinates, never with X or Y.
+bool BlockParser::read_polar(std::uint32_t& i, Block& out) {
+  const char ch = text_.compact[i];
+  const std::uint32_t at = i++;
+  double value = 0.0;
+  if (!read_number(i, at, value)) return false;
+  const Span w{at, i};
+  const std::uint8_t bit = ch == '@' ? 1 : 2;
+  if (out.polar & bit) {
+    return fail(ErrorCode::GcodeRepeatedWord, text_.offset[at],
+                "found a second " + std::string(1, ch) + " word " + quoted(w) +
+                    "; expected each polar word (@ radius, ^ angle) at most once per block");
+  }
+  if ((present_axes_ & 3u) != 3u) {
+    return fail(ErrorCode::GcodeNoSuchAxis, text_.offset[at],
+                "found " + quoted(w) + ": polar coordinates place X and Y, and this machine "
+                "lacks one of them");
+  }
+  if (out.polar == 0) out.polar_word = w;
+  out.polar |= bit;
+  (bit == 1 ? out.polar_radius : out.polar_angle_deg) = value;
+  if (out.axis_mask == 0) out.first_axis_word = w;
+  out.axis_mask = static_cast<std::uint8_t>(out.axis_mask | 3u);
+  return true;
+}
+
 bool BlockParser::read_word(std::uint32_t& i, Block& out) {
   const char* c = text_.compact.data();
   const std::uint32_t n = text_.size;
@@ -404,6 +430,9 @@ bool BlockParser::read_word(std::uint32_t& i, Block& out) {
         return fail(ErrorCode::GcodeSyntax, pos,
                     "found '/' inside the block; expected block delete '/' only as the first "
                     "character of a line");
+      case '@':
+      case '^':
+        return read_polar(i, out);
       case '.':
       case '+':
       case '-':
@@ -561,6 +590,7 @@ bool BlockParser::read_setting(std::uint32_t& i, Block& out) {
   out.m_stop = -1;
   out.m_laser = -1;
   out.m_tool = -1;
+  out.polar = 0;
   out.m7 = out.m8 = out.m9 = false;
   out.o.kind = OKind::None;
 

@@ -130,6 +130,12 @@ struct Block {
   std::int16_t m_tool = -1;   // 6 (tool change) or 61 (set the tool in the spindle)
   bool m7 = false, m8 = false, m9 = false;
   Span m_stop_word{}, m_laser_word{}, m_tool_word{}, m7_word{}, m8_word{}, m9_word{};
+  // Polar coordinates (LinuxCNC's): @ the radius and ^ the angle (degrees)
+  // of X Y about the program's origin, in place of X and Y (whose bits in
+  // axis_mask they set). Bit 0: @ given, bit 1: ^ given.
+  std::uint8_t polar = 0;
+  double polar_radius = 0.0, polar_angle_deg = 0.0;
+  Span polar_word{};  // the first of them
   std::vector<ParamSet> sets;  // in the order written (capacity reused)
   OWord o;                     // kind None unless an O-word line (then nothing else is set)
 
@@ -168,6 +174,7 @@ class BlockParser {
   bool compact(std::string_view line);
   bool read_number(std::uint32_t& i, std::uint32_t letter_at_pos, double& value);
   bool read_word(std::uint32_t& i, Block& out);
+  bool read_polar(std::uint32_t& i, Block& out);
   bool read_expression(std::uint32_t& i, double& value);
   bool read_setting(std::uint32_t& i, Block& out);
   bool read_prefix(std::string_view line, Block& out, std::uint32_t& i);

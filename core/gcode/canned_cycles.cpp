@@ -207,9 +207,13 @@ bool Interpreter::canned_cycle(SegmentBuffer& out) {
   for (int k = 0; k < repeats; ++k) {
     // 2. Over the hole, then down to R.
     Pose hole = pos_;
-    for (int a = 0; a < 2; ++a) {
-      if (((b.axis_mask >> a) & 1u) == 0) continue;
-      hole[a] = absolute_ ? axis_value(a) + offset[a] : pos_[a] + axis_value(a);
+    if (b.polar != 0) {
+      if (!polar_target(pos_, hole)) return false;
+    } else {
+      for (int a = 0; a < 2; ++a) {
+        if (((b.axis_mask >> a) & 1u) == 0) continue;
+        hole[a] = absolute_ ? axis_value(a) + offset[a] : pos_[a] + axis_value(a);
+      }
     }
     if (k == 0 && pos_[2] > r_m) {
       if (!rapid_to(hole, out)) return false;

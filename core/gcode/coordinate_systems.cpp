@@ -14,6 +14,7 @@
 // (gcode/parameter_file.h): a program reads them there, the parameter file
 // keeps them, and selecting a system reads its origin back from them.
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "gcode/gcode_tolerances.h"
@@ -45,6 +46,36 @@ bool Interpreter::rapid_to(const Pose& end, SegmentBuffer& out) {
   s.start = pos_;
   s.end = end;
   pos_ = end;
+  return true;
+}
+
+// LinuxCNC's polar coordinates: X = r·cos θ, Y = r·sin θ about the
+// program's origin; a word not given keeps the current radius or angle; in
+// G91 the words are added to them (so at the origin, where the angle is
+// undefined, G91 polar is an error).
+bool Interpreter::polar_target(const Pose& from, Pose& to) {
+  const Block& b = *b_;
+  const double scale = length_scale();
+  const double cx = (from[0] - offsets_[0]) / scale;
+  const double cy = (from[1] - offsets_[1]) / scale;
+  const bool has_r = (b.polar & 1u) != 0, has_a = (b.polar & 2u) != 0;
+  const double a_rad = b.polar_angle_deg * std::numbers::pi / 180.0;
+  double r = std::hypot(cx, cy);
+  double theta = std::atan2(cy, cx);
+  if (absolute_) {
+    if (has_r) r = b.polar_radius;
+    if (has_a) theta = a_rad;
+  } else {
+    if (cx == 0.0 && cy == 0.0) {
+      return fail(ErrorCode::GcodeSyntax, b.polar_word,
+                  "found " + quoted(b.polar_word) + " in G91 at the origin, where the angle is "
+                  "undefined; expected an incremental polar move from elsewhere, or G90");
+    }
+    if (has_r) r += b.polar_radius;
+    if (has_a) theta += a_rad;
+  }
+  to[0] = r * std::cos(theta) * scale + offsets_[0];
+  to[1] = r * std::sin(theta) * scale + offsets_[1];
   return true;
 }
 

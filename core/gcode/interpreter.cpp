@@ -145,6 +145,20 @@ bool Interpreter::resolve_motion() {
   const int tl = b.code(GGroup::ToolLength);
   axis_words_used_ = (nm > 40 || tl >= 0) && (nm == 100 || nm == 280 || nm == 300 || nm == 520 ||
                                               nm == 920 || tl == 431);
+  if (b.polar != 0) {
+    if (b.has('X') || b.has('Y')) {
+      return fail(ErrorCode::GcodeSyntax, b.polar_word,
+                  "found " + quoted(b.polar_word) + " with " + (b.has('X') ? "X" : "Y") +
+                      "; expected polar words (@ radius, ^ angle) in place of X and Y, not with "
+                      "them");
+    }
+    if (axis_words_used_ || nm == 530) {
+      return fail(ErrorCode::GcodeSyntax, b.polar_word,
+                  "found " + quoted(b.polar_word) + " with " + quoted(b.code_word(
+                      nm == 530 || nm > 40 ? GGroup::NonModal : GGroup::ToolLength)) +
+                      "; expected polar words only on moves in the program's coordinates");
+    }
+  }
   if (axis_words_used_) {
     if (g >= 0 && g != 800 && b.axis_mask != 0) {
       const Span at = b.code(GGroup::ToolLength) == 431 ? b.code_word(GGroup::ToolLength)
@@ -579,11 +593,12 @@ bool Interpreter::move(SegmentBuffer& out) {
   }
   const Pose offset = machine_coords ? Pose::Zero() : offsets_;
   Pose end = pos_;
-  for (int a = 0; a < kAxisCount; ++a) {
+  for (int a = b.polar != 0 ? 2 : 0; a < kAxisCount; ++a) {
     if (((b.axis_mask >> a) & 1u) == 0) continue;
     const double v = axis_value(a);
     end[a] = absolute_ ? v + offset[a] : pos_[a] + v;
   }
+  if (b.polar != 0 && !polar_target(pos_, end)) return false;
   if ((b.axis_mask & untraveled_axes_) != 0 && !check_magnitude(end)) return false;
   if (absolute_ && (b.axis_mask & wrapping_axes_) != 0) {
     // G90 on a continuous rotary axis names a position modulo 360: the axis

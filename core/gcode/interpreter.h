@@ -138,6 +138,9 @@ class Interpreter {
     return (*b_)[kAxisLetters[axis]] * (axis < 3 ? length_scale() : 1.0);
   }
   bool rapid_to(const Pose& end, SegmentBuffer& out);
+  // A polar block's X Y (@ ^ about the program's origin; G91: added to the
+  // radius and angle of `from`), written into `to` in machine coordinates.
+  bool polar_target(const Pose& from, Pose& to);
   // Canned cycles (canned_cycles.cpp).
   bool canned_cycle(SegmentBuffer& out);
   bool cycle_words(double& r, double& z, double& p, double& q);
