@@ -108,6 +108,7 @@ std::string format_status(const shm::Status& st, const shm::JobStatus& job, bool
   if (json) {
     nlohmann::json j;
     j["state"] = state_name(st.state);
+    j["program_pause"] = st.program_pause;  // held at M0/M1/M60: `send resume` goes on
     j["fault"] = st.fault == 0 ? "" : std::string(error_summary(static_cast<ErrorCode>(st.fault)));
     j["fault_axis"] = st.fault_axis >= 0 ? std::string(1, kAxisLetters[st.fault_axis]) : "";
     j["line"] = st.line;
@@ -146,7 +147,11 @@ std::string format_status(const shm::Status& st, const shm::JobStatus& job, bool
     fault = std::string(" — ") + std::string(error_summary(static_cast<ErrorCode>(st.fault)));
     if (st.fault_axis >= 0) fault += std::string(" (axis ") + kAxisLetters[st.fault_axis] + ")";
   }
-  out += std::string("state      ") + state_name(st.state) + fault + "\n";
+  out += std::string("state      ") + state_name(st.state) +
+         (st.program_pause ? " — program pause (M0/M1/M60) at line " + std::to_string(st.line) +
+                                 ": send resume to go on"
+                           : std::string()) +
+         fault + "\n";
   out += "position  ";
   for (int i = 0; i < kAxisCount; ++i)  // "?": not homed
     if ((st.axes_mask >> i) & 1u)

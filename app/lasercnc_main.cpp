@@ -29,7 +29,7 @@ namespace {
 constexpr const char* kUsage =
     "usage:\n"
     "  lasercnc run PROGRAM [--machine FILE] [--vmax V] [--amax A] [--tolerance E]\n"
-    "                       [--feed-override PCT] [--trace FILE.csv] [--json]\n"
+    "                       [--feed-override PCT] [--pause S] [--trace FILE.csv] [--json]\n"
     "                       [--[no-]progress] [--no-realtime]\n"
     "                       [--devices | --laser ENDPOINT [--power-meter ENDPOINT]]\n"
     "  lasercnc check PROGRAM [--machine FILE] [--moves FILE]\n"
@@ -59,6 +59,8 @@ constexpr const char* kUsage =
     "                  past an axis limit (below 100 also the rapids slower);\n"
     "                  1 <= PCT <= 100 x machine.max_feed_override (150 on the default\n"
     "                  machine); default 100\n"
+    "  --pause         an M0, M1 or M60 pauses the job; unattended, the run goes on after\n"
+    "                  S seconds (default 0). (lasercncd waits for `send resume`.)\n"
     "  --trace         commanded position and laser power every RT period as CSV\n"
     "                  t,x,y,z,a,b,c,power (s of machine time, mm, deg, % of rated)\n"
     "  --progress      progress bar on stderr (default: only when stderr is a terminal)\n"
@@ -171,6 +173,11 @@ int main(int argc, char** argv) {
       std::optional<double> pct;
       if (!number(pct)) return usage_error("--feed-override needs a number (%, e.g. 150)");
       opt.feed_override_pct = *pct;
+    } else if (a == "--pause") {
+      std::optional<double> s;
+      if (!number(s) || !(*s >= 0.0 && *s <= 3600.0))
+        return usage_error("--pause needs the seconds to stay paused at M0/M1/M60, 0 to 3600");
+      opt.pause_s = *s;
     } else if (a == "--moves" && cmd == "check") {
       auto v = value();
       if (!v) return usage_error("--moves needs a file (- for standard output)");

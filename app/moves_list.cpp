@@ -16,6 +16,10 @@ Status write_moves(const std::string& program, const MachineConfig& machine,
     const ProgramReader::Next n = (*reader)->next(s);
     if (n == ProgramReader::Next::Error) return (*reader)->error();
     if (n == ProgramReader::Next::End) break;
+    if (s.pause) {  // M0/M1/M60: the canonical program stop (its dwell holds the RT)
+      out->printf("%u pause\n", s.line);
+      continue;
+    }
     if (s.kind == MotionKind::Dwell) {
       out->printf("%u dwell %.17g\n", s.line, s.dwell_s);
       continue;

@@ -81,6 +81,8 @@ std::string format_report(const RunReport& r) {
                      r.latency_p50_us, r.latency_p99_us, r.latency_max_us, r.schedule.c_str());
   if (!r.rt_warning.empty()) s += "  warning          " + r.rt_warning + "\n";
   for (const std::string& w : r.program_warnings) s += "  warning          " + w + "\n";
+  if (r.program_pauses > 0)
+    s += printf_string("  program pauses   %u (M0/M1/M60), each resumed after --pause\n", r.program_pauses);
   const PeripheralReport& p = r.peripherals;
   if (p.used) {
     s += "  laser source     " + p.laser + (p.simulated ? " (simulator)" : "") + "\n";
@@ -147,6 +149,7 @@ std::string report_json(const RunReport& r) {
   j["schedule"] = r.schedule;
   j["rt_warning"] = r.rt_warning;
   j["program_warnings"] = r.program_warnings;
+  j["program_pauses"] = r.program_pauses;
   if (const PeripheralReport& p = r.peripherals; p.used) {
     j["peripherals"] = {
         {"laser", p.laser},

@@ -133,6 +133,9 @@ RtLogLine describe_rt_log(const rt::RtLogRecord& r, const MachineConfig& machine
     case rt::RtLogCode::Homed:
       out.text += axis;
       break;
+    case rt::RtLogCode::ProgramPause:
+      out.text += " at line " + std::to_string(r.line);
+      break;
     case rt::RtLogCode::Refused:
       out.text += std::string(": ") + rt_command_name(static_cast<rt::RtCommandType>(r.value)) + axis;
       out.code = static_cast<std::uint16_t>(ErrorCode::RtRefused);
@@ -402,6 +405,8 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   auto last_progress = std::chrono::steady_clock::now();
   rt::TraceRecord rec;
   bool stop_sent = false;
+  std::uint32_t pauses_resumed = 0;  // program pauses (M0 …) resumed so far
+  std::chrono::steady_clock::time_point pause_since{};
   std::string laser_fault;  // why the laser source failed during the job
   float power_now = 0.0f;  // the commanded laser power of the latest period, %
   for (;;) {
@@ -442,6 +447,17 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
         progress(std::min(1.0, kernel.current_segment() / total_segments));
       }
     }
+    // M0/M1/M60: unattended, each pause is resumed after options.pause_s
+    // (once: a pause begun after the resume is counted anew)
+    if (kernel.program_paused() && kernel.program_pauses() > pauses_resumed) {
+      const auto now = std::chrono::steady_clock::now();
+      if (pause_since == std::chrono::steady_clock::time_point{}) pause_since = now;
+      if (std::chrono::duration<double>(now - pause_since).count() >= options.pause_s &&
+          kernel.command({rt::RtCommandType::Resume, 0, 0.0})) {
+        pauses_resumed = kernel.program_pauses();
+        pause_since = {};
+      }
+    }
     // short of a soft limit: stop along the path with what is queued
     if (feed.stopped_short() && !stop_sent) stop_sent = kernel.command({rt::RtCommandType::Stop, 0, 0.0});
     // a fault (an e-stop, a limit) or a stop ends the job: the planner stops pushing
@@ -460,6 +476,7 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   if (planned.failed) return planned.error;
 
   fill_run_figures(report, kernel, sim, planned, machine, start_steps);
+  report.program_pauses = kernel.program_pauses();
   for (const Diagnostic& w : planned.warnings) report.program_warnings.push_back(w.to_string());
   if (!laser_fault.empty() && report.fault.empty()) report.fault = "laser source: " + laser_fault;
   report.max_deviation_mm = path.max_mm();

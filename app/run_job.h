@@ -34,6 +34,8 @@ struct RunOptions {
   // ≤ 100·machine.max_feed_override, else a Usage error. Set before the RT
   // thread starts, so the run begins at it with no ramp.
   double feed_override_pct = 100.0;
+  // M0/M1/M60 pause the job; unattended, the run resumes after this long (s).
+  double pause_s = 0.0;
   // The laser source and power meter over Modbus (app/laser_link.h):
   // in-process simulators (devices), or devices at these endpoints.
   bool devices = false;
@@ -92,6 +94,7 @@ struct RunReport {
   std::string fault;       // what stopped the job early (soft/hard limit, e-stop); empty if none
   std::string schedule;    // "SCHED_FIFO" or "normal"
   std::string rt_warning;  // why real-time scheduling was not had
+  std::uint32_t program_pauses = 0;  // M0/M1/M60 held, each resumed after RunOptions::pause_s
   std::vector<std::string> program_warnings;  // the reader's (lines after the end, the parameter file)
   PeripheralReport peripherals;  // used: the laser source was linked
 };

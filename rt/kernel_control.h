@@ -54,6 +54,14 @@ class KernelControl {
   [[nodiscard]] std::size_t braking_reserve(double k) const noexcept;
 
   [[nodiscard]] MachineState state() const noexcept { return port_.state.load(std::memory_order_acquire); }
+  // The job holds at its M0/M1/M60 until Resume.
+  [[nodiscard]] bool program_paused() const noexcept {
+    return port_.program_pause.load(std::memory_order_relaxed);
+  }
+  // How many such pauses have begun (a run resumes each once).
+  [[nodiscard]] std::uint32_t program_pauses() const noexcept {
+    return port_.program_pauses.load(std::memory_order_relaxed);
+  }
   // The last fault (code, axis, line), cleared by Reset/StartJob.
   [[nodiscard]] RtFault fault() const noexcept;
   // Axes whose position is known (homed, or known at start): bit per axis.

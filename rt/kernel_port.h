@@ -46,6 +46,11 @@ struct KernelPort {
   // ordering nothing else.
   std::atomic<bool> laser_inhibit{false};
   std::atomic<MachineState> state{MachineState::Idle};
+  // Held by the program's M0/M1/M60 (state FeedHold) until a resume. Written
+  // by the RT before the state it goes with; relaxed: a flag read on its own.
+  std::atomic<bool> program_pause{false};
+  // Program pauses begun since start (relaxed: a count read on its own).
+  std::atomic<std::uint32_t> program_pauses{0};
   std::atomic<std::uint32_t> homed{0};
   std::atomic<std::uint16_t> fault_code{0};
   std::atomic<std::int8_t> fault_axis{-1};

@@ -261,6 +261,10 @@ void RtKernel::log(RtLogCode code, std::int64_t value, int axis, std::uint32_t l
 
 void RtKernel::set_state(MachineState s) noexcept {
   if (s == state_now_) return;
+  if (s != MachineState::FeedHold && program_pause_) {  // resumed, stopped or e-stopped
+    program_pause_ = false;
+    port_.program_pause.store(false, std::memory_order_relaxed);
+  }
   state_now_ = s;
   port_.state.store(s, std::memory_order_release);
   log(RtLogCode::StateChange, static_cast<std::int64_t>(s));
@@ -312,7 +316,7 @@ void RtKernel::take_commands() noexcept {
       case RtCommandType::Resume:
         if (s == MachineState::FeedHold) {
           hold_ = false;
-          set_state(MachineState::Running);
+          set_state(MachineState::Running);  // (ends a program pause)
         }
         break;
       case RtCommandType::Stop:
@@ -450,6 +454,17 @@ void RtKernel::path_motion(Motion& m) noexcept {
     port_.line.store(m.inc.line, std::memory_order_relaxed);
     line_ = m.inc.line;
     end_seen_ = m.inc.end_of_program;
+    // M0/M1/M60: the job is at rest here (a dwell's entry): held at once —
+    // K to 0, not ramped, so the next entry's motion never starts — until
+    // a resume
+    if (m.inc.pause && !stopping_) {
+      hold_ = program_pause_ = true;
+      port_.program_pause.store(true, std::memory_order_relaxed);
+      port_.program_pauses.fetch_add(1, std::memory_order_relaxed);
+      k_ = 0.0;
+      set_state(MachineState::FeedHold);
+      log(RtLogCode::ProgramPause, 0, -1, line_);
+    }
   } else {
     m.underrun = true;
     port_.underruns.fetch_add(1, std::memory_order_relaxed);
@@ -657,6 +672,7 @@ void RtKernel::publish_status(bool force) noexcept {
   st.latency_p50_us = static_cast<float>(lat_p50_);
   st.latency_p99_us = static_cast<float>(lat_p99_);
   st.latency_max_us = static_cast<float>(static_cast<double>(latency_.max_ns()) / 1000.0);
+  st.program_pause = program_pause_;
   status_->store(st);
 }
 

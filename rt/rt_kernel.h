@@ -239,7 +239,8 @@ class RtKernel : private OwnKernelPort, public KernelControl {
   RtOptions options_;
   // RT thread's state (the atomics below publish it).
   MachineState state_now_ = MachineState::Idle;
-  bool hold_ = false;         // operator's feed hold
+  bool hold_ = false;         // operator's feed hold (or the program's pause)
+  bool program_pause_ = false;  // held by M0/M1/M60 until a resume
   bool stopping_ = false;     // a stop (operator's or a fault's) ramps down
   bool starving_ = false;     // below the braking reserve while streaming
   bool flushing_ = false;     // discarding an aborted job's entries

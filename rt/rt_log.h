@@ -24,6 +24,7 @@ enum class RtLogCode : std::uint16_t {
   JogShort,       // axis: a jog clamped at a soft limit; value: steps not moved
   Homed,          // axis; value: machine position given to the switch, steps
   Refused,        // value: the RtCommandType refused in this state
+  ProgramPause,   // line: the M0/M1/M60 the job holds at until resumed
 };
 
 // Wake-ups later than this are logged one by one; all are counted.
@@ -54,6 +55,7 @@ using RtLogRing = SpscRing<RtLogRecord, 1024>;
     case RtLogCode::JogShort: return "jog stopped short at the soft limit";
     case RtLogCode::Homed: return "axis homed";
     case RtLogCode::Refused: return "command refused in this state";
+    case RtLogCode::ProgramPause: return "program pause (M0/M1/M60): waiting for resume";
   }
   return "unknown RT event";
 }

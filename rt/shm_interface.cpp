@@ -175,6 +175,9 @@ bool ShmClient::owner_alive() const noexcept { return process_alive(block_->head
 
 void sanitize(Status& s) noexcept {
   if (s.fault_axis < -1 || s.fault_axis >= static_cast<int>(s.pos.size())) s.fault_axis = -1;
+  std::uint8_t pause = 0;  // the byte as written: a bool of any other value is undefined
+  std::memcpy(&pause, &s.program_pause, 1);
+  s.program_pause = pause != 0;
 }
 
 void sanitize(JobStatus& j) noexcept {

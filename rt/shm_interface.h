@@ -39,7 +39,7 @@
 namespace lcnc::shm {
 
 inline constexpr std::uint32_t kMagic = 0x434E434Cu;  // "LCNC" in memory
-inline constexpr std::uint32_t kVersion = 5;
+inline constexpr std::uint32_t kVersion = 6;
 inline constexpr const char* kDefaultName = "/lasercnc";
 
 enum class MachineState : std::uint8_t { Idle, Running, FeedHold, Stopping, EStop, Jog, Homing };
@@ -107,6 +107,9 @@ struct Status {
   std::uint32_t buffer_fill = 0;
   float power_pct = 0.0f;
   float latency_p50_us = 0.0f, latency_p99_us = 0.0f, latency_max_us = 0.0f;
+  // The program paused itself (M0, M1, M60): FeedHold at rest until a
+  // resume, which then goes on with the program.
+  bool program_pause = false;
 };
 
 // How the last job ended.

@@ -17,7 +17,7 @@ constexpr const char* kSupportedGCodes =
     "G0 G1 G2 G3 G4 G10 G17 G18 G19 G20 G21 G28 G28.1 G30 G30.1 G40 G43 G43.1 G43.2 G49 G52 "
     "G53 G54-G59 G59.1 G59.2 G59.3 G61 G61.1 G64 G73 G80 G81 G82 G83 G85 G89 G90 G91 G90.1 "
     "G91.1 G92 G92.1 G92.2 G92.3 G93 G94 G98 G99";
-constexpr const char* kSupportedMCodes = "M2 M3 M4 M5 M6 M7 M8 M9 M30 M61";
+constexpr const char* kSupportedMCodes = "M0 M1 M2 M3 M4 M5 M6 M7 M8 M9 M30 M60 M61";
 
 // Exact powers of ten: a double holds 10^k exactly for k <= 22.
 constexpr double kPow10[] = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
@@ -335,8 +335,11 @@ bool BlockParser::read_m(Span w, double value, Block& out) {
                     group_name + "); expected at most one code of each group");
   };
   switch (code) {
+    case 0:
+    case 1:
     case 2:
     case 30:
+    case 60:
       if (out.m_stop >= 0) return conflict(out.m_stop, 4, "stopping");
       out.m_stop = static_cast<std::int16_t>(code);
       out.m_stop_word = w;
@@ -381,6 +384,26 @@ bool BlockParser::read_m(Span w, double value, Block& out) {
       return fail(ErrorCode::GcodeUnknownCode, pos,
                   name + " is not supported; expected one of " + kSupportedMCodes);
   }
+}
+
+// $: LinuxCNC's spindle selector (M3 $0 S…, as CAM posts for LinuxCNC and
+// plasma write it). This machine's one laser is spindle 0; $-1 (all) is it
+// too. Nothing to keep.
+bool BlockParser::read_spindle(std::uint32_t& i) {
+  const std::uint32_t at = i++;
+  if (i < text_.size && text_.compact[i] >= 'A' && text_.compact[i] <= 'Z') {
+    std::uint32_t j = i;
+    while (j < text_.size && text_.compact[j] != '(') ++j;
+    return fail(ErrorCode::GcodeSyntax, text_.offset[at],
+                "found " + quoted(at, j) + ": a grbl system command, not G-code; expected $0 "
+                "(the spindle selector), or [machine] dialect = \"grbl\" to pass such lines over");
+  }
+  double value = 0.0;
+  if (!read_number(i, at, value)) return false;
+  if (value == 0.0 || value == -1.0) return true;
+  return fail(ErrorCode::GcodeBadValue, text_.offset[at],
+              "found " + quoted(Span{at, i}) + ": this machine has one laser, spindle $0; "
+              "expected $0 (or $-1, all of them) or no $ word");
 }
 
 // @ radius or ^ angle: X and Y in polar coordinates, never with X or Y.
@@ -433,6 +456,8 @@ bool BlockParser::read_word(std::uint32_t& i, Block& out) {
       case '@':
       case '^':
         return read_polar(i, out);
+      case '$':
+        return read_spindle(i);
       case '.':
       case '+':
       case '-':

@@ -125,7 +125,7 @@ struct Block {
   std::array<Span, kLetterCount> word{};
   std::array<std::int16_t, kGGroupCount> g{};
   std::array<Span, kGGroupCount> g_word{};
-  std::int16_t m_stop = -1;   // 2 or 30
+  std::int16_t m_stop = -1;   // 0 or 1 or 60 (pause), 2 or 30 (end)
   std::int16_t m_laser = -1;  // 3, 4 or 5
   std::int16_t m_tool = -1;   // 6 (tool change) or 61 (set the tool in the spindle)
   bool m7 = false, m8 = false, m9 = false;
@@ -175,6 +175,7 @@ class BlockParser {
   bool read_number(std::uint32_t& i, std::uint32_t letter_at_pos, double& value);
   bool read_word(std::uint32_t& i, Block& out);
   bool read_polar(std::uint32_t& i, Block& out);
+  bool read_spindle(std::uint32_t& i);
   bool read_expression(std::uint32_t& i, double& value);
   bool read_setting(std::uint32_t& i, Block& out);
   bool read_prefix(std::string_view line, Block& out, std::uint32_t& i);

@@ -126,9 +126,11 @@ bool Interpreter::execute(const Block& block, const LineText& text, std::uint32_
   if (!set_path_control()) return false;    // G61 G61.1 G64
   if (non_modal > 40 && non_modal != 530 && !run_non_modal(out)) return false;  // G10 G28 G30 G52 G92
   if (block_motion_ != MotionMode::None && !move(out)) return false;
-  if (block.m_stop >= 0) {                  // M2 M30: back in G54 (LinuxCNC)
+  if (block.m_stop == 2 || block.m_stop == 30) {  // M2 M30: back in G54 (LinuxCNC)
     ended_ = true;
     select_coord_system(0);
+  } else if (block.m_stop >= 0 && (block.m_stop != 1 || machine_.optional_stop)) {
+    pause(out);                             // M0 M60, M1 with the optional stop on
   }
   return true;
 }
@@ -438,6 +440,20 @@ bool Interpreter::set_path_control() {
 }
 
 // --- motion ---------------------------------------------------------------
+
+// M0 (M1, M60): the machine stops here, the beam off, until the operator
+// resumes: a dwell of two periods (so a period's sample falls inside it
+// whatever the phase) that the RT holds on (Segment::pause).
+void Interpreter::pause(SegmentBuffer& out) {
+  Segment& s = out.push();
+  fill_modal(s);
+  s.kind = MotionKind::Dwell;
+  s.start = pos_;
+  s.end = pos_;
+  s.dwell_s = 2.0 * machine_.period_s();
+  s.laser = LaserMode::Off;
+  s.pause = true;
+}
 
 void Interpreter::fill_modal(Segment& s) const {
   s = Segment{};

@@ -138,6 +138,7 @@ class Interpreter {
     return (*b_)[kAxisLetters[axis]] * (axis < 3 ? length_scale() : 1.0);
   }
   bool rapid_to(const Pose& end, SegmentBuffer& out);
+  void pause(SegmentBuffer& out);
   // A polar block's X Y (@ ^ about the program's origin; G91: added to the
   // radius and angle of `from`), written into `to` in machine coordinates.
   bool polar_target(const Pose& from, Pose& to);

@@ -200,6 +200,7 @@ struct ProgramReader::Impl {
   void save_offsets();
   void run_startup();
   void warn_lines_after_end();
+  bool grbl_system_line(std::string_view text);
   Next fail(ErrorCode code, std::string_view line, std::uint32_t byte_pos, std::string message);
   Next fail_o(std::string_view line, std::string message);
   Next at_file_end();
@@ -313,6 +314,7 @@ ProgramReader::Next ProgramReader::Impl::read(Segment& out) {
       if (!skip_line(text)) return Next::Error;
       continue;
     }
+    if (machine.dialect == MachineConfig::Dialect::Grbl && grbl_system_line(text)) continue;
     if (!parser.parse(text, block)) {
       const gcode::Fault& f = parser.fault();
       return fail(f.code, text, f.byte_pos, f.message);
@@ -816,6 +818,22 @@ void ProgramReader::Impl::run_startup() {
                      file, 0, 0);
   pending.clear();
   state = State::Failed;
+}
+
+// A grbl system command ("$H", "$X", "$32=1"): it sets up a grbl board, not
+// the job; passed over with a warning (grbl dialect only).
+bool ProgramReader::Impl::grbl_system_line(std::string_view text) {
+  std::size_t i = 0;
+  while (i < text.size() && (text[i] == ' ' || text[i] == '\t')) ++i;
+  if (i >= text.size() || text[i] != '$') return false;
+  std::string_view cmd = text.substr(i);
+  while (!cmd.empty() && (cmd.back() == '\r' || cmd.back() == ' ')) cmd.remove_suffix(1);
+  warnings.push_back(make_error(ErrorCode::GcodeLinePassedOver,
+                                "found " + gcode::quote(cmd.substr(0, 40)) +
+                                    ": a grbl system command, passed over (it configures a grbl "
+                                    "board; this machine's setup is its config)",
+                                file, line, static_cast<std::uint32_t>(i + 1)));
+  return true;
 }
 
 // Lines after the end are not run (RS274NGC); say so once if any would have.

@@ -528,7 +528,8 @@ Result<MachineConfig> parse_machine_config(std::string_view text, const std::str
     if (!L.only_keys(*t, "machine.",
                      {"name", "period_us", "path_tolerance_mm", "max_feed_override", "max_jerk",
                       "startup_code", "allow_unhomed", "block_delete", "subroutine_path",
-                      "parameter_file"}) ||
+                      "parameter_file", "optional_stop", "dialect"}) ||
+        !L.boolean(*t, "machine.", "optional_stop", m.optional_stop) ||
         !L.string(*t, "machine.", "parameter_file", m.parameter_file) ||
         !L.boolean(*t, "machine.", "allow_unhomed", m.allow_unhomed) ||
         !L.strings(*t, "machine.", "subroutine_path", m.subroutine_path) ||
@@ -584,6 +585,20 @@ Result<MachineConfig> parse_machine_config(std::string_view text, const std::str
     m.dda.capacity = static_cast<std::uint32_t>(cap);
   }
   if (L.failed) return L.err;
+  if (const toml::table* t = L.subtable(root, "machine")) {
+    std::string dialect = "rs274ngc";
+    if (!L.string(*t, "machine.", "dialect", dialect)) return L.err;
+    if (dialect == "grbl") {
+      m.dialect = MachineConfig::Dialect::Grbl;
+      m.laser.s_max = 1000.0;  // grbl's $30 default, unless [laser] s_max below
+    } else if (dialect != "rs274ngc") {
+      return make_error(ErrorCode::ConfigBadValue,
+                        "machine.dialect = \"" + dialect + "\"; allowed \"rs274ngc\" (LinuxCNC's, "
+                        "the default) or \"grbl\"",
+                        name, t->get("dialect")->source().begin.line,
+                        t->get("dialect")->source().begin.column);
+    }
+  }
   if (const toml::table* t = L.subtable(root, "laser")) {
     if (!L.only_keys(*t, "laser.", {"s_max"}) || !L.number(*t, "laser.", "s_max", m.laser.s_max, false))
       return L.err;

@@ -147,6 +147,17 @@ struct MachineConfig {
   // Block delete (LinuxCNC's switch, on by default there): a line that
   // starts with '/' is skipped. false: such lines run like any other.
   bool block_delete = true;
+  // M1 pauses a program like M0 when on (LinuxCNC's optional stop switch);
+  // off, M1 is passed over.
+  bool optional_stop = true;
+  // The G-code the machine's programs are written in: RS274NGC (LinuxCNC's,
+  // the default) or grbl's, as hobby laser design tools (LightBurn) write
+  // it: S is 0 … 1000 unless [laser] s_max says otherwise (grbl's $30), M4
+  // is its dynamic power (as here), and a grbl system command line ($H,
+  // $X, $32=1 …) is passed over with a warning: it configures a grbl
+  // board, not the job.
+  enum class Dialect : std::uint8_t { Rs274ngc, Grbl };
+  Dialect dialect = Dialect::Rs274ngc;
   // Folders searched, after the program's own, for the file <name>.ngc of a
   // subroutine o<name> called before it is defined (LinuxCNC's
   // SUBROUTINE_PATH). A relative folder is taken from the config file's.

@@ -64,6 +64,9 @@ struct Segment {
   bool flood = false;      // M8 (assist gas, high pressure)
 
   std::uint32_t line = 0;  // source line (1-based)
+  // M0/M1/M60 (a Dwell of two periods, the beam off): once it has run the
+  // machine waits, at rest, for the operator's resume.
+  bool pause = false;
 };
 
 }  // namespace lcnc

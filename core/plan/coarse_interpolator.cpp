@@ -25,6 +25,7 @@ bool CoarseInterpolator::pull() {
       s_from_ = 0.0;
       const Segment& s = next->seg;
       end_ = End{s.end, next->profile.v1, s.line, next->index, s.kind};
+      pause_ = pause_ || s.pause;  // until a sample carries it
       const bool cut = s.kind == MotionKind::Linear || s.kind == MotionKind::Arc;
       // M4 on a cut: power follows speed; at no programmed speed, none
       dynamic_ = cut && s.laser == LaserMode::Dynamic && next->programmed_speed > plan::kMinVelocity;
@@ -67,6 +68,7 @@ SourceStatus CoarseInterpolator::next(PeriodSample& out) {
       out.segment = end_.segment;
       out.kind = end_.kind;
       out.end_of_program = true;
+      out.pause = false;
       done_ = true;
       return SourceStatus::Item;
     }
@@ -87,6 +89,8 @@ SourceStatus CoarseInterpolator::next(PeriodSample& out) {
   out.segment = end_.segment;
   out.kind = end_.kind;
   out.end_of_program = false;
+  out.pause = pause_;  // its first sample only
+  pause_ = false;
   return SourceStatus::Item;
 }
 
@@ -123,6 +127,10 @@ bool StepQuantizer::owed() const noexcept {
   return false;
 }
 
-PeriodIncrement StepQuantizer::pay_owed(const PeriodSample& last) { return emit(last); }
+PeriodIncrement StepQuantizer::pay_owed(const PeriodSample& last) {
+  PeriodSample s = last;
+  s.pause = false;  // a pause holds once, on its own entry
+  return emit(s);
+}
 
 }  // namespace lcnc

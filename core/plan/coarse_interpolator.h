@@ -36,6 +36,7 @@ struct PeriodSample {
   std::uint32_t segment = 0;
   MotionKind kind = MotionKind::Dwell;
   bool end_of_program = false;
+  bool pause = false;  // the first sample of a pause (Segment::pause)
 };
 
 class CoarseInterpolator {
@@ -80,6 +81,7 @@ class CoarseInterpolator {
   // once (not from its few hundred bytes each period): the laser power (a
   // constant, or M4's scaled by speed), the power cap; where it came from
   // and whether it is a dwell are in end_.
+  bool pause_ = false;    // a pause pulled, not yet on a sample
   bool dynamic_ = false;  // M4 on a cut: power_pct_ scaled by speed / programmed_speed_
   float power_ = 0.0f, power_cap_ = 0.0f;
   double power_pct_ = 0.0, programmed_speed_ = 0.0;
@@ -164,6 +166,7 @@ inline PeriodIncrement StepQuantizer::emit(const PeriodSample& s) {
   inc.segment = s.segment;
   inc.kind = s.kind;
   inc.end_of_program = s.end_of_program && !owed();
+  inc.pause = s.pause;
   return inc;
 }
 

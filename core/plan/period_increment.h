@@ -42,6 +42,9 @@ struct PeriodIncrement {
   std::uint32_t segment = 0;                     // segment index executing (0-based)
   MotionKind kind = MotionKind::Linear;  // Dwell entries run at the nominal period whatever the override
   bool end_of_program = false;                   // the last entry of the job
+  // M0/M1/M60: after this entry (at rest, a dwell's) the RT holds the job
+  // until the operator resumes it.
+  bool pause = false;
 };
 static_assert(std::is_trivially_copyable_v<PeriodIncrement>);
 

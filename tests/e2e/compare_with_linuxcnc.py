@@ -35,6 +35,8 @@ def parse_moves(text):
         if f[1] == "dwell":
             moves.append((int(f[0]), "dwell", [float(f[2])], None))
             continue
+        if f[1] == "pause":  # M0 M1 M60: LinuxCNC's `gcode` module hands its canon no program stop
+            continue
         end = [float(v) for v in f[2:8]]
         arc = None
         if f[1] == "arc":
@@ -64,7 +66,7 @@ def compare(ours, theirs):
         where = "move %d (line %d)" % (i + 1, b[0])
         if a[1] != b[1]:
             return ("%s: %s against LinuxCNC's %s" % (where, a[1], b[1]), worst)
-        d = max(abs(p - q) for p, q in zip(a[2], b[2]))
+        d = max((abs(p - q) for p, q in zip(a[2], b[2])), default=0.0)
         worst = max(worst, d)
         if d > TOL:
             return ("%s: end %s against LinuxCNC's %s (%.3g apart)" % (where, a[2], b[2], d), worst)

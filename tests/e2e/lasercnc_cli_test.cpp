@@ -326,6 +326,27 @@ TEST(LasercncRun, WorkOffsetsSetByAJobAreThereForTheNextJob) {
   EXPECT_NE(r.err.find("jobs.var:1:6"), std::string::npos) << r.err;
 }
 
+// Unattended, `lasercnc run` resumes each M0/M1 after --pause seconds: the
+// cycle is that much longer, every step and limit as without them.
+TEST(LasercncRun, ProgramPausesAreResumedAfterThePauseOption) {
+  const fs::path plain = write_file("plain.ngc", "G21 G90 G64 P0.01\nG1 X10 F600\nG1 X20\nG1 Y5\nM2\n");
+  const fs::path paused =
+      write_file("paused.ngc", "G21 G90 G64 P0.01\nG1 X10 F600\nM0\nG1 X20\nM1\nG1 Y5\nM2\n");
+  CmdResult r = lasercnc("run " + plain.string() + " --json --no-progress");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const double base = nlohmann::json::parse(r.out)["cycle_time_s"].get<double>();
+  r = lasercnc("run " + paused.string() + " --json --no-progress --pause 0.4");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["program_pauses"], 2);
+  EXPECT_TRUE(j["steps_match"].get<bool>());
+  EXPECT_TRUE(j["check"]["passed"].get<bool>()) << j.dump();
+  // two pauses of 0.4 s at least; the stops they make cost a little more
+  EXPECT_GE(j["cycle_time_s"].get<double>(), base + 0.8);
+  EXPECT_LT(j["cycle_time_s"].get<double>(), base + 0.8 + 1.0);
+  EXPECT_EQ(lasercnc("run " + paused.string() + " --pause -1").exit_code, 2);
+}
+
 TEST(LasercncRun, BadMachineConfigIsRejectedWithTheKey) {
   std::string cfg = slurp(kShare + "/machines/default.toml");
   cfg.replace(cfg.find("max_velocity = 500.0"), 20, "max_velocity = 5000.0");

@@ -230,6 +230,33 @@ TEST(Lasercncd, HoldResumeEStopResetAndJog) {
   EXPECT_EQ(d.stop(SIGTERM), 0) << d.log();
 }
 
+// M0 in a program: the daemon's job stops there, at rest, says so, and goes
+// on with `send resume`.
+TEST(Lasercncd, AProgramPauseWaitsForResume) {
+  const std::string shm = shm_name();
+  Daemon d(shm);
+  ASSERT_TRUE(d.ready()) << d.log();
+  const fs::path prog = write_program("pause.ngc", "G21 G90\nG1 X20 F1200\nM0\nG1 X40\nM2\n");
+  ASSERT_EQ(lasercnc("send load " + prog.string() + " --shm " + shm).exit_code, 0);
+  ASSERT_EQ(lasercnc("send start --shm " + shm).exit_code, 0);
+  ASSERT_TRUE(wait_state(shm, "feed hold"));
+  nlohmann::json s = status(shm);
+  EXPECT_TRUE(s["program_pause"].get<bool>());
+  EXPECT_EQ(s["line"], 3);
+  EXPECT_NEAR(s["position"][0].get<double>(), 20.0, 1e-9);
+  std::this_thread::sleep_for(300ms);
+  EXPECT_NEAR(status(shm)["position"][0].get<double>(), 20.0, 1e-9);  // it waits
+  const CmdResult text = lasercnc("status --shm " + shm);
+  EXPECT_NE(text.out.find("program pause (M0/M1/M60) at line 3"), std::string::npos) << text.out;
+  ASSERT_EQ(lasercnc("send resume --shm " + shm).exit_code, 0);
+  ASSERT_TRUE(wait_state(shm, "idle", 20000ms));
+  EXPECT_EQ(status(shm)["last_outcome"], "done");
+  s = status(shm);
+  EXPECT_FALSE(s["program_pause"].get<bool>());
+  EXPECT_NEAR(s["position"][0].get<double>(), 40.0, 1e-9);
+  EXPECT_EQ(d.stop(SIGTERM), 0) << d.log();
+}
+
 TEST(Lasercncd, SecondDaemonRefusedStaleSegmentRecovered) {
   const std::string shm = shm_name();
   {

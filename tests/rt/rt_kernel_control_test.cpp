@@ -311,6 +311,42 @@ TEST(RtKernelControl, FeedHoldAndResumeAreStates) {
   r.kernel->shutdown();
 }
 
+// M0/M1/M60: the job holds after the pause's entry at once — no entry after
+// it runs, not even during a ramp — until Resume, then ends where it should.
+TEST(RtKernelControl, AProgramPauseHoldsAtItsEntryUntilResumed) {
+  Rig r;
+  std::int64_t sum = 0;
+  for (int i = 0; i < 600; ++i) {
+    PeriodIncrement inc = step_x(i < 300 ? 10 : 0, i < 300 ? 1 : 2);
+    if (i >= 300 && i < 302) inc.kind = MotionKind::Dwell;  // the pause's dwell, at rest
+    inc.pause = i == 300;
+    if (i >= 302) inc = step_x(10, 3);
+    inc.end_of_program = i == 599;
+    sum += inc.steps[0];
+    ASSERT_TRUE(r.buffer->try_push(inc));
+  }
+  r.start_idle();
+  r.send(RtCommandType::StartJob);
+  ASSERT_TRUE(wait_for([&] { return r.kernel->program_paused(); }));
+  EXPECT_EQ(r.kernel->state(), MachineState::FeedHold);
+  EXPECT_EQ(r.kernel->program_pauses(), 1u);
+  // at the pause: the 300 entries before it ran, none after it
+  EXPECT_EQ(r.kernel->position_steps(0), 3000);
+  std::this_thread::sleep_for(20ms);
+  EXPECT_EQ(r.kernel->position_steps(0), 3000);
+  EXPECT_EQ(r.buffer->size(), 299u);
+  r.send(RtCommandType::Resume);
+  ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::Idle; }));
+  EXPECT_FALSE(r.kernel->program_paused());
+  EXPECT_EQ(r.kernel->position_steps(0), sum);
+  EXPECT_EQ(r.sim->position_steps(0), sum);
+  bool logged = false;
+  for (const RtLogRecord& l : r.logs())
+    if (l.code == RtLogCode::ProgramPause) logged = l.line == 2;
+  EXPECT_TRUE(logged);
+  r.kernel->shutdown();
+}
+
 // A producer streaming slower than the machine runs: the kernel keeps the
 // braking reserve and decelerates along the path instead of running dry.
 TEST(RtKernelControl, SlowStreamDeceleratesAlongThePathAndNeverUnderruns) {

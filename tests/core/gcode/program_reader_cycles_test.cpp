@@ -107,5 +107,35 @@ TEST(CannedCycles, BadCyclesAreRefusedWhereTheyStand) {
   expect_error("G81 X20 Y30 Z-1 R2 F300\n", ErrorCode::GcodeBeyondTravel, 1, 13);
 }
 
+// M0 (M60, and M1 with the optional stop on) stops the program after its
+// line's motion: a two-period dwell, beam off, that the RT holds on.
+TEST(ProgramPause, M0PausesAfterItsLinesMotionAndM1FollowsTheOptionalStop) {
+  auto segs = segments("M3 S50\nG1 X20 F600 M0\nG1 X30\nM1\nM60\n");
+  ASSERT_EQ(kinds(segs), "fdfdd");
+  EXPECT_TRUE(segs[1].pause);
+  EXPECT_EQ(segs[1].laser, LaserMode::Off);
+  EXPECT_POSE_NEAR(segs[1].end, pose(20, 10, 10), 1e-12);
+  EXPECT_DOUBLE_EQ(segs[1].dwell_s, 2.0 * test::test_machine().period_s());
+  EXPECT_FALSE(segs[0].pause);
+  EXPECT_TRUE(segs[3].pause);
+  EXPECT_TRUE(segs[4].pause);
+  MachineConfig no_optional = test::test_machine();
+  no_optional.optional_stop = false;
+  segs = segments("G1 X20 F600\nM1\nG1 X30\n", start_at(), no_optional);
+  EXPECT_EQ(kinds(segs), "ff");
+  const Diagnostic d = expect_error("M0 M2\n", ErrorCode::GcodeModalConflict, 1, 4);
+  EXPECT_MENTIONS(d, "stopping");
+}
+
+// `$0` selects the spindle, the laser here: M3 $0 S… as posts write it.
+TEST(SpindleSelector, DollarZeroIsTheLaserAnyOtherIsAnError) {
+  const auto segs = segments("M3 $0 S40\nG1 X20 F600\nM5 $-1\n");
+  ASSERT_EQ(segs.size(), 1u);
+  EXPECT_EQ(segs[0].laser, LaserMode::Constant);
+  EXPECT_DOUBLE_EQ(segs[0].power_pct, 40.0);
+  const Diagnostic d = expect_error("M3 $1 S40\n", ErrorCode::GcodeBadValue, 1, 4);
+  EXPECT_MENTIONS(d, "one laser, spindle $0");
+}
+
 }  // namespace
 }  // namespace lcnc
