@@ -49,16 +49,6 @@ const char* cycle_name(MotionMode m) {
 
 }  // namespace
 
-void Interpreter::feed_to(const Pose& end, SegmentBuffer& out) {
-  Segment& s = out.push();
-  fill_modal(s);
-  s.kind = MotionKind::Linear;
-  s.start = pos_;
-  s.end = end;
-  set_segment_feed(s, (end.head<3>() - pos_.head<3>()).norm(), 0.0);
-  pos_ = end;
-}
-
 void Interpreter::dwell_for(double seconds, SegmentBuffer& out) {
   Segment& s = out.push();
   fill_modal(s);
@@ -164,7 +154,7 @@ bool Interpreter::canned_cycle(SegmentBuffer& out) {
     cycle_series_ = true;
     cycle_initial_z_ = pos_[2];
   }
-  const Pose offset = offsets();
+  const Pose& offset = offsets_;
   const double r_m = absolute_ ? r + offset[2] : cycle_initial_z_ + r;
   const double bottom = absolute_ ? z + offset[2] : r_m + z;
   if (bottom > r_m) {
@@ -197,13 +187,7 @@ bool Interpreter::canned_cycle(SegmentBuffer& out) {
     t[2] = zz;
     return t;
   };
-  auto feed = [&](double zz) {
-    const Pose t = z_at(zz);
-    if (!check_travel(t, t, t)) return false;
-    if (!check_duration(std::fabs(zz - pos_[2]), 0.0)) return false;
-    if (t != pos_) feed_to(t, out);
-    return true;
-  };
+  auto feed = [&](double zz) { return line_to(z_at(zz), out); };
   for (int k = 0; k < repeats; ++k) {
     // 2. Over the hole, then down to R.
     Pose hole = pos_;

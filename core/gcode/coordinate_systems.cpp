@@ -36,19 +36,6 @@ double Interpreter::position_param(int axis) const {
   return axis < 3 ? p / length_scale() : p;
 }
 
-bool Interpreter::rapid_to(const Pose& end, SegmentBuffer& out) {
-  if (!check_travel(end, end, end)) return false;
-  if (end == pos_) return true;
-  Segment& s = out.push();
-  fill_modal(s);
-  s.kind = MotionKind::Rapid;
-  s.laser = LaserMode::Off;
-  s.start = pos_;
-  s.end = end;
-  pos_ = end;
-  return true;
-}
-
 // LinuxCNC's polar coordinates: X = r·cos θ, Y = r·sin θ about the
 // program's origin; a word not given keeps the current radius or angle; in
 // G91 the words are added to them (so at the origin, where the angle is
@@ -202,7 +189,7 @@ bool Interpreter::go_home(int first_param, SegmentBuffer& out) {
   } else {
     // through the axis words' point, in the program's coordinates and mode
     Pose mid = pos_;
-    const Pose offset = offsets();
+    const Pose& offset = offsets_;
     for (int a = 0; a < kAxisCount; ++a) {
       if (((b.axis_mask >> a) & 1u) == 0) continue;
       mid[a] = absolute_ ? axis_value(a) + offset[a] : pos_[a] + axis_value(a);

@@ -39,20 +39,14 @@ std::string gnum(double v) {
   return buf;
 }
 
-// The motion mode of a motion-group code ×10 (G80 excluded).
+// The G code ×10 of each motion mode, in MotionMode's order (None: G80).
+constexpr std::array<int, 11> kMotionCode = {800, 0, 10, 20, 30, 730, 810, 820, 830, 850, 890};
+
+// The motion mode of a motion-group code ×10 (one the block parser took).
 MotionMode motion_of(int g) {
-  switch (g) {
-    case 0: return MotionMode::Rapid;
-    case 10: return MotionMode::Linear;
-    case 20: return MotionMode::ArcCw;
-    case 30: return MotionMode::ArcCcw;
-    case 730: return MotionMode::Cycle73;
-    case 810: return MotionMode::Cycle81;
-    case 820: return MotionMode::Cycle82;
-    case 830: return MotionMode::Cycle83;
-    case 850: return MotionMode::Cycle85;
-    default: return MotionMode::Cycle89;
-  }
+  std::size_t i = 0;
+  while (i + 1 < kMotionCode.size() && kMotionCode[i] != g) ++i;
+  return static_cast<MotionMode>(i);
 }
 
 const char* plane_name(Plane p) {
@@ -135,6 +129,14 @@ bool Interpreter::execute(const Block& block, const LineText& text, std::uint32_
   return true;
 }
 
+// A new motion mode ends a canned cycle's sticky words (another mode needs
+// R and Z again) and, unless a cycle, the cycle series (its initial Z).
+void Interpreter::set_motion_mode(MotionMode m) {
+  if (m != motion_) cycle_sticky_ = false;
+  if (!is_cycle(m)) cycle_series_ = false;
+  motion_ = m;
+}
+
 // The motion this block runs: its G0..G3, or the modal one when it has axis
 // words only (LinuxCNC enhance_block).
 bool Interpreter::resolve_motion() {
@@ -145,8 +147,8 @@ bool Interpreter::resolve_motion() {
   // no motion mode uses them then (LinuxCNC: two codes may not both).
   const int nm = b.code(GGroup::NonModal);
   const int tl = b.code(GGroup::ToolLength);
-  axis_words_used_ = (nm > 40 || tl >= 0) && (nm == 100 || nm == 280 || nm == 300 || nm == 520 ||
-                                              nm == 920 || tl == 431);
+  const bool axis_words_used = (nm > 40 || tl >= 0) && (nm == 100 || nm == 280 || nm == 300 ||
+                                                       nm == 520 || nm == 920 || tl == 431);
   if (b.polar != 0) {
     if (b.has('X') || b.has('Y')) {
       return fail(ErrorCode::GcodeSyntax, b.polar_word,
@@ -154,14 +156,14 @@ bool Interpreter::resolve_motion() {
                       "; expected polar words (@ radius, ^ angle) in place of X and Y, not with "
                       "them");
     }
-    if (axis_words_used_ || nm == 530) {
+    if (axis_words_used || nm == 530) {
       return fail(ErrorCode::GcodeSyntax, b.polar_word,
                   "found " + quoted(b.polar_word) + " with " + quoted(b.code_word(
                       nm == 530 || nm > 40 ? GGroup::NonModal : GGroup::ToolLength)) +
                       "; expected polar words only on moves in the program's coordinates");
     }
   }
-  if (axis_words_used_) {
+  if (axis_words_used) {
     if (g >= 0 && g != 800 && b.axis_mask != 0) {
       const Span at = b.code(GGroup::ToolLength) == 431 ? b.code_word(GGroup::ToolLength)
                                                         : b.code_word(GGroup::NonModal);
@@ -169,16 +171,12 @@ bool Interpreter::resolve_motion() {
                   "found " + quoted(b.code_word(GGroup::Motion)) + " and " + quoted(at) +
                       " in one block, both using its axis words; expected them on two lines");
     }
-    const MotionMode m = g < 0 ? motion_ : g == 800 ? MotionMode::None : motion_of(g);
-    if (m != motion_) cycle_sticky_ = false;
-    if (!is_cycle(m)) cycle_series_ = false;
-    motion_ = m;
+    if (g >= 0) set_motion_mode(motion_of(g));
     return true;
   }
   if (g == 800) {
     // G80: no motion mode (LinuxCNC: axis words with it are an error)
-    motion_ = MotionMode::None;
-    cycle_sticky_ = cycle_series_ = false;
+    set_motion_mode(MotionMode::None);
     if (b.axis_mask != 0) {
       return fail(ErrorCode::GcodeSyntax, b.first_axis_word,
                   "found " + quoted(b.first_axis_word) +
@@ -190,9 +188,7 @@ bool Interpreter::resolve_motion() {
   if (g >= 0) {
     motion_word_ = b.code_word(GGroup::Motion);
     const MotionMode m = motion_of(g);
-    if (m != motion_) cycle_sticky_ = false;
-    if (!is_cycle(m)) cycle_series_ = false;
-    motion_ = m;
+    set_motion_mode(m);
     // G0 / G1 alone only set the mode; G2 / G3 with no axis words are a full
     // circle at the current point (LinuxCNC 2.9), and need a centre
     if (b.axis_mask == 0 && m != MotionMode::ArcCw && m != MotionMode::ArcCcw) return true;
@@ -630,24 +626,38 @@ bool Interpreter::move(SegmentBuffer& out) {
   if (block_motion_ == MotionMode::ArcCw || block_motion_ == MotionMode::ArcCcw) {
     return arc(end, out);
   }
-  if (block_motion_ == MotionMode::Linear && !check_feed()) return false;
-  if (!check_travel(end, end, end)) return false;
-  if (end == pos_) return true;  // no motion: nothing for the planner
+  if (block_motion_ == MotionMode::Rapid) return rapid_to(end, out);
+  return check_feed() && line_to(end, out);
+}
 
+// A G0 from where the machine is to `end`: travel checked; nothing for the
+// planner when it does not move.
+bool Interpreter::rapid_to(const Pose& end, SegmentBuffer& out) {
+  if (!check_travel(end, end, end)) return false;
+  if (end == pos_) return true;
   Segment& s = out.push();
   fill_modal(s);
+  s.kind = MotionKind::Rapid;
+  s.laser = LaserMode::Off;
   s.start = pos_;
   s.end = end;
-  if (block_motion_ == MotionMode::Rapid) {
-    s.kind = MotionKind::Rapid;
-    s.laser = LaserMode::Off;
-  } else {
-    s.kind = MotionKind::Linear;
-    const double linear_mm = (end.head<3>() - pos_.head<3>()).norm();
-    const double rotary_deg = (end.tail<3>() - pos_.tail<3>()).norm();
-    if (!check_duration(linear_mm, rotary_deg)) return false;
-    set_segment_feed(s, linear_mm, rotary_deg);
-  }
+  pos_ = end;
+  return true;
+}
+
+// The same for a G1 at the feed in effect, its time bounded too.
+bool Interpreter::line_to(const Pose& end, SegmentBuffer& out) {
+  if (!check_travel(end, end, end)) return false;
+  if (end == pos_) return true;
+  const double linear_mm = (end.head<3>() - pos_.head<3>()).norm();
+  const double rotary_deg = (end.tail<3>() - pos_.tail<3>()).norm();
+  if (!check_duration(linear_mm, rotary_deg)) return false;
+  Segment& s = out.push();
+  fill_modal(s);
+  s.kind = MotionKind::Linear;
+  s.start = pos_;
+  s.end = end;
+  set_segment_feed(s, linear_mm, rotary_deg);
   pos_ = end;
   return true;
 }
@@ -794,10 +804,6 @@ bool Interpreter::arc(const Pose& end_in, SegmentBuffer& out) {
   return true;
 }
 
-}  // namespace lcnc::gcode
-
-namespace lcnc::gcode {
-
 // LinuxCNC's predefined named parameters that mean something here (its
 // "Predefined Named Parameters"): read-only views of the modal state.
 bool Interpreter::predefined(std::string_view name, double& out) const {
@@ -805,13 +811,12 @@ bool Interpreter::predefined(std::string_view name, double& out) const {
   static constexpr std::string_view kAbsAxes[] = {"_abs_x", "_abs_y", "_abs_z",
                                                   "_abs_a", "_abs_b", "_abs_c"};
   for (int a = 0; a < kAxisCount; ++a) {
-    const double scale = a < 3 ? length_scale() : 1.0;
     if (name == kAxes[a]) {
-      out = (pos_[a] - offsets()[a]) / scale;
+      out = position_param(a);
       return true;
     }
     if (name == kAbsAxes[a]) {
-      out = pos_[a] / scale;
+      out = a < 3 ? pos_[a] / length_scale() : pos_[a];
       return true;
     }
   }
@@ -835,22 +840,7 @@ bool Interpreter::predefined(std::string_view name, double& out) const {
   if (name == "_tool_offset") return flag(tool_length_on_);
   if (name == "_ccomp") return out = 400, true;
   if (name == "_plane") return out = plane_ == Plane::ZX ? 180 : plane_ == Plane::YZ ? 190 : 170, true;
-  if (name == "_motion_mode") {
-    switch (motion_) {
-      case MotionMode::Rapid: out = 0; break;
-      case MotionMode::Linear: out = 10; break;
-      case MotionMode::ArcCw: out = 20; break;
-      case MotionMode::ArcCcw: out = 30; break;
-      case MotionMode::None: out = 800; break;
-      case MotionMode::Cycle73: out = 730; break;
-      case MotionMode::Cycle81: out = 810; break;
-      case MotionMode::Cycle82: out = 820; break;
-      case MotionMode::Cycle83: out = 830; break;
-      case MotionMode::Cycle85: out = 850; break;
-      case MotionMode::Cycle89: out = 890; break;
-    }
-    return true;
-  }
+  if (name == "_motion_mode") return out = kMotionCode[static_cast<std::size_t>(motion_)], true;
   if (name == "_feed") return out = inverse_time_ ? 0.0 : feed_mm_min_ / length_scale(), true;
   if (name == "_rpm") return out = power_pct_ * machine_.laser.s_max / 100.0, true;
   if (name == "_spindle_on") return flag(laser_ != LaserMode::Off);

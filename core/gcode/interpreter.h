@@ -112,6 +112,7 @@ class Interpreter {
 
  private:
   bool resolve_motion();
+  void set_motion_mode(MotionMode m);
   bool check_word_use();
   bool set_feed_and_power();
   bool dwell(SegmentBuffer& out);
@@ -130,14 +131,15 @@ class Interpreter {
   bool set_coord_system_data();
   bool set_axis_offsets();
   bool go_home(int first_param, SegmentBuffer& out);
-  // The sum of the three offsets, kept up to date by whatever changes one.
-  [[nodiscard]] const Pose& offsets() const noexcept { return offsets_; }
+  // offsets_ = their sum, after whatever changes one of them.
   void update_offsets() { offsets_ = origin_ + axis_offset_ + tool_offset_; }
   // A block's axis word in mm / deg.
   [[nodiscard]] double axis_value(int axis) const {
     return (*b_)[kAxisLetters[axis]] * (axis < 3 ? length_scale() : 1.0);
   }
+  // A straight move from where the machine is: G0, or G1 at the feed in effect.
   bool rapid_to(const Pose& end, SegmentBuffer& out);
+  bool line_to(const Pose& end, SegmentBuffer& out);
   void pause(SegmentBuffer& out);
   // A polar block's X Y (@ ^ about the program's origin; G91: added to the
   // radius and angle of `from`), written into `to` in machine coordinates.
@@ -145,7 +147,6 @@ class Interpreter {
   // Canned cycles (canned_cycles.cpp).
   bool canned_cycle(SegmentBuffer& out);
   bool cycle_words(double& r, double& z, double& p, double& q);
-  void feed_to(const Pose& end, SegmentBuffer& out);
   void dwell_for(double seconds, SegmentBuffer& out);
   bool move(SegmentBuffer& out);
   bool arc(const Pose& end_in, SegmentBuffer& out);
@@ -185,13 +186,12 @@ class Interpreter {
   Pose origin_ = Pose::Zero();       // the coordinate system's offset
   Pose axis_offset_ = Pose::Zero();  // G92 / G52
   Pose tool_offset_ = Pose::Zero();  // G43
-  Pose offsets_ = Pose::Zero();      // their sum
+  Pose offsets_ = Pose::Zero();      // their sum: machine = program + offsets_
   bool tool_length_on_ = false;      // G43 / G43.1 / G43.2 in effect
   std::vector<ToolConfig> tools_;
   std::vector<int> changed_tools_;   // numbers of the tools G10 set
   int selected_tool_ = 0;            // T
   int current_tool_ = 0;             // in the spindle: M6, M61
-  bool axis_words_used_ = false;     // the block's axis words went to G10/G28/G30/G52/G92/G43.1
   // Canned cycles: G98 (retract to where Z was, or R if higher) or G99 (to
   // R); the sticky R, Z, P, Q of the cycle in effect (mm, s), valid while
   // its mode lasts (a new cycle mode needs R and Z again).

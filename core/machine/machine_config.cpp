@@ -565,6 +565,18 @@ Result<MachineConfig> parse_machine_config(std::string_view text, const std::str
                         name, t->get("max_jerk")->source().begin.line,
                         t->get("max_jerk")->source().begin.column);
     if (max_jerk) m.max_jerk = *max_jerk;
+    std::string dialect = "rs274ngc";
+    if (!L.string(*t, "machine.", "dialect", dialect)) return L.err;
+    if (dialect == "grbl") {
+      m.dialect = MachineConfig::Dialect::Grbl;
+      m.laser.s_max = 1000.0;  // grbl's $30 default, unless [laser] s_max (read after) says
+    } else if (dialect != "rs274ngc") {
+      return make_error(ErrorCode::ConfigBadValue,
+                        "machine.dialect = \"" + dialect + "\"; allowed \"rs274ngc\" (LinuxCNC's, "
+                        "the default) or \"grbl\"",
+                        name, t->get("dialect")->source().begin.line,
+                        t->get("dialect")->source().begin.column);
+    }
   }
   if (L.failed) return L.err;
   if (const toml::table* t = L.subtable(root, "dda")) {
@@ -585,20 +597,6 @@ Result<MachineConfig> parse_machine_config(std::string_view text, const std::str
     m.dda.capacity = static_cast<std::uint32_t>(cap);
   }
   if (L.failed) return L.err;
-  if (const toml::table* t = L.subtable(root, "machine")) {
-    std::string dialect = "rs274ngc";
-    if (!L.string(*t, "machine.", "dialect", dialect)) return L.err;
-    if (dialect == "grbl") {
-      m.dialect = MachineConfig::Dialect::Grbl;
-      m.laser.s_max = 1000.0;  // grbl's $30 default, unless [laser] s_max below
-    } else if (dialect != "rs274ngc") {
-      return make_error(ErrorCode::ConfigBadValue,
-                        "machine.dialect = \"" + dialect + "\"; allowed \"rs274ngc\" (LinuxCNC's, "
-                        "the default) or \"grbl\"",
-                        name, t->get("dialect")->source().begin.line,
-                        t->get("dialect")->source().begin.column);
-    }
-  }
   if (const toml::table* t = L.subtable(root, "laser")) {
     if (!L.only_keys(*t, "laser.", {"s_max"}) || !L.number(*t, "laser.", "s_max", m.laser.s_max, false))
       return L.err;

@@ -197,12 +197,6 @@ struct MachineConfig {
   // [tools.N], sorted by number.
   std::vector<ToolConfig> tools;
 
-  [[nodiscard]] const ToolConfig* tool(int number) const noexcept {
-    for (const ToolConfig& t : tools)
-      if (t.number == number) return &t;
-    return nullptr;
-  }
-
   [[nodiscard]] const AxisConfig& axis(Axis a) const { return axes[index(a)]; }
   [[nodiscard]] AxisConfig& axis(Axis a) { return axes[index(a)]; }
   [[nodiscard]] double period_s() const noexcept { return period_ns * 1e-9; }
