@@ -12,9 +12,9 @@
 namespace lcnc::gcode {
 namespace {
 
-constexpr const char* kSupportedWords = "G M N X Y Z A B C I J K R F S P Q T H L";
+constexpr const char* kSupportedWords = "G M N X Y Z A B C I J K R F S P Q T H L D";
 constexpr const char* kSupportedGCodes =
-    "G0 G1 G2 G3 G4 G10 G17 G18 G19 G20 G21 G28 G28.1 G30 G30.1 G40 G43 G43.1 G43.2 G49 G52 "
+    "G0 G1 G2 G3 G4 G10 G17 G18 G19 G20 G21 G28 G28.1 G30 G30.1 G40 G41 G41.1 G42 G42.1 G43 G43.1 G43.2 G49 G52 "
     "G53 G54-G59 G59.1 G59.2 G59.3 G61 G61.1 G64 G73 G80 G81 G82 G83 G85 G89 G90 G91 G90.1 "
     "G91.1 G92 G92.1 G92.2 G92.3 G93 G94 G98 G99";
 constexpr const char* kSupportedMCodes = "M0 M1 M2 M3 M4 M5 M6 M7 M8 M9 M30 M60 M61";
@@ -65,7 +65,7 @@ constexpr std::array<char, 256> kUpper = [] {
     case 730: case 810: case 820: case 830: case 850: case 890:
       return group_index(GGroup::Motion);
     case 980: case 990: return group_index(GGroup::RetractMode);
-    case 400: return group_index(GGroup::CutterComp);
+    case 400: case 410: case 411: case 420: case 421: return group_index(GGroup::CutterComp);
     case 430: case 431: case 432: case 490: return group_index(GGroup::ToolLength);
     case 40: case 100: case 280: case 281: case 300: case 301: case 520: case 530:
     case 920: case 921: case 922: case 923:
@@ -500,11 +500,6 @@ bool BlockParser::read_word(std::uint32_t& i, Block& out) {
       return fail(ErrorCode::GcodeSyntax, pos,
                   "found " + rough_word() +
                       " after other words; expected the line number N first in the block");
-    case 'D':
-      return fail(ErrorCode::GcodeUnsupported, pos,
-                  "found " + rough_word() +
-                      ": cutter radius compensation (G41/G42 D) is not supported yet; expected " +
-                      kSupportedWords + " words");
     case 'U':
     case 'V':
     case 'W':

@@ -37,7 +37,7 @@ enum class GGroup : std::uint8_t {
   Units,        // 6: G20 G21
   CoordSystem,  // 12: G54 .. G59, G59.1 .. G59.3
   PathControl,  // 13: G61 G61.1 G64
-  CutterComp,   // 7: G40 (cancel: a safety header's; no compensation to cancel)
+  CutterComp,   // 7: G40 G41 G41.1 G42 G42.1 (cutter/kerf compensation)
   ToolLength,   // 8: G43 G43.1 G43.2 G49
   RetractMode,  // 10: G98 G99 (canned cycles)
 };

@@ -21,24 +21,6 @@ bool moves_linear(double linear_mm) { return linear_mm > plan::kMinSegmentLength
 constexpr char kCentreLetter[3] = {'I', 'J', 'K'};  // centre word of X, Y, Z
 constexpr std::size_t kQuoteMaxChars = 60;
 
-// A number for a message: up to 4 decimals, trailing zeros dropped.
-std::string num(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.4f", v);
-  std::string s = buf;
-  while (s.back() == '0') s.pop_back();
-  if (s.back() == '.') s.pop_back();
-  if (s == "-0") s = "0";
-  return s;
-}
-
-// A number for a bound or a value of any size: 6 significant digits.
-std::string gnum(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-
 // The G code ×10 of each motion mode, in MotionMode's order (None: G80).
 constexpr std::array<int, 11> kMotionCode = {800, 0, 10, 20, 30, 730, 810, 820, 830, 850, 890};
 
@@ -59,6 +41,24 @@ const char* plane_name(Plane p) {
 }
 
 }  // namespace
+
+// A number for a message: up to 4 decimals, trailing zeros dropped.
+std::string num(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.4f", v);
+  std::string s = buf;
+  while (s.back() == '0') s.pop_back();
+  if (s.back() == '.') s.pop_back();
+  if (s == "-0") s = "0";
+  return s;
+}
+
+// A number for a bound or a value of any size: 6 significant digits.
+std::string gnum(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
 
 Interpreter::Interpreter(const MachineConfig& machine, const Pose& start,
                          std::vector<double>& numbered)
@@ -111,20 +111,30 @@ bool Interpreter::execute(const Block& block, const LineText& text, std::uint32_
   // pays for no call it does not need.)
   const int non_modal = block.code(GGroup::NonModal);
   if (!resolve_motion()) return false;
+  if (comp_side_ != 0 && !check_comp_conflicts()) return false;
   if ((block.letters & kDataLetters) != 0 && !check_word_use()) return false;
   if (!set_feed_and_power()) return false;  // G93/G94, F, S, M3-M5, M7-M9
   if ((block.has('T') || block.m_tool >= 0) && !change_tool()) return false;  // T, M6, M61
   if (non_modal == 40 && !dwell(out)) return false;  // G4
+  if (block.code(GGroup::CutterComp) >= 0 && !set_cutter_comp(out)) return false;  // G40 G41 G42
   set_modes();                              // plane, units, coordinate system
   if (block.code(GGroup::ToolLength) >= 0 && !set_tool_length()) return false;  // G43 … G49
   if (!set_path_control()) return false;    // G61 G61.1 G64
   if (non_modal > 40 && non_modal != 530 && !run_non_modal(out)) return false;  // G10 G28 G30 G52 G92
   if (block_motion_ != MotionMode::None && !move(out)) return false;
-  if (block.m_stop == 2 || block.m_stop == 30) {  // M2 M30: back in G54 (LinuxCNC)
+  if (block.m_stop >= 0 && comp_active() && !comp_first_move_) {
+    // a stop lets the moves compensation holds go as they stand (LinuxCNC)
+    if (!comp_move_endpoint_and_flush(pos_[comp_a_], pos_[comp_b_], out) || !comp_dequeue(out)) {
+      return false;
+    }
+  }
+  if (block.m_stop == 2 || block.m_stop == 30) {  // M2 M30: back in G54, G40 (LinuxCNC)
     ended_ = true;
     select_coord_system(0);
+    comp_side_ = 0;
+    comp_first_move_ = true;
   } else if (block.m_stop >= 0 && (block.m_stop != 1 || machine_.optional_stop)) {
-    pause(out);                             // M0 M60, M1 with the optional stop on
+    return pause(out);                      // M0 M60, M1 with the optional stop on
   }
   return true;
 }
@@ -240,6 +250,12 @@ bool Interpreter::check_word_use() {
                     " with no G43 or G43.2 to use it; expected H only as the tool whose offset "
                     "G43 H / G43.2 H applies");
   }
+  if (b.has('D') && b.code(GGroup::CutterComp) <= 400) {
+    return fail(ErrorCode::GcodeUnsupported, b.span('D'),
+                "found " + quoted(b.span('D')) +
+                    " with no G41, G42, G41.1 or G42.1 to use it; expected D only as the tool "
+                    "(G41/G42 D) or the diameter (G41.1/G42.1 D) of cutter compensation");
+  }
   if (b.has('L') && !has_g10 && !cycle) {
     return fail(ErrorCode::GcodeUnsupported, b.span('L'),
                 "found " + quoted(b.span('L')) +
@@ -345,7 +361,7 @@ bool Interpreter::dwell(SegmentBuffer& out) {
                     " hours); expected a dwell time P from 0 to " + gnum(kMaxBlockSeconds) +
                     " seconds (one day)");
   }
-  Segment& s = out.push();
+  Segment& s = push_segment(out);  // after the moves compensation holds, if any
   fill_modal(s);
   s.kind = MotionKind::Dwell;
   s.start = pos_;
@@ -440,8 +456,8 @@ bool Interpreter::set_path_control() {
 // M0 (M1, M60): the machine stops here, the beam off, until the operator
 // resumes: a dwell of two periods (so a period's sample falls inside it
 // whatever the phase) that the RT holds on (Segment::pause).
-void Interpreter::pause(SegmentBuffer& out) {
-  Segment& s = out.push();
+bool Interpreter::pause(SegmentBuffer& out) {
+  Segment& s = push_segment(out);
   fill_modal(s);
   s.kind = MotionKind::Dwell;
   s.start = pos_;
@@ -449,6 +465,7 @@ void Interpreter::pause(SegmentBuffer& out) {
   s.dwell_s = 2.0 * machine_.period_s();
   s.laser = LaserMode::Off;
   s.pause = true;
+  return true;
 }
 
 void Interpreter::fill_modal(Segment& s) const {
@@ -604,13 +621,20 @@ bool Interpreter::move(SegmentBuffer& out) {
     }
   }
   const Pose offset = machine_coords ? Pose::Zero() : offsets_;
-  Pose end = pos_;
+  // Under cutter compensation (and for the move after G40) a move starts,
+  // as programmed, from the programmed point, not from the tool beside it.
+  Pose from = pos_;
+  if ((comp_active() && !comp_first_move_) || comp_exited_) {
+    from[comp_a_] = programmed_[comp_a_];
+    from[comp_b_] = programmed_[comp_b_];
+  }
+  Pose end = from;
   for (int a = b.polar != 0 ? 2 : 0; a < kAxisCount; ++a) {
     if (((b.axis_mask >> a) & 1u) == 0) continue;
     const double v = axis_value(a);
-    end[a] = absolute_ ? v + offset[a] : pos_[a] + v;
+    end[a] = absolute_ ? v + offset[a] : from[a] + v;
   }
-  if (b.polar != 0 && !polar_target(pos_, end)) return false;
+  if (b.polar != 0 && !polar_target(from, end)) return false;
   if ((b.axis_mask & untraveled_axes_) != 0 && !check_magnitude(end)) return false;
   if (absolute_ && (b.axis_mask & wrapping_axes_) != 0) {
     // G90 on a continuous rotary axis names a position modulo 360: the axis
@@ -623,9 +647,14 @@ bool Interpreter::move(SegmentBuffer& out) {
     }
     if (!check_magnitude(end)) return false;
   }
-  if (block_motion_ == MotionMode::ArcCw || block_motion_ == MotionMode::ArcCcw) {
-    return arc(end, out);
+  const bool is_arc = block_motion_ == MotionMode::ArcCw || block_motion_ == MotionMode::ArcCcw;
+  if (comp_exited_ && is_arc) {
+    return fail(ErrorCode::GcodeCutterComp, motion_word_,
+                "found " + quoted_block() + " just after G40: the move that leaves the "
+                "compensated path must be straight; expected G0 or G1 first");
   }
+  if (comp_active()) return is_arc ? comp_arc(end, out) : comp_straight(end, out);
+  if (is_arc) return arc(end, out);
   if (block_motion_ == MotionMode::Rapid) return rapid_to(end, out);
   return check_feed() && line_to(end, out);
 }
@@ -633,9 +662,10 @@ bool Interpreter::move(SegmentBuffer& out) {
 // A G0 from where the machine is to `end`: travel checked; nothing for the
 // planner when it does not move.
 bool Interpreter::rapid_to(const Pose& end, SegmentBuffer& out) {
+  comp_exited_ = false;
   if (!check_travel(end, end, end)) return false;
   if (end == pos_) return true;
-  Segment& s = out.push();
+  Segment& s = push_segment(out);
   fill_modal(s);
   s.kind = MotionKind::Rapid;
   s.laser = LaserMode::Off;
@@ -647,12 +677,13 @@ bool Interpreter::rapid_to(const Pose& end, SegmentBuffer& out) {
 
 // The same for a G1 at the feed in effect, its time bounded too.
 bool Interpreter::line_to(const Pose& end, SegmentBuffer& out) {
+  comp_exited_ = false;
   if (!check_travel(end, end, end)) return false;
   if (end == pos_) return true;
   const double linear_mm = (end.head<3>() - pos_.head<3>()).norm();
   const double rotary_deg = (end.tail<3>() - pos_.tail<3>()).norm();
   if (!check_duration(linear_mm, rotary_deg)) return false;
-  Segment& s = out.push();
+  Segment& s = push_segment(out);
   fill_modal(s);
   s.kind = MotionKind::Linear;
   s.start = pos_;
@@ -667,6 +698,14 @@ bool Interpreter::line_to(const Pose& end, SegmentBuffer& out) {
 // centre lies off the chord's midpoint by sqrt(R² − (chord/2)²), to the right
 // of the chord for G2 R>0 and G3 R<0, to the left otherwise; R<0 > 180°).
 bool Interpreter::arc(const Pose& end_in, SegmentBuffer& out) {
+  Pose end = end_in;
+  Vec3 c;
+  std::uint32_t extra_turns = 0;
+  return arc_centre(pos_, end, c, extra_turns) &&
+         arc_to(end, c, block_motion_ == MotionMode::ArcCw, extra_turns, out);
+}
+
+bool Interpreter::arc_centre(const Pose& from, Pose& end, Vec3& c, std::uint32_t& extra_turns) {
   const Block& b = *b_;
   const bool cw = block_motion_ == MotionMode::ArcCw;
   const auto [ia, ib, in] = arc_plane_axes(plane_);
@@ -695,7 +734,7 @@ bool Interpreter::arc(const Pose& end_in, SegmentBuffer& out) {
   }
   if (!check_feed()) return false;
 
-  std::uint32_t extra_turns = 0;
+  extra_turns = 0;
   if (b.has('P')) {
     const double p = b['P'];
     const double turns = std::round(p);
@@ -708,12 +747,11 @@ bool Interpreter::arc(const Pose& end_in, SegmentBuffer& out) {
     extra_turns = static_cast<std::uint32_t>(turns) - 1;
   }
 
-  Pose end = end_in;
-  const double sa = pos_[ia];
-  const double sb = pos_[ib];
+  const double sa = from[ia];
+  const double sb = from[ib];
   const double chord = std::hypot(end[ia] - sa, end[ib] - sb);
   const bool same_point = chord <= kSamePointMm;
-  Vec3 c = linear_part(pos_);  // the normal component stays the start's
+  c = linear_part(from);  // the normal component stays the start's
   if (has_r) {
     const Span rw = b.span('R');
     if (same_point) {
@@ -733,7 +771,9 @@ bool Interpreter::arc(const Pose& end_in, SegmentBuffer& out) {
                       " mm: then a half circle through both ends)");
     }
     const double half = chord / 2.0;
-    const double h = abs_r > half ? std::sqrt(abs_r * abs_r - half * half) : 0.0;
+    // within 1e-12 of a half circle it is one (LinuxCNC's TINY): R² − half²
+    // of two roundings apart would put the centre 1e-8 R off the chord
+    const double h = half / abs_r < 1.0 - 1e-12 ? std::sqrt(abs_r * abs_r - half * half) : 0.0;
     const double theta = std::atan2(end[ib] - sb, end[ia] - sa);
     const double turn = ((cw && r > 0.0) || (!cw && r < 0.0)) ? theta - std::numbers::pi / 2.0
                                                               : theta + std::numbers::pi / 2.0;
@@ -770,7 +810,15 @@ bool Interpreter::arc(const Pose& end_in, SegmentBuffer& out) {
     }
   }
 
-  Segment& s = out.push();
+  return true;
+}
+
+bool Interpreter::arc_to(const Pose& end, const Vec3& c, bool cw, std::uint32_t extra_turns,
+                         SegmentBuffer& out) {
+  const Block& b = *b_;
+  const auto axes = arc_plane_axes(plane_);
+  comp_exited_ = false;
+  Segment& s = push_segment(out);
   fill_modal(s);
   s.kind = MotionKind::Arc;
   s.start = pos_;
@@ -792,7 +840,7 @@ bool Interpreter::arc(const Pose& end_in, SegmentBuffer& out) {
   if (length_mm > kMaxArcLengthMm) {
     return fail(ErrorCode::GcodeBadValue, b.has('P') ? b.span('P') : motion_word_,
                 "found " + quoted_block() + ": an arc of " + gnum(length_mm) +
-                    " mm (radius " + gnum(std::hypot(sa - c[ia], sb - c[ib])) + " mm" +
+                    " mm (radius " + gnum(std::hypot(pos_[axes[0]] - c[axes[0]], pos_[axes[1]] - c[axes[1]])) + " mm" +
                     (extra_turns > 0 ? ", " + std::to_string(extra_turns + 1) + " turns" : "") +
                     "); expected an arc of at most " + gnum(kMaxArcLengthMm) +
                     " mm (1 km): fewer turns or a smaller radius");

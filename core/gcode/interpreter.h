@@ -69,10 +69,10 @@ class SegmentBuffer {
 };
 
 // Motion modes: G0 G1 G2 G3 and the canned cycles G73 G81 G82 G83 G85 G89.
-// Words that only some codes use (check_word_use): P Q H L I J K R.
+// Words that only some codes use (check_word_use): P Q H L I J K R D.
 inline constexpr std::uint32_t kDataLetters = [] {
   std::uint32_t m = 0;
-  for (const char c : {'P', 'Q', 'H', 'L', 'I', 'J', 'K', 'R'}) m |= 1u << letter_index(c);
+  for (const char c : {'P', 'Q', 'H', 'L', 'I', 'J', 'K', 'R', 'D'}) m |= 1u << letter_index(c);
   return m;
 }();
 
@@ -80,6 +80,11 @@ enum class MotionMode : std::uint8_t {
   None, Rapid, Linear, ArcCw, ArcCcw, Cycle73, Cycle81, Cycle82, Cycle83, Cycle85, Cycle89
 };
 [[nodiscard]] constexpr bool is_cycle(MotionMode m) noexcept { return m >= MotionMode::Cycle73; }
+
+// Numbers for messages: num() up to 4 decimals, trailing zeros dropped;
+// gnum() 6 significant digits (a bound, or a value of any size).
+[[nodiscard]] std::string num(double v);
+[[nodiscard]] std::string gnum(double v);
 
 class Interpreter {
  public:
@@ -102,9 +107,14 @@ class Interpreter {
   [[nodiscard]] double position_param(int axis) const;
 
   // Runs a block; its segments are pushed to `out`. false on error (fault()),
-  // and then the state is undefined: reading stops.
+  // and then the state is undefined: reading stops. Under cutter
+  // compensation a move is held until the next shows where it ends: its
+  // segments come out with a later block's, or from finish().
   [[nodiscard]] bool execute(const Block& block, const LineText& text, std::uint32_t line,
                              SegmentBuffer& out);
+  // The program's end (the file's, or '%'): the moves compensation still
+  // holds, as they stand, to `out`.
+  void finish(SegmentBuffer& out);
 
   [[nodiscard]] bool ended() const noexcept { return ended_; }  // M2 or M30 ran
   [[nodiscard]] const Fault& fault() const noexcept { return fault_; }
@@ -140,7 +150,7 @@ class Interpreter {
   // A straight move from where the machine is: G0, or G1 at the feed in effect.
   bool rapid_to(const Pose& end, SegmentBuffer& out);
   bool line_to(const Pose& end, SegmentBuffer& out);
-  void pause(SegmentBuffer& out);
+  bool pause(SegmentBuffer& out);
   // A polar block's X Y (@ ^ about the program's origin; G91: added to the
   // radius and angle of `from`), written into `to` in machine coordinates.
   bool polar_target(const Pose& from, Pose& to);
@@ -150,6 +160,36 @@ class Interpreter {
   void dwell_for(double seconds, SegmentBuffer& out);
   bool move(SegmentBuffer& out);
   bool arc(const Pose& end_in, SegmentBuffer& out);
+  // The block's arc from `from` to `end` (R or I J K words, checked): its
+  // centre `c` (normal coordinate: `from`'s) and extra turns; `end` made
+  // exact for a full circle.
+  bool arc_centre(const Pose& from, Pose& end, Vec3& c, std::uint32_t& extra_turns);
+  // An arc from where the machine is to `end` about `c`, checked (travel,
+  // length, time).
+  bool arc_to(const Pose& end, const Vec3& c, bool cw, std::uint32_t extra_turns,
+              SegmentBuffer& out);
+  // Where a new segment goes: to `out`, or held by cutter compensation.
+  Segment& push_segment(SegmentBuffer& out);
+  // Cutter (kerf) compensation (cutter_comp.cpp): G40 G41 G42 G41.1 G42.1.
+  bool check_comp_conflicts();
+  bool set_cutter_comp(SegmentBuffer& out);
+  [[nodiscard]] bool comp_active() const noexcept {
+    return comp_side_ != 0 && comp_radius_mm_ > 0.0;
+  }
+  bool comp_straight(const Pose& end, SegmentBuffer& out);
+  bool comp_arc(const Pose& end, SegmentBuffer& out);
+  bool comp_round_corner(double mx, double my, const Pose& end, bool rapid, SegmentBuffer& out);
+  bool comp_held_straight(const Pose& end, double dx, double dy, SegmentBuffer& out);
+  bool comp_held_arc(const Pose& end, const Vec3& c, int turn, double turns,
+                     SegmentBuffer& out);
+  bool comp_move_endpoint_and_flush(double x, double y, SegmentBuffer& out);
+  bool comp_dequeue(SegmentBuffer& out);
+  void comp_set_endpoint(double x, double y) {
+    comp_endpoint_[0] = x;
+    comp_endpoint_[1] = y;
+    comp_endpoint_valid_ = true;
+  }
+  bool comp_fail(std::string message);
   bool check_feed();
   bool check_duration(double linear_mm, double rotary_deg);
   bool fail_duration(double linear_mm, double rotary_deg);
@@ -211,6 +251,28 @@ class Interpreter {
   bool mist_ = false;
   bool flood_ = false;
   bool ended_ = false;
+
+  // Cutter compensation: the side (+1 left G41, -1 right G42, 0 off) and
+  // radius (mm, from the tool's diameter or G41.1/G42.1 D); the next move
+  // is the entry move; the programmed point (machine coordinates; pos_ is
+  // the compensated one); after G40 the next move starts from the
+  // programmed point and must be straight. Held moves wait for the next to
+  // fix their end (LinuxCNC's interp_queue: one end point for all of them).
+  struct HeldMove {
+    Segment s;
+    double dx = 0.0, dy = 0.0;  // straights: the direction programmed
+    double turns = 0.0;         // arcs: the sweep programmed (rad; 0 for corner arcs)
+  };
+  int comp_side_ = 0;
+  double comp_radius_mm_ = 0.0;
+  bool comp_first_move_ = true;
+  bool comp_exited_ = false;
+  Pose programmed_ = Pose::Zero();
+  std::vector<HeldMove> held_;
+  bool holding_ = false;              // comp's moves: every new segment is held
+  double comp_endpoint_[2] = {0.0, 0.0};
+  bool comp_endpoint_valid_ = false;
+  int comp_a_ = 0, comp_b_ = 1;       // the plane's two axes (X Y in G17, Z X in G18)
 
   // The block being run.
   const Block* b_ = nullptr;

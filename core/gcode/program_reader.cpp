@@ -280,6 +280,8 @@ ProgramReader::Next ProgramReader::Impl::read(Segment& out) {
       return Next::Segment;
     }
     if (ended) {
+      interp.finish(pending);  // moves cutter compensation still holds
+      if (!pending.empty()) continue;
       warn_lines_after_end();
       state = State::Ended;
       continue;
@@ -416,6 +418,8 @@ ProgramReader::Next ProgramReader::Impl::at_file_end() {
                          " still open; expected " + o_name(c.label) + " " + end + " before it",
                      c.col);
   }
+  interp.finish(pending);  // moves cutter compensation still holds
+  if (!pending.empty()) return Next::Segment;
   state = State::Ended;
   return Next::End;
 }

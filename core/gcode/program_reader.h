@@ -1,8 +1,8 @@
 // The G-code front end: RS274NGC as LinuxCNC reads it, for a subset (G0 G1
 // G2 G3 G4 G17-19 G20/21 G90/91 G90.1/91.1 G54-59.3 G61 G61.1 G64 G93 G94,
 // G10 G28 G30 G52 G53 G92, tools T M6 M61 G43 G49, canned cycles G73 G81
-// G82 G83 G85 G89 G98 G99, polar @ ^, the safety header's
-// cancels G40 G80, F S, M2 M3 M4 M5 M7 M8 M9 M30, X Y Z A B C, N numbers,
+// G82 G83 G85 G89 G98 G99, polar @ ^, cutter compensation G40 G41 G42
+// G41.1 G42.1, G80, F S, M2 M3 M4 M5 M7 M8 M9 M30, X Y Z A B C, N numbers,
 // comments, '/' block delete, parameters and expressions, O-word
 // subroutines and control flow). Streams: one Segment at a time, so a program of
 // millions of lines runs in bounded memory. check_program() reads a whole

@@ -74,6 +74,7 @@ bool Interpreter::change_tool() {
   if (b.has('T') && !tool_number('T', selected_tool_)) return false;
   if (b.m_tool == 6) {
     current_tool_ = selected_tool_;
+    comp_exited_ = false;  // the change reads back where the tool stands (LinuxCNC)
   } else if (b.m_tool == 61) {
     if (!b.has('Q')) {
       return fail(ErrorCode::GcodeMissingWord, b.m_tool_word,

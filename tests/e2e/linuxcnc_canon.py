@@ -9,7 +9,9 @@ full double precision, mm and degrees.
 Exit 0 with the moves on stdout; 1 when LinuxCNC refuses the program (its
 message on stderr); 2 when its only complaint is that the file ends with no
 M2, M30 or closing '%' (LinuxCNC wants one; LaserCNC ends at the file's end),
-the moves read until then on stdout. No INI file and a fresh parameter file: every offset 0,
+the moves read until then on stdout; 3 when the moves stop at a tool change
+that follows an arc (the `gcode` module, unlike LinuxCNC's canon, reads back
+a stale position there), the moves until then on stdout. No INI file and a fresh parameter file: every offset 0,
 the machine at 0, block delete on; the tool table is FILE (LinuxCNC's format),
 else empty; subroutine files are looked for in the
 program's folder (the working folder is set to it).
@@ -54,7 +56,26 @@ class Canon:
     def get_external_length_units(self): return 1.0
     def get_axis_mask(self): return 0x3F  # X Y Z A B C
     def get_block_delete(self): return True
-    def get_tool(self, n): return (n,) + (0.0,) * 12 + (0,)
+    # The tool in a pocket: its number and diameter (what G41/G42 reads);
+    # offsets 0, as LinuxCNC's interpreter reads a loaded table's alone.
+    # Pocket 0 is the spindle: the tool M6 put there.
+    diameters = {}  # pocket: (tool, diameter mm), from the --tool-table file
+    spindle = 0     # the pocket whose tool is in the spindle
+    # The `gcode` module keeps the position its interpreter reads back after
+    # a tool change from straight moves alone: after an arc, that position
+    # is stale, and so is every move from there (LinuxCNC's own canon keeps
+    # it right). The moves are cut off there.
+    stale_from = None  # the line of such a tool change
+    def change_tool(self, pocket):
+        self.spindle = pocket
+        if self.out and self.out[-1].split()[1] == "arc" and self.stale_from is None:
+            self.stale_from = self.line
+    def get_tool(self, n):
+        if n == 0:
+            tool, diameter = self.diameters.get(self.spindle, (0, 0.0))
+        else:
+            tool, diameter = self.diameters.get(n, (n, 0.0))
+        return (tool,) + (0.0,) * 9 + (diameter, 0.0, 0.0, 0)
     def set_plane(self, plane): self.plane = plane
     def set_g5x_offset(self, index, x, y, z, a, b, c, *uvw): self.g5x = [x, y, z, a, b, c]
     def set_g92_offset(self, x, y, z, a, b, c, *uvw): self.g92 = [x, y, z, a, b, c]
@@ -74,6 +95,8 @@ class Canon:
         return lambda *args: None
 
     def _end(self, kind, x, y, z, a, b, c, extra=""):
+        if self.stale_from is not None:
+            return
         m = self.machine([x, y, z, a, b, c])
         end = (m[0] * INCH, m[1] * INCH, m[2] * INCH, m[3], m[4], m[5])
         if kind != "arc" and end == self.last:
@@ -99,6 +122,8 @@ class Canon:
         self._end("arc", x, y, z, a, b, c, " %s %s %d" % (centre, name, rotation))
 
     def dwell(self, seconds):
+        if self.stale_from is not None:
+            return
         self.out.append("%d dwell %.17g" % (self.line, seconds))
 
 
@@ -108,14 +133,21 @@ def load_tool_table(path):
     table (a segfault at the first T). Map one in this process and load
     `path` (LinuxCNC's tool table format) into it, or leave it empty. (A
     table's offsets do not reach this interpreter's G43: it reads them as
-    0, and G10 L1 values as written.)"""
+    0, and G10 L1 values as written. Its diameters reach G41/G42 through
+    the canon's get_tool.)"""
     lib = ctypes.CDLL("libtooldata.so.0")
     global _tool_stat  # the map's status block, kept for the process's life
     _tool_stat = ctypes.create_string_buffer(1 << 20)
     lib._Z17tool_mmap_creatorPK13EMC_TOOL_STATi(_tool_stat, 0)
     lib._Z13tooldata_initb(0)
-    if path is not None and lib._Z13tooldata_loadPKcPPc(path.encode(), None) != 0:
+    if path is None:
+        return
+    if lib._Z13tooldata_loadPKcPPc(path.encode(), None) != 0:
         sys.exit("cannot load the tool table " + path)
+    for row in open(path):
+        words = {w[0].upper(): w[1:] for w in row.split(";")[0].split() if len(w) > 1}
+        if "T" in words and "P" in words:
+            Canon.diameters[int(words["P"])] = (int(words["T"]), float(words.get("D", 0.0)))
 
 
 def main():
@@ -156,6 +188,10 @@ def main():
             return 2
         return 1
     sys.stdout.write(moves)
+    if canon.stale_from is not None:
+        sys.stderr.write("%s:%d: the gcode module's position is stale after this tool change "
+                         "(an arc before it): moves cut off here\n" % (program, canon.stale_from))
+        return 3
     return 0
 
 

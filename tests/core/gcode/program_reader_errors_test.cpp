@@ -275,12 +275,11 @@ TEST(ProgramReader, ACallOfASubroutineNeverDefinedIsAnErrorAtTheCall) {
 }
 
 TEST(ProgramReader, OtherLettersAreUnsupportedAndSaySo) {
-  Diagnostic d = expect_error("D1\n", ErrorCode::GcodeUnsupported, 1, 1);
-  EXPECT_MENTIONS(d, "'D1': cutter radius compensation (G41/G42 D) is not supported yet");
-  EXPECT_MENTIONS(d, "G M N X Y Z A B C I J K R F S P Q T H L");
-  d = expect_error("G1 U10\n", ErrorCode::GcodeUnsupported, 1, 4);
+  Diagnostic d = expect_error("G1 U10\n", ErrorCode::GcodeUnsupported, 1, 4);
   EXPECT_MENTIONS(d, "U V W axes are not supported");
   // H and L belong to codes: alone they are named with what would use them
+  d = expect_error("D1\n", ErrorCode::GcodeUnsupported, 1, 1);
+  EXPECT_MENTIONS(d, "'D1' with no G41, G42, G41.1 or G42.1 to use it");
   d = expect_error("H1\n", ErrorCode::GcodeUnsupported, 1, 1);
   EXPECT_MENTIONS(d, "with no G43 or G43.2");
   d = expect_error("G1 X2 F100 L2\n", ErrorCode::GcodeUnsupported, 1, 12);
@@ -386,7 +385,7 @@ TEST(ProgramReader, LinesAfterTheEndAreNotChecked) {
 TEST(ProgramReader, BlockDeleteLinesAreStillParsed) {
   ReaderOptions on = start_at();
   on.block_delete = true;
-  expect_error("/G1 X10 D1\n", ErrorCode::GcodeUnsupported, 1, 9, on);
+  expect_error("/G1 X10 U1\n", ErrorCode::GcodeUnsupported, 1, 9, on);
 }
 
 TEST(ProgramReader, OpenMissingFileIsFileNotFound) {
