@@ -93,10 +93,31 @@ Status check_outputs(const std::vector<std::string>& outputs,
 Result<OutputFile> OutputFile::open(const std::string& path,
                                     const std::vector<std::string>& inputs) {
   if (path.empty()) return make_error(ErrorCode::OutputWrite, "an output needs a file name");
-  if (Status s = check_inputs(path, file_id(path), inputs); !s) return s.error();
   OutputFile f;
   f.path_ = path;
   f.target_ = path;
+  if (path == "-" || path == "/dev/stdout") {
+    // This process's standard output, whatever it is (a terminal, a pipe,
+    // a file the shell opened): written through it, never renamed over —
+    // when it is a regular file, the path names the shell's redirection.
+    const int fd = ::dup(STDOUT_FILENO);
+    f.file_ = fd >= 0 ? ::fdopen(fd, "w") : nullptr;
+    if (f.file_ == nullptr) {
+      const int err = errno;
+      if (fd >= 0) ::close(fd);
+      return write_error(path, err, "open it");
+    }
+    std::setvbuf(f.file_, nullptr, _IOFBF, kBufferBytes);
+    return f;
+  }
+  if (path.starts_with("/dev/") || path.starts_with("/proc/")) {
+    // a device or a process's descriptor: written in place, never renamed over
+    f.file_ = std::fopen(path.c_str(), "w");
+    if (f.file_ == nullptr) return write_error(path, errno, "open it");
+    std::setvbuf(f.file_, nullptr, _IOFBF, kBufferBytes);
+    return f;
+  }
+  if (Status s = check_inputs(path, file_id(path), inputs); !s) return s.error();
   struct stat st{};
   if (::stat(path.c_str(), &st) == 0) {
     if (S_ISDIR(st.st_mode)) return write_error(path, EISDIR, "write it");

@@ -12,7 +12,10 @@
 //   temporary file. A symbolic link as target is followed: the file it names
 //   is replaced, the link stays. A replaced file keeps its permission bits; a
 //   new one gets 0666 less the umask, as any file the shell creates.
-// * A target that is not a regular file (/dev/stdout, /dev/full, a FIFO)
+// * "-" or /dev/stdout is this process's standard output, written through
+//   it even when the shell redirected it to a regular file (renaming over
+//   that would lose the output, or replace /dev/stdout itself).
+// * A target that is not a regular file (/dev/…, /proc/…, a FIFO)
 //   cannot be renamed over: it is opened and written directly, so what was
 //   written before a failure stays written there (a stream cannot be
 //   unwritten). Errors are still caught: every write, fflush and fclose is

@@ -151,4 +151,19 @@ TEST(OutputFiles, ARefusedDecomposeRunWritesNoneOfItsOutputs) {
   EXPECT_EQ(listing(dir), (std::set<std::string>{"a.csv"}));
 }
 
+// `--moves -` writes through the command's standard output, also when the
+// shell sent it to a regular file: what the shell wrote before and after
+// stays, and the file is not replaced (nor /dev/stdout itself).
+TEST(OutputFiles, ADashIsTheStandardOutputEvenWhenItIsARedirectedFile) {
+  const fs::path dir = temp_dir();
+  const fs::path prog = write(dir / "p.ngc", kProgram);
+  const fs::path out = dir / "out.txt";
+  const std::string cmd = "{ echo before; " + std::string(LASERCNC_EXE) + " check " +
+                          prog.string() + " --moves -; echo after; } >" + out.string() +
+                          " 2>/dev/null </dev/null";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  EXPECT_EQ(slurp(out), "before\n2 feed 2 1 0 0 0 0\n3 feed 0 0 0 0 0 0\nafter\n");
+  EXPECT_TRUE(fs::is_symlink("/dev/stdout"));
+}
+
 }  // namespace
