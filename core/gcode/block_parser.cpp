@@ -17,7 +17,7 @@ constexpr const char* kSupportedGCodes =
     "G0 G1 G2 G3 G4 G10 G17 G18 G19 G20 G21 G28 G28.1 G30 G30.1 G40 G41 G41.1 G42 G42.1 G43 G43.1 G43.2 G49 G52 "
     "G53 G54-G59 G59.1 G59.2 G59.3 G61 G61.1 G64 G73 G80 G81 G82 G83 G85 G89 G90 G91 G90.1 "
     "G91.1 G92 G92.1 G92.2 G92.3 G93 G94 G98 G99";
-constexpr const char* kSupportedMCodes = "M0 M1 M2 M3 M4 M5 M6 M7 M8 M9 M30 M60 M61";
+constexpr const char* kSupportedMCodes = "M0 M1 M2 M3 M4 M5 M6 M7 M8 M9 M30 M60 M61 M70 M71 M72 M73";
 
 // Exact powers of ten: a double holds 10^k exactly for k <= 22.
 constexpr double kPow10[] = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
@@ -347,10 +347,24 @@ bool BlockParser::read_m(Span w, double value, Block& out) {
     case 3:
     case 4:
     case 5:
-      if (out.m_laser >= 0) return conflict(out.m_laser, 7, "laser on/off");
-      out.m_laser = static_cast<std::int16_t>(code);
-      out.m_laser_word = w;
+    case 70:
+    case 71:
+    case 72:
+    case 73: {
+      // one group in LinuxCNC: the spindle (laser) and the modal state's
+      // save (M70, M73), forget (M71) and restore (M72)
+      const char* group_name = "laser on/off, modal state";
+      if (out.m_laser >= 0) return conflict(out.m_laser, 7, group_name);
+      if (out.m_context >= 0) return conflict(out.m_context, 7, group_name);
+      if (code >= 70) {
+        out.m_context = static_cast<std::int16_t>(code);
+        out.m_context_word = w;
+      } else {
+        out.m_laser = static_cast<std::int16_t>(code);
+        out.m_laser_word = w;
+      }
       return true;
+    }
     case 6:
     case 61:
       if (out.m_tool >= 0) return conflict(out.m_tool, 6, "tool change");
@@ -610,6 +624,7 @@ bool BlockParser::read_setting(std::uint32_t& i, Block& out) {
   out.m_stop = -1;
   out.m_laser = -1;
   out.m_tool = -1;
+  out.m_context = -1;
   out.polar = 0;
   out.m7 = out.m8 = out.m9 = false;
   out.o.kind = OKind::None;

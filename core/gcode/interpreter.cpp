@@ -115,6 +115,7 @@ bool Interpreter::execute(const Block& block, const LineText& text, std::uint32_
   if ((block.letters & kDataLetters) != 0 && !check_word_use()) return false;
   if (!set_feed_and_power()) return false;  // G93/G94, F, S, M3-M5, M7-M9
   if ((block.has('T') || block.m_tool >= 0) && !change_tool()) return false;  // T, M6, M61
+  if (block.m_context >= 0 && !run_context()) return false;  // M70 M71 M72 M73
   if (non_modal == 40 && !dwell(out)) return false;  // G4
   if (block.code(GGroup::CutterComp) >= 0 && !set_cutter_comp(out)) return false;  // G40 G41 G42
   set_modes();                              // plane, units, coordinate system
@@ -850,6 +851,102 @@ bool Interpreter::arc_to(const Pose& end, const Vec3& c, bool cw, std::uint32_t 
   set_segment_feed(s, length_mm, rotary_deg);
   pos_ = end;
   return true;
+}
+
+// --- modal state contexts (M70 … M73) -------------------------------------
+
+// What M70 saves and M72 restores (LinuxCNC's save_settings: the G modes,
+// F, S, the laser and gas M codes; not the motion mode, nor cutter
+// compensation here).
+Interpreter::ModalState Interpreter::modal_state() const {
+  ModalState m;
+  m.plane = plane_;
+  m.inch = inch_;
+  m.absolute = absolute_;
+  m.arc_absolute = arc_absolute_;
+  m.inverse_time = inverse_time_;
+  m.retract_old_z = retract_old_z_;
+  m.tool_length_on = tool_length_on_;
+  m.coord_system = coord_system_;
+  m.tool_offset = tool_offset_;
+  m.path_mode = path_mode_;
+  m.blend_tolerance_mm = blend_tolerance_mm_;
+  m.naive_cam_tolerance_mm = naive_cam_tolerance_mm_;
+  m.feed_set = feed_set_;
+  m.feed_mm_min = feed_mm_min_;
+  m.feed_raw = feed_raw_;
+  m.laser = laser_;
+  m.power_pct = power_pct_;
+  m.mist = mist_;
+  m.flood = flood_;
+  return m;
+}
+
+void Interpreter::restore_modal(const ModalState& m) {
+  plane_ = m.plane;
+  inch_ = m.inch;
+  absolute_ = m.absolute;
+  arc_absolute_ = m.arc_absolute;
+  inverse_time_ = m.inverse_time;
+  retract_old_z_ = m.retract_old_z;
+  tool_length_on_ = m.tool_length_on;
+  tool_offset_ = m.tool_offset;
+  // the system as it is now (its offsets may have been set since)
+  if (m.coord_system != coord_system_) select_coord_system(m.coord_system);
+  update_offsets();
+  for (int a = 0; a < kAxisCount; ++a) numbered_[static_cast<std::size_t>(kParamToolOffset + a)] =
+      tool_offset_[a];
+  path_mode_ = m.path_mode;
+  blend_tolerance_mm_ = m.blend_tolerance_mm;
+  naive_cam_tolerance_mm_ = m.naive_cam_tolerance_mm;
+  feed_set_ = m.feed_set;
+  feed_mm_min_ = m.feed_mm_min;
+  feed_raw_ = m.feed_raw;
+  laser_ = m.laser;
+  power_pct_ = m.power_pct;
+  mist_ = m.mist;
+  flood_ = m.flood;
+}
+
+bool Interpreter::run_context() {
+  const Block& b = *b_;
+  Context& c = contexts_.back();
+  switch (b.m_context) {
+    case 70:
+    case 73:
+      c.valid = true;
+      c.state = modal_state();
+      // M73 at the top level: nothing to return to; kept as M70's (LinuxCNC)
+      c.restore_on_return = b.m_context == 73 && contexts_.size() > 1;
+      return true;
+    case 71:
+      c.valid = false;
+      return true;
+    default:
+      if (!c.valid) {
+        return fail(ErrorCode::GcodeFlow, b.m_context_word,
+                    "found " + quoted(b.m_context_word) +
+                        " with no modal state saved at this call level; expected M70 (or M73) "
+                        "before it, in the same subroutine or program level, and no M71 since");
+      }
+      if (comp_side_ != 0) {
+        return fail(ErrorCode::GcodeModalConflict, b.m_context_word,
+                    "found " + quoted(b.m_context_word) +
+                        " with cutter compensation on (G41/G42): the plane and offsets it "
+                        "restores would move the path under it; expected G40 before it");
+      }
+      restore_modal(c.state);
+      return true;
+  }
+}
+
+void Interpreter::enter_call() { contexts_.emplace_back(); }
+
+void Interpreter::leave_call() {
+  if (contexts_.size() < 2) return;
+  const Context c = contexts_.back();
+  contexts_.pop_back();
+  if (c.valid && c.restore_on_return) restore_modal(c.state);
 }
 
 // LinuxCNC's predefined named parameters that mean something here (its

@@ -115,6 +115,10 @@ class Interpreter {
   // The program's end (the file's, or '%'): the moves compensation still
   // holds, as they stand, to `out`.
   void finish(SegmentBuffer& out);
+  // A subroutine call begins / returns (the reader says): the modal state
+  // M70/M73 save is kept per call level, and an M73's comes back on return.
+  void enter_call();
+  void leave_call();
 
   [[nodiscard]] bool ended() const noexcept { return ended_; }  // M2 or M30 ran
   [[nodiscard]] const Fault& fault() const noexcept { return fault_; }
@@ -168,6 +172,24 @@ class Interpreter {
   // length, time).
   bool arc_to(const Pose& end, const Vec3& c, bool cw, std::uint32_t extra_turns,
               SegmentBuffer& out);
+  // M70 M71 M72 M73 (LinuxCNC): save, forget, restore the modal state.
+  bool run_context();
+  struct ModalState {
+    Plane plane = Plane::XY;
+    bool inch = false, absolute = true, arc_absolute = false, inverse_time = false;
+    bool retract_old_z = false, tool_length_on = false;
+    int coord_system = 0;
+    Pose tool_offset = Pose::Zero();
+    PathMode path_mode = PathMode::ExactPath;
+    double blend_tolerance_mm = 0.0, naive_cam_tolerance_mm = 0.0;
+    bool feed_set = false;
+    double feed_mm_min = 0.0, feed_raw = 0.0;
+    LaserMode laser = LaserMode::Off;
+    double power_pct = 0.0;
+    bool mist = false, flood = false;
+  };
+  [[nodiscard]] ModalState modal_state() const;
+  void restore_modal(const ModalState& m);
   // Where a new segment goes: to `out`, or held by cutter compensation.
   Segment& push_segment(SegmentBuffer& out);
   // Cutter (kerf) compensation (cutter_comp.cpp): G40 G41 G42 G41.1 G42.1.
@@ -273,6 +295,14 @@ class Interpreter {
   double comp_endpoint_[2] = {0.0, 0.0};
   bool comp_endpoint_valid_ = false;
   int comp_a_ = 0, comp_b_ = 1;       // the plane's two axes (X Y in G17, Z X in G18)
+
+  // M70/M73 saves, one per call level ([0]: the program's).
+  struct Context {
+    bool valid = false;
+    bool restore_on_return = false;  // M73
+    ModalState state;
+  };
+  std::vector<Context> contexts_ = std::vector<Context>(1);
 
   // The block being run.
   const Block* b_ = nullptr;

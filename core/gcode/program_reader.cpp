@@ -507,6 +507,7 @@ bool ProgramReader::Impl::call(std::string_view text, const Location& after) {
   f.return_to = after;
   f.saved = params.enter(args);
   frames.push_back(std::move(f));
+  interp.enter_call();
   params.set_global("_value", 0.0);
   params.set_global("_value_returned", 0.0);
   if (auto it = subs.find(label); it != subs.end()) return jump(it->second);
@@ -600,6 +601,7 @@ bool ProgramReader::Impl::run_o(std::string_view text, const Location& here) {
       params.set_global("_value_returned", args.empty() ? 0.0 : 1.0);
       const Location back = f.return_to;
       frames.pop_back();
+      interp.leave_call();  // an M73's modal state comes back
       return jump(back);
     }
     case OKind::Call: return call(text, after);

@@ -320,5 +320,49 @@ TEST(ProgramReader, ReadsLinesUpToTheLineBoundAcrossReadChunks) {
   std::remove(path.c_str());
 }
 
+// M70 saves the modal state, M72 restores it, M71 forgets it, M73 saves it
+// until the subroutine returns (LinuxCNC).
+TEST(ProgramReader, M70SavesTheModalStateAndM72RestoresIt) {
+  const auto segs = segments(
+      "F600 S50 M3 G90\nM70\nF60 S10 G91 G20 M5\nG1 X1\nM72\nG1 X20 Y20\nM72\nG1 Y30\n");
+  ASSERT_EQ(segs.size(), 3u);
+  EXPECT_POSE_NEAR(segs[0].end, pose(10 + 25.4, 10, 10), 1e-9);  // G91 G20 X1
+  EXPECT_DOUBLE_EQ(segs[0].feed_mm_s, 60.0 * 25.4 / 60.0);
+  EXPECT_EQ(segs[0].laser, LaserMode::Off);
+  EXPECT_POSE_NEAR(segs[1].end, pose(20, 20, 10), 1e-12);  // G90 G21 again
+  EXPECT_DOUBLE_EQ(segs[1].feed_mm_s, 10.0);
+  EXPECT_EQ(segs[1].laser, LaserMode::Constant);
+  EXPECT_DOUBLE_EQ(segs[1].power_pct, 50.0);
+  EXPECT_POSE_NEAR(segs[2].end, pose(20, 30, 10), 1e-12);  // M72 again: still saved
+}
+
+TEST(ProgramReader, M73RestoresTheCallersStateWhenTheSubroutineReturns) {
+  const std::string sub =
+      "o<s> sub\nM73\nG20 G91 F5\no<s> if [#1 GT 0]\no<s> return\no<s> endif\no<s> endsub\n";
+  for (const char* call : {"o<s> call [0]\n", "o<s> call [1]\n"}) {
+    const auto segs = segments(sub + "G21 G90 F600\n" + call + "G1 X20 Y20\n");
+    ASSERT_EQ(segs.size(), 1u) << call;
+    EXPECT_POSE_NEAR(segs[0].end, pose(20, 20, 10), 1e-12) << call;
+    EXPECT_DOUBLE_EQ(segs[0].feed_mm_s, 10.0) << call;
+  }
+  // M70 in a subroutine: nothing comes back by itself
+  const auto segs = segments("o<s> sub\nM70\nG91\no<s> endsub\nG90 F600\no<s> call\nG1 X5\n");
+  ASSERT_EQ(segs.size(), 1u);
+  EXPECT_DOUBLE_EQ(segs[0].end[0], 15.0);
+}
+
+TEST(ProgramReader, M72WithNothingSavedAtItsLevelIsAnError) {
+  Diagnostic d = expect_error("G1 X20 F600\nM72\n", ErrorCode::GcodeFlow, 2, 1);
+  EXPECT_MENTIONS(d, "no modal state saved at this call level");
+  expect_error("M70\nM71\nM72\n", ErrorCode::GcodeFlow, 3, 1);
+  // the program's save is not the subroutine's
+  expect_error("M70\no<s> sub\nM72\no<s> endsub\no<s> call\n", ErrorCode::GcodeFlow, 3, 1);
+  // one modal group with M3 M4 M5
+  expect_error("M3 M70\n", ErrorCode::GcodeModalConflict, 1, 4);
+  // a restore under cutter compensation would move the path under it
+  expect_error("M70\nG0 X100 Y95\nG41.1 D2\nG1 X100 Y100 F600\nM72\n",
+               ErrorCode::GcodeModalConflict, 5, 1);
+}
+
 }  // namespace
 }  // namespace lcnc
