@@ -25,7 +25,7 @@
 namespace lcnc::shm {
 
 inline constexpr std::uint32_t kHalMagic = 0x4C48414C;  // "LHAL"
-inline constexpr std::uint32_t kHalVersion = 1;
+inline constexpr std::uint32_t kHalVersion = 2;  // 2: outputs in PeriodIncrement
 
 struct HalHeader {
   std::uint32_t magic = 0;

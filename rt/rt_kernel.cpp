@@ -604,6 +604,8 @@ void RtKernel::cycle(const Motion& m, double length_ns, std::int64_t end_ns) noe
     power = std::min(m.inc.power_cap_pct, power * static_cast<float>(k_));
   if (port_.laser_inhibit.load(std::memory_order_relaxed)) power = 0.0f;
   frame_.power_pct = power;
+  frame_.outputs = m.on_path ? m.inc.outputs : std::uint16_t{0};
+  frame_.analog = m.on_path ? m.inc.analog : std::array<float, kAnalogOutputs>{};
   power_now_ = power;
   sink_.emit(frame_);
   // 8. position, machine time, trace

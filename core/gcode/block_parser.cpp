@@ -12,12 +12,12 @@
 namespace lcnc::gcode {
 namespace {
 
-constexpr const char* kSupportedWords = "G M N X Y Z A B C I J K R F S P Q T H L D";
+constexpr const char* kSupportedWords = "G M N X Y Z A B C I J K R F S P Q T H L D E";
 constexpr const char* kSupportedGCodes =
     "G0 G1 G2 G3 G4 G10 G17 G18 G19 G20 G21 G28 G28.1 G30 G30.1 G40 G41 G41.1 G42 G42.1 G43 G43.1 G43.2 G49 G52 "
     "G53 G54-G59 G59.1 G59.2 G59.3 G61 G61.1 G64 G73 G80 G81 G82 G83 G85 G89 G90 G91 G90.1 "
     "G91.1 G92 G92.1 G92.2 G92.3 G93 G94 G98 G99";
-constexpr const char* kSupportedMCodes = "M0 M1 M2 M3 M4 M5 M6 M7 M8 M9 M30 M60 M61 M70 M71 M72 M73";
+constexpr const char* kSupportedMCodes = "M0 M1 M2 M3 M4 M5 M6 M7 M8 M9 M30 M60 M61 M62 M63 M64 M65 M67 M68 M70 M71 M72 M73";
 
 // Exact powers of ten: a double holds 10^k exactly for k <= 22.
 constexpr double kPow10[] = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
@@ -264,13 +264,6 @@ bool BlockParser::read_number(std::uint32_t& i, std::uint32_t letter_at_pos, dou
                     "; expected a number such as " + letter + "10, " + letter + "-0.5 or " +
                     letter + ".5");
   }
-  if (j < n && c[j] == 'E' && j + 1 < n &&
-      (is_digit(c[j + 1]) || c[j + 1] == '+' || c[j + 1] == '-' || c[j + 1] == '.')) {
-    return fail(ErrorCode::GcodeBadNumber, letter_pos,
-                "found '" + std::string(c + letter_at_pos, j + 2 - letter_at_pos) +
-                    "...': exponents are not allowed in G-code numbers; expected plain digits "
-                    "with an optional decimal point");
-  }
   if (digits <= kFastDigits) {
     double v = static_cast<double>(mantissa);
     if (frac > 0) v /= kPow10[frac];
@@ -365,6 +358,16 @@ bool BlockParser::read_m(Span w, double value, Block& out) {
       }
       return true;
     }
+    case 62:
+    case 63:
+    case 64:
+    case 65:
+    case 67:
+    case 68:
+      if (out.m_io >= 0) return conflict(out.m_io, 5, "outputs");
+      out.m_io = static_cast<std::int16_t>(code);
+      out.m_io_word = w;
+      return true;
     case 6:
     case 61:
       if (out.m_tool >= 0) return conflict(out.m_tool, 6, "tool change");
@@ -520,10 +523,6 @@ bool BlockParser::read_word(std::uint32_t& i, Block& out) {
       return fail(ErrorCode::GcodeUnsupported, pos,
                   "found " + rough_word() +
                       ": U V W axes are not supported; expected axis words X Y Z A B C");
-    case 'E':
-      return fail(ErrorCode::GcodeUnsupported, pos,
-                  "found " + rough_word() + ": E words are not supported; expected " +
-                      kSupportedWords + " words");
     default:
       break;
   }
@@ -625,6 +624,7 @@ bool BlockParser::read_setting(std::uint32_t& i, Block& out) {
   out.m_laser = -1;
   out.m_tool = -1;
   out.m_context = -1;
+  out.m_io = -1;
   out.polar = 0;
   out.m7 = out.m8 = out.m9 = false;
   out.o.kind = OKind::None;

@@ -115,6 +115,7 @@ bool Interpreter::execute(const Block& block, const LineText& text, std::uint32_
   if ((block.letters & kDataLetters) != 0 && !check_word_use()) return false;
   if (!set_feed_and_power()) return false;  // G93/G94, F, S, M3-M5, M7-M9
   if ((block.has('T') || block.m_tool >= 0) && !change_tool()) return false;  // T, M6, M61
+  if (block.m_io >= 0 && !set_outputs()) return false;  // M62 … M65, M67 M68
   if (block.m_context >= 0 && !run_context()) return false;  // M70 M71 M72 M73
   if (non_modal == 40 && !dwell(out)) return false;  // G4
   if (block.code(GGroup::CutterComp) >= 0 && !set_cutter_comp(out)) return false;  // G40 G41 G42
@@ -232,18 +233,27 @@ bool Interpreter::check_word_use() {
   const bool cycle = is_cycle(block_motion_);
   const bool dwell_cycle = block_motion_ == MotionMode::Cycle82 || block_motion_ == MotionMode::Cycle89;
   const bool peck_cycle = block_motion_ == MotionMode::Cycle83 || block_motion_ == MotionMode::Cycle73;
-  if (b.has('P') && !has_g4 && !has_g64 && !is_arc && !has_g10 && !dwell_cycle) {
+  if (b.has('P') && !has_g4 && !has_g64 && !is_arc && !has_g10 && !dwell_cycle &&
+      !(b.m_io >= 62 && b.m_io <= 65)) {
     return fail(ErrorCode::GcodeUnsupported, b.span('P'),
                 "found " + quoted(b.span('P')) +
-                    " with no G4, G10, G64, G2, G3, G82 or G89 to use it; P is supported only as "
-                    "G4/G82/G89 dwell seconds, G10 system or tool, G64 blend tolerance and G2/G3 "
-                    "turns");
+                    " with no G4, G10, G64, G2, G3, G82, G89 or M62–M65 to use it; P is "
+                    "supported only as G4/G82/G89 dwell seconds, G10 system or tool, G64 blend "
+                    "tolerance, G2/G3 turns and the M62–M65 output");
   }
-  if (b.has('Q') && !has_g64 && !has_m61 && !peck_cycle) {
+  const bool analog_io = b.m_io == 67 || b.m_io == 68;
+  if (b.has('Q') && !has_g64 && !has_m61 && !peck_cycle && !analog_io) {
     return fail(ErrorCode::GcodeUnsupported, b.span('Q'),
                 "found " + quoted(b.span('Q')) +
-                    " with no G64, M61, G73 or G83; Q is supported only as the G64 naive-CAM "
-                    "tolerance, M61's tool and the G73/G83 peck depth");
+                    " with no G64, M61, G73, G83, M67 or M68; Q is supported only as the G64 "
+                    "naive-CAM tolerance, M61's tool, the G73/G83 peck depth and the M67/M68 "
+                    "analog value");
+  }
+  if (b.has('E') && !analog_io) {
+    return fail(ErrorCode::GcodeUnsupported, b.span('E'),
+                "found " + quoted(b.span('E')) +
+                    " with no M67 or M68 to use it; expected E only as the analog output of "
+                    "M67/M68 (and no exponents in numbers: 1e3 is 1 and E3)");
   }
   if (b.has('H') && tl != 430 && tl != 432) {
     return fail(ErrorCode::GcodeUnsupported, b.span('H'),
@@ -471,6 +481,8 @@ bool Interpreter::pause(SegmentBuffer& out) {
 
 void Interpreter::fill_modal(Segment& s) const {
   s = Segment{};
+  s.digital_out = digital_out_;
+  s.analog_out = analog_out_;
   s.plane = plane_;
   s.path_mode = path_mode_;
   s.blend_tolerance_mm = blend_tolerance_mm_;
@@ -666,6 +678,7 @@ bool Interpreter::rapid_to(const Pose& end, SegmentBuffer& out) {
   comp_exited_ = false;
   if (!check_travel(end, end, end)) return false;
   if (end == pos_) return true;
+  take_synced_outputs();
   Segment& s = push_segment(out);
   fill_modal(s);
   s.kind = MotionKind::Rapid;
@@ -684,6 +697,7 @@ bool Interpreter::line_to(const Pose& end, SegmentBuffer& out) {
   const double linear_mm = (end.head<3>() - pos_.head<3>()).norm();
   const double rotary_deg = (end.tail<3>() - pos_.tail<3>()).norm();
   if (!check_duration(linear_mm, rotary_deg)) return false;
+  take_synced_outputs();
   Segment& s = push_segment(out);
   fill_modal(s);
   s.kind = MotionKind::Linear;
@@ -819,6 +833,7 @@ bool Interpreter::arc_to(const Pose& end, const Vec3& c, bool cw, std::uint32_t 
   const Block& b = *b_;
   const auto axes = arc_plane_axes(plane_);
   comp_exited_ = false;
+  take_synced_outputs();
   Segment& s = push_segment(out);
   fill_modal(s);
   s.kind = MotionKind::Arc;
@@ -851,6 +866,78 @@ bool Interpreter::arc_to(const Pose& end, const Vec3& c, bool cw, std::uint32_t 
   set_segment_feed(s, length_mm, rotary_deg);
   pos_ = end;
   return true;
+}
+
+// --- outputs (M62 … M68) ---------------------------------------------------
+
+// M62 P n / M63 P n: digital output n on / off with the next move (its
+// first period); M64 / M65: from here on (the next segment of any kind,
+// a dwell too). M67 E n Q v: analog output n to v with the next move; M68:
+// from here on. (LinuxCNC's M64/M68 act when its read-ahead reaches them;
+// here they act where they stand in the program, after the motion before.)
+bool Interpreter::set_outputs() {
+  const Block& b = *b_;
+  const int code = b.m_io;
+  const bool analog = code >= 67;
+  const char letter = analog ? 'E' : 'P';
+  const int count = analog ? kAnalogOutputs : kDigitalOutputs;
+  if (!b.has(letter)) {
+    return fail(ErrorCode::GcodeMissingWord, b.m_io_word,
+                "found " + quoted(b.m_io_word) + " with no " + std::string(1, letter) +
+                    " word; expected " + quoted(b.m_io_word) + " " + std::string(1, letter) +
+                    "<output 0 … " + std::to_string(count - 1) + ">" +
+                    (analog ? " Q<value>" : ""));
+  }
+  const double v = b[letter];
+  if (v != std::floor(v) || v < 0.0 || v >= count) {
+    return fail(ErrorCode::GcodeBadValue, b.span(letter),
+                "found " + quoted(b.span(letter)) + "; expected an output from 0 to " +
+                    std::to_string(count - 1) + " (the machine's " + std::to_string(count) + " " +
+                    (analog ? "analog" : "digital") + " outputs)");
+  }
+  const int n = static_cast<int>(v);
+  if (analog) {
+    if (!b.has('Q')) {
+      return fail(ErrorCode::GcodeMissingWord, b.m_io_word,
+                  "found " + quoted(b.m_io_word) + " with no Q word; expected " +
+                      quoted(b.m_io_word) + " E<output> Q<value>");
+    }
+    const float q = static_cast<float>(b['Q']);
+    if (!std::isfinite(q)) {
+      return fail(ErrorCode::GcodeBadValue, b.span('Q'),
+                  "found " + quoted(b.span('Q')) + "; expected an analog value a float holds");
+    }
+    if (code == 68) {
+      analog_out_[static_cast<std::size_t>(n)] = q;
+      synced_analog_ = static_cast<std::uint8_t>(synced_analog_ & ~(1u << n));
+    } else {
+      synced_analog_ = static_cast<std::uint8_t>(synced_analog_ | (1u << n));
+      synced_analog_value_[static_cast<std::size_t>(n)] = q;
+    }
+    return true;
+  }
+  const auto bit = static_cast<std::uint8_t>(1u << n);
+  switch (code) {
+    case 62: synced_on_ |= bit; synced_off_ = static_cast<std::uint8_t>(synced_off_ & ~bit); break;
+    case 63: synced_off_ |= bit; synced_on_ = static_cast<std::uint8_t>(synced_on_ & ~bit); break;
+    case 64: digital_out_ |= bit; break;
+    default: digital_out_ = static_cast<std::uint8_t>(digital_out_ & ~bit); break;
+  }
+  if (code >= 64) {  // now: a synchronized change of the same output waiting is superseded
+    synced_on_ = static_cast<std::uint8_t>(synced_on_ & ~bit);
+    synced_off_ = static_cast<std::uint8_t>(synced_off_ & ~bit);
+  }
+  return true;
+}
+
+void Interpreter::take_synced_outputs() {
+  if ((synced_on_ | synced_off_ | synced_analog_) == 0) return;
+  digital_out_ = static_cast<std::uint8_t>((digital_out_ | synced_on_) & ~synced_off_);
+  for (int n = 0; n < kAnalogOutputs; ++n) {
+    if ((synced_analog_ >> n) & 1u)
+      analog_out_[static_cast<std::size_t>(n)] = synced_analog_value_[static_cast<std::size_t>(n)];
+  }
+  synced_on_ = synced_off_ = synced_analog_ = 0;
 }
 
 // --- modal state contexts (M70 … M73) -------------------------------------

@@ -69,10 +69,10 @@ class SegmentBuffer {
 };
 
 // Motion modes: G0 G1 G2 G3 and the canned cycles G73 G81 G82 G83 G85 G89.
-// Words that only some codes use (check_word_use): P Q H L I J K R D.
+// Words that only some codes use (check_word_use): P Q H L I J K R D E.
 inline constexpr std::uint32_t kDataLetters = [] {
   std::uint32_t m = 0;
-  for (const char c : {'P', 'Q', 'H', 'L', 'I', 'J', 'K', 'R', 'D'}) m |= 1u << letter_index(c);
+  for (const char c : {'P', 'Q', 'H', 'L', 'I', 'J', 'K', 'R', 'D', 'E'}) m |= 1u << letter_index(c);
   return m;
 }();
 
@@ -172,6 +172,10 @@ class Interpreter {
   // length, time).
   bool arc_to(const Pose& end, const Vec3& c, bool cw, std::uint32_t extra_turns,
               SegmentBuffer& out);
+  // M62 … M65 digital and M67/M68 analog outputs; the synchronized ones
+  // (M62 M63 M67) wait for the next move (take_synced_outputs).
+  bool set_outputs();
+  void take_synced_outputs();
   // M70 M71 M72 M73 (LinuxCNC): save, forget, restore the modal state.
   bool run_context();
   struct ModalState {
@@ -272,6 +276,11 @@ class Interpreter {
   double power_pct_ = 0.0;
   bool mist_ = false;
   bool flood_ = false;
+  std::uint8_t digital_out_ = 0;                 // M62 … M65
+  std::array<float, kAnalogOutputs> analog_out_{};  // M67 M68
+  std::uint8_t synced_on_ = 0, synced_off_ = 0;  // M62 / M63 for the next move
+  std::uint8_t synced_analog_ = 0;               // M67 for the next move: which E …
+  std::array<float, kAnalogOutputs> synced_analog_value_{};  // … to what
   bool ended_ = false;
 
   // Cutter compensation: the side (+1 left G41, -1 right G42, 0 off) and

@@ -8,6 +8,7 @@
 #include <cstdint>
 
 #include "geom/pose.h"
+#include "path/segment.h"
 
 namespace lcnc {
 
@@ -21,6 +22,11 @@ struct PulseFrame {
   std::array<AxisPulses, kAxisCount> axes{};
   std::uint32_t ticks_per_period = 0;  // N, the DDA capacity
   float power_pct = 0.0f;              // laser output during the period
+  // The program's outputs during the period (PeriodIncrement::outputs:
+  // digital P0 … P7, then the assist gas bits; analog E0 … E3); all off
+  // when no job is on the path.
+  std::uint16_t outputs = 0;
+  std::array<float, kAnalogOutputs> analog{};
 };
 
 // The machine's switch inputs as sampled once per period; true = active

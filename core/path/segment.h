@@ -2,6 +2,7 @@
 // machine coordinates (work offsets and units already applied): mm and deg.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include "geom/pose.h"
@@ -28,6 +29,15 @@ enum class PathMode : std::uint8_t {
 
 // The laser is always off on rapids and at the end. On a dwell, M3 fires at
 // constant power (percussion drilling) and M4 gives 0 (speed 0).
+// The machine's general-purpose outputs a program sets (M62–M65 digital
+// P0 … P7, M67/M68 analog E0 … E3), and where the assist gas (M7, M8)
+// appears in the output word the RT hands its sink (bits above the digital
+// outputs').
+inline constexpr int kDigitalOutputs = 8;
+inline constexpr int kAnalogOutputs = 4;
+inline constexpr std::uint16_t kOutputMist = 1u << kDigitalOutputs;
+inline constexpr std::uint16_t kOutputFlood = 1u << (kDigitalOutputs + 1);
+
 enum class LaserMode : std::uint8_t {
   Off,       // M5
   Constant,  // M3: power = S
@@ -62,6 +72,10 @@ struct Segment {
   double power_pct = 0.0;  // programmed laser power, % of rated (from S / s_max)
   bool mist = false;       // M7 (assist gas, low pressure)
   bool flood = false;      // M8 (assist gas, high pressure)
+  // The digital outputs (bit n: P n) and analog outputs (E n) while this
+  // segment runs: set from its first period on.
+  std::uint8_t digital_out = 0;
+  std::array<float, kAnalogOutputs> analog_out{};
 
   std::uint32_t line = 0;  // source line (1-based)
   // M0/M1/M60 (a Dwell of two periods, the beam off): once it has run the

@@ -40,6 +40,9 @@ bool CoarseInterpolator::pull() {
                    ? static_cast<float>(s.power_pct)
                    : 0.0f;
       power_cap_ = cut && s.laser == LaserMode::Dynamic ? static_cast<float>(s.power_pct) : 0.0f;
+      outputs_ = static_cast<std::uint16_t>(s.digital_out | (s.mist ? kOutputMist : 0) |
+                                            (s.flood ? kOutputFlood : 0));
+      analog_ = s.analog_out;
       return true;
     }
   }
@@ -69,6 +72,8 @@ SourceStatus CoarseInterpolator::next(PeriodSample& out) {
       out.kind = end_.kind;
       out.end_of_program = true;
       out.pause = false;
+      out.outputs = outputs_;
+      out.analog = analog_;
       done_ = true;
       return SourceStatus::Item;
     }
@@ -90,6 +95,8 @@ SourceStatus CoarseInterpolator::next(PeriodSample& out) {
   out.kind = end_.kind;
   out.end_of_program = false;
   out.pause = pause_;  // its first sample only
+  out.outputs = outputs_;
+  out.analog = analog_;
   pause_ = false;
   return SourceStatus::Item;
 }

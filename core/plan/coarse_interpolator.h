@@ -37,6 +37,8 @@ struct PeriodSample {
   MotionKind kind = MotionKind::Dwell;
   bool end_of_program = false;
   bool pause = false;  // the first sample of a pause (Segment::pause)
+  std::uint16_t outputs = 0;  // the segment's (see PeriodIncrement)
+  std::array<float, kAnalogOutputs> analog{};
 };
 
 class CoarseInterpolator {
@@ -84,6 +86,8 @@ class CoarseInterpolator {
   bool pause_ = false;    // a pause pulled, not yet on a sample
   bool dynamic_ = false;  // M4 on a cut: power_pct_ scaled by speed / programmed_speed_
   float power_ = 0.0f, power_cap_ = 0.0f;
+  std::uint16_t outputs_ = 0;  // the segment's outputs word and analog values
+  std::array<float, kAnalogOutputs> analog_{};
   double power_pct_ = 0.0, programmed_speed_ = 0.0;
   float k_plan_ = 1.0f;
   // Where the current segment ends: the program's last sample.
@@ -167,6 +171,8 @@ inline PeriodIncrement StepQuantizer::emit(const PeriodSample& s) {
   inc.kind = s.kind;
   inc.end_of_program = s.end_of_program && !owed();
   inc.pause = s.pause;
+  inc.outputs = s.outputs;
+  inc.analog = s.analog;
   return inc;
 }
 

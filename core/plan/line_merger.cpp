@@ -24,7 +24,8 @@ bool LineMerger::extends_run(const Segment& next) const {
   const Segment& a = run_.seg;
   if (!mergeable(a) || !mergeable(next) || inner_count_ + 1 >= kMaxMergeRun) return false;
   if (a.feed_mm_s != next.feed_mm_s || a.duration_s != next.duration_s || a.laser != next.laser ||
-      a.power_pct != next.power_pct || a.mist != next.mist || a.flood != next.flood)
+      a.power_pct != next.power_pct || a.mist != next.mist || a.flood != next.flood ||
+      a.digital_out != next.digital_out || a.analog_out != next.analog_out)
     return false;
   const double q = std::min(merge_tolerance(a), merge_tolerance(next));
   const Vec3 s0 = a.start.head<3>(), s1 = next.end.head<3>();

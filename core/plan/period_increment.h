@@ -45,6 +45,11 @@ struct PeriodIncrement {
   // M0/M1/M60: after this entry (at rest, a dwell's) the RT holds the job
   // until the operator resumes it.
   bool pause = false;
+  // The outputs while this entry runs: digital P0 … P7 (bits 0 … 7), assist
+  // gas (kOutputMist, kOutputFlood), analog E0 … E3. The RT sets them only
+  // while on the path; off otherwise.
+  std::uint16_t outputs = 0;
+  std::array<float, kAnalogOutputs> analog{};
 };
 static_assert(std::is_trivially_copyable_v<PeriodIncrement>);
 

@@ -34,6 +34,13 @@
 //   lasercnc.on-path      out bit    a job runs (running, held, stopping)
 //   lasercnc.segment      out s32    the program segment being executed
 //   lasercnc.line         out s32    its program line
+//   lasercnc.digital-out-NN out bit  the program's digital output NN (00 … 07:
+//                                    M62/M63 with the next move, M64/M65 where
+//                                    they stand); off when no job is on the path
+//   lasercnc.analog-out-NN  out float the program's analog output NN (00 … 03:
+//                                    M67 with the next move, M68); 0 off the path
+//   lasercnc.mist         out bit    assist gas, low pressure (M7)
+//   lasercnc.flood        out bit    assist gas, high pressure (M8)
 // Following error: |pos-cmd − pos-fb| beyond the axis's
 // `following_error` (machine TOML) stops the machine and names the axis.
 #include <fcntl.h>
@@ -42,6 +49,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
 #include <ctime>
 #include <memory>
 #include <new>
@@ -88,6 +96,10 @@ struct Pins {
   hal_bit_t* on_path;
   hal_s32_t* segment;
   hal_s32_t* line;
+  hal_bit_t* digital_out[kDigitalOutputs];
+  hal_float_t* analog_out[kAnalogOutputs];
+  hal_bit_t* mist;
+  hal_bit_t* flood;
 };
 
 // The kernel's pulse sink: counts and pins.
@@ -112,6 +124,10 @@ class HalSink final : public PulseSink {
     }
     *pins_->laser_power = frame.power_pct / 100.0f;
     *pins_->laser_on = frame.power_pct > 0.0f;
+    for (int n = 0; n < kDigitalOutputs; ++n) *pins_->digital_out[n] = (frame.outputs >> n) & 1u;
+    for (int n = 0; n < kAnalogOutputs; ++n) *pins_->analog_out[n] = frame.analog[static_cast<std::size_t>(n)];
+    *pins_->mist = (frame.outputs & kOutputMist) != 0;
+    *pins_->flood = (frame.outputs & kOutputFlood) != 0;
   }
 
   MachineInputs read_inputs() noexcept override {
@@ -276,6 +292,18 @@ int setup(Component& c) {
   r |= pin_new(HAL_OUT, &c.pins->on_path, "lasercnc.on-path");
   r |= pin_new(HAL_OUT, &c.pins->segment, "lasercnc.segment");
   r |= pin_new(HAL_OUT, &c.pins->line, "lasercnc.line");
+  for (int n = 0; n < kDigitalOutputs; ++n) {
+    char name[40];
+    std::snprintf(name, sizeof name, "lasercnc.digital-out-%02d", n);
+    r |= pin_new(HAL_OUT, &c.pins->digital_out[n], name);
+  }
+  for (int n = 0; n < kAnalogOutputs; ++n) {
+    char name[40];
+    std::snprintf(name, sizeof name, "lasercnc.analog-out-%02d", n);
+    r |= pin_new(HAL_OUT, &c.pins->analog_out[n], name);
+  }
+  r |= pin_new(HAL_OUT, &c.pins->mist, "lasercnc.mist");
+  r |= pin_new(HAL_OUT, &c.pins->flood, "lasercnc.flood");
   if (r != 0) return -EINVAL;
   c.sink = std::make_unique<HalSink>(c.machine, c.pins, h.start_steps);
   c.kernel = std::make_unique<rt::RtKernel>(c.machine, c.hb->buffer, *c.sink, &c.hb->trace, h.start_steps,

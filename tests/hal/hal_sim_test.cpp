@@ -452,6 +452,30 @@ TEST_F(HalSim, AnAmpFaultStopsTheMachineUntilItClearsAndIsReset) {
 
 // Every lasercnc.* pin or function the shipped HAL configurations name
 // (sim, parport, Mesa 7i76E) is one the component makes.
+// The program's outputs reach their pins with the move that carries them,
+// and go off when the job ends.
+TEST_F(HalSim, ProgramOutputsReachTheirPinsWhileTheJobRunsAndGoOffAfter) {
+  home_all();
+  const fs::path prog = temp_dir() / "outputs.ngc";
+  std::ofstream(prog) << "G21 G90\nG0 X10 Y10 Z20\nM64 P2\nM7\nM62 P5\nM67 E1 Q3.5\n"
+                         "G1 X150 F600\nG1 X10\nM2\n";
+  ASSERT_EQ(send("load " + prog.string()).exit_code, 0);
+  ASSERT_EQ(send("start").exit_code, 0);
+  // the first cut (line 7) takes 14 s at 10 mm/s
+  ASSERT_TRUE(wait_for([&] { return getp("lasercnc.line") == "7"; }, 30));
+  EXPECT_EQ(getp("lasercnc.digital-out-02"), "TRUE");
+  EXPECT_EQ(getp("lasercnc.digital-out-05"), "TRUE");
+  EXPECT_EQ(getp("lasercnc.digital-out-00"), "FALSE");
+  EXPECT_EQ(getp("lasercnc.mist"), "TRUE");
+  EXPECT_EQ(getp("lasercnc.flood"), "FALSE");
+  EXPECT_NEAR(std::stod(getp("lasercnc.analog-out-01")), 3.5, 1e-6);
+  ASSERT_EQ(send("stop").exit_code, 0);
+  ASSERT_TRUE(wait_for([&] { return status(shm_.name()).value("state", "") == "idle"; }, 10));
+  EXPECT_EQ(getp("lasercnc.digital-out-02"), "FALSE");
+  EXPECT_EQ(getp("lasercnc.mist"), "FALSE");
+  EXPECT_NEAR(std::stod(getp("lasercnc.analog-out-01")), 0.0, 1e-12);
+}
+
 TEST_F(HalSim, TheShippedConfigurationsNameOnlyPinsTheComponentHas) {
   const std::string shown = halcmd("show pin lasercnc").out + halcmd("show funct lasercnc").out;
   std::size_t checked = 0;

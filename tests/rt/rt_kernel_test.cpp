@@ -475,6 +475,51 @@ TEST(RtKernel, OverrideLeavesDwellsAloneAndScalesDynamicPower) {
   EXPECT_NEAR(static_cast<double>(r.kernel.machine_time_ns()), n_move * T / 0.8 + n_dwell * T, 2.0);
 }
 
+// A sink that keeps each period's outputs (room reserved before the run:
+// the RT thread never allocates).
+class OutputsSink final : public PulseSink {
+ public:
+  explicit OutputsSink(std::size_t n) {
+    words.reserve(n);
+    analog.reserve(n);
+  }
+  void emit(const PulseFrame& f) noexcept override {
+    if (words.size() == words.capacity()) return;
+    words.push_back(f.outputs);
+    analog.push_back(f.analog[1]);
+  }
+  std::vector<std::uint16_t> words;
+  std::vector<float> analog;
+};
+
+// The program's outputs (M62 … M68, the gas) switch with the entry that
+// carries them: in its own period, not one early or late.
+TEST(RtKernel, OutputsSwitchInThePeriodOfTheEntryThatCarriesThem) {
+  const MachineConfig m = machine();
+  auto buffer = std::make_unique<PositionBuffer>();
+  const std::size_t n = 300;
+  for (std::size_t k = 0; k < n; ++k) {
+    PeriodIncrement inc;
+    inc.steps[0] = 5;
+    if (k >= 100 && k < 200) {
+      inc.outputs = static_cast<std::uint16_t>(0b101u | kOutputMist);
+      inc.analog[1] = 2.5f;
+    }
+    inc.end_of_program = k + 1 == n;
+    ASSERT_TRUE(buffer->try_push(inc));
+  }
+  OutputsSink sink(n + 16);
+  RtKernel kernel(m, *buffer, sink, nullptr, {});
+  kernel.start(RtOptions{false, 0, {}, {}});
+  kernel.join();
+  ASSERT_GE(sink.words.size(), n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const bool on = k >= 100 && k < 200;
+    EXPECT_EQ(sink.words[k], on ? (0b101u | kOutputMist) : 0u) << "period " << k;
+    EXPECT_EQ(sink.analog[k], on ? 2.5f : 0.0f) << "period " << k;
+  }
+}
+
 // Each entry runs at K = min(1, override / the override it is planned at):
 // 150 % over entries planned at 100 % runs them as planned (the planner, not
 // the RT, makes a raise), 120 % over entries planned at 150 % at K = 0.8.

@@ -364,5 +364,39 @@ TEST(ProgramReader, M72WithNothingSavedAtItsLevelIsAnError) {
                ErrorCode::GcodeModalConflict, 5, 1);
 }
 
+// M62/M63 switch a digital output with the next move, M64/M65 from where
+// they stand (a dwell after them too); M67/M68 the same for analog outputs.
+TEST(ProgramReader, OutputsSwitchWithTheNextMoveOrWhereTheyStand) {
+  const auto segs = segments(
+      "G1 X20 F600\nM62 P1\nG4 P0.5\nG1 X30\nM64 P3\nG4 P0.5\nM63 P1\nM65 P3\n"
+      "M67 E2 Q4.5\nG1 X40\nM68 E0 Q-1\nG4 P1\n");
+  ASSERT_EQ(segs.size(), 6u);
+  EXPECT_EQ(segs[0].digital_out, 0u);
+  EXPECT_EQ(segs[1].kind, MotionKind::Dwell);
+  EXPECT_EQ(segs[1].digital_out, 0u);  // M62 waits for the move
+  EXPECT_EQ(segs[2].digital_out, 0b10u);
+  EXPECT_EQ(segs[3].digital_out, 0b1010u);  // M64 at once: the dwell has it
+  EXPECT_EQ(segs[4].digital_out, 0u);       // M65 now, M63 with this move
+  EXPECT_EQ(segs[4].analog_out[2], 4.5f);
+  EXPECT_EQ(segs[5].analog_out[0], -1.0f);
+  EXPECT_EQ(segs[5].analog_out[2], 4.5f);
+  // M64 supersedes an M63 of the same output still waiting for a move
+  const auto now = segments("M62 P0\nM65 P0\nG1 X20 F600\n");
+  ASSERT_EQ(now.size(), 1u);
+  EXPECT_EQ(now[0].digital_out, 0u);
+}
+
+TEST(ProgramReader, OutputWordsAreCheckedAtTheirColumn) {
+  Diagnostic d = expect_error("M62\n", ErrorCode::GcodeMissingWord, 1, 1);
+  EXPECT_MENTIONS(d, "M62' P<output 0 … 7>");
+  d = expect_error("M64 P8\n", ErrorCode::GcodeBadValue, 1, 5);
+  EXPECT_MENTIONS(d, "expected an output from 0 to 7");
+  expect_error("M67 E4 Q1\n", ErrorCode::GcodeBadValue, 1, 5);
+  expect_error("M68 E1\n", ErrorCode::GcodeMissingWord, 1, 1);
+  expect_error("M62 P1 M64 P2\n", ErrorCode::GcodeModalConflict, 1, 8);
+  d = expect_error("G1 X1e3 F600\n", ErrorCode::GcodeUnsupported, 1, 6);
+  EXPECT_MENTIONS(d, "with no M67 or M68 to use it");
+}
+
 }  // namespace
 }  // namespace lcnc

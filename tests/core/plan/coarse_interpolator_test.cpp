@@ -232,6 +232,36 @@ TEST(CoarseInterpolator, LaserPowerFollowsModes) {
   EXPECT_EQ(r.samples.back().power_pct, 0.0f);
 }
 
+// Each sample carries its segment's outputs word (digital outputs, then the
+// assist gas bits) and analog values: a dwell's gas and outputs as well.
+TEST(CoarseInterpolator, SamplesCarryTheirSegmentsOutputsAndGas) {
+  const auto m = testing::test_machine();
+  Segment a = line(xyz(0, 0, 0), xyz(20, 0, 0), 100.0);
+  a.flood = true;
+  Segment d;
+  d.kind = MotionKind::Dwell;
+  d.start = d.end = xyz(20, 0, 0);
+  d.dwell_s = 0.2;
+  d.mist = true;
+  d.digital_out = 0b1001;
+  d.analog_out[3] = 7.0f;
+  const PipelineRun r = run(m, {a, d}, xyz(0, 0, 0));
+  bool seen_line = false, seen_dwell = false;
+  for (const auto& s : r.samples) {
+    if (s.end_of_program) continue;
+    if (s.kind == MotionKind::Linear) {
+      seen_line = true;
+      EXPECT_EQ(s.outputs, kOutputFlood) << s.t_s;
+      EXPECT_EQ(s.analog[3], 0.0f);
+    } else {
+      seen_dwell = true;
+      EXPECT_EQ(s.outputs, 0b1001u | kOutputMist) << s.t_s;
+      EXPECT_EQ(s.analog[3], 7.0f);
+    }
+  }
+  EXPECT_TRUE(seen_line && seen_dwell);
+}
+
 TEST(StepQuantizer, ClampedStepsAreCarriedNotLost) {
   auto m = testing::test_machine();
   m.dda = DdaConfig{4, 30};  // at most 15 steps per period
