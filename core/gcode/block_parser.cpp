@@ -300,7 +300,10 @@ bool BlockParser::read_g(Span w, double value, Block& out) {
     return fail(ErrorCode::GcodeUnknownCode, pos,
                 name + " is not supported; expected one of " + kSupportedGCodes);
   }
-  if (out.g[grp] >= 0) {
+  // G80 with another code of its group on the line is passed over, as in
+  // LinuxCNC ("G80 G0 X5": the G0 runs)
+  if (tenths == 800 && out.g[grp] >= 0) return true;
+  if (out.g[grp] >= 0 && out.g[grp] != 800) {
     return fail(ErrorCode::GcodeModalConflict, pos,
                 "found " + g_code_name(out.g[grp]) + " and " + g_code_name(tenths) +
                     " in one block, both of modal group " + std::to_string(kGGroupNumber[grp]) +

@@ -137,5 +137,16 @@ TEST(SpindleSelector, DollarZeroIsTheLaserAnyOtherIsAnError) {
   EXPECT_MENTIONS(d, "one laser, spindle $0");
 }
 
+TEST(CannedCycles, G80WithAMoveOnItsLineIsPassedOverAsLinuxCNCDoes) {
+  for (const char* line : {"G80 G0 X50 Y50\nX60\n", "G0 G80 X50 Y50\nX60\n"}) {
+    const auto segs = segments(std::string("G81 X20 Y20 Z2 R5 F600\n") + line);
+    ASSERT_GE(segs.size(), 2u) << line;
+    EXPECT_EQ(segs[segs.size() - 2].kind, MotionKind::Rapid) << line;
+    EXPECT_POSE_NEAR(segs[segs.size() - 2].end, pose(50, 50, 5), 1e-12) << line;  // Z at R (G99)
+    EXPECT_POSE_NEAR(segs.back().end, pose(60, 50, 5), 1e-12) << line;  // G0, not a hole
+  }
+  expect_error("G0 G1 X5\n", ErrorCode::GcodeModalConflict, 1, 4);
+}
+
 }  // namespace
 }  // namespace lcnc

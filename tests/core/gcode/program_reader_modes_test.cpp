@@ -188,7 +188,10 @@ TEST(ProgramReader, G80CancelsTheMotionMode) {
   expect_error("G1 X10 F600\nG80\nX20\n", ErrorCode::GcodeNoMotionMode, 3, 1);
   const Diagnostic d = expect_error("G1 X10 F600\nG80 X20\n", ErrorCode::GcodeSyntax, 2, 5);
   EXPECT_MENTIONS(d, "G80");
-  expect_error("G1 G80 X20 F600\n", ErrorCode::GcodeModalConflict, 1, 4);
+  // with another motion code on its line G80 is passed over (LinuxCNC)
+  const auto segs = segments("G1 G80 X20 F600\n");
+  ASSERT_EQ(segs.size(), 1u);
+  EXPECT_EQ(segs[0].kind, MotionKind::Linear);
 }
 
 TEST(ProgramReader, BlockDeleteSkipsSlashLinesByDefault) {
