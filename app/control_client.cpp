@@ -109,6 +109,7 @@ std::string format_status(const shm::Status& st, const shm::JobStatus& job, bool
     nlohmann::json j;
     j["state"] = state_name(st.state);
     j["program_pause"] = st.program_pause;  // held at M0/M1/M60: `send resume` goes on
+    j["input_wait"] = st.input_wait;        // held by M66 for this input (−1: none)
     j["fault"] = st.fault == 0 ? "" : std::string(error_summary(static_cast<ErrorCode>(st.fault)));
     j["fault_axis"] = st.fault_axis >= 0 ? std::string(1, kAxisLetters[st.fault_axis]) : "";
     j["line"] = st.line;
@@ -151,6 +152,9 @@ std::string format_status(const shm::Status& st, const shm::JobStatus& job, bool
          (st.program_pause ? " — program pause (M0/M1/M60) at line " + std::to_string(st.line) +
                                  ": send resume to go on"
                            : std::string()) +
+         (st.input_wait >= 0 ? " — waiting for input P" + std::to_string(st.input_wait) +
+                                   " (M66) at line " + std::to_string(st.line)
+                             : std::string()) +
          fault + "\n";
   out += "position  ";
   for (int i = 0; i < kAxisCount; ++i)  // "?": not homed

@@ -136,6 +136,16 @@ RtLogLine describe_rt_log(const rt::RtLogRecord& r, const MachineConfig& machine
     case rt::RtLogCode::ProgramPause:
       out.text += " at line " + std::to_string(r.line);
       break;
+    case rt::RtLogCode::InputWait: {
+      static constexpr const char* kMode[] = {"", "to rise", "to fall", "high", "low"};
+      out.text += " P" + std::to_string(r.value) + " " + kMode[std::clamp<int>(r.axis, 0, 4)] +
+                  " at line " + std::to_string(r.line);
+      break;
+    }
+    case rt::RtLogCode::InputWaitEnd:
+      out.text += " (line " + std::to_string(r.line) + ", after " + std::to_string(r.value) +
+                  " periods)";
+      break;
     case rt::RtLogCode::Refused:
       out.text += std::string(": ") + rt_command_name(static_cast<rt::RtCommandType>(r.value)) + axis;
       out.code = static_cast<std::uint16_t>(ErrorCode::RtRefused);

@@ -89,6 +89,7 @@ MachineInputs SimMachine::read_inputs() noexcept {
     in.limit_max[i] = s.limit_max_steps && pos >= *s.limit_max_steps;
   }
   in.estop = estop_.load(std::memory_order_relaxed);  // pairs with set_estop_input()
+  in.digital_in = digital_in_.load(std::memory_order_relaxed);
   return in;
 }
 

@@ -75,6 +75,11 @@ class SimMachine final : public PulseSink {
   // Relaxed store, paired with the relaxed load in read_inputs(): a lone
   // flag, nothing else is published with it.
   void set_estop_input(bool pressed) noexcept { estop_.store(pressed, std::memory_order_relaxed); }
+  // The program's digital inputs (M66), bit n: P n; from any thread (relaxed,
+  // as the e-stop).
+  void set_digital_inputs(std::uint8_t bits) noexcept {
+    digital_in_.store(bits, std::memory_order_relaxed);
+  }
 
   // Relaxed snapshots, safe from any thread; exact once the RT thread stopped.
   [[nodiscard]] std::int64_t position_steps(int axis) const noexcept {
@@ -116,6 +121,7 @@ class SimMachine final : public PulseSink {
   std::atomic<float> power_{0.0f};
   // Written by any thread (set_estop_input), read by read_inputs().
   std::atomic<bool> estop_{false};
+  std::atomic<std::uint8_t> digital_in_{0};
 };
 
 }  // namespace lcnc::drivers

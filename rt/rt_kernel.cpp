@@ -265,6 +265,7 @@ void RtKernel::set_state(MachineState s) noexcept {
     program_pause_ = false;
     port_.program_pause.store(false, std::memory_order_relaxed);
   }
+  if (s != MachineState::FeedHold) waiting_ = false;  // an M66 ended: the input, a stop
   state_now_ = s;
   port_.state.store(s, std::memory_order_release);
   log(RtLogCode::StateChange, static_cast<std::int64_t>(s));
@@ -314,7 +315,7 @@ void RtKernel::take_commands() noexcept {
         }
         break;
       case RtCommandType::Resume:
-        if (s == MachineState::FeedHold) {
+        if (s == MachineState::FeedHold && !waiting_) {  // an M66 waits for its input
           hold_ = false;
           set_state(MachineState::Running);  // (ends a program pause)
         }
@@ -386,6 +387,31 @@ void RtKernel::take_inputs() noexcept {
     enter_estop(ErrorCode::RtAmpFault, -1, line_);
   } else if (inputs_.following_error_axis >= 0) {
     enter_estop(ErrorCode::RtFollowingError, inputs_.following_error_axis, line_);
+  } else if (waiting_) {
+    check_wait();
+  }
+}
+
+// M66: the input came (the job goes on), or the time is up (a stop, at rest
+// already, with the fault).
+void RtKernel::check_wait() noexcept {
+  const bool level = ((inputs_.digital_in >> wait_input_) & 1u) != 0;
+  bool met = false;
+  switch (wait_mode_) {
+    case 1: met = !wait_prev_ && level; break;
+    case 2: met = wait_prev_ && !level; break;
+    case 3: met = level; break;
+    default: met = !level; break;
+  }
+  wait_prev_ = level;
+  ++wait_periods_;
+  if (met) {
+    waiting_ = hold_ = false;
+    log(RtLogCode::InputWaitEnd, static_cast<std::int64_t>(wait_periods_), -1, line_);
+    set_state(MachineState::Running);
+  } else if (--wait_left_ == 0) {
+    waiting_ = false;
+    begin_stop(ErrorCode::RtInputTimeout, -1, line_);
   }
 }
 
@@ -464,6 +490,20 @@ void RtKernel::path_motion(Motion& m) noexcept {
       k_ = 0.0;
       set_state(MachineState::FeedHold);
       log(RtLogCode::ProgramPause, 0, -1, line_);
+    }
+    // M66: the same hold, until the input does as asked or the time is up
+    if (m.inc.wait_input >= 0 && !stopping_) {
+      hold_ = waiting_ = true;
+      wait_input_ = m.inc.wait_input;
+      wait_mode_ = m.inc.wait_mode;
+      wait_prev_ = ((inputs_.digital_in >> wait_input_) & 1u) != 0;
+      const double periods = std::ceil(static_cast<double>(m.inc.wait_timeout_s) * 1e9 /
+                                       static_cast<double>(period_ns_));
+      wait_left_ = periods < 1.0 ? 1 : static_cast<std::uint64_t>(periods);
+      wait_periods_ = 0;
+      k_ = 0.0;
+      set_state(MachineState::FeedHold);
+      log(RtLogCode::InputWait, wait_input_, wait_mode_, line_);
     }
   } else {
     m.underrun = true;
@@ -675,6 +715,7 @@ void RtKernel::publish_status(bool force) noexcept {
   st.latency_p99_us = static_cast<float>(lat_p99_);
   st.latency_max_us = static_cast<float>(static_cast<double>(latency_.max_ns()) / 1000.0);
   st.program_pause = program_pause_;
+  st.input_wait = waiting_ ? wait_input_ : std::int8_t{-1};
   status_->store(st);
 }
 

@@ -241,6 +241,15 @@ class RtKernel : private OwnKernelPort, public KernelControl {
   MachineState state_now_ = MachineState::Idle;
   bool hold_ = false;         // operator's feed hold (or the program's pause)
   bool program_pause_ = false;  // held by M0/M1/M60 until a resume
+  // M66: held until input wait_input_ does as wait_mode_ asks (1 rise,
+  // 2 fall, 3 high, 4 low), for at most wait_left_ more periods
+  bool waiting_ = false;
+  std::int8_t wait_input_ = -1;
+  std::uint8_t wait_mode_ = 0;
+  bool wait_prev_ = false;  // the input's level the period before
+  std::uint64_t wait_left_ = 0;
+  std::uint64_t wait_periods_ = 0;
+  void check_wait() noexcept;
   bool stopping_ = false;     // a stop (operator's or a fault's) ramps down
   bool starving_ = false;     // below the braking reserve while streaming
   bool flushing_ = false;     // discarding an aborted job's entries

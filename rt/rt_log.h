@@ -25,6 +25,8 @@ enum class RtLogCode : std::uint16_t {
   Homed,          // axis; value: machine position given to the switch, steps
   Refused,        // value: the RtCommandType refused in this state
   ProgramPause,   // line: the M0/M1/M60 the job holds at until resumed
+  InputWait,      // line: the M66 the job holds at; value: the input; axis: its mode (1 … 4)
+  InputWaitEnd,   // line: the M66; value: the periods it waited
 };
 
 // Wake-ups later than this are logged one by one; all are counted.
@@ -56,6 +58,8 @@ using RtLogRing = SpscRing<RtLogRecord, 1024>;
     case RtLogCode::Homed: return "axis homed";
     case RtLogCode::Refused: return "command refused in this state";
     case RtLogCode::ProgramPause: return "program pause (M0/M1/M60): waiting for resume";
+    case RtLogCode::InputWait: return "M66: waiting for input";
+    case RtLogCode::InputWaitEnd: return "M66: the input came, the job goes on";
   }
   return "unknown RT event";
 }

@@ -1,5 +1,7 @@
 #include "rt/shm_interface.h"
 
+#include "path/segment.h"
+
 #include <fcntl.h>
 #include <time.h>
 #include <signal.h>
@@ -178,6 +180,7 @@ void sanitize(Status& s) noexcept {
   std::uint8_t pause = 0;  // the byte as written: a bool of any other value is undefined
   std::memcpy(&pause, &s.program_pause, 1);
   s.program_pause = pause != 0;
+  if (s.input_wait < -1 || s.input_wait >= lcnc::kDigitalInputs) s.input_wait = -1;
 }
 
 void sanitize(JobStatus& j) noexcept {

@@ -39,7 +39,7 @@
 namespace lcnc::shm {
 
 inline constexpr std::uint32_t kMagic = 0x434E434Cu;  // "LCNC" in memory
-inline constexpr std::uint32_t kVersion = 6;
+inline constexpr std::uint32_t kVersion = 7;
 inline constexpr const char* kDefaultName = "/lasercnc";
 
 enum class MachineState : std::uint8_t { Idle, Running, FeedHold, Stopping, EStop, Jog, Homing };
@@ -110,6 +110,9 @@ struct Status {
   // The program paused itself (M0, M1, M60): FeedHold at rest until a
   // resume, which then goes on with the program.
   bool program_pause = false;
+  // An M66 holds the job (FeedHold at rest) until this input does as asked
+  // or its timeout; −1: none.
+  std::int8_t input_wait = -1;
 };
 
 // How the last job ended.

@@ -17,7 +17,7 @@ constexpr const char* kSupportedGCodes =
     "G0 G1 G2 G3 G4 G10 G17 G18 G19 G20 G21 G28 G28.1 G30 G30.1 G40 G41 G41.1 G42 G42.1 G43 G43.1 G43.2 G49 G52 "
     "G53 G54-G59 G59.1 G59.2 G59.3 G61 G61.1 G64 G73 G80 G81 G82 G83 G85 G89 G90 G91 G90.1 "
     "G91.1 G92 G92.1 G92.2 G92.3 G93 G94 G98 G99";
-constexpr const char* kSupportedMCodes = "M0 M1 M2 M3 M4 M5 M6 M7 M8 M9 M30 M60 M61 M62 M63 M64 M65 M67 M68 M70 M71 M72 M73";
+constexpr const char* kSupportedMCodes = "M0 M1 M2 M3 M4 M5 M6 M7 M8 M9 M30 M60 M61 M62 M63 M64 M65 M66 M67 M68 M70 M71 M72 M73";
 
 // Exact powers of ten: a double holds 10^k exactly for k <= 22.
 constexpr double kPow10[] = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
@@ -365,6 +365,7 @@ bool BlockParser::read_m(Span w, double value, Block& out) {
     case 63:
     case 64:
     case 65:
+    case 66:
     case 67:
     case 68:
       if (out.m_io >= 0) return conflict(out.m_io, 5, "outputs");

@@ -129,7 +129,7 @@ struct Block {
   std::int16_t m_laser = -1;  // 3, 4 or 5
   std::int16_t m_tool = -1;   // 6 (tool change) or 61 (set the tool in the spindle)
   std::int16_t m_context = -1;  // 70 save, 71 forget, 72 restore, 73 save till return
-  std::int16_t m_io = -1;       // 62 63 64 65 (digital out P), 67 68 (analog out E Q)
+  std::int16_t m_io = -1;       // 62 63 64 65 (digital out P), 66 (wait on input P L Q), 67 68 (analog out E Q)
   bool m7 = false, m8 = false, m9 = false;
   Span m_stop_word{}, m_laser_word{}, m_tool_word{}, m_context_word{}, m_io_word{}, m7_word{},
       m8_word{}, m9_word{};

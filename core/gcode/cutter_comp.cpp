@@ -25,8 +25,8 @@
 //   - tangent moves (within kCornerTolRad): nothing between them.
 // While compensation is on, what would move the path under it — another
 // plane, tool, tool offset, coordinate system, path mode, G28/G30, G92/G52,
-// canned cycles — is an error at its word, as in LinuxCNC (and G53 and G93
-// here too). G40, M0/M1/M60, M2/M30 and the program's end let the held moves
+// canned cycles, M62/M63/M67 and M66 — is an error at its word, as in
+// LinuxCNC (and G53 and G93 here too). G40, M0/M1/M60, M2/M30 and the program's end let the held moves
 // go where they stand.
 #include <cmath>
 #include <numbers>
@@ -147,6 +147,10 @@ bool Interpreter::check_comp_conflicts() {
     default: break;
   }
   if (is_cycle(block_motion_)) return refuse(motion_word_, "canned cycles cannot run");
+  // (LinuxCNC: outputs synchronized with a move it holds, or a wait)
+  if (b.m_io == 62 || b.m_io == 63 || b.m_io == 66 || b.m_io == 67) {
+    return refuse(b.m_io_word, "outputs synchronized with motion and input waits cannot run");
+  }
   return true;
 }
 

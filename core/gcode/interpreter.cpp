@@ -115,7 +115,8 @@ bool Interpreter::execute(const Block& block, const LineText& text, std::uint32_
   if ((block.letters & kDataLetters) != 0 && !check_word_use()) return false;
   if (!set_feed_and_power()) return false;  // G93/G94, F, S, M3-M5, M7-M9
   if ((block.has('T') || block.m_tool >= 0) && !change_tool()) return false;  // T, M6, M61
-  if (block.m_io >= 0 && !set_outputs()) return false;  // M62 … M65, M67 M68
+  if (block.m_io == 66 && !wait_input(out)) return false;  // M66
+  if (block.m_io >= 0 && block.m_io != 66 && !set_outputs()) return false;  // M62 … M65, M67 M68
   if (block.m_context >= 0 && !run_context()) return false;  // M70 M71 M72 M73
   if (non_modal == 40 && !dwell(out)) return false;  // G4
   if (block.code(GGroup::CutterComp) >= 0 && !set_cutter_comp(out)) return false;  // G40 G41 G42
@@ -234,7 +235,7 @@ bool Interpreter::check_word_use() {
   const bool dwell_cycle = block_motion_ == MotionMode::Cycle82 || block_motion_ == MotionMode::Cycle89;
   const bool peck_cycle = block_motion_ == MotionMode::Cycle83 || block_motion_ == MotionMode::Cycle73;
   if (b.has('P') && !has_g4 && !has_g64 && !is_arc && !has_g10 && !dwell_cycle &&
-      !(b.m_io >= 62 && b.m_io <= 65)) {
+      !(b.m_io >= 62 && b.m_io <= 66)) {
     return fail(ErrorCode::GcodeUnsupported, b.span('P'),
                 "found " + quoted(b.span('P')) +
                     " with no G4, G10, G64, G2, G3, G82, G89 or M62–M65 to use it; P is "
@@ -242,14 +243,15 @@ bool Interpreter::check_word_use() {
                     "tolerance, G2/G3 turns and the M62–M65 output");
   }
   const bool analog_io = b.m_io == 67 || b.m_io == 68;
-  if (b.has('Q') && !has_g64 && !has_m61 && !peck_cycle && !analog_io) {
+  const bool wait_io = b.m_io == 66;
+  if (b.has('Q') && !has_g64 && !has_m61 && !peck_cycle && !analog_io && !wait_io) {
     return fail(ErrorCode::GcodeUnsupported, b.span('Q'),
                 "found " + quoted(b.span('Q')) +
                     " with no G64, M61, G73, G83, M67 or M68; Q is supported only as the G64 "
                     "naive-CAM tolerance, M61's tool, the G73/G83 peck depth and the M67/M68 "
                     "analog value");
   }
-  if (b.has('E') && !analog_io) {
+  if (b.has('E') && !analog_io && !wait_io) {
     return fail(ErrorCode::GcodeUnsupported, b.span('E'),
                 "found " + quoted(b.span('E')) +
                     " with no M67 or M68 to use it; expected E only as the analog output of "
@@ -267,7 +269,7 @@ bool Interpreter::check_word_use() {
                     " with no G41, G42, G41.1 or G42.1 to use it; expected D only as the tool "
                     "(G41/G42 D) or the diameter (G41.1/G42.1 D) of cutter compensation");
   }
-  if (b.has('L') && !has_g10 && !cycle) {
+  if (b.has('L') && !has_g10 && !cycle && b.m_io != 66) {
     return fail(ErrorCode::GcodeUnsupported, b.span('L'),
                 "found " + quoted(b.span('L')) +
                     " with no G10 or canned cycle to use it; expected L only on G10 and as a "
@@ -927,6 +929,61 @@ bool Interpreter::set_outputs() {
     synced_on_ = static_cast<std::uint8_t>(synced_on_ & ~bit);
     synced_off_ = static_cast<std::uint8_t>(synced_off_ & ~bit);
   }
+  return true;
+}
+
+// M66 P<input> L<mode> Q<timeout s>: the job waits, at rest with the beam
+// off, for digital input P to rise (L1), fall (L2), be high (L3) or low
+// (L4), at most Q seconds; then it stops with a fault (E420). The program is
+// read ahead of the motion, so it cannot read the input's value: #5399
+// reads what it will be if the job goes on (1 for L1/L3, 0 for L2/L4), and
+// L0 (read at once, no wait) and analog inputs (E) are refused.
+bool Interpreter::wait_input(SegmentBuffer& out) {
+  const Block& b = *b_;
+  const Span at = b.m_io_word;
+  if (b.has('E')) {
+    return fail(ErrorCode::GcodeUnsupported, b.span('E'),
+                "found " + quoted(b.span('E')) + " on M66: waiting on an analog input is not "
+                "supported; expected M66 P<digital input> L1…L4 Q<seconds>");
+  }
+  if (!b.has('P')) {
+    return fail(ErrorCode::GcodeMissingWord, at,
+                "found " + quoted(at) + " with no P word; expected M66 P<input 0 … " +
+                    std::to_string(kDigitalInputs - 1) + "> L1…L4 Q<seconds>");
+  }
+  const double p = b['P'];
+  if (p != std::floor(p) || p < 0.0 || p >= kDigitalInputs) {
+    return fail(ErrorCode::GcodeBadValue, b.span('P'),
+                "found " + quoted(b.span('P')) + " on M66; expected an input from 0 to " +
+                    std::to_string(kDigitalInputs - 1));
+  }
+  const double l = b.has('L') ? b['L'] : 0.0;
+  if (l != std::floor(l) || l < 1.0 || l > 4.0) {
+    return fail(l == 0.0 ? ErrorCode::GcodeUnsupported : ErrorCode::GcodeBadValue,
+                b.has('L') ? b.span('L') : at,
+                "found " + quoted_block() + ": M66 " +
+                    (l == 0.0 ? std::string("L0 (or no L) reads the input at once, for #5399; "
+                                            "the program is read ahead of the motion, so the "
+                                            "value cannot be known then")
+                              : "with L" + gnum(l)) +
+                    "; expected L1 (rise), L2 (fall), L3 (high) or L4 (low) with Q<seconds>");
+  }
+  if (!b.has('Q') || !(b['Q'] > 0.0) || b['Q'] > kMaxBlockSeconds) {
+    return fail(ErrorCode::GcodeBadValue, b.has('Q') ? b.span('Q') : at,
+                "found " + quoted_block() + ": M66 needs a timeout; expected Q<seconds> from "
+                "more than 0 to " + gnum(kMaxBlockSeconds) + " (after it the job stops)");
+  }
+  Segment& s = push_segment(out);
+  fill_modal(s);
+  s.kind = MotionKind::Dwell;
+  s.start = pos_;
+  s.end = pos_;
+  s.dwell_s = 2.0 * machine_.period_s();
+  s.laser = LaserMode::Off;
+  s.wait_input = static_cast<std::int8_t>(p);
+  s.wait_mode = static_cast<std::uint8_t>(l);
+  s.wait_timeout_s = static_cast<float>(b['Q']);
+  numbered_[kParamInputResult] = (l == 1.0 || l == 3.0) ? 1.0 : 0.0;
   return true;
 }
 

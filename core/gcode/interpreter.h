@@ -175,6 +175,7 @@ class Interpreter {
   // M62 … M65 digital and M67/M68 analog outputs; the synchronized ones
   // (M62 M63 M67) wait for the next move (take_synced_outputs).
   bool set_outputs();
+  bool wait_input(SegmentBuffer& out);
   void take_synced_outputs();
   // M70 M71 M72 M73 (LinuxCNC): save, forget, restore the modal state.
   bool run_context();

@@ -32,6 +32,7 @@ inline constexpr int kParamCoordSystem = 5220; // 1 … 9: G54 … G59.3 in effe
 inline constexpr int kParamCoordFirst = 5221;  // G54's X; system n (0-based) at +20·n
 inline constexpr int kParamCoordStride = 20;
 inline constexpr int kParamCoordRotation = 9;  // +9 in a system's block: its XY rotation (R)
+inline constexpr int kParamInputResult = 5399;  // M66: the input's value
 inline constexpr int kParamTool = 5400;        // the tool in the spindle (M6, M61)
 inline constexpr int kParamToolOffset = 5401;  // #5401 … #5409: the tool offset in effect (G43)
 inline constexpr int kParamToolDiameter = 5410;

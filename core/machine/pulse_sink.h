@@ -38,6 +38,7 @@ struct MachineInputs {
   bool estop = false;                        // emergency stop pressed
   bool amp_fault = false;                    // a drive reports a fault
   int following_error_axis = -1;             // an axis past its following error, −1 if none
+  std::uint8_t digital_in = 0;               // the program's inputs (M66 P0 … P7), bit n: P n
 };
 
 class PulseSink {

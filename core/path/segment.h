@@ -35,6 +35,7 @@ enum class PathMode : std::uint8_t {
 // outputs').
 inline constexpr int kDigitalOutputs = 8;
 inline constexpr int kAnalogOutputs = 4;
+inline constexpr int kDigitalInputs = 8;  // M66 P0 … P7
 inline constexpr std::uint16_t kOutputMist = 1u << kDigitalOutputs;
 inline constexpr std::uint16_t kOutputFlood = 1u << (kDigitalOutputs + 1);
 
@@ -81,6 +82,13 @@ struct Segment {
   // M0/M1/M60 (a Dwell of two periods, the beam off): once it has run the
   // machine waits, at rest, for the operator's resume.
   bool pause = false;
+  // M66 (a Dwell of two periods, the beam off): once it has run the machine
+  // waits, at rest, for digital input wait_input (0 … kDigitalInputs − 1)
+  // — wait_mode 1 a rise, 2 a fall, 3 high, 4 low — for at most
+  // wait_timeout_s; then the job stops with a fault. −1: no wait.
+  std::int8_t wait_input = -1;
+  std::uint8_t wait_mode = 0;
+  float wait_timeout_s = 0.0f;
 };
 
 }  // namespace lcnc

@@ -26,6 +26,11 @@ bool CoarseInterpolator::pull() {
       const Segment& s = next->seg;
       end_ = End{s.end, next->profile.v1, s.line, next->index, s.kind};
       pause_ = pause_ || s.pause;  // until a sample carries it
+      if (s.wait_input >= 0) {
+        wait_input_ = s.wait_input;
+        wait_mode_ = s.wait_mode;
+        wait_timeout_s_ = s.wait_timeout_s;
+      }
       const bool cut = s.kind == MotionKind::Linear || s.kind == MotionKind::Arc;
       // M4 on a cut: power follows speed; at no programmed speed, none
       dynamic_ = cut && s.laser == LaserMode::Dynamic && next->programmed_speed > plan::kMinVelocity;
@@ -72,6 +77,7 @@ SourceStatus CoarseInterpolator::next(PeriodSample& out) {
       out.kind = end_.kind;
       out.end_of_program = true;
       out.pause = false;
+      out.wait_input = -1;
       out.outputs = outputs_;
       out.analog = analog_;
       done_ = true;
@@ -98,6 +104,10 @@ SourceStatus CoarseInterpolator::next(PeriodSample& out) {
   out.outputs = outputs_;
   out.analog = analog_;
   pause_ = false;
+  out.wait_input = wait_input_;  // its first sample only, as a pause
+  out.wait_mode = wait_mode_;
+  out.wait_timeout_s = wait_timeout_s_;
+  wait_input_ = -1;
   return SourceStatus::Item;
 }
 
@@ -137,6 +147,7 @@ bool StepQuantizer::owed() const noexcept {
 PeriodIncrement StepQuantizer::pay_owed(const PeriodSample& last) {
   PeriodSample s = last;
   s.pause = false;  // a pause holds once, on its own entry
+  s.wait_input = -1;  // and so does an M66 wait
   return emit(s);
 }
 

@@ -39,6 +39,10 @@ struct PeriodSample {
   bool pause = false;  // the first sample of a pause (Segment::pause)
   std::uint16_t outputs = 0;  // the segment's (see PeriodIncrement)
   std::array<float, kAnalogOutputs> analog{};
+  // M66: on the first sample of its segment only (see PeriodIncrement)
+  std::int8_t wait_input = -1;
+  std::uint8_t wait_mode = 0;
+  float wait_timeout_s = 0.0f;
 };
 
 class CoarseInterpolator {
@@ -86,6 +90,9 @@ class CoarseInterpolator {
   bool pause_ = false;    // a pause pulled, not yet on a sample
   bool dynamic_ = false;  // M4 on a cut: power_pct_ scaled by speed / programmed_speed_
   float power_ = 0.0f, power_cap_ = 0.0f;
+  std::int8_t wait_input_ = -1;  // an M66 segment's, until a sample carries it
+  std::uint8_t wait_mode_ = 0;
+  float wait_timeout_s_ = 0.0f;
   std::uint16_t outputs_ = 0;  // the segment's outputs word and analog values
   std::array<float, kAnalogOutputs> analog_{};
   double power_pct_ = 0.0, programmed_speed_ = 0.0;
@@ -173,6 +180,9 @@ inline PeriodIncrement StepQuantizer::emit(const PeriodSample& s) {
   inc.pause = s.pause;
   inc.outputs = s.outputs;
   inc.analog = s.analog;
+  inc.wait_input = s.wait_input;
+  inc.wait_mode = s.wait_mode;
+  inc.wait_timeout_s = s.wait_timeout_s;
   return inc;
 }
 

@@ -70,6 +70,7 @@ PlannedSegment StopHolds::half(const PlannedSegment& neighbour, bool stand, cons
   s.start = s.end = at;
   s.dwell_s = stand ? half_s_ : 0.0;
   s.pause = false;  // a pause's own segment holds, not the stops around it
+  s.wait_input = -1;  // and an M66's
   if (stand) s.laser = LaserMode::Off;
   h.geo.set(s);
   h.profile = Trapezoid::hold(half_s_);

@@ -50,6 +50,11 @@ struct PeriodIncrement {
   // while on the path; off otherwise.
   std::uint16_t outputs = 0;
   std::array<float, kAnalogOutputs> analog{};
+  // M66: after this entry (at rest, a dwell's) the RT holds the job until
+  // the input does as asked (Segment::wait_*), or stops it at the timeout.
+  std::int8_t wait_input = -1;
+  std::uint8_t wait_mode = 0;
+  float wait_timeout_s = 0.0f;
 };
 static_assert(std::is_trivially_copyable_v<PeriodIncrement>);
 

@@ -39,6 +39,8 @@
 //                                    they stand); off when no job is on the path
 //   lasercnc.analog-out-NN  out float the program's analog output NN (00 … 03:
 //                                    M67 with the next move, M68); 0 off the path
+//   lasercnc.digital-in-NN in bit    the program's digital input NN (00 … 07):
+//                                    M66 P NN L1…L4 Q… waits for it
 //   lasercnc.mist         out bit    assist gas, low pressure (M7)
 //   lasercnc.flood        out bit    assist gas, high pressure (M8)
 // Following error: |pos-cmd − pos-fb| beyond the axis's
@@ -100,6 +102,7 @@ struct Pins {
   hal_float_t* analog_out[kAnalogOutputs];
   hal_bit_t* mist;
   hal_bit_t* flood;
+  hal_bit_t* digital_in[kDigitalInputs];
 };
 
 // The kernel's pulse sink: counts and pins.
@@ -143,6 +146,8 @@ class HalSink final : public PulseSink {
     }
     in.estop = *pins_->estop_in;
     in.amp_fault = *pins_->amp_fault;
+    for (int n = 0; n < kDigitalInputs; ++n)
+      if (*pins_->digital_in[n]) in.digital_in = static_cast<std::uint8_t>(in.digital_in | (1u << n));
     return in;
   }
 
@@ -301,6 +306,11 @@ int setup(Component& c) {
     char name[40];
     std::snprintf(name, sizeof name, "lasercnc.analog-out-%02d", n);
     r |= pin_new(HAL_OUT, &c.pins->analog_out[n], name);
+  }
+  for (int n = 0; n < kDigitalInputs; ++n) {
+    char name[40];
+    std::snprintf(name, sizeof name, "lasercnc.digital-in-%02d", n);
+    r |= pin_new(HAL_IN, &c.pins->digital_in[n], name);
   }
   r |= pin_new(HAL_OUT, &c.pins->mist, "lasercnc.mist");
   r |= pin_new(HAL_OUT, &c.pins->flood, "lasercnc.flood");

@@ -476,6 +476,28 @@ TEST_F(HalSim, ProgramOutputsReachTheirPinsWhileTheJobRunsAndGoOffAfter) {
   EXPECT_NEAR(std::stod(getp("lasercnc.analog-out-01")), 0.0, 1e-12);
 }
 
+// M66: the job waits at rest for the input pin, status says so, and goes on
+// when the pin comes.
+TEST_F(HalSim, AnM66WaitsForItsInputPinAndGoesOnWhenItComes) {
+  home_all();
+  const fs::path prog = temp_dir() / "wait.ngc";
+  std::ofstream(prog) << "G21 G90\nG0 X10 Y10 Z20\nM66 P4 L3 Q60\nG0 X20\nM2\n";
+  ASSERT_EQ(send("load " + prog.string()).exit_code, 0);
+  ASSERT_EQ(send("start").exit_code, 0);
+  ASSERT_TRUE(wait_for([&] { return status(shm_.name()).value("input_wait", -1) == 4; }, 30));
+  const nlohmann::json st = status(shm_.name());
+  EXPECT_EQ(st["state"], "feed hold");
+  // (pos-cmd is the motor's frame: X10 here, X20 after, 10 mm apart)
+  const double x = std::stod(getp("lasercnc.x.pos-cmd"));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  EXPECT_EQ(std::stod(getp("lasercnc.x.pos-cmd")), x);  // at rest
+  ASSERT_EQ(halcmd("setp lasercnc.digital-in-04 1").exit_code, 0);
+  ASSERT_TRUE(wait_for([&] { return status(shm_.name()).value("state", "") == "idle"; }, 30));
+  EXPECT_EQ(status(shm_.name())["last_outcome"], "done");
+  EXPECT_NEAR(std::stod(getp("lasercnc.x.pos-cmd")) - x, 10.0, 1e-9);
+  ASSERT_EQ(halcmd("setp lasercnc.digital-in-04 0").exit_code, 0);
+}
+
 TEST_F(HalSim, TheShippedConfigurationsNameOnlyPinsTheComponentHas) {
   const std::string shown = halcmd("show pin lasercnc").out + halcmd("show funct lasercnc").out;
   std::size_t checked = 0;

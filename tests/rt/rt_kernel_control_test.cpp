@@ -347,6 +347,58 @@ TEST(RtKernelControl, AProgramPauseHoldsAtItsEntryUntilResumed) {
   r.kernel->shutdown();
 }
 
+// M66: the job holds at the wait's entry until the input does as asked —
+// a resume does not end it — then goes on; the time up, it stops with E420.
+TEST(RtKernelControl, AnInputWaitHoldsUntilTheInputComesOrStopsAtItsTimeout) {
+  for (const bool comes : {true, false}) {
+    SCOPED_TRACE(comes ? "the input comes" : "the time is up");
+    Rig r;
+    std::int64_t sum = 0;
+    for (int i = 0; i < 600; ++i) {
+      PeriodIncrement inc = step_x(i < 300 ? 10 : 0, i < 300 ? 1 : 2);
+      if (i >= 300 && i < 302) inc.kind = MotionKind::Dwell;  // the wait's dwell, at rest
+      if (i == 300) {
+        inc.wait_input = 3;
+        inc.wait_mode = 1;  // a rise
+        inc.wait_timeout_s = comes ? 30.0f : 0.05f;
+      }
+      if (i >= 302) inc = step_x(10, 3);
+      inc.end_of_program = i == 599;
+      sum += inc.steps[0];
+      ASSERT_TRUE(r.buffer->try_push(inc));
+    }
+    r.sim->set_digital_inputs(0b1000);  // high already: a rise needs it low first
+    r.start_idle();
+    r.send(RtCommandType::StartJob);
+    ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::FeedHold; }));
+    EXPECT_EQ(r.kernel->position_steps(0), 3000);
+    if (comes) {
+      r.send(RtCommandType::Resume);  // no: the input decides
+      std::this_thread::sleep_for(20ms);
+      EXPECT_EQ(r.kernel->state(), MachineState::FeedHold);
+      EXPECT_EQ(r.kernel->position_steps(0), 3000);
+      r.sim->set_digital_inputs(0);
+      std::this_thread::sleep_for(5ms);
+      EXPECT_EQ(r.kernel->state(), MachineState::FeedHold);  // low is no rise
+      r.sim->set_digital_inputs(0b1000);
+      ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::Idle; }));
+      EXPECT_TRUE(r.kernel->last_job_completed());
+      EXPECT_EQ(r.kernel->position_steps(0), sum);
+    } else {
+      ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::Idle; }));
+      EXPECT_FALSE(r.kernel->last_job_completed());
+      EXPECT_EQ(r.kernel->fault().code, ErrorCode::RtInputTimeout);
+      EXPECT_EQ(r.kernel->fault().line, 2u);
+      EXPECT_EQ(r.kernel->position_steps(0), 3000);  // nothing after the wait ran
+    }
+    bool logged = false;
+    for (const RtLogRecord& l : r.logs())
+      if (l.code == RtLogCode::InputWait) logged = l.line == 2 && l.value == 3;
+    EXPECT_TRUE(logged);
+    r.kernel->shutdown();
+  }
+}
+
 // A producer streaming slower than the machine runs: the kernel keeps the
 // braking reserve and decelerates along the path instead of running dry.
 TEST(RtKernelControl, SlowStreamDeceleratesAlongThePathAndNeverUnderruns) {

@@ -262,8 +262,8 @@ TEST(ProgramReader, UnknownGCodeIsNamed) {
 }
 
 TEST(ProgramReader, UnknownMCodeIsNamed) {
-  Diagnostic d = expect_error("G0 X20\nM66\n", ErrorCode::GcodeUnknownCode, 2, 1);
-  EXPECT_EQ(d.message.rfind("M66 is not supported", 0), 0u) << d.message;
+  Diagnostic d = expect_error("G0 X20\nM19\n", ErrorCode::GcodeUnknownCode, 2, 1);
+  EXPECT_EQ(d.message.rfind("M19 is not supported", 0), 0u) << d.message;
   EXPECT_MENTIONS(d, "M30");
   d = expect_error("M3.5\n", ErrorCode::GcodeBadNumber, 1, 1);
   EXPECT_MENTIONS(d, "'M3.5'");

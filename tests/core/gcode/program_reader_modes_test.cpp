@@ -401,5 +401,34 @@ TEST(ProgramReader, OutputWordsAreCheckedAtTheirColumn) {
   EXPECT_MENTIONS(d, "with no M67 or M68 to use it");
 }
 
+// M66 waits for a digital input at rest (a two-period dwell carrying the
+// wait); the program, read ahead, sees #5399 as it will be if the job goes
+// on; a wait it cannot honour so is refused.
+TEST(ProgramReader, M66WaitsAtRestForAnInputWithATimeout) {
+  const auto segs = segments(
+      "G1 X20 F600 M3 S50\nM66 P2 L3 Q1.5\nG1 X[29 + #5399]\nM66 P0 L2 Q2\nG1 X[40 + #5399]\n");
+  ASSERT_EQ(segs.size(), 5u);
+  const Segment& w = segs[1];
+  EXPECT_EQ(w.kind, MotionKind::Dwell);
+  EXPECT_EQ(w.wait_input, 2);
+  EXPECT_EQ(w.wait_mode, 3u);
+  EXPECT_FLOAT_EQ(w.wait_timeout_s, 1.5f);
+  EXPECT_EQ(w.laser, LaserMode::Off);
+  EXPECT_POSE_NEAR(w.end, pose(20, 10, 10), 1e-12);
+  EXPECT_EQ(segs[2].wait_input, -1);
+  EXPECT_DOUBLE_EQ(segs[2].end[0], 30.0);  // L3 (high): #5399 reads 1
+  EXPECT_DOUBLE_EQ(segs[4].end[0], 40.0);  // L2 (a fall): 0
+  Diagnostic d = expect_error("M66 P1 L0 Q1\n", ErrorCode::GcodeUnsupported, 1, 8);
+  EXPECT_MENTIONS(d, "read ahead of the motion");
+  expect_error("M66 P1\n", ErrorCode::GcodeUnsupported, 1, 1);  // L0 by default
+  d = expect_error("M66 P1 L3\n", ErrorCode::GcodeBadValue, 1, 1);
+  EXPECT_MENTIONS(d, "needs a timeout");
+  expect_error("M66 P8 L3 Q1\n", ErrorCode::GcodeBadValue, 1, 5);
+  expect_error("M66 E0 L3 Q1\n", ErrorCode::GcodeUnsupported, 1, 5);
+  expect_error("M66 L3 Q1\n", ErrorCode::GcodeMissingWord, 1, 1);
+  expect_error("G0 X100 Y95\nG41.1 D2\nG1 X100 Y100 F600\nM66 P1 L3 Q1\n",
+               ErrorCode::GcodeModalConflict, 4, 1);
+}
+
 }  // namespace
 }  // namespace lcnc
