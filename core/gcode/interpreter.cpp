@@ -466,10 +466,9 @@ bool Interpreter::set_path_control() {
 
 // --- motion ---------------------------------------------------------------
 
-// M0 (M1, M60): the machine stops here, the beam off, until the operator
-// resumes: a dwell of two periods (so a period's sample falls inside it
-// whatever the phase) that the RT holds on (Segment::pause).
-bool Interpreter::pause(SegmentBuffer& out) {
+// Where the RT holds the job at rest, the beam off (M0, M66): a dwell of
+// two periods, so a period's sample falls inside it whatever the phase.
+Segment& Interpreter::hold_segment(SegmentBuffer& out) {
   Segment& s = push_segment(out);
   fill_modal(s);
   s.kind = MotionKind::Dwell;
@@ -477,7 +476,12 @@ bool Interpreter::pause(SegmentBuffer& out) {
   s.end = pos_;
   s.dwell_s = 2.0 * machine_.period_s();
   s.laser = LaserMode::Off;
-  s.pause = true;
+  return s;
+}
+
+// M0 (M1, M60): the machine stops here until the operator resumes.
+bool Interpreter::pause(SegmentBuffer& out) {
+  hold_segment(out).pause = true;
   return true;
 }
 
@@ -973,13 +977,7 @@ bool Interpreter::wait_input(SegmentBuffer& out) {
                 "found " + quoted_block() + ": M66 needs a timeout; expected Q<seconds> from "
                 "more than 0 to " + gnum(kMaxBlockSeconds) + " (after it the job stops)");
   }
-  Segment& s = push_segment(out);
-  fill_modal(s);
-  s.kind = MotionKind::Dwell;
-  s.start = pos_;
-  s.end = pos_;
-  s.dwell_s = 2.0 * machine_.period_s();
-  s.laser = LaserMode::Off;
+  Segment& s = hold_segment(out);
   s.wait_input = static_cast<std::int8_t>(p);
   s.wait_mode = static_cast<std::uint8_t>(l);
   s.wait_timeout_s = static_cast<float>(b['Q']);

@@ -155,6 +155,7 @@ class Interpreter {
   bool rapid_to(const Pose& end, SegmentBuffer& out);
   bool line_to(const Pose& end, SegmentBuffer& out);
   bool pause(SegmentBuffer& out);
+  Segment& hold_segment(SegmentBuffer& out);
   // A polar block's X Y (@ ^ about the program's origin; G91: added to the
   // radius and angle of `from`), written into `to` in machine coordinates.
   bool polar_target(const Pose& from, Pose& to);
