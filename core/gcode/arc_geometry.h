@@ -9,7 +9,9 @@
 //   sweep = (θe − θs) mod 2π  (G3)   or   (θs − θe) mod 2π  (G2),
 // taken in (0, 2π] so that end == start is one full turn, plus
 // 2π · extra_turns. Arc length over X Y Z (helix):
-//   L = sqrt((r · sweep)² + Δn²),  r the radius at the start.
+//   L = sqrt((r · sweep)² + Δn²),  r the radius at the start;
+// for a spiral (the radius to the end differs) the planner's bound
+//   L = sqrt((r_max · sweep)² + Δr² + Δn²)   (path/segment_geometry.h).
 #pragma once
 
 #include <array>

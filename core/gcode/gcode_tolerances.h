@@ -20,13 +20,18 @@ inline constexpr double kSamePointMm = 1e-9;
 // about the chord's midpoint, through both ends.
 inline constexpr double kArcReachMm = 0.00005 * 25.4;
 
-// IJK form, LinuxCNC's rule (interp_arc.cc): the radius to the end may differ
-// from the radius to the start by up to kArcRadiusAbsMm, or by more as long as
-// the relative difference stays within kArcRadiusRel; never by more than
-// kArcRadiusHardAbsMm (100 × the absolute tolerance).
-inline constexpr double kArcRadiusAbsMm = 0.002;
+// IJK form, LinuxCNC 2.9's rule (interp_arc.cc, its default tolerances):
+// the radius to the end may differ from the radius to the start by up to
+// kArcRadiusAbsMm (G21) or kArcRadiusAbsIn (G20) — 2·√2 rounding units of
+// 0.01 mm or 0.001 in, so an arc whose centre and end were rounded to the
+// post's precision is accepted — or by more as long as the relative
+// difference stays within kArcRadiusRel; never by more than 100 × the
+// absolute tolerance. Such an arc is a spiral from one radius to the other
+// (path/segment_geometry.h), as LinuxCNC moves it: it ends on its end point.
+inline constexpr double kArcRadiusAbsMm = 2.0 * 0.01 * 1.4142135623730951;
+inline constexpr double kArcRadiusAbsIn = 2.0 * 0.001 * 1.4142135623730951;
 inline constexpr double kArcRadiusRel = 0.001;
-inline constexpr double kArcRadiusHardAbsMm = 100.0 * kArcRadiusAbsMm;
+inline constexpr double kArcRadiusHardFactor = 100.0;
 
 // An arc whose radius (start or end) is below this has no direction.
 inline constexpr double kArcMinRadiusMm = 1e-6;

@@ -822,12 +822,18 @@ bool Interpreter::arc_centre(const Pose& from, Pose& end, Vec3& c, std::uint32_t
     }
     const double diff = std::fabs(r_end - r_start);
     const double rel = diff / std::max(r_start, r_end);
-    if (diff > kArcRadiusHardAbsMm || (diff > kArcRadiusAbsMm && rel > kArcRadiusRel)) {
+    const bool inch = length_scale() != 1.0;
+    const double tol = inch ? kArcRadiusAbsIn * kMmPerInch : kArcRadiusAbsMm;
+    if (diff > kArcRadiusHardFactor * tol || (diff > tol && rel > kArcRadiusRel)) {
+      const double unit = length_scale();
+      const char* name = inch ? " in" : " mm";
       return fail(ErrorCode::GcodeArcRadius, at,
-                  "found " + quoted_block() + " with radius " + num(r_start) +
-                      " mm to the start and " + num(r_end) + " mm to the end (they differ by " +
-                      num(diff) + " mm); expected equal radii, within " + num(kArcRadiusAbsMm) +
-                      " mm or " + num(kArcRadiusRel * 100.0) + " %");
+                  "found " + quoted_block() + " with radius " + num(r_start / unit) + name +
+                      " to the start and " + num(r_end / unit) + name +
+                      " to the end (they differ by " + num(diff / unit) + name +
+                      "); expected equal radii, within " + gnum(tol / unit) + name + " or " +
+                      num(kArcRadiusRel * 100.0) + " % (up to " +
+                      gnum(kArcRadiusHardFactor * tol / unit) + name + ")");
     }
   }
 

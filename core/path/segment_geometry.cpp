@@ -65,7 +65,7 @@ void SegmentGeometry::set(const Segment& seg) {
     u_ = Vec3::UnitX();
     w_ = Vec3::UnitY();
     axis_n_ = Vec3::Zero();
-    helix_h_ = radius_ = sweep_ = plane_ratio_ = 0.0;
+    helix_h_ = radius_ = sweep_ = plane_ratio_ = dr_ = spiral_excess_ = 0.0;
     sin_sweep_ = 0.0;
     cos_sweep_ = 1.0;
     length_ = line_length(d);
@@ -75,6 +75,7 @@ void SegmentGeometry::set(const Segment& seg) {
   arc_ = true;
   center_ = seg.center;
   const Vec3 a = start_.head<3>(), b = end_.head<3>();
+  double r_end = 0.0;  // the end's distance from the centre, in the plane
   const double two_pi = 2.0 * std::numbers::pi;
   if (seg.plane == Plane::Free) {
     const Vec3 n = seg.normal.normalized();
@@ -96,6 +97,7 @@ void SegmentGeometry::set(const Segment& seg) {
     w_ = n.cross(u_);
     const Vec3 rb = b - center_;
     const double y = rb.dot(w_), x = rb.dot(u_);
+    r_end = std::sqrt(x * x + y * y);
     sweep_ = atan2_small(y, x);
     // End on the start (to rounding: a full circle mapped by a rotation comes
     // back a few 1e-17 rad either side): one full turn, as on the named planes.
@@ -117,14 +119,26 @@ void SegmentGeometry::set(const Segment& seg) {
     u_ = ra / radius_;
     w_ = n.cross(u_);
     const double y = rb.dot(w_), x = rb.dot(u_);
+    r_end = rb.norm();
     double sweep = atan2_small(y, x);     // (−π, π]
     if (sweep <= plan::kFullTurnAngle) sweep += two_pi;  // end == start: one full turn
     sweep_ = sweep + two_pi * seg.extra_turns;
     set_sin_cos_sweep(y, x);
   }
-  const double plane_len = radius_ * sweep_;
-  // hypot(x, 0) is |x| exactly (C Annex F): skip the call for plane arcs
-  length_ = helix_h_ == 0.0 ? std::abs(plane_len) : std::hypot(plane_len, helix_h_);
+  set_spiral(r_end);
+}
+
+void SegmentGeometry::set_spiral(double r_end) {
+  dr_ = radii_differ(radius_, r_end) ? r_end - radius_ : 0.0;
+  const double plane_len = radius_max() * sweep_;
+  if (dr_ == 0.0) {
+    spiral_excess_ = 0.0;
+    // hypot(x, 0) is |x| exactly (C Annex F): skip the call for plane arcs
+    length_ = helix_h_ == 0.0 ? std::abs(plane_len) : std::hypot(plane_len, helix_h_);
+  } else {
+    spiral_excess_ = (std::abs(dr_) + std::abs(dr_) / sweep_) / radius_max();
+    length_ = std::sqrt(plane_len * plane_len + dr_ * dr_ + helix_h_ * helix_h_);
+  }
   plane_ratio_ = length_ > 0.0 ? plane_len / length_ : 0.0;
   inv_length_ = length_ > 0.0 ? 1.0 / length_ : 0.0;
 }
@@ -141,6 +155,7 @@ void SegmentGeometry::set_circular_arc(const Pose& start, const Pose& end, const
   axis_n_ = Vec3::Zero();
   helix_h_ = 0.0;
   radius_ = radius;
+  dr_ = spiral_excess_ = 0.0;
   sweep_ = atan2_small(sin_sweep, cos_sweep);
   if (sweep_ <= 0.0) sweep_ += 2.0 * std::numbers::pi;
   sin_sweep_ = sin_sweep;
@@ -166,34 +181,42 @@ double SegmentGeometry::angle_at(double s) const noexcept {
   return length_ > 0.0 ? sweep_ * std::clamp(s / length_, 0.0, 1.0) : 0.0;
 }
 
-Pose SegmentGeometry::tangent_at_angle(double sin_phi, double cos_phi) const {
+// P'(φ)·dφ/ds with P'(φ) = r(φ)·e_θ + (Δr/sweep)·e_r + (h/sweep)·n̂, dφ/ds = sweep/L
+Pose SegmentGeometry::tangent_at_angle(double f, double sin_phi, double cos_phi) const {
   if (length_ <= 0.0) return Pose::Zero();
   Pose t = (end_ - start_) * inv_length_;
   if (arc_) {
     const double dphi_ds = sweep_ * inv_length_;
-    t.head<3>() = radius_ * dphi_ds * (-sin_phi * u_ + cos_phi * w_) +
+    t.head<3>() = (radius_ + f * dr_) * dphi_ds * (-sin_phi * u_ + cos_phi * w_) +
                   (helix_h_ * inv_length_) * axis_n_;
+    if (dr_ != 0.0) t.head<3>() += (dr_ * inv_length_) * (cos_phi * u_ + sin_phi * w_);
   }
   return t;
 }
 
 Pose SegmentGeometry::tangent(double s) const {
-  if (!arc_) return tangent_at_angle(0.0, 1.0);
+  if (!arc_) return tangent_at_angle(0.0, 0.0, 1.0);
   const double phi = angle_at(s);
-  return tangent_at_angle(std::sin(phi), std::cos(phi));
+  return tangent_at_angle(sweep_ > 0.0 ? phi / sweep_ : 0.0, std::sin(phi), std::cos(phi));
 }
 
 // angle_at(0) is 0 and angle_at(length_) is sweep_ exactly (s / L is 0 and 1).
-Pose SegmentGeometry::start_tangent() const { return tangent_at_angle(0.0, 1.0); }
+Pose SegmentGeometry::start_tangent() const { return tangent_at_angle(0.0, 0.0, 1.0); }
 
-Pose SegmentGeometry::end_tangent() const { return tangent_at_angle(sin_sweep_, cos_sweep_); }
+Pose SegmentGeometry::end_tangent() const {
+  return tangent_at_angle(1.0, sin_sweep_, cos_sweep_);
+}
 
+// P''(φ)·(dφ/ds)² with P''(φ) = −r(φ)·e_r + 2·(Δr/sweep)·e_θ
 Pose SegmentGeometry::curvature(double s) const {
   Pose k = Pose::Zero();
   if (!arc_ || length_ <= 0.0) return k;
   const double phi = angle_at(s);
   const double dphi_ds = sweep_ / length_;
-  k.head<3>() = -radius_ * dphi_ds * dphi_ds * (std::cos(phi) * u_ + std::sin(phi) * w_);
+  const double c = std::cos(phi), sn = std::sin(phi);
+  const double r = dr_ == 0.0 ? radius_ : radius_ + (phi / sweep_) * dr_;
+  k.head<3>() = -r * dphi_ds * dphi_ds * (c * u_ + sn * w_);
+  if (dr_ != 0.0) k.head<3>() += (2.0 * dr_ / sweep_) * dphi_ds * dphi_ds * (-sn * u_ + c * w_);
   return k;
 }
 
@@ -207,9 +230,12 @@ double SegmentGeometry::distance_xyz(const Vec3& p) const {
   // turn, by up to the point's height off the helix over its pitch: on a
   // steep helix of a small radius, far), so there the nearest candidate and
   // a turn either side of it are refined by Newton's method on the squared
-  // distance (a helix of many turns costs three walks, not one per turn):
-  //   P(φ) = c + r(cos φ·u + sin φ·w) + φ·k·n,  k = rise / sweep
-  //   f'(φ) = (P − p)·P',  f''(φ) = |P'|² + (P − p)·P'',  P'' = −r(cos φ·u + sin φ·w)
+  // distance (a helix of many turns costs three walks, not one per turn); a
+  // spiral is refined the same way:
+  //   P(φ) = c + r(φ)·e_r + φ·k·n,  r(φ) = r0 + q·φ,  q = Δr / sweep,  k = rise / sweep
+  //   e_r = cos φ·u + sin φ·w,  e_θ = −sin φ·u + cos φ·w
+  //   P' = r·e_θ + q·e_r + k·n,  P'' = −r·e_r + 2q·e_θ
+  //   f'(φ) = (P − p)·P',  f''(φ) = |P'|² + (P − p)·P''
   const Vec3 q = p - center_;
   const double two_pi = 2.0 * std::numbers::pi;
   double best = std::min((a - p).norm(), (b - p).norm());
@@ -224,20 +250,20 @@ double SegmentGeometry::distance_xyz(const Vec3& p) const {
       best_ang = ang;
     }
   }
-  if (!helix) return best;
+  if (!helix && dr_ == 0.0) return best;
   // the polar angle's best turn (or the end nearest), and a turn either side
   // of it, each walked in by Newton: a few steps each, whatever the turns
-  const double k = helix_h_ / sweep_;
+  const double k = helix_h_ / sweep_, dr_dphi = dr_ / sweep_;
   const double from = best_ang >= 0.0 ? best_ang : ((a - p).norm() <= (b - p).norm() ? 0.0 : sweep_);
   for (const double start : {from - two_pi, from, from + two_pi}) {
     double phi = std::clamp(start, 0.0, sweep_);
     for (int it = 0; it < kHelixNewtonSteps; ++it) {
-      const double c = std::cos(phi), sn = std::sin(phi);
-      const Vec3 radial = radius_ * (c * u_ + sn * w_);
-      const Vec3 d = center_ + radial + (phi * k) * axis_n_ - p;
-      const Vec3 d1 = radius_ * (-sn * u_ + c * w_) + k * axis_n_;
+      const double c = std::cos(phi), sn = std::sin(phi), r = radius_ + dr_dphi * phi;
+      const Vec3 e_r = c * u_ + sn * w_, e_t = -sn * u_ + c * w_;
+      const Vec3 d = center_ + r * e_r + (phi * k) * axis_n_ - p;
+      const Vec3 d1 = r * e_t + dr_dphi * e_r + k * axis_n_;
       const double f1 = d.dot(d1);
-      const double f2 = d1.squaredNorm() - d.dot(radial);
+      const double f2 = d1.squaredNorm() + d.dot(2.0 * dr_dphi * e_t - r * e_r);
       if (!(f2 > 0.0)) break;
       const double next = std::clamp(phi - f1 / f2, 0.0, sweep_);
       if (next == phi) break;
@@ -250,7 +276,7 @@ double SegmentGeometry::distance_xyz(const Vec3& p) const {
 
 std::vector<Pose> arc_chord_ends(const Segment& arc, double sag_mm) {
   const SegmentGeometry g(arc);
-  const double r = std::max(g.radius(), 1e-9);
+  const double r = std::max(g.radius_max(), 1e-9);
   const double dphi = 2.0 * std::acos(std::max(-1.0, 1.0 - sag_mm / r));
   const auto n = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(g.sweep_rad() / dphi)));
   std::vector<Pose> out;

@@ -11,6 +11,19 @@
 // normal axis, or a Free plane's normal (the start's plane; the centre is
 // taken into it); the rotary axes move linearly with s. An arc whose end
 // comes back onto its start (to kFullTurnAngle) is a full turn.
+//
+// Spiral: when the end lies at another distance from the centre than the
+// start (G-code accepts IJK arcs whose two radii differ within a tolerance),
+// the radius changes linearly with the angle, r(φ) = r0 + Δr·φ/sweep, so the
+// path ends exactly on its end point instead of jumping there. With
+// q = Δr/sweep, P'(φ) = r·e_θ + q·e_r + (h/sweep)·n̂ has |P'| ≤
+// sqrt(r_max² + q² + (h/sweep)²), and the length is taken as that bound
+// times the sweep:
+//   L = sqrt((r_max·sweep)² + Δr² + h²)
+// so |dp/ds| ≤ 1 everywhere: the path speed never exceeds the planned one
+// (where the radius is smaller it runs slower, by at most Δr/r_max). The
+// planner holds a spiral to limits lowered by its spiral_excess() (see
+// segment_limits). Below kSpiralMinMm of difference an arc is a circle.
 #pragma once
 
 #include <algorithm>
@@ -73,7 +86,25 @@ class SegmentGeometry {
 
   [[nodiscard]] double length() const noexcept { return length_; }
   [[nodiscard]] bool is_arc() const noexcept { return arc_; }
+  // Radius at the start; on a spiral also the largest radius and the change.
   [[nodiscard]] double radius() const noexcept { return radius_; }
+  [[nodiscard]] double radius_max() const noexcept { return radius_ + std::max(0.0, dr_); }
+  [[nodiscard]] bool is_spiral() const noexcept { return dr_ != 0.0; }
+  // (|Δr| + |Δr|/sweep) / r_max: how far a spiral's velocity (per unit of
+  // path speed, over the plane speed ratio) and its acceleration terms may
+  // stray from the circle of radius_max() that the limits are computed for;
+  // 0 for circles and lines.
+  [[nodiscard]] double spiral_excess() const noexcept { return spiral_excess_; }
+  // The helix part of the tangent, (h/L)·n̂ (zero for plane arcs and lines).
+  [[nodiscard]] Vec3 helix_rate() const noexcept { return (helix_h_ * inv_length_) * axis_n_; }
+  // Differences of the radii up to kSpiralMinMm + kSpiralMinRel·r are
+  // rounding (the centre of a corner blend of a nearly straight corner is
+  // computed from a radius of kilometres): the arc is a circle.
+  static constexpr double kSpiralMinMm = 1e-9;
+  static constexpr double kSpiralMinRel = 1e-12;
+  [[nodiscard]] static bool radii_differ(double r_start, double r_end) noexcept {
+    return std::abs(r_end - r_start) > kSpiralMinMm + kSpiralMinRel * std::max(r_start, r_end);
+  }
   // Total sweep angle of an arc (rad, > 0, about the turning normal), incl. turns.
   [[nodiscard]] double sweep_rad() const noexcept { return sweep_; }
   // The sine and cosine of sweep_rad(), computed once.
@@ -112,8 +143,10 @@ class SegmentGeometry {
   [[nodiscard]] double angle_at(double s) const noexcept;
   // sin and cos of the sweep, from the end point's coordinates (y, x) about the centre
   void set_sin_cos_sweep(double y, double x) noexcept;
-  // dp/ds at arc angle phi, given sin φ and cos φ.
-  [[nodiscard]] Pose tangent_at_angle(double sin_phi, double cos_phi) const;
+  // dp/ds at arc angle φ = f·sweep, given f, sin φ and cos φ.
+  [[nodiscard]] Pose tangent_at_angle(double f, double sin_phi, double cos_phi) const;
+  // the radius and, for a spiral, the length and ratios from the sweep
+  void set_spiral(double r_end);
 
   Pose start_, end_;
   bool arc_ = false;
@@ -122,6 +155,8 @@ class SegmentGeometry {
   Vec3 axis_n_ = Vec3::Zero();  // helix direction (unit) or zero
   double helix_h_ = 0.0;        // travel along axis_n_
   double radius_ = 0.0, sweep_ = 0.0, length_ = 0.0, plane_ratio_ = 0.0;
+  double dr_ = 0.0;             // spiral: end radius − start radius (0: a circle)
+  double spiral_excess_ = 0.0;
   double inv_length_ = 0.0;  // 1/length_ (0 for no length): at() is asked every period
   double sin_sweep_ = 0.0, cos_sweep_ = 1.0;  // of sweep_ (arcs): the end tangent, the limits
 };
@@ -140,7 +175,8 @@ inline void SegmentGeometry::at(double s, Pose& p) const {
   p.tail<3>() = start_.tail<3>() + (end_.tail<3>() - start_.tail<3>()) * f;
   double sin_phi, cos_phi;
   detail::sin_cos(sweep_ * f, sin_phi, cos_phi);
-  p.head<3>() = center_ + radius_ * (cos_phi * u_ + sin_phi * w_) + (f * helix_h_) * axis_n_;
+  p.head<3>() =
+      center_ + (radius_ + f * dr_) * (cos_phi * u_ + sin_phi * w_) + (f * helix_h_) * axis_n_;
 }
 
 // The chord end points of an arc (its end included, its start not) whose

@@ -114,6 +114,10 @@ bool curve_of(const Segment& s, const PlaneAxes& pa, Curve& out) {
   out.line = false;
   out.c = V2(s.center[pa.first], s.center[pa.second]);
   out.radius = (V2(s.start[pa.first], s.start[pa.second]) - out.c).norm();
+  // a spiral (end radius not the start's) has no circle to fillet against:
+  // its corner is a junction (lookahead)
+  const double r_end = (V2(s.end[pa.first], s.end[pa.second]) - out.c).norm();
+  if (std::abs(r_end - out.radius) > plan::kSpiralBlendMm) return false;
   out.sigma = s.clockwise ? -1.0 : 1.0;
   out.length = SegmentGeometry(s).length();
   return out.radius > plan::kMinSegmentLength;

@@ -131,6 +131,43 @@ bool end_box_lines(const ArcAxis& x, double rho, double c, double x_max, double 
   return true;
 }
 
+// Factors on the axes' velocity and acceleration limits for a spiral (1, 1
+// for lines and circles). The limits below are those of the circle of
+// radius r_max at the spiral's dφ/ds; the spiral strays from it (ε its
+// spiral_excess, ρ the plane speed ratio, t and n the circle's unit tangent
+// and normal, a_n = (ρ·v)²/r_max its centripetal acceleration):
+//   velocity, per unit of path speed, by at most ρ·ε along any axis;
+//   curvature by at most 2·ε·ρ²/r_max, so v² times it by at most 2·ε·a_n.
+// Some axis sees at least 1/√3 of the unit t (and of n), so at a speed and
+// acceleration the circle's limits allow, v ≤ √3·v_top/ρ, a_n ≤ √3·share·a_top
+// and |a_t| ≤ √3·(a_top + a_n)/ρ (v_top, a_top the largest axis limits): the
+// velocity strays by at most √3·ε·v_top, the acceleration by at most
+// ε·(2·a_n + ρ·|a_t|) ≤ ε·(√3 + (2√3 + 3)·share)·a_top < 9·ε·a_top. Limits
+// lowered to lim/(1 + 2·ε·top/bottom) and lim/(1 + 9·ε·top/bottom) (over the
+// linear axes) keep the spiral itself within them.
+struct SpiralDerate {
+  double v = 1.0, a = 1.0;
+};
+
+SpiralDerate spiral_derate(const SegmentGeometry& geo, const MachineConfig& machine) {
+  SpiralDerate d;
+  const double eps = geo.spiral_excess();
+  if (eps <= 0.0) return d;
+  double v_lo = std::numeric_limits<double>::infinity(), v_hi = 0.0, a_lo = v_lo, a_hi = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const AxisConfig& ax = machine.axes[i];
+    if (!ax.present) continue;
+    v_lo = std::min(v_lo, ax.max_velocity);
+    v_hi = std::max(v_hi, ax.max_velocity);
+    a_lo = std::min(a_lo, ax.max_acceleration);
+    a_hi = std::max(a_hi, ax.max_acceleration);
+  }
+  if (v_hi <= 0.0 || a_hi <= 0.0) return d;
+  d.v = 1.0 / (1.0 + 2.0 * eps * v_hi / v_lo);
+  d.a = 1.0 / (1.0 + 9.0 * eps * a_hi / a_lo);
+  return d;
+}
+
 }  // namespace
 
 void segment_limits(const SegmentGeometry& geo, const MachineConfig& machine, SegmentLimits& lim) {
@@ -144,7 +181,12 @@ void segment_limits(const SegmentGeometry& geo, const MachineConfig& machine, Se
   double v_max = kInf, a_linear = kInf;
   // Linearly moving part of every axis (whole line; helix normal and rotary axes of an arc).
   Pose lin = geo.start_tangent();
-  if (geo.is_arc()) lin.head<3>() -= geo.plane_speed_ratio() * geo.w();
+  if (geo.is_spiral()) {
+    lin.head<3>() = geo.helix_rate();
+  } else if (geo.is_arc()) {
+    lin.head<3>() -= geo.plane_speed_ratio() * geo.w();
+  }
+  const SpiralDerate derate = spiral_derate(geo, machine);
   // min over axes of max_velocity / k and max_acceleration / k: the axes
   // that bind found by comparing the ratios cross-multiplied, one division each
   const AxisConfig* v_axis = nullptr;
@@ -165,8 +207,8 @@ void segment_limits(const SegmentGeometry& geo, const MachineConfig& machine, Se
     }
   }
   if (v_axis != nullptr) {
-    v_max = v_axis->max_velocity / v_k;
-    a_linear = a_axis->max_acceleration / a_k;
+    v_max = derate.v * v_axis->max_velocity / v_k;
+    a_linear = derate.a * a_axis->max_acceleration / a_k;
   }
   std::array<ArcAxis, 3> arc_axes;
   int arc_axis_count = 0;
@@ -180,7 +222,7 @@ void segment_limits(const SegmentGeometry& geo, const MachineConfig& machine, Se
       if (g <= 1e-15) continue;
       const AxisConfig& ax = machine.axes[i];
       ArcAxis& x = arc_axes[arc_axis_count++];
-      x.a_axis = ax.max_acceleration;
+      x.a_axis = derate.a * ax.max_acceleration;
       x.g = g;
       sinusoid_range(wi, -ui, g, geo, x.t_lo, x.t_hi);   // t = −sin φ·u + cos φ·w
       sinusoid_range(-ui, -wi, g, geo, x.n_lo, x.n_hi);  // n = −cos φ·u − sin φ·w
@@ -189,12 +231,12 @@ void segment_limits(const SegmentGeometry& geo, const MachineConfig& machine, Se
       x.n_end = {-ui, -cs * ui - sn * wi};
       const double t_abs = std::max(std::abs(x.t_lo), std::abs(x.t_hi));
       const double n_abs = std::max(std::abs(x.n_lo), std::abs(x.n_hi));
-      v_max = std::min(v_max, ax.max_velocity / (rho * t_abs + std::abs(lin[i])));
-      if (n_abs > 1e-15) a_n_max = std::min(a_n_max, ax.max_acceleration / n_abs);
+      v_max = std::min(v_max, derate.v * ax.max_velocity / (rho * t_abs + std::abs(lin[i])));
+      if (n_abs > 1e-15) a_n_max = std::min(a_n_max, x.a_axis / n_abs);
     }
     // centripetal limit: (ρ·v)²/r · N_i ≤ share · amax_i
     if (std::isfinite(a_n_max))
-      v_max = std::min(v_max, std::sqrt(plan::kArcNormalShare * a_n_max * geo.radius()) / rho);
+      v_max = std::min(v_max, std::sqrt(plan::kArcNormalShare * a_n_max * geo.radius_max()) / rho);
   }
   if (!std::isfinite(v_max)) return;
   // Planned at the machine's full limits: an override above 100 % is planned
@@ -203,7 +245,7 @@ void segment_limits(const SegmentGeometry& geo, const MachineConfig& machine, Se
   lim.a_linear = a_linear;  // ∞ when only the arc's plane moves
   if (!arc) return;
   // a_n = (ρ·v)²/r: the centripetal acceleration at speed v
-  const double c = rho * rho / geo.radius();
+  const double c = rho * rho / geo.radius_max();
   lim.c = c / rho;  // the norm bound sqrt((amax/g)² − a_n²)/ρ as sqrt(b − (c'·x)²)
   for (int j = 0; j < arc_axis_count; ++j) {
     const ArcAxis& x = arc_axes[j];

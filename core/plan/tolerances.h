@@ -5,6 +5,12 @@ namespace lcnc::plan {
 
 // Segments shorter than this (mm or deg) carry no motion of their own.
 inline constexpr double kMinSegmentLength = 1e-9;
+
+// A corner fillet (fillet_transition) takes an arc as the circle of its start
+// radius; an arc whose end radius differs by more than this (a spiral) is
+// not filleted. A nanometre: far under a step, within the quantization
+// margin of every blend's tolerance.
+inline constexpr double kSpiralBlendMm = 1e-6;
 // Share of an arc's in-plane acceleration budget the centripetal part may
 // take at the arc's top speed; the rest, sqrt(1 − 0.995²) ≈ 10 %, stays for
 // speeding up and slowing down on the arc. Curvature-limited arcs run at

@@ -252,6 +252,37 @@ TEST(LasercncRun, AProgramWithoutG64BlendsWithinTheMachinesTolerance) {
   EXPECT_LT(jc["cycle_time_s"].get<double>(), 0.9 * js["cycle_time_s"].get<double>());
 }
 
+// IJK arcs whose two radii differ within LinuxCNC's tolerance (a post's
+// rounding) run as spirals: the job ends on the programmed end with every
+// step, within the axes' limits (the run's own check, and the trace
+// measured here), and without a jump at the arcs' ends.
+TEST(LasercncRun, ArcsWhoseRadiiDifferRunAsSpiralsWithinTheLimits) {
+  const fs::path prog = write_file("spirals.ngc",
+                                   "G21 G90 G64 P0.01 F9000\nG0 X10 Y10 Z5\nG1 X20\n"
+                                   "G3 X30.028 Y10 I5 J0\nG2 X40 Y10 I4.986 J0\n"
+                                   "G2 X50 Y19.98 I0 J10\nG1 X60\nM2\n");
+  const fs::path trace = temp_dir() / "spirals.csv";
+  const CmdResult r =
+      lasercnc("run " + prog.string() + " --json --no-progress --trace " + trace.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["steps_match"].get<bool>());
+  EXPECT_EQ(j["axes"]["X"]["steps_sent"].get<long long>(), 60000);
+  EXPECT_EQ(j["axes"]["Y"]["steps_sent"].get<long long>(), 19980);
+  EXPECT_LE(j["max_deviation_mm"].get<double>(), 0.01);
+  const std::vector<TraceRow> rows = read_trace(trace);
+  ASSERT_FALSE(rows.empty());
+  expect_within_velocity_limits(rows);
+  // no period moves further than the fastest axis allows (500 mm/s) and a
+  // step: a jump onto an arc's end would
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    const double dt = rows[k].t - rows[k - 1].t;
+    ASSERT_LE(std::hypot(rows[k].x - rows[k - 1].x, rows[k].y - rows[k - 1].y),
+              500.0 * dt + 0.0015)
+        << "row " << k;
+  }
+}
+
 TEST(LasercncRun, TextReportNamesEveryFigure) {
   const fs::path prog = write_file("square.ngc", "G21 G90 G61\nG0 X10 Y10 Z5\nG1 X20 F1200\nG1 Y20\nM2\n");
   const CmdResult r = lasercnc("run " + prog.string() + " --no-progress");

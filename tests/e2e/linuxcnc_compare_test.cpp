@@ -38,7 +38,7 @@ TEST(LinuxcncCanonicalMoves, TheSampleProgramsAndOursGiveLinuxCNCsMoves) {
       programs_under(kSource / "tests/data/linuxcnc_compare") + " '" +
       (kSource / "share/examples/bracket.ngc").string() + "' '" +
       (kSource / "share/hal/sim/sample.ngc").string() + "' '" +
-      (kSource / "tests/vectors/plate.ngc").string() + "' --at-least 162 --tool-table " +
+      (kSource / "tests/vectors/plate.ngc").string() + "' --at-least 163 --tool-table " +
       (kSource / "tests/data/machines/ncfiles_tools.tbl").string() + " --table " + table.string();
   const CmdResult r = run_program("/usr/bin/python3", args);
   EXPECT_EQ(r.exit_code, 0) << r.out << r.err << slurp(table);

@@ -195,13 +195,34 @@ TEST(ProgramReader, ArcInInchesScalesEndCentreAndRadius) {
 }
 
 TEST(ProgramReader, SmallRadiusMismatchIsAccepted) {
-  // 10.001 to the start, ~10.0000001 to the end: 0.001 mm apart (< 0.002).
+  // 10.001 to the start, ~10.0000001 to the end: 0.001 mm apart (< 0.028).
   EXPECT_EQ(segments("G2 X110 Y90 J-10.001 F600\n", start_at(100, 100, 10)).size(), 1u);
 }
 
+// LinuxCNC 2.9 (measured with its interpreter): radii 5 and 5.028 mm are
+// accepted, 5 and 5.029 refused (2·√2·0.01 mm = 0.0283 mm); in inches 1 and
+// 1.0028 accepted, 1 and 1.0029 refused (2·√2·0.001 in). The arc keeps its
+// programmed centre and end (a spiral between the two radii).
+TEST(ProgramReader, ArcRadiiMayDifferByLinuxCncsCentreTolerance) {
+  auto segs = segments("G3 X110.028 Y100 I5 J0 F600\n", start_at(100, 100, 10));
+  ASSERT_EQ(segs.size(), 1u);
+  EXPECT_POSE_NEAR(segs[0].end, pose(110.028, 100, 10), 1e-12);
+  EXPECT_VEC3_NEAR(segs[0].center, Vec3(105, 100, 10), 1e-12);
+  Diagnostic d = expect_error("G3 X110.029 Y100 I5 J0 F600\n", ErrorCode::GcodeArcRadius, 1,
+                              18, start_at(100, 100, 10));
+  EXPECT_MENTIONS(d, "within 0.0282843 mm");
+  segs = segments("G20 G3 X5.0028 Y3 I1 J0 F10\n", start_at(76.2, 76.2, 10));
+  ASSERT_EQ(segs.size(), 1u);
+  EXPECT_POSE_NEAR(segs[0].end, pose(5.0028 * 25.4, 76.2, 10), 1e-9);
+  d = expect_error("G20 G3 X5.0029 Y3 I1 J0 F10\n", ErrorCode::GcodeArcRadius, 1, 19,
+                   start_at(76.2, 76.2, 10));
+  EXPECT_MENTIONS(d, "radius 1 in to the start");
+  EXPECT_MENTIONS(d, "within 0.00282843 in");
+}
+
 TEST(ProgramReader, LargeArcWithinRelativeRadiusToleranceIsAccepted) {
-  // Radius 400 to the start, 400.1 to the end: 0.1 mm > 0.002 mm but only
-  // 0.025 % (< 0.1 %) and below the 0.2 mm hard limit: LinuxCNC accepts it.
+  // Radius 400 to the start, 400.1 to the end: 0.1 mm > 0.028 mm but only
+  // 0.025 % (< 0.1 %) and below the 2.83 mm hard limit: LinuxCNC accepts it.
   const double a = 175.0 * kPi / 180.0;
   char prog[128];
   std::snprintf(prog, sizeof prog, "G2 X%.6f Y%.6f I400 J0 F600\n", 500 + 400.1 * std::cos(a),

@@ -135,14 +135,19 @@ TEST(ProgramReader, ArcRadiiToStartAndEndMustAgree) {
 }
 
 TEST(ProgramReader, ArcRadiusDifferenceAboveHardLimitIsError) {
-  // Radius 400 and 400.3: 0.075 % is within the relative tolerance but 0.3 mm
-  // exceeds 100 × 0.002 mm.
-  const double a = 175.0 * std::numbers::pi / 180.0;
-  char prog[128];
-  std::snprintf(prog, sizeof prog, "G2 X%.6f Y%.6f I400 J0 F600\n", 500 + 400.3 * std::cos(a),
-                200 + 400.3 * std::sin(a));
-  const auto col = static_cast<std::uint32_t>(std::string(prog).find('I') + 1);
-  expect_error(prog, ErrorCode::GcodeArcRadius, 1, col, start_at(100, 200, 10));
+  // Radius 4000 and 4003.9: 0.097 % is within the relative tolerance but
+  // 3.9 mm exceeds 100 × 0.0283 mm (LinuxCNC refuses it; 4002.8 it accepts).
+  MachineConfig wide = test::test_machine();
+  wide.axis(Axis::X).min = -1.0;  // the spiral's radius grows at once: it starts at X −0.0001
+  wide.axis(Axis::X).max = 9000.0;
+  wide.axis(Axis::Y).min = -4100.0;
+  wide.axis(Axis::Y).max = 4100.0;
+  const std::string refused = "G3 X8003.9 Y0 I4000 J0 F600\n";
+  const auto col = static_cast<std::uint32_t>(refused.find('I') + 1);
+  const Diagnostic d =
+      expect_error(refused, ErrorCode::GcodeArcRadius, 1, col, start_at(0, 0, 10), wide);
+  EXPECT_MENTIONS(d, "up to 2.82843 mm");
+  EXPECT_EQ(test::segments("G3 X8002.8 Y0 I4000 J0 F600\n", start_at(0, 0, 10), wide).size(), 1u);
 }
 
 TEST(ProgramReader, ArcCentreOnItsStartIsError) {

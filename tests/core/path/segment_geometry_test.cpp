@@ -122,6 +122,68 @@ TEST(SegmentGeometry, TurnedCirclesAndHelicesAreFreePlaneArcsOfTheSameTurns) {
   EXPECT_EQ(turned, 19 * 24 * 4);
 }
 
+// An IJK arc whose end lies off its start's circle (G-code accepts radii
+// differing within a tolerance) is a spiral from one radius to the other:
+// it leaves its start and reaches its end without a jump, and tangent and
+// curvature are the derivatives of the path.
+TEST(SegmentGeometry, SpiralArcRunsFromItsStartRadiusToItsEndRadius) {
+  for (const double dz : {0.0, 3.0}) {
+    for (const bool cw : {false, true}) {
+      Segment s;
+      s.kind = MotionKind::Arc;
+      s.plane = Plane::XY;
+      s.clockwise = cw;
+      s.center = Vec3(50, 50, 10);
+      s.start << 55, 50, 10, 0, 0, 0;  // radius 5 at angle 0
+      s.end << 50, cw ? 44.972 : 55.028, 10 + dz, 0, 0, 0;  // 5.028 a quarter turn on
+      const SegmentGeometry g(s);
+      ASSERT_TRUE(g.is_spiral());
+      EXPECT_NEAR(g.radius_max(), 5.028, 1e-12);
+      const double L = g.length();
+      // half way the radius is half way (the radius is linear in the angle)
+      const Pose mid = g.at(L / 2);
+      EXPECT_NEAR(std::hypot(mid[0] - 50, mid[1] - 50), 5.014, 1e-12);
+      // no jump at the end: the last micrometre of path ends on the end point
+      EXPECT_LT((g.at(L - 1e-6) - s.end).norm(), 1.01e-6);
+      EXPECT_LT((g.at(L * (1 - 1e-12)) - s.end).norm(), 1e-9);
+      // |dp/ds| ≤ 1: the path never runs faster than planned
+      for (int k = 0; k <= 100; ++k) {
+        const double at = L * k / 100.0;
+        const Pose t = g.tangent(at);
+        EXPECT_LE(t.norm(), 1.0 + 1e-12);
+        EXPECT_GT(t.norm(), 0.99);
+        if (k == 0 || k == 100) continue;
+        const double h = 1e-5;
+        const Pose fd = (g.at(at + h) - g.at(at - h)) / (2 * h);
+        EXPECT_LT((fd - t).norm(), 1e-8) << at;
+        const Pose fd2 = (g.tangent(at + h) - g.tangent(at - h)) / (2 * h);
+        EXPECT_LT((fd2 - g.curvature(at)).norm(), 1e-6) << at;
+      }
+      EXPECT_LT((g.start_tangent() - g.tangent(0)).norm(), 1e-15);
+      EXPECT_LT((g.end_tangent() - g.tangent(L)).norm(), 1e-12);
+      // points on the path are at distance 0 from it; 0.1 mm outward, 0.1
+      for (const double f : {0.1, 0.37, 0.8}) {
+        const Pose p = g.at(f * L);
+        EXPECT_LT(g.distance_xyz(p.head<3>()), 1e-9);
+        Vec3 out = p.head<3>() - s.center;
+        out[2] = 0;
+        EXPECT_NEAR(g.distance_xyz(p.head<3>() + 0.1 * out.normalized()), 0.1, 1e-6);
+      }
+    }
+  }
+}
+
+TEST(SegmentGeometry, RoundingOfACircleIsNoSpiral) {
+  Segment s = arc(1e6, false);
+  s.end[0] += 1e-7;  // 1e-13 of the radius
+  EXPECT_FALSE(SegmentGeometry(s).is_spiral());
+  s = arc(5.0, false);
+  s.end[0] += 1e-10;
+  EXPECT_FALSE(SegmentGeometry(s).is_spiral());
+  s.end[0] += 1e-8;
+  EXPECT_TRUE(SegmentGeometry(s).is_spiral());
+}
+
 TEST(SegmentGeometry, DistanceToLineAndArc) {
   Segment l;
   l.kind = MotionKind::Linear;

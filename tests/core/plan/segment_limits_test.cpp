@@ -273,6 +273,67 @@ TEST(SegmentLimits, PlaneArcsAndHelicesMatchTheReferenceModel) {
   }
 }
 
+// A spiral (IJK radii differing within the G-code tolerance) is planned
+// with the limits of a circle lowered by its excess: at every speed the
+// limits allow and every point of the sweep, the spiral's own velocity
+// (v·dp/ds) and acceleration (a_t·dp/ds + v²·d²p/ds²) stay within every
+// axis's limits — on machines whose axes differ, and on sharp spirals
+// (short sweeps, small radii) as on the rounding kind.
+TEST(SegmentLimits, SpiralArcsKeepEveryAxisWithinItsLimits) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  constexpr double kPi = 3.14159265358979323846;
+  int checked = 0;
+  for (int k = 0; k < 600; ++k) {
+    MachineConfig m = testing::test_machine(100.0, 2000.0);
+    if (k % 2 == 0) {  // unequal axes
+      m.axes[0].max_velocity = 300.0;
+      m.axes[1].max_acceleration = 800.0;
+      m.axes[2].max_acceleration = 5000.0;
+    }
+    Segment s;
+    s.kind = MotionKind::Arc;
+    s.plane = static_cast<Plane>(k % 3);
+    s.clockwise = k % 4 < 2;
+    const PlaneAxes pa = plane_axes(s.plane);
+    s.center = Vec3(100, 100, 100);
+    const double r = 0.2 + 20.0 * unit(rng);
+    const double dr = (unit(rng) - 0.5) * (k % 5 == 0 ? 0.4 * r : 0.0566);
+    const double a0 = 2 * kPi * unit(rng);
+    const double sweep = (s.clockwise ? -1.0 : 1.0) * (0.01 + 3.0 * unit(rng));
+    Vec3 p0 = s.center, p1 = s.center;
+    p0[pa.first] += r * std::cos(a0);
+    p0[pa.second] += r * std::sin(a0);
+    p1[pa.first] += (r + dr) * std::cos(a0 + sweep);
+    p1[pa.second] += (r + dr) * std::sin(a0 + sweep);
+    if (k % 7 == 0) p1[pa.normal] += 2.0 * unit(rng);  // helix
+    s.start = pose(p0);
+    s.end = pose(p1);
+    const SegmentGeometry geo(s);
+    if (!geo.is_spiral()) continue;
+    const SegmentLimits lim = segment_limits(geo, m);
+    ASSERT_GT(lim.v_max, 0.0);
+    ++checked;
+    for (const double share : {0.0, 0.5, 1.0}) {
+      const double v = share * lim.v_max;
+      const Accel a = lim.at(v);
+      for (int j = 0; j <= 200; ++j) {
+        const double at = geo.length() * j / 200.0;
+        const Pose t = geo.tangent(at), c = geo.curvature(at);
+        for (int i = 0; i < 3; ++i) {
+          ASSERT_LE(std::abs(lim.v_max * t[i]), m.axes[i].max_velocity * (1 + 1e-9))
+              << "k " << k << " axis " << i;
+          for (const double a_t : {a.accel, -a.decel}) {
+            ASSERT_LE(std::abs(a_t * t[i] + v * v * c[i]), m.axes[i].max_acceleration * (1 + 1e-9))
+                << "k " << k << " axis " << i << " v " << v << " a_t " << a_t;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(checked, 500);
+}
+
 TEST(StepQuantizer, RoundsLikeLlround) {
   const MachineConfig m = testing::test_machine();
   const StepQuantizer q(m, Pose::Zero());
