@@ -90,6 +90,8 @@ MachineInputs SimMachine::read_inputs() noexcept {
   }
   in.estop = estop_.load(std::memory_order_relaxed);  // pairs with set_estop_input()
   in.digital_in = digital_in_.load(std::memory_order_relaxed);
+  in.adaptive_feed = adaptive_feed_.load(std::memory_order_relaxed);
+  in.feed_hold = feed_hold_.load(std::memory_order_relaxed);
   return in;
 }
 

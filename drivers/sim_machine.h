@@ -80,6 +80,10 @@ class SimMachine final : public PulseSink {
   void set_digital_inputs(std::uint8_t bits) noexcept {
     digital_in_.store(bits, std::memory_order_relaxed);
   }
+  // The feed inputs (M52 adaptive feed, 0 … 1; M53 feed hold); from any
+  // thread (relaxed, as the e-stop).
+  void set_adaptive_feed(float factor) noexcept { adaptive_feed_.store(factor, std::memory_order_relaxed); }
+  void set_feed_hold_input(bool on) noexcept { feed_hold_.store(on, std::memory_order_relaxed); }
 
   // Relaxed snapshots, safe from any thread; exact once the RT thread stopped.
   [[nodiscard]] std::int64_t position_steps(int axis) const noexcept {
@@ -122,6 +126,8 @@ class SimMachine final : public PulseSink {
   // Written by any thread (set_estop_input), read by read_inputs().
   std::atomic<bool> estop_{false};
   std::atomic<std::uint8_t> digital_in_{0};
+  std::atomic<float> adaptive_feed_{1.0f};
+  std::atomic<bool> feed_hold_{false};
 };
 
 }  // namespace lcnc::drivers

@@ -25,7 +25,7 @@
 namespace lcnc::shm {
 
 inline constexpr std::uint32_t kHalMagic = 0x4C48414C;  // "LHAL"
-inline constexpr std::uint32_t kHalVersion = 2;  // 2: outputs in PeriodIncrement
+inline constexpr std::uint32_t kHalVersion = 3;  // 2: outputs in PeriodIncrement, 3: feed_control
 
 struct HalHeader {
   std::uint32_t magic = 0;

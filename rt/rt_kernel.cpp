@@ -217,27 +217,44 @@ bool RtKernel::period(std::int64_t wake_ns, std::int64_t late) noexcept {
   // as fast as that entry's room allows. relaxed pairs with
   // set_feed_override()'s relaxed store: only the value is read.
   double target = port_.target_k.load(std::memory_order_relaxed);
-  if (hold_ || stopping_ || starving_) target = 0.0;
   RampRoom room;  // jogs, homing: the ramp's own rate
   if (on_path_state()) {
     if (const PeriodIncrement* next = buffer_.front()) {
       k_plan_ = next->k_plan;
       room = next->ramp;
+      target = path_target(target, next->feed_control);
     } else {
       room = m.inc.ramp;  // none queued: the last entry's
+      target = path_target(target, m.inc.feed_control);
     }
   } else {
     k_plan_ = 1.0f;  // jogs and homing are not planned
   }
+  if (hold_ || stopping_ || starving_) target = 0.0;
   k_ = ramp_.step(k_, ramp_.period_scale(target, k_plan_), length_ns * 1e-9, room);
   port_.k_now.store(k_ * k_plan_, std::memory_order_relaxed);
   return true;
 }
 
+// The override target for a path entry, by its M48 … M53 switches
+// (PeriodIncrement::feed_control): the operator's e, or 1 where the program
+// turned the override off; times the adaptive-feed input where it turned
+// adaptive feed on; 0 while the feed-hold input is on, unless turned off.
+double RtKernel::path_target(double e, std::uint8_t feed_control) const noexcept {
+  if ((feed_control & kFeedOverrideOff) != 0 && e > 0.0) e = 1.0;
+  if ((feed_control & kAdaptiveFeed) != 0) {
+    const double a = inputs_.adaptive_feed;
+    e *= a > 0.0 ? std::min(1.0, a) : 0.0;  // NaN and below 0: stand still
+  }
+  if ((feed_control & kFeedHoldInputOff) == 0 && inputs_.feed_hold) e = 0.0;
+  return e;
+}
+
 void RtKernel::begin_at_override() noexcept {
   const PeriodIncrement* first = buffer_.front();
   k_plan_ = first != nullptr ? first->k_plan : 1.0f;
-  const double e = port_.target_k.load(std::memory_order_relaxed);
+  double e = port_.target_k.load(std::memory_order_relaxed);
+  if (first != nullptr) e = path_target(e, first->feed_control);
   k_ = e > 0.0 ? ramp_.period_scale(e, k_plan_) : 0.0;
   port_.k_now.store(k_ * k_plan_, std::memory_order_relaxed);
 }

@@ -201,6 +201,7 @@ class RtKernel : private OwnKernelPort, public KernelControl {
   // K for a start from rest: the operator's override over what the first
   // queued entry is planned at, no ramp.
   void begin_at_override() noexcept;
+  [[nodiscard]] double path_target(double e, std::uint8_t feed_control) const noexcept;
   void path_motion(Motion& m) noexcept;
   void axis_motion(Motion& m) noexcept;
   void homing_step() noexcept;

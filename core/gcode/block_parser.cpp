@@ -15,9 +15,9 @@ namespace {
 constexpr const char* kSupportedWords = "G M N X Y Z A B C I J K R F S P Q T H L D E";
 constexpr const char* kSupportedGCodes =
     "G0 G1 G2 G3 G4 G10 G17 G18 G19 G20 G21 G28 G28.1 G30 G30.1 G40 G41 G41.1 G42 G42.1 G43 G43.1 G43.2 G49 G52 "
-    "G53 G54-G59 G59.1 G59.2 G59.3 G61 G61.1 G64 G73 G80 G81 G82 G83 G85 G89 G90 G91 G90.1 "
+    "G53 G54-G59 G59.1 G59.2 G59.3 G61 G61.1 G64 G73 G80 G81 G82 G83 G85 G86 G89 G90 G91 G90.1 "
     "G91.1 G92 G92.1 G92.2 G92.3 G93 G94 G98 G99";
-constexpr const char* kSupportedMCodes = "M0 M1 M2 M3 M4 M5 M6 M7 M8 M9 M30 M60 M61 M62 M63 M64 M65 M66 M67 M68 M70 M71 M72 M73";
+constexpr const char* kSupportedMCodes = "M0 M1 M2 M3 M4 M5 M6 M7 M8 M9 M30 M60 M61 M62 M63 M64 M65 M66 M67 M68 M70 M71 M72 M73 M48 M49 M50 M51 M52 M53";
 
 // Exact powers of ten: a double holds 10^k exactly for k <= 22.
 constexpr double kPow10[] = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
@@ -62,7 +62,7 @@ constexpr std::array<char, 256> kUpper = [] {
 [[nodiscard]] constexpr int g_group(int tenths) noexcept {
   switch (tenths) {
     case 0: case 10: case 20: case 30: case 800:
-    case 730: case 810: case 820: case 830: case 850: case 890:
+    case 730: case 810: case 820: case 830: case 850: case 860: case 890:
       return group_index(GGroup::Motion);
     case 980: case 990: return group_index(GGroup::RetractMode);
     case 400: case 410: case 411: case 420: case 421: return group_index(GGroup::CutterComp);
@@ -283,6 +283,23 @@ bool BlockParser::read_number(std::uint32_t& i, std::uint32_t letter_at_pos, dou
   return true;
 }
 
+// Why a LinuxCNC G code this machine does not run is refused, or nullptr.
+[[nodiscard]] static const char* g_refusal(int tenths) noexcept {
+  switch (tenths) {
+    case 330: case 331: return "spindle-synchronized motion needs a spindle encoder; a laser has no spindle";
+    case 740: case 840: return "tapping reverses a spindle; a laser has none";
+    case 760: return "lathe threading needs a spindle; a laser has none";
+    case 870: return "back boring needs an oriented spindle stop; a laser has no spindle";
+    case 880: return "boring with a manual retract needs the operator's hand at a program stop";
+    case 382: case 383: case 384: case 385: return "probing: this machine has no probe input yet";
+    case 50: case 51: case 52: case 53: return "splines are not read yet";
+    case 70: case 80: return "lathe diameter/radius mode; this is no lathe";
+    case 950: return "feed per revolution needs a spindle; a laser has none";
+    case 960: case 970: return "spindle speed modes; a laser's power is S (M3/M4)";
+    default: return nullptr;
+  }
+}
+
 bool BlockParser::read_g(Span w, double value, Block& out) {
   const std::uint32_t pos = text_.byte_pos(w);
   const double scaled = value * 10.0;
@@ -297,8 +314,10 @@ bool BlockParser::read_g(Span w, double value, Block& out) {
   const int grp = whole_tenths ? g_group(tenths) : -1;
   if (grp < 0) {
     const std::string name = whole_tenths ? g_code_name(tenths) : std::string(text_.text(w));
+    const char* why = whole_tenths ? g_refusal(tenths) : nullptr;
     return fail(ErrorCode::GcodeUnknownCode, pos,
-                name + " is not supported; expected one of " + kSupportedGCodes);
+                name + " is not supported" + (why != nullptr ? std::string(" (") + why + ")" : "") +
+                    "; expected one of " + kSupportedGCodes);
   }
   // G80 with another code of its group on the line is passed over, as in
   // LinuxCNC ("G80 G0 X5": the G0 runs)
@@ -371,6 +390,16 @@ bool BlockParser::read_m(Span w, double value, Block& out) {
       if (out.m_io >= 0) return conflict(out.m_io, 5, "outputs");
       out.m_io = static_cast<std::int16_t>(code);
       out.m_io_word = w;
+      return true;
+    case 48:
+    case 49:
+    case 50:
+    case 51:
+    case 52:
+    case 53:
+      if (out.m_override >= 0) return conflict(out.m_override, 9, "override switches");
+      out.m_override = static_cast<std::int16_t>(code);
+      out.m_override_word = w;
       return true;
     case 6:
     case 61:
@@ -629,6 +658,7 @@ bool BlockParser::read_setting(std::uint32_t& i, Block& out) {
   out.m_tool = -1;
   out.m_context = -1;
   out.m_io = -1;
+  out.m_override = -1;
   out.polar = 0;
   out.m7 = out.m8 = out.m9 = false;
   out.o.kind = OKind::None;

@@ -130,9 +130,10 @@ struct Block {
   std::int16_t m_tool = -1;   // 6 (tool change) or 61 (set the tool in the spindle)
   std::int16_t m_context = -1;  // 70 save, 71 forget, 72 restore, 73 save till return
   std::int16_t m_io = -1;       // 62 63 64 65 (digital out P), 66 (wait on input P L Q), 67 68 (analog out E Q)
+  std::int16_t m_override = -1; // 48 49 (both overrides on/off), 50 51 52 53 P (feed, speed, adaptive, feed hold)
   bool m7 = false, m8 = false, m9 = false;
   Span m_stop_word{}, m_laser_word{}, m_tool_word{}, m_context_word{}, m_io_word{}, m7_word{},
-      m8_word{}, m9_word{};
+      m8_word{}, m9_word{}, m_override_word{};
   // Polar coordinates (LinuxCNC's): @ the radius and ^ the angle (degrees)
   // of X Y about the program's origin, in place of X and Y (whose bits in
   // axis_mask they set). Bit 0: @ given, bit 1: ^ given.

@@ -14,6 +14,8 @@
 //      rapid up to R, rapid down to the last depth + δ, … ; G73 feed down by
 //      Q, rapid up δ, … (δ = 0.254 mm, LinuxCNC's 0.010 in); G85 feed to Z,
 //      feed back to R; G89 feed to Z, dwell P, feed back to the clear height;
+//      G86 (boring: the spindle stops, the tool comes out at rapid) is G82's
+//      moves with the beam on — LinuxCNC refuses it with the spindle off;
 //   4. rapid to the clear height: R (G99) or, G98, the series' initial Z
 //      when that is higher than R.
 // R and Z are program coordinates (G91: R from the series' initial Z, Z
@@ -43,6 +45,7 @@ const char* cycle_name(MotionMode m) {
     case MotionMode::Cycle82: return "G82";
     case MotionMode::Cycle83: return "G83";
     case MotionMode::Cycle85: return "G85";
+    case MotionMode::Cycle86: return "G86";
     default: return "G89";
   }
 }
@@ -62,7 +65,8 @@ void Interpreter::dwell_for(double seconds, SegmentBuffer& out) {
 bool Interpreter::cycle_words(double& r, double& z, double& p, double& q) {
   const Block& b = *b_;
   const char* name = cycle_name(block_motion_);
-  const bool dwells = block_motion_ == MotionMode::Cycle82 || block_motion_ == MotionMode::Cycle89;
+  const bool dwells = block_motion_ == MotionMode::Cycle82 || block_motion_ == MotionMode::Cycle86 ||
+                      block_motion_ == MotionMode::Cycle89;
   const bool pecks = block_motion_ == MotionMode::Cycle83 || block_motion_ == MotionMode::Cycle73;
   if (!cycle_sticky_) {
     for (const char l : {'R', 'Z'}) {
@@ -135,6 +139,12 @@ bool Interpreter::canned_cycle(SegmentBuffer& out) {
     return fail(ErrorCode::GcodeSyntax, b.span(l),
                 "found " + quoted(b.span(l)) + " on " + name +
                     "; expected X Y (the hole), Z R P Q L on a canned cycle");
+  }
+  if (m == MotionMode::Cycle86 && laser_ == LaserMode::Off) {
+    return fail(ErrorCode::GcodeUnsupported, motion_word_,
+                "found " + quoted_block() + " with the beam off; expected M3 or M4 before G86 "
+                "(it bores with the beam on and turns it off for the rapid out; LinuxCNC "
+                "refuses it with the spindle off too)");
   }
   double r = 0.0, z = 0.0, p = 0.0, q = 0.0;
   if (!cycle_words(r, z, p, q)) return false;
@@ -219,7 +229,12 @@ bool Interpreter::canned_cycle(SegmentBuffer& out) {
       }
     }
     if (!feed(bottom)) return false;
-    if (m == MotionMode::Cycle82 || m == MotionMode::Cycle89) dwell_for(p, out);
+    // G86 (boring: the spindle stops at the bottom, the tool comes out at
+    // rapid): a laser's is G82's, the beam off for the rapid out as on
+    // every rapid
+    if (m == MotionMode::Cycle82 || m == MotionMode::Cycle86 || m == MotionMode::Cycle89) {
+      dwell_for(p, out);
+    }
     if (m == MotionMode::Cycle85 && !feed(r_m)) return false;
     if (m == MotionMode::Cycle89 && !feed(clear)) return false;
     // 4. Out.

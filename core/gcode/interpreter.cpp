@@ -22,7 +22,7 @@ constexpr char kCentreLetter[3] = {'I', 'J', 'K'};  // centre word of X, Y, Z
 constexpr std::size_t kQuoteMaxChars = 60;
 
 // The G code ×10 of each motion mode, in MotionMode's order (None: G80).
-constexpr std::array<int, 11> kMotionCode = {800, 0, 10, 20, 30, 730, 810, 820, 830, 850, 890};
+constexpr std::array<int, 12> kMotionCode = {800, 0, 10, 20, 30, 730, 810, 820, 830, 850, 860, 890};
 
 // The motion mode of a motion-group code ×10 (one the block parser took).
 MotionMode motion_of(int g) {
@@ -117,6 +117,7 @@ bool Interpreter::execute(const Block& block, const LineText& text, std::uint32_
   if ((block.has('T') || block.m_tool >= 0) && !change_tool()) return false;  // T, M6, M61
   if (block.m_io == 66 && !wait_input(out)) return false;  // M66
   if (block.m_io >= 0 && block.m_io != 66 && !set_outputs()) return false;  // M62 … M65, M67 M68
+  if (block.m_override >= 0 && !set_override_switches()) return false;  // M48 … M53
   if (block.m_context >= 0 && !run_context()) return false;  // M70 M71 M72 M73
   if (non_modal == 40 && !dwell(out)) return false;  // G4
   if (block.code(GGroup::CutterComp) >= 0 && !set_cutter_comp(out)) return false;  // G40 G41 G42
@@ -232,15 +233,16 @@ bool Interpreter::check_word_use() {
   const bool has_m61 = b.m_tool == 61;
   const int tl = b.code(GGroup::ToolLength);
   const bool cycle = is_cycle(block_motion_);
-  const bool dwell_cycle = block_motion_ == MotionMode::Cycle82 || block_motion_ == MotionMode::Cycle89;
+  const bool dwell_cycle = block_motion_ == MotionMode::Cycle82 || block_motion_ == MotionMode::Cycle86 ||
+                           block_motion_ == MotionMode::Cycle89;
   const bool peck_cycle = block_motion_ == MotionMode::Cycle83 || block_motion_ == MotionMode::Cycle73;
   if (b.has('P') && !has_g4 && !has_g64 && !is_arc && !has_g10 && !dwell_cycle &&
-      !(b.m_io >= 62 && b.m_io <= 66)) {
+      !(b.m_io >= 62 && b.m_io <= 66) && b.m_override < 50) {
     return fail(ErrorCode::GcodeUnsupported, b.span('P'),
                 "found " + quoted(b.span('P')) +
-                    " with no G4, G10, G64, G2, G3, G82, G89 or M62–M65 to use it; P is "
-                    "supported only as G4/G82/G89 dwell seconds, G10 system or tool, G64 blend "
-                    "tolerance, G2/G3 turns and the M62–M65 output");
+                    " with no G4, G10, G64, G2, G3, G82, G89, M50–M53 or M62–M66 to use it; P "
+                    "is supported only as G4/G82/G89 dwell seconds, G10 system or tool, G64 "
+                    "blend tolerance, G2/G3 turns, the M50–M53 switch and the M62–M66 I/O");
   }
   const bool analog_io = b.m_io == 67 || b.m_io == 68;
   const bool wait_io = b.m_io == 66;
@@ -489,6 +491,7 @@ void Interpreter::fill_modal(Segment& s) const {
   s = Segment{};
   s.digital_out = digital_out_;
   s.analog_out = analog_out_;
+  s.feed_control = feed_control_;
   s.plane = plane_;
   s.path_mode = path_mode_;
   s.blend_tolerance_mm = blend_tolerance_mm_;
@@ -880,6 +883,52 @@ bool Interpreter::arc_to(const Pose& end, const Vec3& c, bool cw, std::uint32_t 
   return true;
 }
 
+// --- override switches (M48 … M53) ------------------------------------------
+
+// M48 / M49: the feed (and power) overrides on / off; M50 P1 / P0: the feed
+// override on / off; M51 P1 / P0: the speed override (LaserCNC has no laser
+// power override: kept for #<_speed_override> and M70); M52 P1 / P0:
+// adaptive feed, the machine's adaptive-feed input (0 … 1) scales the feed;
+// M53 P1 / P0: the machine's feed-hold input stops the motion or not. A
+// missing P is P1, as LinuxCNC. They act on the moves after them, and the
+// RT applies them per period (rt/feed_override.h). Refused under cutter
+// compensation, as in LinuxCNC.
+bool Interpreter::set_override_switches() {
+  const Block& b = *b_;
+  const int code = b.m_override;
+  if (comp_side_ != 0) {
+    return fail(ErrorCode::GcodeModalConflict, b.m_override_word,
+                "found " + quoted(b.m_override_word) +
+                    " with cutter compensation on; expected G40 first (LinuxCNC neither "
+                    "switches overrides under compensation)");
+  }
+  bool on = true;
+  if (code >= 50 && b.has('P')) {
+    const double p = b['P'];
+    if (p != std::floor(p) || p < 0.0) {
+      return fail(ErrorCode::GcodeBadValue, b.span('P'),
+                  "found " + quoted(b.span('P')) + "; expected P0 (off) or P1 (on)");
+    }
+    on = p != 0.0;
+  }
+  auto set = [&](std::uint8_t bit, bool value) {
+    feed_control_ = static_cast<std::uint8_t>(value ? feed_control_ | bit : feed_control_ & ~bit);
+  };
+  switch (code) {
+    case 48:
+    case 49:
+      set(kFeedOverrideOff, code == 49);
+      speed_override_ = code == 48;
+      break;
+    case 50: set(kFeedOverrideOff, !on); break;
+    case 51: speed_override_ = on; break;
+    case 52: set(kAdaptiveFeed, on); break;
+    case 53: set(kFeedHoldInputOff, !on); break;
+    default: break;
+  }
+  return true;
+}
+
 // --- outputs (M62 … M68) ---------------------------------------------------
 
 // M62 P n / M63 P n: digital output n on / off with the next move (its
@@ -1027,6 +1076,8 @@ Interpreter::ModalState Interpreter::modal_state() const {
   m.power_pct = power_pct_;
   m.mist = mist_;
   m.flood = flood_;
+  m.feed_control = feed_control_;
+  m.speed_override = speed_override_;
   return m;
 }
 
@@ -1054,6 +1105,8 @@ void Interpreter::restore_modal(const ModalState& m) {
   power_pct_ = m.power_pct;
   mist_ = m.mist;
   flood_ = m.flood;
+  feed_control_ = m.feed_control;
+  speed_override_ = m.speed_override;
 }
 
 bool Interpreter::run_context() {
@@ -1139,8 +1192,10 @@ bool Interpreter::predefined(std::string_view name, double& out) const {
   if (name == "_spindle_on") return flag(laser_ != LaserMode::Off);
   if (name == "_mist") return flag(mist_);
   if (name == "_flood") return flag(flood_);
-  if (name == "_feed_override" || name == "_speed_override") return flag(true);
-  if (name == "_adaptive_feed" || name == "_feed_hold") return flag(false);
+  if (name == "_feed_override") return flag((feed_control_ & kFeedOverrideOff) == 0);
+  if (name == "_speed_override") return flag(speed_override_);
+  if (name == "_adaptive_feed") return flag((feed_control_ & kAdaptiveFeed) != 0);
+  if (name == "_feed_hold") return flag((feed_control_ & kFeedHoldInputOff) == 0);
   return false;
 }
 

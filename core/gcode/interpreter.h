@@ -77,7 +77,7 @@ inline constexpr std::uint32_t kDataLetters = [] {
 }();
 
 enum class MotionMode : std::uint8_t {
-  None, Rapid, Linear, ArcCw, ArcCcw, Cycle73, Cycle81, Cycle82, Cycle83, Cycle85, Cycle89
+  None, Rapid, Linear, ArcCw, ArcCcw, Cycle73, Cycle81, Cycle82, Cycle83, Cycle85, Cycle86, Cycle89
 };
 [[nodiscard]] constexpr bool is_cycle(MotionMode m) noexcept { return m >= MotionMode::Cycle73; }
 
@@ -177,6 +177,7 @@ class Interpreter {
   // (M62 M63 M67) wait for the next move (take_synced_outputs).
   bool set_outputs();
   bool wait_input(SegmentBuffer& out);
+  bool set_override_switches();  // M48 … M53
   void take_synced_outputs();
   // M70 M71 M72 M73 (LinuxCNC): save, forget, restore the modal state.
   bool run_context();
@@ -193,6 +194,8 @@ class Interpreter {
     LaserMode laser = LaserMode::Off;
     double power_pct = 0.0;
     bool mist = false, flood = false;
+    std::uint8_t feed_control = 0;
+    bool speed_override = true;
   };
   [[nodiscard]] ModalState modal_state() const;
   void restore_modal(const ModalState& m);
@@ -278,6 +281,8 @@ class Interpreter {
   double power_pct_ = 0.0;
   bool mist_ = false;
   bool flood_ = false;
+  std::uint8_t feed_control_ = 0;                // M48 … M53: Segment::feed_control
+  bool speed_override_ = true;                   // M48 M49 M51: kept for #<_speed_override>
   std::uint8_t digital_out_ = 0;                 // M62 … M65
   std::array<float, kAnalogOutputs> analog_out_{};  // M67 M68
   std::uint8_t synced_on_ = 0, synced_off_ = 0;  // M62 / M63 for the next move

@@ -39,6 +39,11 @@ struct MachineInputs {
   bool amp_fault = false;                    // a drive reports a fault
   int following_error_axis = -1;             // an axis past its following error, −1 if none
   std::uint8_t digital_in = 0;               // the program's inputs (M66 P0 … P7), bit n: P n
+  // Feed inputs (M52, M53): a factor 0 … 1 on the feed where the program
+  // turned adaptive feed on; a hold of the motion while true, unless the
+  // program turned the input off.
+  float adaptive_feed = 1.0f;
+  bool feed_hold = false;
 };
 
 class PulseSink {

@@ -39,6 +39,14 @@ inline constexpr int kDigitalInputs = 8;  // M66 P0 … P7
 inline constexpr std::uint16_t kOutputMist = 1u << kDigitalOutputs;
 inline constexpr std::uint16_t kOutputFlood = 1u << (kDigitalOutputs + 1);
 
+// How the operator's feed override and the machine's feed inputs act on a
+// segment (Segment::feed_control, bits; M48–M53 set them). 0: the override
+// acts, no adaptive feed, the feed-hold input stops the motion — the
+// defaults.
+inline constexpr std::uint8_t kFeedOverrideOff = 1u;  // M50 P0, M49: runs at 100 % whatever the override
+inline constexpr std::uint8_t kAdaptiveFeed = 2u;     // M52 P1: the adaptive-feed input (0 … 1) scales it
+inline constexpr std::uint8_t kFeedHoldInputOff = 4u; // M53 P0: the feed-hold input does not stop it
+
 enum class LaserMode : std::uint8_t {
   Off,       // M5
   Constant,  // M3: power = S
@@ -77,6 +85,7 @@ struct Segment {
   // segment runs: set from its first period on.
   std::uint8_t digital_out = 0;
   std::array<float, kAnalogOutputs> analog_out{};
+  std::uint8_t feed_control = 0;  // kFeedOverrideOff | kAdaptiveFeed | kFeedHoldInputOff
 
   std::uint32_t line = 0;  // source line (1-based)
   // M0/M1/M60 (a Dwell of two periods, the beam off): once it has run the

@@ -48,6 +48,7 @@ bool CoarseInterpolator::pull() {
       outputs_ = static_cast<std::uint16_t>(s.digital_out | (s.mist ? kOutputMist : 0) |
                                             (s.flood ? kOutputFlood : 0));
       analog_ = s.analog_out;
+      feed_control_ = s.feed_control;
       return true;
     }
   }
@@ -80,6 +81,7 @@ SourceStatus CoarseInterpolator::next(PeriodSample& out) {
       out.wait_input = -1;
       out.outputs = outputs_;
       out.analog = analog_;
+      out.feed_control = feed_control_;
       done_ = true;
       return SourceStatus::Item;
     }
@@ -103,6 +105,7 @@ SourceStatus CoarseInterpolator::next(PeriodSample& out) {
   out.pause = pause_;  // its first sample only
   out.outputs = outputs_;
   out.analog = analog_;
+  out.feed_control = feed_control_;
   pause_ = false;
   out.wait_input = wait_input_;  // its first sample only, as a pause
   out.wait_mode = wait_mode_;
@@ -112,7 +115,9 @@ SourceStatus CoarseInterpolator::next(PeriodSample& out) {
 }
 
 void CoarseInterpolator::raise_feed_scale(double k) {
-  if (cur_ == nullptr || done_ || end_.kind != MotionKind::Linear || cur_->geo.is_arc()) return;
+  if (cur_ == nullptr || done_ || end_.kind != MotionKind::Linear || cur_->geo.is_arc() ||
+      (feed_control_ & kFeedOverrideOff) != 0)
+    return;
   const double v_new = std::min(cur_->v_limit, cur_->programmed_speed / cur_->k_plan * k);
   if (!(v_new > profile_.vc)) return;
   double s, v;

@@ -39,6 +39,7 @@ struct PeriodSample {
   bool pause = false;  // the first sample of a pause (Segment::pause)
   std::uint16_t outputs = 0;  // the segment's (see PeriodIncrement)
   std::array<float, kAnalogOutputs> analog{};
+  std::uint8_t feed_control = 0;  // the segment's (Segment::feed_control)
   // M66: on the first sample of its segment only (see PeriodIncrement)
   std::int8_t wait_input = -1;
   std::uint8_t wait_mode = 0;
@@ -95,6 +96,7 @@ class CoarseInterpolator {
   float wait_timeout_s_ = 0.0f;
   std::uint16_t outputs_ = 0;  // the segment's outputs word and analog values
   std::array<float, kAnalogOutputs> analog_{};
+  std::uint8_t feed_control_ = 0;  // the segment's
   double power_pct_ = 0.0, programmed_speed_ = 0.0;
   float k_plan_ = 1.0f;
   // Where the current segment ends: the program's last sample.
@@ -180,6 +182,7 @@ inline PeriodIncrement StepQuantizer::emit(const PeriodSample& s) {
   inc.pause = s.pause;
   inc.outputs = s.outputs;
   inc.analog = s.analog;
+  inc.feed_control = s.feed_control;
   inc.wait_input = s.wait_input;
   inc.wait_mode = s.wait_mode;
   inc.wait_timeout_s = s.wait_timeout_s;

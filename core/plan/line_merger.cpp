@@ -25,7 +25,8 @@ bool LineMerger::extends_run(const Segment& next) const {
   if (!mergeable(a) || !mergeable(next) || inner_count_ + 1 >= kMaxMergeRun) return false;
   if (a.feed_mm_s != next.feed_mm_s || a.duration_s != next.duration_s || a.laser != next.laser ||
       a.power_pct != next.power_pct || a.mist != next.mist || a.flood != next.flood ||
-      a.digital_out != next.digital_out || a.analog_out != next.analog_out)
+      a.digital_out != next.digital_out || a.analog_out != next.analog_out ||
+      a.feed_control != next.feed_control)
     return false;
   const double q = std::min(merge_tolerance(a), merge_tolerance(next));
   const Vec3 s0 = a.start.head<3>(), s1 = next.end.head<3>();

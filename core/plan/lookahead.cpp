@@ -80,7 +80,9 @@ double Lookahead::junction_limit(const PlannedSegment& a, const PlannedSegment& 
 void Lookahead::set_speed(std::size_t k, double k_plan) {
   Node& n = node(k);
   PlannedSegment& p = segment(k);
-  p.k_plan = p.seg.kind == MotionKind::Rapid ? 1.0 : k_plan;
+  // rapids and moves under M50 P0 / M49 run at 100 % whatever the override
+  const bool fixed = p.seg.kind == MotionKind::Rapid || (p.seg.feed_control & kFeedOverrideOff) != 0;
+  p.k_plan = fixed ? 1.0 : k_plan;
   // one evaluation: the tangential limits are functions of the speed
   p.programmed_speed = target_speed(p.seg, p.geo, n.lim, p.k_plan);
   p.v_limit = n.lim.v_max;

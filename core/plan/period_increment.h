@@ -50,6 +50,11 @@ struct PeriodIncrement {
   // while on the path; off otherwise.
   std::uint16_t outputs = 0;
   std::array<float, kAnalogOutputs> analog{};
+  // M48 … M53 (Segment::feed_control): kFeedOverrideOff — the RT runs the
+  // entry at K = 1 whatever the operator's override; kAdaptiveFeed — the
+  // machine's adaptive-feed input (0 … 1) scales the override;
+  // kFeedHoldInputOff — the machine's feed-hold input does not hold it.
+  std::uint8_t feed_control = 0;
   // M66: after this entry (at rest, a dwell's) the RT holds the job until
   // the input does as asked (Segment::wait_*), or stops it at the timeout.
   std::int8_t wait_input = -1;

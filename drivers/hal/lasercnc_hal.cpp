@@ -103,6 +103,8 @@ struct Pins {
   hal_bit_t* mist;
   hal_bit_t* flood;
   hal_bit_t* digital_in[kDigitalInputs];
+  hal_float_t* adaptive_feed;
+  hal_bit_t* feed_hold;
 };
 
 // The kernel's pulse sink: counts and pins.
@@ -148,6 +150,8 @@ class HalSink final : public PulseSink {
     in.amp_fault = *pins_->amp_fault;
     for (int n = 0; n < kDigitalInputs; ++n)
       if (*pins_->digital_in[n]) in.digital_in = static_cast<std::uint8_t>(in.digital_in | (1u << n));
+    in.adaptive_feed = static_cast<float>(*pins_->adaptive_feed);
+    in.feed_hold = *pins_->feed_hold;
     return in;
   }
 
@@ -312,9 +316,12 @@ int setup(Component& c) {
     std::snprintf(name, sizeof name, "lasercnc.digital-in-%02d", n);
     r |= pin_new(HAL_IN, &c.pins->digital_in[n], name);
   }
+  r |= pin_new(HAL_IN, &c.pins->adaptive_feed, "lasercnc.adaptive-feed");
+  r |= pin_new(HAL_IN, &c.pins->feed_hold, "lasercnc.feed-hold");
   r |= pin_new(HAL_OUT, &c.pins->mist, "lasercnc.mist");
   r |= pin_new(HAL_OUT, &c.pins->flood, "lasercnc.flood");
   if (r != 0) return -EINVAL;
+  *c.pins->adaptive_feed = 1.0;  // unconnected: full feed (as LinuxCNC's motion.adaptive-feed)
   c.sink = std::make_unique<HalSink>(c.machine, c.pins, h.start_steps);
   c.kernel = std::make_unique<rt::RtKernel>(c.machine, c.hb->buffer, *c.sink, &c.hb->trace, h.start_steps,
                                             &c.hb->port);

@@ -498,6 +498,33 @@ TEST_F(HalSim, AnM66WaitsForItsInputPinAndGoesOnWhenItComes) {
   ASSERT_EQ(halcmd("setp lasercnc.digital-in-04 0").exit_code, 0);
 }
 
+// M52 / M53 through the machine's pins: lasercnc.adaptive-feed scales the
+// feed of the moves after M52 P1 (1.0 when unconnected), and
+// lasercnc.feed-hold holds the motion at rest until it drops.
+TEST_F(HalSim, TheAdaptiveFeedAndFeedHoldPinsActOnTheMovesUnderM52AndM53) {
+  home_all();
+  EXPECT_NEAR(std::stod(getp("lasercnc.adaptive-feed")), 1.0, 1e-12);
+  const fs::path prog = temp_dir() / "adaptive.ngc";
+  std::ofstream(prog) << "G21 G90\nG0 X10 Y10 Z20\nM52 P1\nG1 X150 F600\nG0 X10\nM2\n";
+  ASSERT_EQ(halcmd("setp lasercnc.adaptive-feed 0.5").exit_code, 0);
+  ASSERT_EQ(send("load " + prog.string()).exit_code, 0);
+  ASSERT_EQ(send("start").exit_code, 0);
+  ASSERT_TRUE(wait_for([&] { return getp("lasercnc.line") == "4"; }, 30));
+  ASSERT_TRUE(wait_for([&] {
+    return std::abs(status(shm_.name()).value("feed_override", 0.0) - 0.5) < 1e-6;
+  }, 10));
+  ASSERT_EQ(halcmd("setp lasercnc.feed-hold 1").exit_code, 0);
+  ASSERT_TRUE(wait_for([&] { return status(shm_.name()).value("feed_override", 1.0) < 0.01; }, 10));
+  const double x = std::stod(getp("lasercnc.x.pos-cmd"));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  EXPECT_EQ(std::stod(getp("lasercnc.x.pos-cmd")), x);  // at rest
+  ASSERT_EQ(halcmd("setp lasercnc.feed-hold 0").exit_code, 0);
+  ASSERT_TRUE(wait_for([&] { return std::stod(getp("lasercnc.x.pos-cmd")) > x + 1.0; }, 10));
+  ASSERT_EQ(send("stop").exit_code, 0);
+  ASSERT_TRUE(wait_for([&] { return status(shm_.name()).value("state", "") == "idle"; }, 10));
+  ASSERT_EQ(halcmd("setp lasercnc.adaptive-feed 1").exit_code, 0);
+}
+
 TEST_F(HalSim, TheShippedConfigurationsNameOnlyPinsTheComponentHas) {
   const std::string shown = halcmd("show pin lasercnc").out + halcmd("show funct lasercnc").out;
   std::size_t checked = 0;

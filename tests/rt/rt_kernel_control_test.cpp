@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <map>
 #include <memory>
 #include <thread>
 #include <vector>
@@ -397,6 +398,88 @@ TEST(RtKernelControl, AnInputWaitHoldsUntilTheInputComesOrStopsAtItsTimeout) {
     EXPECT_TRUE(logged);
     r.kernel->shutdown();
   }
+}
+
+// M50 P0 / M49: entries the program took out of the override run at
+// K = 1 whatever the operator's override, reached by the override ramp
+// (no jump in speed); the override acts again on the entries after them.
+TEST(RtKernelControl, EntriesWithTheOverrideOffRunAtFullSpeedWhateverTheOverride) {
+  Rig r;
+  for (int i = 0; i < 9000; ++i) {
+    const std::uint32_t line = i < 2000 ? 1 : i < 7000 ? 2 : 3;
+    PeriodIncrement inc = step_x(10, line);
+    if (line == 2) inc.feed_control = kFeedOverrideOff;
+    inc.end_of_program = i == 8999;
+    ASSERT_TRUE(r.buffer->try_push(inc));
+  }
+  r.kernel->set_feed_override(0.5);
+  r.start_idle();
+  r.send(RtCommandType::StartJob);
+  ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::Idle && r.kernel->periods() > 9000; }));
+  r.drain();
+  ASSERT_GE(r.records.size(), 9000u);
+  std::map<std::uint32_t, std::vector<double>> k_by_line;
+  double prev = r.records.front().feed_override;
+  const double rate = r.kernel->override_ramp().rate_per_s();
+  for (std::size_t i = 0; i < r.records.size(); ++i) {
+    const TraceRecord& rec = r.records[i];
+    if (!rec.on_path) continue;
+    k_by_line[rec.line].push_back(rec.feed_override);
+    // no step in K beyond the ramp's rate over the period
+    const double dt = std::max(r.length(i), i > 0 ? r.length(i - 1) : 0.0);
+    ASSERT_LE(std::abs(rec.feed_override - prev), rate * dt * 1.001 + 1e-12) << i;
+    prev = rec.feed_override;
+  }
+  EXPECT_NEAR(k_by_line[1].back(), 0.5, 1e-9);
+  EXPECT_EQ(k_by_line[2].back(), 1.0);  // the last of the 5000: long since at 1
+  EXPECT_LT(k_by_line[2].front(), 0.51);  // it started from the override …
+  EXPECT_NEAR(k_by_line[3].back(), 0.5, 1e-9);  // … and goes back to it
+  EXPECT_EQ(r.kernel->position_steps(0), 90000);
+  r.kernel->shutdown();
+}
+
+// M52 P1: the adaptive-feed input scales the feed of the entries the
+// program put under it; M53: the feed-hold input holds the motion (at
+// rest, resumed when it drops), except on entries after M53 P0.
+TEST(RtKernelControl, TheFeedInputsActOnTheEntriesTheProgramPutsUnderThem) {
+  Rig r;
+  for (int i = 0; i < 12000; ++i) {
+    const std::uint32_t line = i < 6000 ? 1 : 2;
+    PeriodIncrement inc = step_x(5, line);  // 60 mm in all: the travel is 100
+    inc.feed_control = line == 1 ? kAdaptiveFeed : kFeedHoldInputOff;
+    inc.end_of_program = i == 11999;
+    ASSERT_TRUE(r.buffer->try_push(inc));
+  }
+  r.sim->set_adaptive_feed(0.25f);
+  r.start_idle();
+  r.send(RtCommandType::StartJob);
+  ASSERT_TRUE(wait_for([&] { return r.kernel->position_steps(0) > 10000; }));
+  r.sim->set_feed_hold_input(true);  // line 1 obeys it
+  std::this_thread::sleep_for(150ms);  // the ramp to 0 takes 0.05 s of machine time
+  const std::int64_t held_at = r.kernel->position_steps(0);
+  std::this_thread::sleep_for(30ms);
+  EXPECT_EQ(r.kernel->position_steps(0), held_at);
+  EXPECT_LT(held_at, 30000);
+  r.sim->set_feed_hold_input(false);
+  ASSERT_TRUE(wait_for([&] { return r.kernel->position_steps(0) > 30000; }));
+  r.sim->set_feed_hold_input(true);  // line 2 does not
+  ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::Idle; }))
+      << static_cast<int>(r.kernel->state()) << " at " << r.kernel->position_steps(0);
+  EXPECT_TRUE(r.kernel->last_job_completed());
+  EXPECT_EQ(r.kernel->position_steps(0), 60000);
+  r.drain();
+  double k1 = 0.0, k2 = 0.0;
+  bool held_seen = false;
+  for (const TraceRecord& rec : r.records) {
+    if (rec.held) held_seen = true;
+    if (!rec.on_path) continue;
+    if (rec.line == 1 && rec.pos_steps[0] < 10000) k1 = rec.feed_override;
+    if (rec.line == 2) k2 = rec.feed_override;
+  }
+  EXPECT_TRUE(held_seen);
+  EXPECT_NEAR(k1, 0.25, 1e-9);  // the input's factor, once the ramp got there
+  EXPECT_EQ(k2, 1.0);           // line 2 is not under adaptive feed
+  r.kernel->shutdown();
 }
 
 // A producer streaming slower than the machine runs: the kernel keeps the

@@ -45,6 +45,22 @@ TEST(CannedCycles, G82IsPercussionTheBeamOnThroughTheDwellAndOffOnTheRapids) {
   EXPECT_DOUBLE_EQ(segs[4].end[2], 10.0);  // G98: back to where Z stood
 }
 
+// G86 (boring: spindle stop at the bottom, rapid out) on a laser: G82's
+// moves — the beam on down and through the dwell, off on the rapid out —
+// and, as LinuxCNC with the spindle off, refused with the beam off.
+TEST(CannedCycles, G86BoresWithTheBeamOnAndComesOutAtRapid) {
+  const auto segs = segments("M3 S80\nG99 G86 X20 Y30 Z1 R2 P0.4 F300\nX25\n");
+  ASSERT_EQ(kinds(segs), "rrfdrrfdr");  // the second hole: over it at R (G99), no move down
+  EXPECT_EQ(segs[2].laser, LaserMode::Constant);
+  EXPECT_DOUBLE_EQ(segs[3].dwell_s, 0.4);
+  EXPECT_EQ(segs[4].laser, LaserMode::Off);
+  EXPECT_DOUBLE_EQ(segs[4].end[2], 2.0);  // G99: back to R
+  EXPECT_DOUBLE_EQ(segs[8].end[0], 25.0);
+  const Diagnostic d = expect_error("G86 X20 Y30 Z1 R2 P0.4 F300\n", ErrorCode::GcodeUnsupported, 1, 1);
+  EXPECT_MENTIONS(d, "M3 or M4 before G86");
+  expect_error("M3 S80\nG86 X20 Y30 Z1 R2 F300\n", ErrorCode::GcodeMissingWord, 2, 1);  // P
+}
+
 TEST(CannedCycles, G83PecksBackToRAndG73BreaksByAClearance) {
   // R2 to Z0 in pecks of 0.8: 1.2, 0.4, then 0; G83 back to R between them
   // and down to 0.254 above the last depth

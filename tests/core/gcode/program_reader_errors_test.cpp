@@ -259,7 +259,9 @@ TEST(ProgramReader, UnknownGCodeIsNamed) {
   EXPECT_EQ(d.message.rfind("G38.2 is not supported", 0), 0u) << d.message;
   EXPECT_MENTIONS(d, "G61.1");  // lists what is supported
   d = expect_error("G1 G84 X1 Y1 Z-1 R1\n", ErrorCode::GcodeUnknownCode, 1, 4);
-  EXPECT_MENTIONS(d, "G84 is not supported");
+  EXPECT_MENTIONS(d, "G84 is not supported (tapping reverses a spindle; a laser has none)");
+  d = expect_error("G88 X1 Y1 Z-1 R1\n", ErrorCode::GcodeUnknownCode, 1, 1);
+  EXPECT_MENTIONS(d, "manual retract");
   d = expect_error("G59.4\n", ErrorCode::GcodeUnknownCode, 1, 1);
   EXPECT_MENTIONS(d, "G59.4 is not supported");
   d = expect_error("G1.25\n", ErrorCode::GcodeUnknownCode, 1, 1);

@@ -430,5 +430,43 @@ TEST(ProgramReader, M66WaitsAtRestForAnInputWithATimeout) {
                ErrorCode::GcodeModalConflict, 4, 1);
 }
 
+// M48 … M53 (LinuxCNC's override switches): each move carries how the
+// operator's override and the machine's feed inputs act on it; M72
+// restores them; the #<_…> parameters read them. (Each job starts with
+// the overrides on: M2's reset of them in LinuxCNC has nothing to act on.)
+TEST(ProgramReader, OverrideSwitchesTravelWithTheMovesAfterThem) {
+  const auto segs = segments(
+      "G1 X20 F600\nM50 P0\nG1 X30\nM52\nG1 X40\nM53 P0\nG1 X50\nM48\nG1 X60\n"
+      "M52 P0\nM53 P1\nG1 X70\nM49\nG1 X80\nM70\nM50 P1\nG1 X90\nM72\nG1 X100\n"
+      "G1 Y[20 + #<_feed_override> + 2 * #<_speed_override> + 4 * #<_adaptive_feed> + "
+      "8 * #<_feed_hold>]\nM2\n");
+  ASSERT_EQ(segs.size(), 10u);
+  const std::uint8_t expected[] = {0,
+                                   kFeedOverrideOff,
+                                   kFeedOverrideOff | kAdaptiveFeed,
+                                   kFeedOverrideOff | kAdaptiveFeed | kFeedHoldInputOff,
+                                   kAdaptiveFeed | kFeedHoldInputOff,
+                                   0,
+                                   kFeedOverrideOff,
+                                   0,
+                                   kFeedOverrideOff,
+                                   kFeedOverrideOff};
+  for (std::size_t i = 0; i < segs.size(); ++i) EXPECT_EQ(segs[i].feed_control, expected[i]) << i;
+  // after M49 and M72: feed override off (0), speed override off (0), no
+  // adaptive feed (0), the feed-hold input on (8)
+  EXPECT_DOUBLE_EQ(segs[9].end[1], 28.0);
+}
+
+TEST(ProgramReader, OverrideSwitchWordsAreCheckedAtTheirColumn) {
+  expect_error("M48 P1\n", ErrorCode::GcodeUnsupported, 1, 5);  // M48/M49 take no P
+  expect_error("M50 P0.5\n", ErrorCode::GcodeBadValue, 1, 5);
+  expect_error("M50 P-1\n", ErrorCode::GcodeBadValue, 1, 5);
+  Diagnostic d = expect_error("M50 P0 M52\n", ErrorCode::GcodeModalConflict, 1, 8);
+  EXPECT_MENTIONS(d, "M modal group 9");
+  d = expect_error("G0 X100 Y95\nG41.1 D2\nG1 X100 Y100 F600\nM50 P0\n",
+                   ErrorCode::GcodeModalConflict, 4, 1);
+  EXPECT_MENTIONS(d, "cutter compensation");
+}
+
 }  // namespace
 }  // namespace lcnc

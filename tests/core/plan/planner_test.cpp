@@ -486,5 +486,42 @@ TEST(Planner, ADwellIsPlannedAtOneHundredPercentWhateverTheOverride) {
   EXPECT_GT(fast, 500u);
 }
 
+// Moves under M50 P0 (the override off) are planned at 100 % however high
+// the operator's override: their feed is the program's, and their samples
+// say so (the RT runs them at K = 1); the moves around them take the
+// override, and nothing merges across the switch.
+TEST(Planner, MovesWithTheOverrideOffArePlannedAtTheProgramsFeed) {
+  const auto m = testing::test_machine(500.0, 5000.0);
+  std::vector<Segment> segs;
+  Pose at = Pose::Zero();
+  at << 10, 10, 5, 0, 0, 0;
+  for (int k = 0; k < 600; ++k) {
+    segs.push_back(blended_x_line(at, 0.05));
+    if (k >= 200 && k < 400) segs.back().feed_control = kFeedOverrideOff;
+  }
+  std::size_t i = 0;
+  Planner planner = planner_over(m, segs, i);
+  planner.set_feed_scale(1.5);
+  PeriodSample s;
+  double prev_x = 10.0, top_off = 0.0, top_on = 0.0;
+  std::size_t off = 0;
+  while (planner.next(s) == SourceStatus::Item) {
+    const double v = (s.pose[0] - prev_x) / m.period_s();
+    prev_x = s.pose[0];
+    if (s.end_of_program) continue;
+    if ((s.feed_control & kFeedOverrideOff) != 0) {
+      ++off;
+      EXPECT_EQ(s.k_plan, 1.0f);
+      top_off = std::max(top_off, v);
+    } else {
+      EXPECT_EQ(s.k_plan, 1.5f);
+      top_on = std::max(top_on, v);
+    }
+  }
+  EXPECT_GT(off, 1000u);  // 10 mm at 100 mm/s: 1333 periods
+  EXPECT_NEAR(top_off, 100.0, 0.01);  // (differenced poses)
+  EXPECT_NEAR(top_on, 150.0, 0.01);
+}
+
 }  // namespace
 }  // namespace lcnc
