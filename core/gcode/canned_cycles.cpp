@@ -118,17 +118,17 @@ bool Interpreter::canned_cycle(SegmentBuffer& out) {
   const Block& b = *b_;
   const MotionMode m = block_motion_;
   const char* name = cycle_name(m);
-  if (plane_ != Plane::XY) {
+  if (modal_.plane != Plane::XY) {
     return fail(ErrorCode::GcodeUnsupported, motion_word_,
                 "found " + quoted_block() + " in the " +
-                    (plane_ == Plane::ZX ? std::string("ZX plane (G18)") : std::string("YZ plane (G19)")) +
+                    (modal_.plane == Plane::ZX ? std::string("ZX plane (G18)") : std::string("YZ plane (G19)")) +
                     "; expected canned cycles in G17 (holes along Z, the beam's axis)");
   }
   if (b.code(GGroup::NonModal) == 530) {
     return fail(ErrorCode::GcodeSyntax, b.code_word(GGroup::NonModal),
                 "found " + quoted_block() + ": G53 with a canned cycle; expected G53 with G0 or G1");
   }
-  if (inverse_time_) {
+  if (modal_.inverse_time) {
     return fail(ErrorCode::GcodeSyntax, motion_word_,
                 "found " + quoted_block() + " in inverse-time mode (G93); expected canned cycles "
                 "in G94 (F per minute)");
@@ -140,7 +140,7 @@ bool Interpreter::canned_cycle(SegmentBuffer& out) {
                 "found " + quoted(b.span(l)) + " on " + name +
                     "; expected X Y (the hole), Z R P Q L on a canned cycle");
   }
-  if (m == MotionMode::Cycle86 && laser_ == LaserMode::Off) {
+  if (m == MotionMode::Cycle86 && modal_.laser == LaserMode::Off) {
     return fail(ErrorCode::GcodeUnsupported, motion_word_,
                 "found " + quoted_block() + " with the beam off; expected M3 or M4 before G86 "
                 "(it bores with the beam on and turns it off for the rapid out; LinuxCNC "
@@ -165,8 +165,8 @@ bool Interpreter::canned_cycle(SegmentBuffer& out) {
     cycle_initial_z_ = pos_[2];
   }
   const Pose& offset = offsets_;
-  const double r_m = absolute_ ? r + offset[2] : cycle_initial_z_ + r;
-  const double bottom = absolute_ ? z + offset[2] : r_m + z;
+  const double r_m = modal_.absolute ? r + offset[2] : cycle_initial_z_ + r;
+  const double bottom = modal_.absolute ? z + offset[2] : r_m + z;
   if (bottom > r_m) {
     return fail(ErrorCode::GcodeBadValue, b.has('Z') ? b.span('Z') : motion_word_,
                 "found " + quoted_block() + ": the bottom Z is above the retract plane R; "
@@ -191,7 +191,7 @@ bool Interpreter::canned_cycle(SegmentBuffer& out) {
     if (!rapid_to(up, out)) return false;
     old_z = r_m;
   }
-  const double clear = retract_old_z_ ? old_z : r_m;
+  const double clear = modal_.retract_old_z ? old_z : r_m;
   auto z_at = [&](double zz) {
     Pose t = pos_;
     t[2] = zz;
@@ -206,7 +206,7 @@ bool Interpreter::canned_cycle(SegmentBuffer& out) {
     } else {
       for (int a = 0; a < 2; ++a) {
         if (((b.axis_mask >> a) & 1u) == 0) continue;
-        hole[a] = absolute_ ? axis_value(a) + offset[a] : pos_[a] + axis_value(a);
+        hole[a] = modal_.absolute ? axis_value(a) + offset[a] : pos_[a] + axis_value(a);
       }
     }
     if (k == 0 && pos_[2] > r_m) {

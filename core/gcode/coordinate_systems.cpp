@@ -23,7 +23,7 @@
 namespace lcnc::gcode {
 
 void Interpreter::select_coord_system(int index) {
-  coord_system_ = index;
+  modal_.coord_system = index;
   const int base = coord_param(index);
   for (int a = 0; a < kAxisCount; ++a) origin_[a] = numbered_[static_cast<std::size_t>(base + a)];
   numbered_[kParamCoordSystem] = index + 1;
@@ -49,7 +49,7 @@ bool Interpreter::polar_target(const Pose& from, Pose& to) {
   const double a_rad = b.polar_angle_deg * std::numbers::pi / 180.0;
   double r = std::hypot(cx, cy);
   double theta = std::atan2(cy, cx);
-  if (absolute_) {
+  if (modal_.absolute) {
     if (has_r) r = b.polar_radius;
     if (has_a) theta = a_rad;
   } else {
@@ -124,15 +124,15 @@ bool Interpreter::set_coord_system_data() {
                 "found " + quoted(b.span('R')) + ": a rotated coordinate system is not "
                 "supported; expected no R, or R0");
   }
-  const int index = p == 0.0 ? coord_system_ : static_cast<int>(p) - 1;
+  const int index = p == 0.0 ? modal_.coord_system : static_cast<int>(p) - 1;
   const int base = coord_param(index);
   for (int a = 0; a < kAxisCount; ++a) {
     if (((b.axis_mask >> a) & 1u) == 0) continue;
     const double v = axis_value(a);
     numbered_[static_cast<std::size_t>(base + a)] =
-        l20 ? pos_[a] - axis_offset_[a] - tool_offset_[a] - v : v;
+        l20 ? pos_[a] - axis_offset_[a] - modal_.tool_offset[a] - v : v;
   }
-  if (index == coord_system_) select_coord_system(index);
+  if (index == modal_.coord_system) select_coord_system(index);
   return true;
 }
 
@@ -156,7 +156,7 @@ bool Interpreter::set_axis_offsets() {
       for (int a = 0; a < kAxisCount; ++a) {
         if (((b.axis_mask >> a) & 1u) == 0) continue;
         const double v = axis_value(a);
-        axis_offset_[a] = code == 520 ? v : pos_[a] - origin_[a] - tool_offset_[a] - v;
+        axis_offset_[a] = code == 520 ? v : pos_[a] - origin_[a] - modal_.tool_offset[a] - v;
       }
       store(true);
       return true;
@@ -192,7 +192,7 @@ bool Interpreter::go_home(int first_param, SegmentBuffer& out) {
     const Pose& offset = offsets_;
     for (int a = 0; a < kAxisCount; ++a) {
       if (((b.axis_mask >> a) & 1u) == 0) continue;
-      mid[a] = absolute_ ? axis_value(a) + offset[a] : pos_[a] + axis_value(a);
+      mid[a] = modal_.absolute ? axis_value(a) + offset[a] : pos_[a] + axis_value(a);
     }
     if (!rapid_to(mid, out)) return false;
   }

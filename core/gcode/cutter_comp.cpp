@@ -93,7 +93,7 @@ bool Interpreter::comp_fail(std::string message) {
   return fail(ErrorCode::GcodeCutterComp, motion_word_,
               "found " + quoted_block() + " with cutter compensation (" +
                   (comp_side_ == kLeft ? "left" : "right") + ", tool radius " +
-                  num(comp_radius_mm_ / length_scale()) + (inch_ ? " in" : " mm") + "): " +
+                  num(comp_radius_mm_ / length_scale()) + (modal_.inch ? " in" : " mm") + "): " +
                   std::move(message));
 }
 
@@ -111,7 +111,7 @@ bool Interpreter::check_comp_conflicts() {
   };
   if (b.m_tool >= 0) return refuse(b.m_tool_word, "a tool change would change the radius");
   const int plane = b.code(GGroup::Plane);
-  if (plane >= 0 && plane != (plane_ == Plane::XY ? 170 : plane_ == Plane::ZX ? 180 : 190)) {
+  if (plane >= 0 && plane != (modal_.plane == Plane::XY ? 170 : modal_.plane == Plane::ZX ? 180 : 190)) {
     return refuse(b.code_word(GGroup::Plane), "the plane cannot change");
   }
   if (turning_off) return true;
@@ -139,7 +139,7 @@ bool Interpreter::check_comp_conflicts() {
       return refuse(b.code_word(GGroup::NonModal), "machine coordinates (G53) cannot be used");
     case 100:
       if (b.has('L') && (b['L'] == 2.0 || b['L'] == 20.0) && b.has('P') &&
-          (b['P'] == 0.0 || b['P'] == coord_system_ + 1)) {
+          (b['P'] == 0.0 || b['P'] == modal_.coord_system + 1)) {
         return refuse(b.code_word(GGroup::NonModal),
                       "the coordinate system in effect cannot change");
       }
@@ -178,14 +178,14 @@ bool Interpreter::set_cutter_comp(SegmentBuffer& out) {
   }
   const int plane_code = b.code(GGroup::Plane);
   const Plane plane = plane_code == 180 ? Plane::ZX : plane_code == 190 ? Plane::YZ
-                      : plane_code == 170 ? Plane::XY : plane_;
+                      : plane_code == 170 ? Plane::XY : modal_.plane;
   if (plane == Plane::YZ) {
     return fail(ErrorCode::GcodeUnsupported, at,
                 "found " + quoted(at) + " in the YZ plane (G19); expected cutter compensation "
                 "in G17 (XY) or G18 (ZX)");
   }
   const int fm = b.code(GGroup::FeedMode);
-  if (fm == 930 || (fm < 0 && inverse_time_)) {
+  if (fm == 930 || (fm < 0 && modal_.inverse_time)) {
     return fail(ErrorCode::GcodeUnsupported, at,
                 "found " + quoted(at) + " in inverse time feed (G93); expected G94 (units per "
                 "minute) with cutter compensation");
@@ -199,7 +199,7 @@ bool Interpreter::set_cutter_comp(SegmentBuffer& out) {
                       " D<diameter>, the diameter of the tool (the laser's kerf width)");
     }
     const int units = b.code(GGroup::Units);
-    const bool inch = units >= 0 ? units == 200 : inch_;
+    const bool inch = units >= 0 ? units == 200 : modal_.inch;
     radius = b['D'] * (inch ? kMmPerInch : 1.0) / 2.0;
   } else {
     int tool = 0;
@@ -296,7 +296,7 @@ bool Interpreter::comp_move_endpoint_and_flush(double x, double y, SegmentBuffer
                            "fits");
         }
         if (h.turns != 0.0 && comp_endpoint_valid_ &&
-            std::fabs(l2) > std::fabs(h.turns) + (inch_ ? 0.001 : 0.0254)) {
+            std::fabs(l2) > std::fabs(h.turns) + (modal_.inch ? 0.001 : 0.0254)) {
           return comp_fail("the arc of line " + std::to_string(s.line) +
                            " runs into a concave corner the tool cannot reach without gouging "
                            "the part; expected a corner the tool radius fits");
@@ -357,7 +357,7 @@ bool Interpreter::comp_dequeue(SegmentBuffer& out) {
   return true;
 }
 
-void Interpreter::finish(SegmentBuffer& out) { (void)comp_dequeue(out); }
+bool Interpreter::finish(SegmentBuffer& out) { return comp_dequeue(out); }
 
 // --- straight moves -----------------------------------------------------------
 
@@ -374,7 +374,7 @@ bool Interpreter::comp_straight(const Pose& end, SegmentBuffer& out) {
     const double distance = std::hypot(px - cx, py - cy);
     if (distance <= r) {
       return comp_fail("its entry move is " + num(distance / length_scale()) +
-                       (inch_ ? " in" : " mm") +
+                       (modal_.inch ? " in" : " mm") +
                        " long in the plane; expected an entry move (the first after G41/G42) "
                        "longer than the tool radius");
     }
@@ -482,7 +482,7 @@ bool Interpreter::comp_arc(const Pose& end_in, SegmentBuffer& out) {
   const bool left = comp_side_ == kLeft;
   const double r = comp_radius_mm_;
   const double cx = pos_[a], cy = pos_[b];
-  const double abs_tol = inch_ ? kCompRadiusTolIn * kMmPerInch : kCompRadiusTolMm;
+  const double abs_tol = modal_.inch ? kCompRadiusTolIn * kMmPerInch : kCompRadiusTolMm;
   Pose e = end_in;
   Vec3 c;
   std::uint32_t extra = 0;

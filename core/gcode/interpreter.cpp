@@ -98,7 +98,7 @@ std::string Interpreter::quoted_block() const {
   return q;
 }
 
-const char* Interpreter::feed_unit() const noexcept { return inch_ ? "in/min" : "mm/min"; }
+const char* Interpreter::feed_unit() const noexcept { return modal_.inch ? "in/min" : "mm/min"; }
 
 // --- the block ------------------------------------------------------------
 
@@ -115,8 +115,7 @@ bool Interpreter::execute(const Block& block, const LineText& text, std::uint32_
   if ((block.letters & kDataLetters) != 0 && !check_word_use()) return false;
   if (!set_feed_and_power()) return false;  // G93/G94, F, S, M3-M5, M7-M9
   if ((block.has('T') || block.m_tool >= 0) && !change_tool()) return false;  // T, M6, M61
-  if (block.m_io == 66 && !wait_input(out)) return false;  // M66
-  if (block.m_io >= 0 && block.m_io != 66 && !set_outputs()) return false;  // M62 … M65, M67 M68
+  if (block.m_io >= 0 && !(block.m_io == 66 ? wait_input(out) : set_outputs())) return false;  // M62 … M68
   if (block.m_override >= 0 && !set_override_switches()) return false;  // M48 … M53
   if (block.m_context >= 0 && !run_context()) return false;  // M70 M71 M72 M73
   if (non_modal == 40 && !dwell(out)) return false;  // G4
@@ -297,10 +296,10 @@ bool Interpreter::set_feed_and_power() {
   const int fm = b.code(GGroup::FeedMode);
   if (fm >= 0) {
     const bool inverse = fm == 930;
-    if (inverse != inverse_time_) {
-      inverse_time_ = inverse;
-      feed_set_ = false;
-      feed_mm_min_ = feed_raw_ = 0.0;
+    if (inverse != modal_.inverse_time) {
+      modal_.inverse_time = inverse;
+      modal_.feed_set = false;
+      modal_.feed_mm_min = modal_.feed_raw = 0.0;
     }
   }
   // F, in the units in effect after this block's G20/G21.
@@ -312,8 +311,8 @@ bool Interpreter::set_feed_and_power() {
                   "found " + quoted(b.span('F')) + "; expected a feed rate F >= 0");
     }
     const int units = b.code(GGroup::Units);
-    const bool inch = units >= 0 ? units == 200 : inch_;
-    if (inverse_time_) {
+    const bool inch = units >= 0 ? units == 200 : modal_.inch;
+    if (modal_.inverse_time) {
       block_has_f_ = true;
       block_f_ = f;
     } else {
@@ -329,9 +328,9 @@ bool Interpreter::set_feed_and_power() {
                         " (or deg/min for rotary-only moves): slower never finishes a move, "
                         "faster is no feed");
       }
-      feed_set_ = true;
-      feed_raw_ = f;
-      feed_mm_min_ = f * (inch ? kMmPerInch : 1.0);
+      modal_.feed_set = true;
+      modal_.feed_raw = f;
+      modal_.feed_mm_min = f * (inch ? kMmPerInch : 1.0);
     }
   }
   // S: power as a share of s_max.
@@ -343,17 +342,17 @@ bool Interpreter::set_feed_and_power() {
                   "found " + quoted(b.span('S')) + "; expected S from 0 to " + num(s_max) +
                       " (laser.s_max, which means 100 % power)");
     }
-    power_pct_ = s_max > 0.0 ? 100.0 * s / s_max : 0.0;
+    modal_.power_pct = s_max > 0.0 ? 100.0 * s / s_max : 0.0;
   }
   switch (b.m_laser) {
-    case 3: laser_ = LaserMode::Constant; break;
-    case 4: laser_ = LaserMode::Dynamic; break;
-    case 5: laser_ = LaserMode::Off; break;
+    case 3: modal_.laser = LaserMode::Constant; break;
+    case 4: modal_.laser = LaserMode::Dynamic; break;
+    case 5: modal_.laser = LaserMode::Off; break;
     default: break;
   }
-  if (b.m7) mist_ = true;
-  if (b.m8) flood_ = true;
-  if (b.m9) mist_ = flood_ = false;
+  if (b.m7) modal_.mist = true;
+  if (b.m8) modal_.flood = true;
+  if (b.m9) modal_.mist = modal_.flood = false;
   return true;
 }
 
@@ -388,38 +387,38 @@ bool Interpreter::dwell(SegmentBuffer& out) {
 void Interpreter::set_modes() {
   const Block& b = *b_;
   switch (b.code(GGroup::Plane)) {
-    case 170: plane_ = Plane::XY; break;
-    case 180: plane_ = Plane::ZX; break;
-    case 190: plane_ = Plane::YZ; break;
+    case 170: modal_.plane = Plane::XY; break;
+    case 180: modal_.plane = Plane::ZX; break;
+    case 190: modal_.plane = Plane::YZ; break;
     default: break;
   }
   const int units = b.code(GGroup::Units);
-  if (units >= 0) inch_ = units == 200;
+  if (units >= 0) modal_.inch = units == 200;
   const int wcs = b.code(GGroup::CoordSystem);
   if (wcs >= 0) select_coord_system(wcs < 590 ? (wcs - 540) / 10 : 5 + (wcs - 590));
   const int dist = b.code(GGroup::Distance);
-  if (dist >= 0) absolute_ = dist == 900;
+  if (dist >= 0) modal_.absolute = dist == 900;
   const int arc_dist = b.code(GGroup::ArcDistance);
-  if (arc_dist >= 0) arc_absolute_ = arc_dist == 901;
+  if (arc_dist >= 0) modal_.arc_absolute = arc_dist == 901;
   const int retract = b.code(GGroup::RetractMode);
-  if (retract >= 0) retract_old_z_ = retract == 980;
+  if (retract >= 0) modal_.retract_old_z = retract == 980;
 }
 
 // " mm", or " in (N mm)" in G20, after the largest path tolerance.
 std::string Interpreter::tolerance_unit() const {
-  return inch_ ? " in (" + gnum(kMaxPathToleranceMm) + " mm)" : std::string(" mm");
+  return modal_.inch ? " in (" + gnum(kMaxPathToleranceMm) + " mm)" : std::string(" mm");
 }
 
 bool Interpreter::set_path_control() {
   const Block& b = *b_;
   switch (b.code(GGroup::PathControl)) {
     case 610:
-      path_mode_ = PathMode::ExactPath;
-      blend_tolerance_mm_ = naive_cam_tolerance_mm_ = 0.0;
+      modal_.path_mode = PathMode::ExactPath;
+      modal_.blend_tolerance_mm = modal_.naive_cam_tolerance_mm = 0.0;
       return true;
     case 611:
-      path_mode_ = PathMode::ExactStop;
-      blend_tolerance_mm_ = naive_cam_tolerance_mm_ = 0.0;
+      modal_.path_mode = PathMode::ExactStop;
+      modal_.blend_tolerance_mm = modal_.naive_cam_tolerance_mm = 0.0;
       return true;
     case 640:
       break;
@@ -460,9 +459,9 @@ bool Interpreter::set_path_control() {
                       tolerance_unit());
     }
   }
-  path_mode_ = PathMode::Blend;
-  blend_tolerance_mm_ = p_mm;
-  naive_cam_tolerance_mm_ = q_mm;
+  modal_.path_mode = PathMode::Blend;
+  modal_.blend_tolerance_mm = p_mm;
+  modal_.naive_cam_tolerance_mm = q_mm;
   return true;
 }
 
@@ -491,20 +490,20 @@ void Interpreter::fill_modal(Segment& s) const {
   s = Segment{};
   s.digital_out = digital_out_;
   s.analog_out = analog_out_;
-  s.feed_control = feed_control_;
-  s.plane = plane_;
-  s.path_mode = path_mode_;
-  s.blend_tolerance_mm = blend_tolerance_mm_;
-  s.naive_cam_tolerance_mm = naive_cam_tolerance_mm_;
-  s.laser = laser_;
-  s.power_pct = power_pct_;
-  s.mist = mist_;
-  s.flood = flood_;
+  s.feed_control = modal_.feed_control;
+  s.plane = modal_.plane;
+  s.path_mode = modal_.path_mode;
+  s.blend_tolerance_mm = modal_.blend_tolerance_mm;
+  s.naive_cam_tolerance_mm = modal_.naive_cam_tolerance_mm;
+  s.laser = modal_.laser;
+  s.power_pct = modal_.power_pct;
+  s.mist = modal_.mist;
+  s.flood = modal_.flood;
   s.line = line_;
 }
 
 bool Interpreter::check_feed() {
-  if (inverse_time_) {
+  if (modal_.inverse_time) {
     if (!block_has_f_) {
       return fail(ErrorCode::GcodeNoFeed, motion_word_,
                   "found " + quoted_block() +
@@ -527,13 +526,13 @@ bool Interpreter::check_feed() {
     }
     return true;
   }
-  if (!feed_set_) {
+  if (!modal_.feed_set) {
     return fail(ErrorCode::GcodeNoFeed, motion_word_,
                 "found " + quoted_block() +
                     " with no feed rate in effect; expected an F word (feed in " + feed_unit() +
                     ") before or on this line");
   }
-  if (feed_raw_ <= 0.0) {
+  if (modal_.feed_raw <= 0.0) {
     return fail(ErrorCode::GcodeNoFeed, motion_word_,
                 "found " + quoted_block() + " with feed rate F0 in effect; expected a positive F "
                 "word (feed in " + feed_unit() + ") before or on this line");
@@ -545,10 +544,10 @@ bool Interpreter::check_feed() {
 // says the same for inverse time). A product, not a quotient, on the path
 // every feed move takes; the message is built apart.
 bool Interpreter::check_duration(double linear_mm, double rotary_deg) {
-  if (inverse_time_) return true;
+  if (modal_.inverse_time) return true;
   constexpr double kMaxMinutes = kMaxBlockSeconds / 60.0;
-  if (moves_linear(linear_mm) ? linear_mm <= feed_mm_min_ * kMaxMinutes
-                      : rotary_deg <= feed_raw_ * kMaxMinutes) {
+  if (moves_linear(linear_mm) ? linear_mm <= modal_.feed_mm_min * kMaxMinutes
+                      : rotary_deg <= modal_.feed_raw * kMaxMinutes) {
     return true;
   }
   return fail_duration(linear_mm, rotary_deg);
@@ -557,12 +556,12 @@ bool Interpreter::check_duration(double linear_mm, double rotary_deg) {
 bool Interpreter::fail_duration(double linear_mm, double rotary_deg) {
   const bool rotary_only = !moves_linear(linear_mm);
   const double length = rotary_only ? rotary_deg : linear_mm;
-  const double minutes = length / (rotary_only ? feed_raw_ : feed_mm_min_);
+  const double minutes = length / (rotary_only ? modal_.feed_raw : modal_.feed_mm_min);
   const double scale = rotary_only ? 1.0 : length_scale();
-  const char* unit = rotary_only ? "deg" : (inch_ ? "in" : "mm");
+  const char* unit = rotary_only ? "deg" : (modal_.inch ? "in" : "mm");
   return fail(ErrorCode::GcodeBadValue, b_->has('F') ? b_->span('F') : motion_word_,
               "found " + quoted_block() + ": a move of " + gnum(length / scale) + " " + unit +
-                  " at F" + gnum(feed_raw_) + " takes " + gnum(minutes) +
+                  " at F" + gnum(modal_.feed_raw) + " takes " + gnum(minutes) +
                   " minutes; expected a move of at most " + gnum(kMaxBlockSeconds / 60.0) +
                   " minutes (one day): a higher F");
 }
@@ -587,11 +586,11 @@ bool Interpreter::check_magnitude(const Pose& end) {
 }
 
 void Interpreter::set_segment_feed(Segment& s, double linear_mm, double rotary_deg) const {
-  if (inverse_time_) {
+  if (modal_.inverse_time) {
     s.duration_s = 60.0 / block_f_;
     s.feed_mm_s = (moves_linear(linear_mm) ? linear_mm : rotary_deg) / s.duration_s;
   } else {
-    s.feed_mm_s = (moves_linear(linear_mm) ? feed_mm_min_ : feed_raw_) / 60.0;
+    s.feed_mm_s = (moves_linear(linear_mm) ? modal_.feed_mm_min : modal_.feed_raw) / 60.0;
   }
 }
 
@@ -636,7 +635,7 @@ bool Interpreter::move(SegmentBuffer& out) {
       return fail(ErrorCode::GcodeSyntax, b.code_word(GGroup::NonModal),
                   "found " + quoted_block() + ": G53 with an arc; expected G53 with G0 or G1");
     }
-    if (!absolute_) {
+    if (!modal_.absolute) {
       return fail(ErrorCode::GcodeSyntax, b.code_word(GGroup::NonModal),
                   "found " + quoted_block() + " in G91: G53 names machine positions; expected "
                   "G53 in G90 (absolute)");
@@ -654,11 +653,11 @@ bool Interpreter::move(SegmentBuffer& out) {
   for (int a = b.polar != 0 ? 2 : 0; a < kAxisCount; ++a) {
     if (((b.axis_mask >> a) & 1u) == 0) continue;
     const double v = axis_value(a);
-    end[a] = absolute_ ? v + offset[a] : from[a] + v;
+    end[a] = modal_.absolute ? v + offset[a] : from[a] + v;
   }
   if (b.polar != 0 && !polar_target(from, end)) return false;
   if ((b.axis_mask & untraveled_axes_) != 0 && !check_magnitude(end)) return false;
-  if (absolute_ && (b.axis_mask & wrapping_axes_) != 0) {
+  if (modal_.absolute && (b.axis_mask & wrapping_axes_) != 0) {
     // G90 on a continuous rotary axis names a position modulo 360: the axis
     // turns the shorter way to it (+180 on a tie); G91 turns by what it says.
     for (int a = 3; a < kAxisCount; ++a) {
@@ -732,13 +731,13 @@ bool Interpreter::arc(const Pose& end_in, SegmentBuffer& out) {
 bool Interpreter::arc_centre(const Pose& from, Pose& end, Vec3& c, std::uint32_t& extra_turns) {
   const Block& b = *b_;
   const bool cw = block_motion_ == MotionMode::ArcCw;
-  const auto [ia, ib, in] = arc_plane_axes(plane_);
+  const auto [ia, ib, in] = arc_plane_axes(modal_.plane);
   const char la = kCentreLetter[ia];
   const char lb = kCentreLetter[ib];
   const char ln = kCentreLetter[in];
   if (b.has(ln)) {
     return fail(ErrorCode::GcodeSyntax, b.span(ln),
-                "found " + quoted(b.span(ln)) + " on an arc in the " + plane_name(plane_) +
+                "found " + quoted(b.span(ln)) + " on an arc in the " + plane_name(modal_.plane) +
                     "; expected " + std::string(1, la) + " and " + std::string(1, lb) +
                     " for the centre");
   }
@@ -754,7 +753,7 @@ bool Interpreter::arc_centre(const Pose& from, Pose& end, Vec3& c, std::uint32_t
     return fail(ErrorCode::GcodeArcMissingCenter, motion_word_,
                 "found " + quoted_block() + " with no centre or radius; expected " +
                     std::string(1, la) + " " + std::string(1, lb) + " (centre, " +
-                    plane_name(plane_) + ") or R (radius)");
+                    plane_name(modal_.plane) + ") or R (radius)");
   }
   if (!check_feed()) return false;
 
@@ -807,8 +806,8 @@ bool Interpreter::arc_centre(const Pose& from, Pose& end, Vec3& c, std::uint32_t
     const Pose& offset = offsets_;
     const double ci = b.has(la) ? b[la] * length_scale() : 0.0;
     const double cj = b.has(lb) ? b[lb] * length_scale() : 0.0;
-    c[ia] = arc_absolute_ ? ci + offset[ia] : sa + ci;
-    c[ib] = arc_absolute_ ? cj + offset[ib] : sb + cj;
+    c[ia] = modal_.arc_absolute ? ci + offset[ia] : sa + ci;
+    c[ib] = modal_.arc_absolute ? cj + offset[ib] : sb + cj;
     if (same_point) {  // a full circle: make end == start exact for the planner
       end[ia] = sa;
       end[ib] = sb;
@@ -846,7 +845,7 @@ bool Interpreter::arc_centre(const Pose& from, Pose& end, Vec3& c, std::uint32_t
 bool Interpreter::arc_to(const Pose& end, const Vec3& c, bool cw, std::uint32_t extra_turns,
                          SegmentBuffer& out) {
   const Block& b = *b_;
-  const auto axes = arc_plane_axes(plane_);
+  const auto axes = arc_plane_axes(modal_.plane);
   comp_exited_ = false;
   take_synced_outputs();
   Segment& s = push_segment(out);
@@ -912,16 +911,16 @@ bool Interpreter::set_override_switches() {
     on = p != 0.0;
   }
   auto set = [&](std::uint8_t bit, bool value) {
-    feed_control_ = static_cast<std::uint8_t>(value ? feed_control_ | bit : feed_control_ & ~bit);
+    modal_.feed_control = static_cast<std::uint8_t>(value ? modal_.feed_control | bit : modal_.feed_control & ~bit);
   };
   switch (code) {
     case 48:
     case 49:
       set(kFeedOverrideOff, code == 49);
-      speed_override_ = code == 48;
+      modal_.speed_override = code == 48;
       break;
     case 50: set(kFeedOverrideOff, !on); break;
-    case 51: speed_override_ = on; break;
+    case 51: modal_.speed_override = on; break;
     case 52: set(kAdaptiveFeed, on); break;
     case 53: set(kFeedHoldInputOff, !on); break;
     default: break;
@@ -1055,58 +1054,13 @@ void Interpreter::take_synced_outputs() {
 // What M70 saves and M72 restores (LinuxCNC's save_settings: the G modes,
 // F, S, the laser and gas M codes; not the motion mode, nor cutter
 // compensation here).
-Interpreter::ModalState Interpreter::modal_state() const {
-  ModalState m;
-  m.plane = plane_;
-  m.inch = inch_;
-  m.absolute = absolute_;
-  m.arc_absolute = arc_absolute_;
-  m.inverse_time = inverse_time_;
-  m.retract_old_z = retract_old_z_;
-  m.tool_length_on = tool_length_on_;
-  m.coord_system = coord_system_;
-  m.tool_offset = tool_offset_;
-  m.path_mode = path_mode_;
-  m.blend_tolerance_mm = blend_tolerance_mm_;
-  m.naive_cam_tolerance_mm = naive_cam_tolerance_mm_;
-  m.feed_set = feed_set_;
-  m.feed_mm_min = feed_mm_min_;
-  m.feed_raw = feed_raw_;
-  m.laser = laser_;
-  m.power_pct = power_pct_;
-  m.mist = mist_;
-  m.flood = flood_;
-  m.feed_control = feed_control_;
-  m.speed_override = speed_override_;
-  return m;
-}
-
 void Interpreter::restore_modal(const ModalState& m) {
-  plane_ = m.plane;
-  inch_ = m.inch;
-  absolute_ = m.absolute;
-  arc_absolute_ = m.arc_absolute;
-  inverse_time_ = m.inverse_time;
-  retract_old_z_ = m.retract_old_z;
-  tool_length_on_ = m.tool_length_on;
-  tool_offset_ = m.tool_offset;
+  const int now = modal_.coord_system;
+  modal_ = m;
+  modal_.coord_system = now;
   // the system as it is now (its offsets may have been set since)
-  if (m.coord_system != coord_system_) select_coord_system(m.coord_system);
-  update_offsets();
-  for (int a = 0; a < kAxisCount; ++a) numbered_[static_cast<std::size_t>(kParamToolOffset + a)] =
-      tool_offset_[a];
-  path_mode_ = m.path_mode;
-  blend_tolerance_mm_ = m.blend_tolerance_mm;
-  naive_cam_tolerance_mm_ = m.naive_cam_tolerance_mm;
-  feed_set_ = m.feed_set;
-  feed_mm_min_ = m.feed_mm_min;
-  feed_raw_ = m.feed_raw;
-  laser_ = m.laser;
-  power_pct_ = m.power_pct;
-  mist_ = m.mist;
-  flood_ = m.flood;
-  feed_control_ = m.feed_control;
-  speed_override_ = m.speed_override;
+  if (m.coord_system != now) select_coord_system(m.coord_system);
+  apply_tool_offset();
 }
 
 bool Interpreter::run_context() {
@@ -1116,7 +1070,7 @@ bool Interpreter::run_context() {
     case 70:
     case 73:
       c.valid = true;
-      c.state = modal_state();
+      c.state = modal_;
       // M73 at the top level: nothing to return to; kept as M70's (LinuxCNC)
       c.restore_on_return = b.m_context == 73 && contexts_.size() > 1;
       return true;
@@ -1174,28 +1128,28 @@ bool Interpreter::predefined(std::string_view name, double& out) const {
   if (name == "_current_tool") return out = current_tool_, true;
   if (name == "_selected_tool") return out = selected_tool_, true;
   if (name == "_coord_system")
-    return out = coord_system_ < 6 ? 540 + 10 * coord_system_ : 591 + (coord_system_ - 6), true;
-  if (name == "_metric") return flag(!inch_);
-  if (name == "_imperial") return flag(inch_);
-  if (name == "_absolute") return flag(absolute_);
-  if (name == "_incremental") return flag(!absolute_);
-  if (name == "_inverse_time") return flag(inverse_time_);
-  if (name == "_units_per_minute") return flag(!inverse_time_);
+    return out = modal_.coord_system < 6 ? 540 + 10 * modal_.coord_system : 591 + (modal_.coord_system - 6), true;
+  if (name == "_metric") return flag(!modal_.inch);
+  if (name == "_imperial") return flag(modal_.inch);
+  if (name == "_absolute") return flag(modal_.absolute);
+  if (name == "_incremental") return flag(!modal_.absolute);
+  if (name == "_inverse_time") return flag(modal_.inverse_time);
+  if (name == "_units_per_minute") return flag(!modal_.inverse_time);
   if (name == "_units_per_rev") return flag(false);
-  if (name == "_ijk_absolute_mode") return flag(arc_absolute_);
-  if (name == "_tool_offset") return flag(tool_length_on_);
+  if (name == "_ijk_absolute_mode") return flag(modal_.arc_absolute);
+  if (name == "_tool_offset") return flag(modal_.tool_length_on);
   if (name == "_ccomp") return out = 400, true;
-  if (name == "_plane") return out = plane_ == Plane::ZX ? 180 : plane_ == Plane::YZ ? 190 : 170, true;
+  if (name == "_plane") return out = modal_.plane == Plane::ZX ? 180 : modal_.plane == Plane::YZ ? 190 : 170, true;
   if (name == "_motion_mode") return out = kMotionCode[static_cast<std::size_t>(motion_)], true;
-  if (name == "_feed") return out = inverse_time_ ? 0.0 : feed_mm_min_ / length_scale(), true;
-  if (name == "_rpm") return out = power_pct_ * machine_.laser.s_max / 100.0, true;
-  if (name == "_spindle_on") return flag(laser_ != LaserMode::Off);
-  if (name == "_mist") return flag(mist_);
-  if (name == "_flood") return flag(flood_);
-  if (name == "_feed_override") return flag((feed_control_ & kFeedOverrideOff) == 0);
-  if (name == "_speed_override") return flag(speed_override_);
-  if (name == "_adaptive_feed") return flag((feed_control_ & kAdaptiveFeed) != 0);
-  if (name == "_feed_hold") return flag((feed_control_ & kFeedHoldInputOff) == 0);
+  if (name == "_feed") return out = modal_.inverse_time ? 0.0 : modal_.feed_mm_min / length_scale(), true;
+  if (name == "_rpm") return out = modal_.power_pct * machine_.laser.s_max / 100.0, true;
+  if (name == "_spindle_on") return flag(modal_.laser != LaserMode::Off);
+  if (name == "_mist") return flag(modal_.mist);
+  if (name == "_flood") return flag(modal_.flood);
+  if (name == "_feed_override") return flag((modal_.feed_control & kFeedOverrideOff) == 0);
+  if (name == "_speed_override") return flag(modal_.speed_override);
+  if (name == "_adaptive_feed") return flag((modal_.feed_control & kAdaptiveFeed) != 0);
+  if (name == "_feed_hold") return flag((modal_.feed_control & kFeedHoldInputOff) == 0);
   return false;
 }
 

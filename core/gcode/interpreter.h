@@ -113,8 +113,8 @@ class Interpreter {
   [[nodiscard]] bool execute(const Block& block, const LineText& text, std::uint32_t line,
                              SegmentBuffer& out);
   // The program's end (the file's, or '%'): the moves compensation still
-  // holds, as they stand, to `out`.
-  void finish(SegmentBuffer& out);
+  // holds, as they stand, to `out`. false on error (fault()).
+  [[nodiscard]] bool finish(SegmentBuffer& out);
   // A subroutine call begins / returns (the reader says): the modal state
   // M70/M73 save is kept per call level, and an M73's comes back on return.
   void enter_call();
@@ -146,7 +146,7 @@ class Interpreter {
   bool set_axis_offsets();
   bool go_home(int first_param, SegmentBuffer& out);
   // offsets_ = their sum, after whatever changes one of them.
-  void update_offsets() { offsets_ = origin_ + axis_offset_ + tool_offset_; }
+  void update_offsets() { offsets_ = origin_ + axis_offset_ + modal_.tool_offset; }
   // A block's axis word in mm / deg.
   [[nodiscard]] double axis_value(int axis) const {
     return (*b_)[kAxisLetters[axis]] * (axis < 3 ? length_scale() : 1.0);
@@ -181,24 +181,34 @@ class Interpreter {
   void take_synced_outputs();
   // M70 M71 M72 M73 (LinuxCNC): save, forget, restore the modal state.
   bool run_context();
+  // The modes M70 saves and M72 restores, as one value (modal_): saving is
+  // a copy, restoring an assignment and the offsets made anew.
   struct ModalState {
     Plane plane = Plane::XY;
-    bool inch = false, absolute = true, arc_absolute = false, inverse_time = false;
-    bool retract_old_z = false, tool_length_on = false;
-    int coord_system = 0;
-    Pose tool_offset = Pose::Zero();
+    bool inch = false;
+    bool absolute = true;
+    bool arc_absolute = false;
+    bool inverse_time = false;
+    int coord_system = 0;                // 0 = G54 … 8 = G59.3
+    Pose tool_offset = Pose::Zero();     // G43
+    bool tool_length_on = false;         // G43 / G43.1 / G43.2 in effect
+    bool retract_old_z = false;          // G98 (true) / G99
     PathMode path_mode = PathMode::ExactPath;
-    double blend_tolerance_mm = 0.0, naive_cam_tolerance_mm = 0.0;
+    double blend_tolerance_mm = 0.0;
+    double naive_cam_tolerance_mm = 0.0;
     bool feed_set = false;
-    double feed_mm_min = 0.0, feed_raw = 0.0;
+    double feed_mm_min = 0.0;  // F converted to mm/min when it was read
+    double feed_raw = 0.0;     // F as written: deg/min for pure rotary moves
     LaserMode laser = LaserMode::Off;
     double power_pct = 0.0;
-    bool mist = false, flood = false;
-    std::uint8_t feed_control = 0;
-    bool speed_override = true;
+    bool mist = false;
+    bool flood = false;
+    std::uint8_t feed_control = 0;  // M48 … M53: Segment::feed_control
+    bool speed_override = true;     // M48 M49 M51: kept for #<_speed_override>
   };
-  [[nodiscard]] ModalState modal_state() const;
   void restore_modal(const ModalState& m);
+  // The offsets and #5401 … #5409 after the tool offset or the system changed.
+  void apply_tool_offset();
   // Where a new segment goes: to `out`, or held by cutter compensation.
   Segment& push_segment(SegmentBuffer& out);
   // Cutter (kerf) compensation (cutter_comp.cpp): G40 G41 G42 G41.1 G42.1.
@@ -234,7 +244,7 @@ class Interpreter {
   [[nodiscard]] std::string quoted(Span s) const;
   [[nodiscard]] std::string quoted_block() const;
   // mm per program length unit
-  [[nodiscard]] double length_scale() const noexcept { return inch_ ? kMmPerInch : 1.0; }
+  [[nodiscard]] double length_scale() const noexcept { return modal_.inch ? kMmPerInch : 1.0; }
   [[nodiscard]] const char* feed_unit() const noexcept;
   [[nodiscard]] std::string tolerance_unit() const;
 
@@ -247,42 +257,21 @@ class Interpreter {
 
   // Modal state (initially G17 G21 G90 G91.1 G94 G54 G61 M5 M9, F unset, S0).
   MotionMode motion_ = MotionMode::None;
-  Plane plane_ = Plane::XY;
-  bool inch_ = false;
-  bool absolute_ = true;
-  bool arc_absolute_ = false;
-  bool inverse_time_ = false;
-  int coord_system_ = 0;  // 0 = G54 … 8 = G59.3
+  ModalState modal_;
   std::vector<double>& numbered_;
   Pose origin_ = Pose::Zero();       // the coordinate system's offset
   Pose axis_offset_ = Pose::Zero();  // G92 / G52
-  Pose tool_offset_ = Pose::Zero();  // G43
   Pose offsets_ = Pose::Zero();      // their sum: machine = program + offsets_
-  bool tool_length_on_ = false;      // G43 / G43.1 / G43.2 in effect
   std::vector<ToolConfig> tools_;
   std::vector<int> changed_tools_;   // numbers of the tools G10 set
   int selected_tool_ = 0;            // T
   int current_tool_ = 0;             // in the spindle: M6, M61
-  // Canned cycles: G98 (retract to where Z was, or R if higher) or G99 (to
-  // R); the sticky R, Z, P, Q of the cycle in effect (mm, s), valid while
+  // Canned cycles (G98/G99: modal_.retract_old_z): the sticky R, Z, P, Q of the cycle in effect (mm, s), valid while
   // its mode lasts (a new cycle mode needs R and Z again).
-  bool retract_old_z_ = false;
   bool cycle_sticky_ = false;
   bool cycle_series_ = false;        // cycle blocks in a row: cycle_initial_z_ is set
   double cycle_initial_z_ = 0.0;     // where Z stood before the first of them
   double cycle_r_ = 0.0, cycle_z_ = 0.0, cycle_p_ = 0.0, cycle_q_ = 0.0;
-  PathMode path_mode_ = PathMode::ExactPath;
-  double blend_tolerance_mm_ = 0.0;
-  double naive_cam_tolerance_mm_ = 0.0;
-  bool feed_set_ = false;
-  double feed_mm_min_ = 0.0;  // F converted to mm/min when it was read
-  double feed_raw_ = 0.0;     // F as written: deg/min for pure rotary moves
-  LaserMode laser_ = LaserMode::Off;
-  double power_pct_ = 0.0;
-  bool mist_ = false;
-  bool flood_ = false;
-  std::uint8_t feed_control_ = 0;                // M48 … M53: Segment::feed_control
-  bool speed_override_ = true;                   // M48 M49 M51: kept for #<_speed_override>
   std::uint8_t digital_out_ = 0;                 // M62 … M65
   std::array<float, kAnalogOutputs> analog_out_{};  // M67 M68
   std::uint8_t synced_on_ = 0, synced_off_ = 0;  // M62 / M63 for the next move

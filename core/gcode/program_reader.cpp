@@ -204,6 +204,8 @@ struct ProgramReader::Impl {
   Next fail(ErrorCode code, std::string_view line, std::uint32_t byte_pos, std::string message);
   Next fail_o(std::string_view line, std::string message);
   Next at_file_end();
+  // The moves cutter compensation still holds, at the program's end.
+  bool release_held();
 
   // O-words: the line just parsed into `block`, which starts at `here`.
   bool run_o(std::string_view text, const Location& here);
@@ -280,7 +282,7 @@ ProgramReader::Next ProgramReader::Impl::read(Segment& out) {
       return Next::Segment;
     }
     if (ended) {
-      interp.finish(pending);  // moves cutter compensation still holds
+      if (!release_held()) return Next::Error;
       if (!pending.empty()) continue;
       warn_lines_after_end();
       state = State::Ended;
@@ -358,6 +360,15 @@ ProgramReader::Next ProgramReader::Impl::read(Segment& out) {
   }
 }
 
+bool ProgramReader::Impl::release_held() {
+  if (interp.finish(pending)) return true;
+  const gcode::Fault& f = interp.fault();
+  error = make_error(f.code, f.message, file, line, 0);
+  pending.clear();
+  state = State::Failed;
+  return false;
+}
+
 // The end of the file being read: the program's end, or an error when a
 // subroutine, a skip or a control structure is still open.
 ProgramReader::Next ProgramReader::Impl::at_file_end() {
@@ -418,7 +429,7 @@ ProgramReader::Next ProgramReader::Impl::at_file_end() {
                          " still open; expected " + o_name(c.label) + " " + end + " before it",
                      c.col);
   }
-  interp.finish(pending);  // moves cutter compensation still holds
+  if (!release_held()) return Next::Error;
   if (!pending.empty()) return Next::Segment;
   state = State::Ended;
   return Next::End;

@@ -91,8 +91,8 @@ bool Interpreter::set_tool_length() {
   const int code = b.code(GGroup::ToolLength);
   switch (code) {
     case 490:
-      tool_offset_.setZero();
-      tool_length_on_ = false;
+      modal_.tool_offset.setZero();
+      modal_.tool_length_on = false;
       break;
     case 430:
     case 432: {
@@ -105,24 +105,28 @@ bool Interpreter::set_tool_length() {
       }
       const ToolConfig* t = find_tool(h);
       const Pose add = t != nullptr ? t->offset : Pose::Zero();
-      tool_offset_ = code == 430 ? add : Pose(tool_offset_ + add);
-      tool_length_on_ = true;
+      modal_.tool_offset = code == 430 ? add : Pose(modal_.tool_offset + add);
+      modal_.tool_length_on = true;
       break;
     }
     case 431:
       for (int a = 0; a < kAxisCount; ++a)
-        if ((b.axis_mask >> a) & 1u) tool_offset_[a] = axis_value(a);
-      tool_length_on_ = true;
+        if ((b.axis_mask >> a) & 1u) modal_.tool_offset[a] = axis_value(a);
+      modal_.tool_length_on = true;
       break;
     default:
       return true;
   }
-  update_offsets();
-  for (int a = 0; a < kAxisCount; ++a)
-    numbered_[static_cast<std::size_t>(kParamToolOffset + a)] = tool_offset_[a];
+  apply_tool_offset();
   const ToolConfig* in_spindle = find_tool(current_tool_);
   numbered_[kParamToolDiameter] = in_spindle != nullptr ? in_spindle->diameter_mm : 0.0;
   return true;
+}
+
+void Interpreter::apply_tool_offset() {
+  update_offsets();
+  for (int a = 0; a < kAxisCount; ++a)
+    numbered_[static_cast<std::size_t>(kParamToolOffset + a)] = modal_.tool_offset[a];
 }
 
 bool Interpreter::set_tool_data() {
