@@ -1,5 +1,6 @@
 #include "hmi/decomposition_page.h"
 
+#include <QCoreApplication>
 #include <QDir>
 #include <QElapsedTimer>
 #include <QFileDialog>
@@ -23,9 +24,18 @@ namespace {
 
 using decompose::kG_mm_s2;
 
-const char* const kColumns[] = {"#",        "first entity", "length mm", "points",
-                                "time s",   "τ s",          "main a mm/s²", "main v mm/s",
-                                "aux v mm/s", "aux max mm", "a_eff mm/s²"};
+const char* const kColumns[] = {
+    "#",
+    QT_TRANSLATE_NOOP("DecompositionPage", "first entity"),
+    QT_TRANSLATE_NOOP("DecompositionPage", "length mm"),
+    QT_TRANSLATE_NOOP("DecompositionPage", "points"),
+    QT_TRANSLATE_NOOP("DecompositionPage", "time s"),
+    QT_TRANSLATE_NOOP("DecompositionPage", "τ s"),
+    QT_TRANSLATE_NOOP("DecompositionPage", "main a mm/s²"),
+    QT_TRANSLATE_NOOP("DecompositionPage", "main v mm/s"),
+    QT_TRANSLATE_NOOP("DecompositionPage", "aux v mm/s"),
+    QT_TRANSLATE_NOOP("DecompositionPage", "aux max mm"),
+    QT_TRANSLATE_NOOP("DecompositionPage", "a_eff mm/s²")};
 
 }  // namespace
 
@@ -48,7 +58,7 @@ DecompositionPage::DecompositionPage(QWidget* parent)
   QTableWidget* t = ui_->contourTable;
   t->setColumnCount(static_cast<int>(std::size(kColumns)));
   QStringList headers;
-  for (const char* c : kColumns) headers << QString::fromUtf8(c);
+  for (const char* c : kColumns) headers << QCoreApplication::translate("DecompositionPage", c);
   t->setHorizontalHeaderLabels(headers);
   t->verticalHeader()->hide();
   t->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);

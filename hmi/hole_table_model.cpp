@@ -1,5 +1,7 @@
 #include "hmi/hole_table_model.h"
 
+#include <QCoreApplication>
+
 #include <array>
 
 namespace lcnc::hmi {
@@ -102,7 +104,9 @@ QVariant HoleTableModel::headerData(int section, Qt::Orientation orientation, in
   if (role != Qt::DisplayRole || orientation != Qt::Horizontal || section < 0 || section >= kColumnCount)
     return QAbstractTableModel::headerData(section, orientation, role);
   const ColumnInfo& c = kColumns[static_cast<std::size_t>(section)];
-  const QString title = tr(c.title);
+  // the titles' context is the one QT_TRANSLATE_NOOP names above (tr()'s
+  // would be lcnc::hmi::HoleTableModel, where they are not)
+  const QString title = QCoreApplication::translate("HoleTableModel", c.title);
   return *c.unit ? title + " (" + QString::fromUtf8(c.unit) + ")" : title;
 }
 

@@ -1,5 +1,6 @@
 #include "hmi/machine_page.h"
 
+#include <QCoreApplication>
 #include <QHeaderView>
 #include <QTableWidget>
 
@@ -110,7 +111,8 @@ void MachinePage::refresh() {
     const bool present = (st->axes_mask >> kAxes[i]) & 1u;
     dro[i]->setText(present ? QString::number(st->pos[kAxes[i]], 'f', 3) : QString("—"));
   }
-  ui_->stateLabel->setText(tr("State: %1").arg(tr(state_text(st->state))));
+  ui_->stateLabel->setText(
+      tr("State: %1").arg(QCoreApplication::translate("MachinePage", state_text(st->state))));
   if (const std::optional<shm::JobStatus> j = link_.job()) ui_->jobLabel->setText(QString::fromUtf8(j->message));
 }
 

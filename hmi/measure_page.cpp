@@ -21,6 +21,22 @@ QString xyz(const Vec3& v) {
   return QString("%1, %2, %3").arg(v.x(), 0, 'f', 4).arg(v.y(), 0, 'f', 4).arg(v.z(), 0, 'f', 4);
 }
 
+// A probe point's face as the operator reads it: "primary 2" → the face's
+// word in the screen's language and its number.
+QString face_text(const std::string& face) {
+  static const char* const kFaces[] = {QT_TRANSLATE_NOOP("MeasurePage", "primary"),
+                                       QT_TRANSLATE_NOOP("MeasurePage", "secondary"),
+                                       QT_TRANSLATE_NOOP("MeasurePage", "tertiary")};
+  const std::size_t space = face.find(' ');
+  const std::string word = face.substr(0, space);
+  for (const char* f : kFaces) {
+    if (word != f) continue;
+    const QString name = QCoreApplication::translate("MeasurePage", f);
+    return space == std::string::npos ? name : name + QString::fromStdString(face.substr(space));
+  }
+  return QString::fromStdString(face);
+}
+
 }  // namespace
 
 MeasurePage::MeasurePage(ProcessDatabase& db, std::string shm_name, std::string probe_serial, QWidget* parent)
@@ -60,8 +76,8 @@ void MeasurePage::show_plan() {
     t->setRowCount(static_cast<int>(o.points.size()));
     for (int r = 0; r < static_cast<int>(o.points.size()); ++r) {
       const Pose& a = o.points[r].approach;
-      t->setItem(r, kFace, new QTableWidgetItem(QString::fromStdString(o.points[r].face)));
-      t->setItem(r, kApproach, new QTableWidgetItem(xyz(a.head<3>()) + QString("; %1, %2 (planned)")
+      t->setItem(r, kFace, new QTableWidgetItem(face_text(o.points[r].face)));
+      t->setItem(r, kApproach, new QTableWidgetItem(xyz(a.head<3>()) + tr("; %1, %2 (planned)")
                                                                            .arg(a[3], 0, 'f', 2)
                                                                            .arg(a[5], 0, 'f', 2)));
       for (int c = kMeasured; c < kColumns; ++c) t->setItem(r, c, new QTableWidgetItem());
@@ -119,7 +135,7 @@ void MeasurePage::present(const MeasureOutcome& o) {
     const ProbePoint& p = o.points[r];
     const Vec3 a = p.approach.head<3>();
     const QString cells[] = {
-        QString::fromStdString(p.face),
+        face_text(p.face),
         xyz(a) + QString("; %1, %2").arg(p.approach[3], 0, 'f', 2).arg(p.approach[5], 0, 'f', 2),
         p.measured ? xyz(*p.measured) : QString::fromStdString(p.error),
         p.residual_mm ? QString::number(*p.residual_mm, 'f', 4) : QString()};

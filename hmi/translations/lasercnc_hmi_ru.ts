@@ -150,6 +150,46 @@
         <source>Export table…</source>
         <translation>Экспорт таблицы…</translation>
     </message>
+    <message>
+        <source>first entity</source>
+        <translation>первый элемент</translation>
+    </message>
+    <message>
+        <source>length mm</source>
+        <translation>длина, мм</translation>
+    </message>
+    <message>
+        <source>points</source>
+        <translation>точки</translation>
+    </message>
+    <message>
+        <source>time s</source>
+        <translation>время, с</translation>
+    </message>
+    <message>
+        <source>τ s</source>
+        <translation>τ, с</translation>
+    </message>
+    <message>
+        <source>main a mm/s²</source>
+        <translation>осн. a, мм/с²</translation>
+    </message>
+    <message>
+        <source>main v mm/s</source>
+        <translation>осн. v, мм/с</translation>
+    </message>
+    <message>
+        <source>aux v mm/s</source>
+        <translation>доп. v, мм/с</translation>
+    </message>
+    <message>
+        <source>aux max mm</source>
+        <translation>доп. макс., мм</translation>
+    </message>
+    <message>
+        <source>a_eff mm/s²</source>
+        <translation>a_eff, мм/с²</translation>
+    </message>
 </context>
 <context>
     <name>FocalPage</name>
@@ -429,6 +469,18 @@
     <message>
         <source>Measure</source>
         <translation>Измерить</translation>
+    </message>
+    <message>
+        <source>primary</source>
+        <translation>основная</translation>
+    </message>
+    <message>
+        <source>secondary</source>
+        <translation>вторая</translation>
+    </message>
+    <message>
+        <source>tertiary</source>
+        <translation>третья</translation>
     </message>
 </context>
 <context>
@@ -883,6 +935,10 @@
             <numerusform>Перенесено %n отверстия на измеренное положение.</numerusform>
             <numerusform>Перенесено %n отверстий на измеренное положение.</numerusform>
         </translation>
+    </message>
+    <message>
+        <source>; %1, %2 (planned)</source>
+        <translation>; %1, %2 (план)</translation>
     </message>
 </context>
 <context>

@@ -150,6 +150,46 @@
         <source>Export table…</source>
         <translation>导出表格…</translation>
     </message>
+    <message>
+        <source>first entity</source>
+        <translation>首个图元</translation>
+    </message>
+    <message>
+        <source>length mm</source>
+        <translation>长度 mm</translation>
+    </message>
+    <message>
+        <source>points</source>
+        <translation>点数</translation>
+    </message>
+    <message>
+        <source>time s</source>
+        <translation>时间 s</translation>
+    </message>
+    <message>
+        <source>τ s</source>
+        <translation>τ s</translation>
+    </message>
+    <message>
+        <source>main a mm/s²</source>
+        <translation>主轴 a mm/s²</translation>
+    </message>
+    <message>
+        <source>main v mm/s</source>
+        <translation>主轴 v mm/s</translation>
+    </message>
+    <message>
+        <source>aux v mm/s</source>
+        <translation>辅轴 v mm/s</translation>
+    </message>
+    <message>
+        <source>aux max mm</source>
+        <translation>辅轴最大 mm</translation>
+    </message>
+    <message>
+        <source>a_eff mm/s²</source>
+        <translation>a_eff mm/s²</translation>
+    </message>
 </context>
 <context>
     <name>FocalPage</name>
@@ -429,6 +469,18 @@
     <message>
         <source>Measure</source>
         <translation>测量</translation>
+    </message>
+    <message>
+        <source>primary</source>
+        <translation>第一基准面</translation>
+    </message>
+    <message>
+        <source>secondary</source>
+        <translation>第二基准面</translation>
+    </message>
+    <message>
+        <source>tertiary</source>
+        <translation>第三基准面</translation>
     </message>
 </context>
 <context>
@@ -873,6 +925,10 @@
         <translation>
             <numerusform>已将 %n 个孔变换到测得的位姿。</numerusform>
         </translation>
+    </message>
+    <message>
+        <source>; %1, %2 (planned)</source>
+        <translation>; %1, %2（计划）</translation>
     </message>
 </context>
 <context>

@@ -9,6 +9,8 @@
 #include <QPushButton>
 #include <QRegularExpression>
 #include <QTabWidget>
+#include <QTableView>
+#include <QTableWidget>
 
 #include <cstdlib>
 #include <filesystem>
@@ -81,6 +83,36 @@ TEST(Translations, TheScreensSpeakRussianAndChinese) {
   QString why;
   EXPECT_FALSE(install_language("de", &why));
   EXPECT_TRUE(why.contains("no translation for 'de'")) << why.toStdString();
+}
+
+// Texts the code translates from tables of its own (column titles, the
+// probe faces): in the context they were marked in, not tr()'s namespaced
+// one — the hole table's and the decomposition's headers stayed English in
+// Russian and Chinese before.
+TEST(Translations, TableHeadersFromTheCodesOwnListsAreTranslated) {
+  auto db = ProcessDatabase::open((fs::temp_directory_path() / ("lcnc_trh_" + std::to_string(getpid()) + ".db")).string());
+  ASSERT_TRUE(static_cast<bool>(db));
+  ASSERT_TRUE(install_language("ru"));
+  {
+    MainWindow w(**db, "/lcnc_tr_none");
+    QAbstractItemModel* holes = nullptr;
+    for (QTableView* v : w.findChildren<QTableView*>())
+      if (v->model() != nullptr && QString(v->model()->metaObject()->className()).endsWith("HoleTableModel"))
+        holes = v->model();
+    ASSERT_NE(holes, nullptr);
+    EXPECT_TRUE(holes->headerData(0, Qt::Horizontal).toString().startsWith(QString::fromUtf8("Отверстие")))
+        << holes->headerData(0, Qt::Horizontal).toString().toStdString();
+    auto* contours = w.findChild<QTableWidget*>("contourTable");
+    ASSERT_NE(contours, nullptr);
+    EXPECT_EQ(contours->horizontalHeaderItem(1)->text(), QString::fromUtf8("первый элемент"));
+  }
+  ASSERT_TRUE(install_language("zh_CN"));
+  {
+    MainWindow w(**db, "/lcnc_tr_none");
+    EXPECT_EQ(w.findChild<QTableWidget*>("contourTable")->horizontalHeaderItem(2)->text(),
+              QString::fromUtf8("长度 mm"));
+  }
+  ASSERT_TRUE(install_language("en"));
 }
 
 }  // namespace
