@@ -281,7 +281,7 @@ struct Daemon::Impl {
       std::snprintf(msg, sizeof msg, "loaded %s: %u lines, %llu segments, path %.3f mm",
                     program->name().c_str(), s.lines, static_cast<unsigned long long>(s.segments),
                     s.path_length_mm);
-      a = Ack{true, ErrorCode::Internal, msg};
+      a = Ack{true, ErrorCode::Ok, msg};
     }
     ack(l->cmd, a);
     for (const shm::Command& r : l->repeats) ack(r, a);
@@ -346,29 +346,29 @@ struct Daemon::Impl {
           for (int i = 0; i < kAxisCount; ++i) at[i] = kernel->position_steps(i);
           motion = std::make_unique<MotionCheck>(machine, at);
         }
-        return Ack{true, ErrorCode::Internal, "started " + program->name()};
+        return Ack{true, ErrorCode::Ok, "started " + program->name()};
       }
       case shm::CommandType::Hold:
         kernel->command({rt::RtCommandType::Hold, 0, 0.0});
-        return Ack{true, ErrorCode::Internal, "hold"};
+        return Ack{true, ErrorCode::Ok, "hold"};
       case shm::CommandType::Resume:
         kernel->command({rt::RtCommandType::Resume, 0, 0.0});
-        return Ack{true, ErrorCode::Internal, "resume"};
+        return Ack{true, ErrorCode::Ok, "resume"};
       case shm::CommandType::Stop:
         kernel->command({rt::RtCommandType::Stop, 0, 0.0});
-        return Ack{true, ErrorCode::Internal, "stop"};
+        return Ack{true, ErrorCode::Ok, "stop"};
       case shm::CommandType::EStop:
         kernel->command({rt::RtCommandType::EStop, 0, 0.0});
         return Ack{true, ErrorCode::RtEstop, "e-stop"};
       case shm::CommandType::Reset:
         if (st != shm::MachineState::EStop) return refuse("reset refused: not in e-stop");
         kernel->command({rt::RtCommandType::Reset, 0, 0.0});
-        return Ack{true, ErrorCode::Internal, "reset"};
+        return Ack{true, ErrorCode::Ok, "reset"};
       case shm::CommandType::Override: {
         kernel->set_feed_override(c.value);
         char msg[64];
         std::snprintf(msg, sizeof msg, "override %g %%", c.value * 100.0);
-        return Ack{true, ErrorCode::Internal, msg};
+        return Ack{true, ErrorCode::Ok, msg};
       }
       case shm::CommandType::Jog: {
         if (st != shm::MachineState::Idle || job_active)
@@ -376,13 +376,13 @@ struct Daemon::Impl {
         kernel->command({rt::RtCommandType::Jog, static_cast<std::int8_t>(c.axis), c.value});
         char msg[96];
         std::snprintf(msg, sizeof msg, "jog %s %+g", axis_text.c_str(), c.value);
-        return Ack{true, ErrorCode::Internal, msg};
+        return Ack{true, ErrorCode::Ok, msg};
       }
       case shm::CommandType::Home: {
         if (st != shm::MachineState::Idle || job_active)
           return refuse(std::string("home refused: the machine is ") + state_name(st));
         kernel->command({rt::RtCommandType::Home, static_cast<std::int8_t>(c.axis), 0.0});
-        return Ack{true, ErrorCode::Internal, "home " + axis_text};
+        return Ack{true, ErrorCode::Ok, "home " + axis_text};
       }
       case shm::CommandType::Count: break;
     }

@@ -19,7 +19,7 @@ namespace lcnc::rt {
 
 // The fault that ended motion, if any.
 struct RtFault {
-  ErrorCode code = ErrorCode::Internal;
+  ErrorCode code = ErrorCode::Ok;  // Ok: none (active false)
   int axis = -1;          // axis index, −1 if none
   std::uint32_t line = 0; // program line, 0 if none
   bool active = false;

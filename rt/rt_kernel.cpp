@@ -339,7 +339,7 @@ void RtKernel::take_commands() noexcept {
         break;
       case RtCommandType::Stop:
         if (on_path_state()) {
-          begin_stop(ErrorCode::Internal, -1, 0);
+          begin_stop(ErrorCode::Ok, -1, 0);  // the operator's: no fault
         } else if (s == MachineState::Jog || s == MachineState::Homing) {
           move_.stop();
           move_abort_ = true;
@@ -459,7 +459,7 @@ void RtKernel::enter_estop(ErrorCode code, int axis, std::uint32_t line) noexcep
 }
 
 void RtKernel::begin_stop(ErrorCode code, int axis, std::uint32_t line) noexcept {
-  if (code != ErrorCode::Internal) set_fault(code, axis, line);
+  if (code != ErrorCode::Ok) set_fault(code, axis, line);
   stopping_ = true;
   set_state(MachineState::Stopping);
 }

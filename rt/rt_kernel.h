@@ -197,6 +197,7 @@ class RtKernel : private OwnKernelPort, public KernelControl {
   void take_inputs() noexcept;
   void set_fault(ErrorCode code, int axis, std::uint32_t line) noexcept;
   void enter_estop(ErrorCode code, int axis, std::uint32_t line) noexcept;
+  // A controlled stop along the path; code Ok: the operator's, no fault.
   void begin_stop(ErrorCode code, int axis, std::uint32_t line) noexcept;
   // K for a start from rest: the operator's override over what the first
   // queued entry is planned at, no ramp.
