@@ -6,6 +6,7 @@
 // its velocity or acceleration limit, the path past its tolerance).
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -30,7 +31,7 @@ constexpr const char* kUsage =
     "usage:\n"
     "  lasercnc run PROGRAM [--machine FILE] [--vmax V] [--amax A] [--tolerance E]\n"
     "                       [--feed-override PCT] [--pause S] [--trace FILE.csv] [--json]\n"
-    "                       [--[no-]progress] [--no-realtime]\n"
+    "                       [--[no-]progress] [--no-realtime] [--input N]... [--adaptive-feed F]\n"
     "                       [--devices | --laser ENDPOINT [--power-meter ENDPOINT]]\n"
     "  lasercnc check PROGRAM [--machine FILE] [--moves FILE]\n"
     "  lasercnc status [--json] [--shm NAME]\n"
@@ -61,6 +62,10 @@ constexpr const char* kUsage =
     "                  machine); default 100\n"
     "  --pause         an M0, M1 or M60 pauses the job; unattended, the run goes on after\n"
     "                  S seconds (default 0). (lasercncd waits for `send resume`.)\n"
+    "  --input         the simulated machine's digital input N (0-7) is high for the whole\n"
+    "                  run (M66 P N L3 goes on at once; repeat for more inputs)\n"
+    "  --adaptive-feed the simulated machine's adaptive-feed input, 0 to 1 (default 1):\n"
+    "                  scales the feed of the moves after M52 P1\n"
     "  --trace         commanded position and laser power every RT period as CSV\n"
     "                  t,x,y,z,a,b,c,power (s of machine time, mm, deg, % of rated)\n"
     "  --progress      progress bar on stderr (default: only when stderr is a terminal)\n"
@@ -178,6 +183,16 @@ int main(int argc, char** argv) {
       if (!number(s) || !(*s >= 0.0 && *s <= 3600.0))
         return usage_error("--pause needs the seconds to stay paused at M0/M1/M60, 0 to 3600");
       opt.pause_s = *s;
+    } else if (a == "--input") {
+      std::optional<double> n;
+      if (!number(n) || !(*n >= 0.0 && *n < lcnc::kDigitalInputs && *n == std::floor(*n)))
+        return usage_error("--input needs the number of a digital input to hold high, 0 to 7");
+      opt.inputs_high = static_cast<std::uint8_t>(opt.inputs_high | (1u << static_cast<int>(*n)));
+    } else if (a == "--adaptive-feed") {
+      std::optional<double> f;
+      if (!number(f) || !(*f >= 0.0 && *f <= 1.0))
+        return usage_error("--adaptive-feed needs the factor on the feed under M52, 0 to 1");
+      opt.adaptive_feed = static_cast<float>(*f);
     } else if (a == "--moves" && cmd == "check") {
       auto v = value();
       if (!v) return usage_error("--moves needs a file (- for standard output)");

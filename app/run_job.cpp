@@ -362,6 +362,8 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   auto buffer = std::make_unique<rt::PositionBuffer>();
   auto trace = std::make_unique<rt::TraceRing>();
   drivers::SimMachine sim(start_steps);
+  sim.set_digital_inputs(options.inputs_high);
+  sim.set_adaptive_feed(options.adaptive_feed);
   auto rt_log = std::make_unique<rt::RtLogRing>();
   rt::RtKernel kernel(machine, *buffer, sim, trace.get(), start_steps);
   kernel.set_log(rt_log.get());

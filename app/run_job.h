@@ -36,6 +36,10 @@ struct RunOptions {
   double feed_override_pct = 100.0;
   // M0/M1/M60 pause the job; unattended, the run resumes after this long (s).
   double pause_s = 0.0;
+  // The simulated machine's inputs for the whole run: digital inputs high
+  // (bit n: input n, for M66) and the adaptive-feed factor (M52), 0 … 1.
+  std::uint8_t inputs_high = 0;
+  float adaptive_feed = 1.0f;
   // The laser source and power meter over Modbus (app/laser_link.h):
   // in-process simulators (devices), or devices at these endpoints.
   bool devices = false;

@@ -283,6 +283,30 @@ TEST(LasercncRun, ArcsWhoseRadiiDifferRunAsSpiralsWithinTheLimits) {
   }
 }
 
+// The simulated machine's inputs from the command line: an M66 wait for
+// input 3 high times out without `--input 3` (a fault, exit 3) and goes on
+// at once with it; `--adaptive-feed 0.5` halves the feed after M52 P1.
+TEST(LasercncRun, TheSimulatedInputsAreSetFromTheCommandLine) {
+  const fs::path prog = write_file("inputs.ngc", "G21 G90\nG0 X10 Y10 Z20\nM66 P3 L3 Q0.3\nM52 P1\n"
+                                                 "G1 X60 F3000\nM2\n");
+  const CmdResult none = lasercnc("run " + prog.string() + " --no-progress");
+  EXPECT_EQ(none.exit_code, 3);
+  EXPECT_NE(none.out.find("M66 wait for an input timed out at line 3"), std::string::npos) << none.out;
+  const CmdResult high = lasercnc("run " + prog.string() + " --json --no-progress --input 3");
+  ASSERT_EQ(high.exit_code, 0) << high.err;
+  const CmdResult half =
+      lasercnc("run " + prog.string() + " --json --no-progress --input 3 --adaptive-feed 0.5");
+  ASSERT_EQ(half.exit_code, 0) << half.err;
+  const double t1 = nlohmann::json::parse(high.out)["cycle_time_s"].get<double>();
+  const double t2 = nlohmann::json::parse(half.out)["cycle_time_s"].get<double>();
+  // the 50 mm cut at 50 mm/s takes 1 s, at half 2 s; the rapids the same
+  // (a planner behind the RT only lengthens a run: a sanitized build)
+  EXPECT_GT(t2 - t1, 0.9) << t1 << " " << t2;
+  EXPECT_LT(t2 - t1, 1.5) << t1 << " " << t2;
+  EXPECT_EQ(lasercnc("run " + prog.string() + " --input 8").exit_code, 2);
+  EXPECT_EQ(lasercnc("run " + prog.string() + " --adaptive-feed 1.5").exit_code, 2);
+}
+
 TEST(LasercncRun, TextReportNamesEveryFigure) {
   const fs::path prog = write_file("square.ngc", "G21 G90 G61\nG0 X10 Y10 Z5\nG1 X20 F1200\nG1 Y20\nM2\n");
   const CmdResult r = lasercnc("run " + prog.string() + " --no-progress");
