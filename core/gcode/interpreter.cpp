@@ -1095,6 +1095,40 @@ bool Interpreter::run_context() {
   }
 }
 
+std::string Interpreter::modes_block() const {
+  const ModalState& m = modal_;
+  const double scale = length_scale();
+  char buf[64];
+  const auto number = [&buf](double v) {
+    std::snprintf(buf, sizeof buf, "%.10g", v);
+    return std::string(buf);
+  };
+  std::string out;
+  out += m.plane == Plane::ZX ? "G18" : m.plane == Plane::YZ ? "G19" : "G17";
+  out += m.inch ? " G20" : " G21";
+  out += m.absolute ? " G90" : " G91";
+  out += m.arc_absolute ? " G90.1" : " G91.1";
+  out += m.inverse_time ? " G93" : " G94";
+  static constexpr const char* kSystems[kWorkOffsetCount] = {"G54",   "G55",   "G56",   "G57",  "G58",
+                                                             "G59",   "G59.1", "G59.2", "G59.3"};
+  out += ' ';
+  out += kSystems[std::clamp(m.coord_system, 0, kWorkOffsetCount - 1)];
+  switch (m.path_mode) {
+    case PathMode::ExactPath: out += " G61"; break;
+    case PathMode::ExactStop: out += " G61.1"; break;
+    case PathMode::Blend:
+      out += " G64 P" + number(m.blend_tolerance_mm / scale);
+      if (m.naive_cam_tolerance_mm > 0.0) out += " Q" + number(m.naive_cam_tolerance_mm / scale);
+      break;
+  }
+  // F in the units it is read in (an inverse-time F is per block, not kept)
+  if (m.feed_set && !m.inverse_time) out += " F" + number(m.feed_mm_min / scale);
+  if (m.power_pct > 0.0) out += " S" + number(m.power_pct * machine_.laser.s_max / 100.0);
+  if (motion_ == MotionMode::Rapid) out += " G0";
+  if (motion_ == MotionMode::Linear) out += " G1";
+  return out;
+}
+
 void Interpreter::enter_call() { contexts_.emplace_back(); }
 
 void Interpreter::leave_call() {

@@ -123,6 +123,17 @@ class Interpreter {
   [[nodiscard]] bool ended() const noexcept { return ended_; }  // M2 or M30 ran
   [[nodiscard]] const Fault& fault() const noexcept { return fault_; }
   [[nodiscard]] const Pose& position() const noexcept { return pos_; }
+  // machine = program + offsets(): the work system's origin, the G92 offset
+  // and the tool offset in effect (mm, deg).
+  [[nodiscard]] const Pose& offsets() const noexcept { return offsets_; }
+  [[nodiscard]] int coord_system() const noexcept { return modal_.coord_system; }  // 0 = G54
+  [[nodiscard]] bool inch() const noexcept { return modal_.inch; }
+  // The modes a later reading starts in to go on where this one stands
+  // (MDI: one command after the other), as one block: plane, units,
+  // distance and arc-distance modes, feed mode, work system, path mode,
+  // F, S and G0/G1. Not the beam (off between commands), tool, cutter
+  // compensation, arcs or canned cycles: a command needs its own.
+  [[nodiscard]] std::string modes_block() const;
 
  private:
   bool resolve_motion();

@@ -193,12 +193,26 @@ struct ProgramReader::Impl {
     if (load_offsets()) run_startup();
   }
 
+  // The segments of read_program() as the options ask: from the start line
+  // on (after the approach), a pause after each block, the beam off.
+  Next read(Segment& out);
+  Next read_program(Segment& out);
+  bool approach_to(const Segment& first);
+  [[nodiscard]] Segment pause_at(const Segment& after) const;
+  std::vector<Segment> queued;      // what read() returns before reading on
+  std::size_t queued_next = 0;
+  bool reached_start = false;       // the first move of the start line has been read
+  bool emitted_any = false;
+  std::uint32_t last_line = 0;      // of the last segment returned
+  Segment last_segment;
+
   enum class State : std::uint8_t { Running, Ended, Failed };
 
-  Next read(Segment& out);
   bool load_offsets();
   void save_offsets();
   void run_startup();
+  // A line of modes run before the program (line 0): nothing may move.
+  void run_line0(const std::string& code, const char* what, ErrorCode code_if_bad);
   void warn_lines_after_end();
   bool grbl_system_line(std::string_view text);
   Next fail(ErrorCode code, std::string_view line, std::uint32_t byte_pos, std::string message);
@@ -267,7 +281,7 @@ ProgramReader::Next ProgramReader::Impl::fail_o(std::string_view text, std::stri
               std::move(message));
 }
 
-ProgramReader::Next ProgramReader::Impl::read(Segment& out) {
+ProgramReader::Next ProgramReader::Impl::read_program(Segment& out) {
   for (;;) {
     switch (state) {
       case State::Ended:
@@ -358,6 +372,98 @@ ProgramReader::Next ProgramReader::Impl::read(Segment& out) {
       end_what += " on line " + std::to_string(line);
     }
   }
+}
+
+ProgramReader::Next ProgramReader::Impl::read(Segment& out) {
+  for (;;) {
+    if (queued_next < queued.size()) {
+      out = queued[queued_next++];
+      if (queued_next == queued.size()) {
+        queued.clear();
+        queued_next = 0;
+      }
+      emitted_any = true;
+      last_line = out.line;
+      last_segment = out;
+      return Next::Segment;
+    }
+    Segment s;
+    const Next n = read_program(s);
+    if (n == Next::Error) return n;
+    if (n == Next::End) {
+      if (options.start_line > 0 && !reached_start) {
+        error = make_error(ErrorCode::GcodeBadValue,
+                           "run from line " + std::to_string(options.start_line) +
+                               ": the program makes no move on or after that line (it ends on line " +
+                               std::to_string(line) + "); expected the line of a move",
+                           file, options.start_line, 0);
+        state = State::Failed;
+        return Next::Error;
+      }
+      return n;
+    }
+    if (options.laser_off) {
+      s.laser = LaserMode::Off;
+      s.power_pct = 0.0;
+    }
+    if (options.start_line > 0 && !reached_start) {
+      if (s.line < options.start_line) continue;  // read, not moved
+      reached_start = true;
+      if (!approach_to(s)) return Next::Error;
+    } else if (options.single_block && emitted_any && s.line != last_line && !last_segment.pause) {
+      queued.push_back(pause_at(last_segment));
+    }
+    queued.push_back(s);
+  }
+}
+
+// Run from line: from where the machine stands (options.start) to where
+// `first` begins, at rapid with the beam off, never lower than the higher
+// of the two Z's on the way across.
+bool ProgramReader::Impl::approach_to(const Segment& first) {
+  Segment r = first;
+  r.kind = MotionKind::Rapid;
+  r.laser = LaserMode::Off;
+  r.power_pct = 0.0;
+  r.feed_mm_s = 0.0;
+  r.duration_s = 0.0;
+  r.dwell_s = 0.0;
+  r.pause = false;
+  r.wait_input = -1;
+  r.extra_turns = 0;
+  const Pose& target = first.start;
+  const double safe_z = std::max(options.start[2], target[2]);
+  Pose at = options.start;
+  const auto go = [&](const Pose& to) {
+    if (to == at) return;
+    r.start = at;
+    r.end = to;
+    queued.push_back(r);
+    at = to;
+  };
+  Pose up = at;
+  up[2] = safe_z;
+  go(up);
+  Pose across = target;
+  across[2] = safe_z;
+  go(across);
+  go(target);
+  return true;
+}
+
+// Single block: a stop after `after`, as M0's.
+Segment ProgramReader::Impl::pause_at(const Segment& after) const {
+  Segment p = after;
+  p.kind = MotionKind::Dwell;
+  p.start = after.end;
+  p.dwell_s = 2.0 * machine.period_s();
+  p.laser = LaserMode::Off;
+  p.power_pct = 0.0;
+  p.feed_mm_s = 0.0;
+  p.duration_s = 0.0;
+  p.wait_input = -1;
+  p.pause = true;
+  return p;
 }
 
 bool ProgramReader::Impl::release_held() {
@@ -818,8 +924,13 @@ void ProgramReader::Impl::save_offsets() {
 }
 
 void ProgramReader::Impl::run_startup() {
-  if (machine.startup_code.empty()) return;
-  const std::string& code = machine.startup_code;
+  run_line0(machine.startup_code, "machine.startup_code", ErrorCode::ConfigBadValue);
+  if (state == State::Running)
+    run_line0(options.modes, "the modes carried in from before", ErrorCode::GcodeBadValue);
+}
+
+void ProgramReader::Impl::run_line0(const std::string& code, const char* what, ErrorCode code_if_bad) {
+  if (code.empty()) return;
   const char* why = nullptr;
   if (!parser.parse(code, block)) {
     why = parser.fault().message.c_str();
@@ -829,8 +940,7 @@ void ProgramReader::Impl::run_startup() {
     why = "it moves or ends";
   }
   if (why == nullptr) return;
-  error = make_error(ErrorCode::ConfigBadValue,
-                     std::string("machine.startup_code \"") + code + "\": " + why +
+  error = make_error(code_if_bad, std::string(what) + " \"" + code + "\": " + why +
                          "; expected modal codes only",
                      file, 0, 0);
   pending.clear();
@@ -925,6 +1035,11 @@ std::uint32_t ProgramReader::lines_read() const {
   return impl_->cur == 0 ? std::max(impl_->main_lines, impl_->line) : impl_->main_lines;
 }
 
+ReaderModes ProgramReader::modes() const {
+  const gcode::Interpreter& in = impl_->interp;
+  return ReaderModes{in.modes_block(), in.offsets(), in.coord_system(), in.inch()};
+}
+
 Result<ProgramSummary> check_program(const std::string& path, const MachineConfig& machine,
                                      ReaderOptions options) {
   auto opened = ProgramReader::open(path, machine, options);
@@ -943,6 +1058,8 @@ Result<ProgramSummary> check_program(const std::string& path, const MachineConfi
     sum.min = sum.min.cwiseMin(s.end);
     sum.max = sum.max.cwiseMax(s.end);
     double length = 0.0;
+    Pose lo = s.start.cwiseMin(s.end);
+    Pose hi = s.start.cwiseMax(s.end);
     switch (s.kind) {
       case MotionKind::Dwell:
         continue;
@@ -952,18 +1069,25 @@ Result<ProgramSummary> check_program(const std::string& path, const MachineConfi
         break;
       case MotionKind::Arc: {
         length = gcode::arc_length_mm(s);
-        Vec3 lo, hi;
-        gcode::arc_bounds(s, lo, hi);
-        sum.min.head<3>() = sum.min.head<3>().cwiseMin(lo);
-        sum.max.head<3>() = sum.max.head<3>().cwiseMax(hi);
+        Vec3 arc_lo, arc_hi;
+        gcode::arc_bounds(s, arc_lo, arc_hi);
+        lo.head<3>() = lo.head<3>().cwiseMin(arc_lo);
+        hi.head<3>() = hi.head<3>().cwiseMax(arc_hi);
+        sum.min.head<3>() = sum.min.head<3>().cwiseMin(arc_lo);
+        sum.max.head<3>() = sum.max.head<3>().cwiseMax(arc_hi);
         break;
       }
+    }
+    if (s.kind != MotionKind::Rapid) {
+      sum.feed_min = sum.feed_min.cwiseMin(lo);
+      sum.feed_max = sum.feed_max.cwiseMax(hi);
     }
     sum.path_length_mm += length;
     if (s.kind != MotionKind::Rapid) sum.feed_length_mm += length;
   }
   sum.lines = reader.lines_read();
   sum.warnings = reader.warnings();
+  sum.end = reader.modes();
   return sum;
 }
 

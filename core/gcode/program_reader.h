@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <istream>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -35,6 +36,29 @@ struct ReaderOptions {
   // The job's own reading (not a check): at the program's end the offsets
   // and tools it set are written to the machine's parameter_file.
   bool keep_parameters = false;
+  // Modes carried in from an earlier reading (an MDI command goes on in the
+  // modes the one before it left: ProgramSummary::end.modes), run after the
+  // machine's startup code as if line 0. Modal codes, F and S only.
+  std::string modes;
+  // Run from line N (0: from the start). Every block before the first move
+  // of a line >= N is read — modes, offsets, tool, laser power and feed are
+  // as they would be there — but its moves are not made; then a safe
+  // approach, at rapid with the beam off, goes from `start` to where that
+  // move begins: up to the higher of the two Z's, across, then down.
+  std::uint32_t start_line = 0;
+  // Single block: the machine stops (a pause, as M0) after the moves of
+  // each block, until the operator resumes.
+  bool single_block = false;
+  // Dry run: every move as programmed with the beam off (power 0).
+  bool laser_off = false;
+};
+
+// Where a reading left its modes and offsets.
+struct ReaderModes {
+  std::string block;          // the modes as one block (ReaderOptions::modes of the next)
+  Pose offsets = Pose::Zero();  // machine = program + offsets (mm, deg)
+  int coord_system = 0;       // 0 = G54 … 8 = G59.3
+  bool inch = false;          // G20
 };
 
 class ProgramReader {
@@ -62,6 +86,8 @@ class ProgramReader {
   [[nodiscard]] const Diagnostic& error() const;            // valid after Next::Error
   [[nodiscard]] const std::vector<Diagnostic>& warnings() const;  // e.g. lines after M2
   [[nodiscard]] std::uint32_t lines_read() const;
+  // The modes and offsets as the blocks read so far left them.
+  [[nodiscard]] ReaderModes modes() const;
 
   struct Impl;
 
@@ -77,7 +103,11 @@ struct ProgramSummary {
   double feed_length_mm = 0.0;  // of feed moves (G1 G2 G3) only
   Pose min = Pose::Zero();      // bounding box of all positions reached
   Pose max = Pose::Zero();
+  // bounding box of the feed moves (G1 G2 G3): min > max when there are none
+  Pose feed_min = Pose::Constant(std::numeric_limits<double>::infinity());
+  Pose feed_max = Pose::Constant(-std::numeric_limits<double>::infinity());
   std::vector<Diagnostic> warnings;
+  ReaderModes end;  // the modes and offsets at the program's end
 };
 
 // Reads the whole program, checking syntax, modal conflicts, arcs, feeds and
