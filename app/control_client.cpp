@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -82,6 +83,11 @@ std::string local_file_problem(const std::string& path) {
   return "it is not a regular file";
 }
 
+const char* coord_system_name(std::uint8_t index) {
+  static constexpr const char* kNames[] = {"G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3"};
+  return index < std::size(kNames) ? kNames[index] : "?";
+}
+
 const char* outcome_name(shm::JobOutcome o) {
   switch (o) {
     case shm::JobOutcome::None: return "";
@@ -114,6 +120,18 @@ std::string format_status(const shm::Status& st, const shm::JobStatus& job, bool
     j["fault_axis"] = st.fault_axis >= 0 ? std::string(1, kAxisLetters[st.fault_axis]) : "";
     j["line"] = st.line;
     j["position"] = st.pos;
+    {
+      std::array<double, 6> work{};
+      for (int i = 0; i < kAxisCount; ++i) work[i] = st.pos[i] - job.work_offset[i];
+      j["work_position"] = work;  // machine − work_offset, mm / deg
+    }
+    j["work_offset"] = job.work_offset;
+    j["coord_system"] = coord_system_name(job.coord_system);
+    j["modes"] = job.modes;
+    j["mdi"] = job.mdi;
+    j["single_block"] = job.single_block;
+    j["dry_run"] = job.dry_run;
+    j["start_line"] = job.start_line;
     j["position_steps"] = st.pos_steps;
     j["homed_mask"] = st.homed_mask;
     j["axes_mask"] = st.axes_mask;
@@ -149,9 +167,12 @@ std::string format_status(const shm::Status& st, const shm::JobStatus& job, bool
     if (st.fault_axis >= 0) fault += std::string(" (axis ") + kAxisLetters[st.fault_axis] + ")";
   }
   out += std::string("state      ") + state_name(st.state) +
-         (st.program_pause ? " — program pause (M0/M1/M60) at line " + std::to_string(st.line) +
-                                 ": send resume to go on"
-                           : std::string()) +
+         (st.program_pause && job.job_active && job.single_block
+              ? " — single block: stopped after line " + std::to_string(st.line) +
+                    ": send resume to run the next block"
+          : st.program_pause ? " — program pause (M0/M1/M60) at line " + std::to_string(st.line) +
+                                   ": send resume to go on"
+                             : std::string()) +
          (st.input_wait >= 0 ? " — waiting for input P" + std::to_string(st.input_wait) +
                                    " (M66) at line " + std::to_string(st.line)
                              : std::string()) +
@@ -160,6 +181,10 @@ std::string format_status(const shm::Status& st, const shm::JobStatus& job, bool
   for (int i = 0; i < kAxisCount; ++i)  // "?": not homed
     if ((st.axes_mask >> i) & 1u)
       add(" %c %.3f%s", kAxisLetters[i], st.pos[i], (st.homed_mask >> i) & 1u ? "" : "?");
+  add("\nwork %-5s", coord_system_name(job.coord_system));
+  for (int i = 0; i < kAxisCount; ++i)
+    if ((st.axes_mask >> i) & 1u) add(" %c %.3f", kAxisLetters[i], st.pos[i] - job.work_offset[i]);
+  add("\nmodes      %s", job.modes);
   add("\noverride   %.0f %% (target %.0f %%)   buffer %u   line %u\n", st.feed_override * 100.0,
       st.feed_override_target * 100.0, st.buffer_fill, st.line);
   out += std::string("program    ") + (job.program[0] ? job.program : "(none)") +
@@ -214,6 +239,22 @@ int client_send(const std::vector<std::string>& args, const ClientOptions& optio
     }
     c.type = shm::CommandType::Load;
     std::snprintf(c.text, sizeof c.text, "%s", path.c_str());
+  } else if (cmd == "mdi") {
+    if (args.size() < 2) {
+      std::fprintf(stderr, "lasercnc send mdi: expects a line of G-code, e.g. mdi \"G1 X10 F600\"\n");
+      return 2;
+    }
+    std::string text;
+    for (std::size_t i = 1; i < args.size(); ++i) text += (i > 1 ? " " : "") + args[i];
+    if (text.size() >= sizeof c.text) {
+      std::fprintf(stderr, "lasercnc send mdi: a line of at most %zu bytes\n", sizeof c.text - 1);
+      return 2;
+    }
+    c.type = shm::CommandType::Mdi;
+    std::snprintf(c.text, sizeof c.text, "%s", text.c_str());
+  } else if (cmd == "frame") {
+    if (!need(0, "no argument")) return 2;
+    c.type = shm::CommandType::Frame;
   } else if (cmd == "start" || cmd == "hold" || cmd == "resume" || cmd == "stop" ||
              cmd == "estop" || cmd == "reset") {
     if (!need(0, "no argument")) return 2;
@@ -223,6 +264,11 @@ int client_send(const std::vector<std::string>& args, const ClientOptions& optio
              : cmd == "stop"   ? shm::CommandType::Stop
              : cmd == "estop"  ? shm::CommandType::EStop
                                : shm::CommandType::Reset;
+    if (c.type == shm::CommandType::Start) {
+      c.value = options.from_line;
+      c.axis = static_cast<std::uint8_t>((options.single_block ? shm::kStartSingleBlock : 0) |
+                                         (options.dry_run ? shm::kStartDryRun : 0));
+    }
   } else if (cmd == "override") {
     if (!need(1, "a percentage (0 … 150)")) return 2;
     const auto v = number(args[1]);
@@ -255,7 +301,7 @@ int client_send(const std::vector<std::string>& args, const ClientOptions& optio
   } else {
     std::fprintf(stderr,
                  "lasercnc send: unknown command '%s' (load, start, hold, resume, stop, estop, "
-                 "reset, override, jog, home)\n",
+                 "reset, override, jog, home, mdi, frame)\n",
                  cmd.c_str());
     return 2;
   }
@@ -315,7 +361,11 @@ int client_send(const std::vector<std::string>& args, const ClientOptions& optio
     return 1;
   }
   std::printf("%s\n", answer.message);
-  if (options.wait && c.type == shm::CommandType::Start) {
+  const bool moves = c.type == shm::CommandType::Start || c.type == shm::CommandType::Mdi ||
+                     c.type == shm::CommandType::Frame;
+  if (options.wait && moves) {
+    // an MDI command that does not move is done with its answer
+    if (read_both(b, st, job) && job.jobs_ended == ended_before && !job.job_active) return 0;
     while (!(read_both(b, st, job) && job.jobs_ended != ended_before && !job.job_active)) {
       if (!client->owner_alive()) {
         std::fprintf(stderr, "lasercnc: the daemon died during the job\n");

@@ -3,8 +3,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <thread>
 #include <unistd.h>
 
@@ -55,6 +57,45 @@ shm::CommandLimits command_limits(const MachineConfig& m) {
   return l;
 }
 
+// $XDG_DATA_HOME/lasercnc/lasercncd.var (~/.local/share/lasercnc/…), its
+// folder made if missing. A user without a home of its own (a system user
+// whose service sets no XDG_DATA_HOME) gets a file in the temporary folder
+// for this run only, and `warning` says so.
+std::string default_parameter_file(std::string& warning) {
+  std::filesystem::path dir;
+  if (const char* x = std::getenv("XDG_DATA_HOME"); x != nullptr && *x == '/') {
+    dir = x;
+  } else if (const char* h = std::getenv("HOME"); h != nullptr && *h == '/') {
+    dir = std::filesystem::path(h) / ".local/share";
+  }
+  std::error_code ec;
+  if (!dir.empty()) {
+    dir /= "lasercnc";
+    std::filesystem::create_directories(dir, ec);
+    if (!ec) return (dir / "lasercncd.var").string();
+  }
+  const std::filesystem::path tmp =
+      std::filesystem::temp_directory_path(ec) / ("lasercncd-" + std::to_string(getpid()) + ".var");
+  warning = "no folder for the work offsets (" +
+            (dir.empty() ? std::string("neither XDG_DATA_HOME nor HOME is set")
+                         : "cannot make " + dir.string()) +
+            "): they are kept in " + tmp.string() +
+            " for this run only; give --parameter-file FILE to keep them";
+  return tmp.string();
+}
+
+// The work offsets and modes from the parameter file: an empty reading
+// from `at` in `modes`.
+Result<ReaderModes> read_work(const MachineConfig& machine, const Pose& at, const std::string& modes) {
+  ReaderOptions ropt;
+  ropt.start = at;
+  ropt.modes = modes;
+  auto reader = ProgramReader::from_string("", "parameters", machine, ropt);
+  Segment seg;
+  if (reader->next(seg) == ProgramReader::Next::Error) return reader->error();
+  return reader->modes();
+}
+
 }  // namespace
 
 struct Daemon::Impl {
@@ -88,6 +129,18 @@ struct Daemon::Impl {
 
   // the job
   std::shared_ptr<const ProgramSnapshot> program;  // loaded, checked; null if none
+  // What the active (or last) job runs: the loaded program, or an MDI
+  // command's or the framing's own text.
+  std::shared_ptr<const ProgramSnapshot> running;
+  std::uint64_t running_segments = 0;
+  // The modes the next MDI command starts in: what the last one left (a
+  // program's end sets them back to the parameter file's work system).
+  std::string mdi_modes;
+  std::string mdi_end_modes;  // the running MDI command's, kept once it ends
+  // Bumped whenever a job or MDI command may have changed the offsets in
+  // the parameter file: the program loaded is checked again before a start.
+  std::uint64_t params_gen = 0;
+  std::uint64_t loaded_gen = 0;
   bool job_active = false;
   bool start_pending = false;  // planning ahead, the kernel not yet started
   bool stop_sent = false;      // the planner stopped short of a soft limit
@@ -202,9 +255,7 @@ struct Daemon::Impl {
   // Checks the program's copy (or builds and checks the drilling job) from
   // `start`; changes nothing of what is loaded. Any thread: reads only the
   // machine.
-  Result<CheckedJob> check(const ProgramSnapshot& p, const Pose& start) const {
-    ReaderOptions ropt;
-    ropt.start = start;
+  Result<CheckedJob> check(const ProgramSnapshot& p, ReaderOptions ropt) const {
     ropt.program_dir = std::filesystem::path(p.name()).parent_path().string();  // not the copy's
     CheckedJob out;
     if (!is_hole_table(p.name())) {
@@ -226,6 +277,7 @@ struct Daemon::Impl {
     shm::Command cmd;
     std::vector<shm::Command> repeats;  // the same request sent again meanwhile
     Pose start = Pose::Zero();
+    std::uint64_t params_gen = 0;  // the offsets it is checked with
     std::shared_ptr<const ProgramSnapshot> snapshot;  // valid once done
     std::optional<Result<CheckedJob>> checked;        // valid once done
     std::atomic<bool> done{false};  // release by the loader, acquire by the command thread
@@ -237,6 +289,7 @@ struct Daemon::Impl {
     auto p = std::make_unique<PendingLoad>();
     p->cmd = c;
     p->start = position();
+    p->params_gen = params_gen;
     SnapshotRequest req;
     req.path = c.text;
     req.sender_uid = c.sender_uid;
@@ -250,7 +303,9 @@ struct Daemon::Impl {
         l.checked.emplace(snap.error());
       } else {
         l.snapshot = *snap;
-        l.checked.emplace(check(*l.snapshot, l.start));
+        ReaderOptions ropt;
+        ropt.start = l.start;
+        l.checked.emplace(check(*l.snapshot, ropt));
       }
       l.done.store(true, std::memory_order_release);
     });
@@ -272,6 +327,7 @@ struct Daemon::Impl {
       program = l->snapshot;
       loaded = std::move(checked).value();
       loaded_from = l->start;
+      loaded_gen = l->params_gen;
       const ProgramSummary& s = loaded.summary;
       copy_text(job.program, program->name());
       job.lines = s.lines;
@@ -302,51 +358,30 @@ struct Daemon::Impl {
         return refuse("load refused: a load comes through the command ring");
       case shm::CommandType::Start: {
         if (pending) return refuse("start refused: a program is being loaded");
-        if (hal && hal->attached() == 0)
-          return refuse("start refused: no HAL component runs the kernel (loadrt lasercnc segment=" +
-                        shm.name() + ", addf lasercnc.update to a thread, start)");
-        if (const std::string u = unhomed(); !u.empty())
-          return refuse("start refused: not homed: " + u + " (home every axis, or set [machine] allow_unhomed)");
+        if (std::optional<Ack> no = refuse_motion("start", st)) return *no;
         if (!program) return refuse("start refused: no program loaded");
-        if (job_active || st != shm::MachineState::Idle)
-          return refuse(std::string("start refused: the machine is ") + state_name(st));
-        // the copy that was checked runs; checked again from here if the
-        // machine has moved (jog, home) since
         ReaderOptions ropt;
         ropt.start = position();
         ropt.program_dir = std::filesystem::path(program->name()).parent_path().string();
-        // (and whenever a parameter file may have changed the offsets since)
-        if (ropt.start != loaded_from || !machine.parameter_file.empty()) {
-          Result<CheckedJob> checked = check(*program, ropt.start);
+        ropt.start_line = static_cast<std::uint32_t>(c.value);
+        ropt.single_block = (c.axis & shm::kStartSingleBlock) != 0;
+        ropt.laser_off = (c.axis & shm::kStartDryRun) != 0;
+        const bool plain = ropt.start_line == 0 && !ropt.single_block && !ropt.laser_off;
+        if (loaded.drill_segments && !plain)
+          return refuse("start refused: run from line, single block and dry run are for G-code "
+                        "programs; " + program->name() + " is a hole table");
+        // the copy that was checked runs; checked again from here if the
+        // machine has moved (jog, home) or the offsets may have changed since,
+        // or with the options asked for
+        if (ropt.start != loaded_from || loaded_gen != params_gen || !plain) {
+          Result<CheckedJob> checked = check(*program, ropt);
           if (!checked) return Ack{false, checked.error().code, "start: " + checked.error().to_string()};
+          if (!plain) return begin_job(program, *checked, ropt, false);
           loaded = std::move(checked).value();
           loaded_from = ropt.start;
+          loaded_gen = params_gen;
         }
-        if (loaded.drill_segments) {
-          path = PathCheck::for_segments(loaded.drill_segments, machine);
-          feed->start(loaded.drill_segments, ropt.start, program->name());
-        } else {
-          Result<std::unique_ptr<PathCheck>> p = PathCheck::for_program(program->path(), machine, ropt);
-          if (!p) return Ack{false, p.error().code, "start: " + p.error().to_string()};
-          path = std::move(p).value();
-          ReaderOptions job = ropt;
-          job.keep_parameters = true;  // what it sets outlives it (machine.parameter_file)
-          feed->start(program->path(), job);
-        }
-        job_active = true;
-        start_pending = true;
-        stop_sent = false;
-        job.job_active = true;
-        job.progress = 0.0;
-        job_time_start_ns = kernel->machine_time_ns();
-        job_underruns_start = kernel->underruns();
-        drain_trace();  // what came before the job is not the job's
-        {
-          std::array<std::int64_t, kAxisCount> at{};
-          for (int i = 0; i < kAxisCount; ++i) at[i] = kernel->position_steps(i);
-          motion = std::make_unique<MotionCheck>(machine, at);
-        }
-        return Ack{true, ErrorCode::Ok, "started " + program->name()};
+        return begin_job(program, loaded, ropt, false);
       }
       case shm::CommandType::Hold:
         kernel->command({rt::RtCommandType::Hold, 0, 0.0});
@@ -384,9 +419,157 @@ struct Daemon::Impl {
         kernel->command({rt::RtCommandType::Home, static_cast<std::int8_t>(c.axis), 0.0});
         return Ack{true, ErrorCode::Ok, "home " + axis_text};
       }
+      case shm::CommandType::Mdi: return mdi(c.text, st);
+      case shm::CommandType::Frame: return frame(st);
       case shm::CommandType::Count: break;
     }
     return refuse("bad command frame");
+  }
+
+  // Why `what` may not move the machine now; nothing if it may.
+  std::optional<Ack> refuse_motion(const char* what, shm::MachineState st) const {
+    const auto refuse = [what](const std::string& why) {
+      return Ack{false, ErrorCode::RtRefused, std::string(what) + " refused: " + why};
+    };
+    if (pending) return refuse("a program is being loaded");
+    if (hal && hal->attached() == 0)
+      return refuse("no HAL component runs the kernel (loadrt lasercnc segment=" + shm.name() +
+                    ", addf lasercnc.update to a thread, start)");
+    if (const std::string u = unhomed(); !u.empty())
+      return refuse("not homed: " + u + " (home every axis, or set [machine] allow_unhomed)");
+    if (job_active || st != shm::MachineState::Idle)
+      return refuse(std::string("the machine is ") + state_name(st));
+    return std::nullopt;
+  }
+
+  // The job: `snap` as `checked` from `ropt.start`, planned and run. An MDI
+  // command or the framing (`mdi`) leaves the loaded program as it is.
+  Ack begin_job(std::shared_ptr<const ProgramSnapshot> snap, const CheckedJob& checked,
+                const ReaderOptions& ropt, bool mdi) {
+    if (checked.drill_segments) {
+      path = PathCheck::for_segments(checked.drill_segments, machine);
+      feed->start(checked.drill_segments, ropt.start, snap->name());
+    } else {
+      Result<std::unique_ptr<PathCheck>> p = PathCheck::for_program(snap->path(), machine, ropt);
+      if (!p) return Ack{false, p.error().code, "start: " + snap->rename(p.error()).to_string()};
+      path = std::move(p).value();
+      ReaderOptions job_options = ropt;
+      job_options.keep_parameters = true;  // what it sets outlives it (the parameter file)
+      feed->start(snap->path(), job_options);
+    }
+    running = std::move(snap);
+    running_segments = checked.summary.segments;
+    job_active = true;
+    start_pending = true;
+    stop_sent = false;
+    job.job_active = true;
+    job.progress = 0.0;
+    job.mdi = mdi;
+    job.single_block = ropt.single_block;
+    job.dry_run = ropt.laser_off;
+    job.start_line = ropt.start_line;
+    job_time_start_ns = kernel->machine_time_ns();
+    job_underruns_start = kernel->underruns();
+    drain_trace();  // what came before the job is not the job's
+    {
+      std::array<std::int64_t, kAxisCount> at{};
+      for (int i = 0; i < kAxisCount; ++i) at[i] = kernel->position_steps(i);
+      motion = std::make_unique<MotionCheck>(machine, at);
+    }
+    std::string how;
+    if (ropt.start_line > 0) how += ", from line " + std::to_string(ropt.start_line);
+    if (ropt.single_block) how += ", single block (resume runs the next)";
+    if (ropt.laser_off) how += ", dry run: the beam off";
+    return Ack{true, ErrorCode::Ok, (mdi ? "running " : "started ") + running->name() + how};
+  }
+
+  // MDI: one line of G-code, in the modes the last command left, from here.
+  // One that does not move (G10 L20, G55, F600) is done at once.
+  Ack mdi(const std::string& text, shm::MachineState st) {
+    std::size_t b = text.find_first_not_of(" \t");
+    if (b == std::string::npos) return Ack{false, ErrorCode::RtRefused, "mdi refused: no G-code"};
+    if (std::optional<Ack> no = refuse_motion("mdi", st)) return *no;
+    Result<std::shared_ptr<const ProgramSnapshot>> snap = ProgramSnapshot::from_text("MDI", text + "\n");
+    if (!snap) return Ack{false, snap.error().code, "mdi: " + snap.error().to_string()};
+    ReaderOptions ropt;
+    ropt.start = position();
+    ropt.modes = mdi_modes;
+    ropt.keep_parameters = true;  // a G10 that does not move is kept by this reading
+    Result<CheckedJob> checked = check(**snap, ropt);
+    ++params_gen;
+    if (!checked) return Ack{false, checked.error().code, "mdi: " + checked.error().to_string()};
+    const std::string shown = text.substr(b);
+    if (checked->summary.segments == 0) {
+      mdi_modes = checked->summary.end.block;
+      publish_work(checked->summary.end);
+      return Ack{true, ErrorCode::Ok, "mdi " + shown + ": done"};
+    }
+    mdi_end_modes = checked->summary.end.block;
+    Ack a = begin_job(*snap, *checked, ropt, true);
+    if (a.ok) a.message = "mdi " + shown + ": running";
+    return a;
+  }
+
+  // Framing: the loaded program's X Y extents (of its cuts, else of all its
+  // moves) traced at the Z where the machine stands, with the beam off, at
+  // half the slower of X's and Y's top speed; then back to where it began.
+  Ack frame(shm::MachineState st) {
+    if (std::optional<Ack> no = refuse_motion("frame", st)) return *no;
+    if (!program) return Ack{false, ErrorCode::RtRefused, "frame refused: no program loaded"};
+    const ProgramSummary& sum = loaded.summary;
+    const bool cuts = sum.feed_min[0] <= sum.feed_max[0];
+    const Pose lo = cuts ? sum.feed_min : sum.min;
+    const Pose hi = cuts ? sum.feed_max : sum.max;
+    const Pose here = position();
+    const double feed_mm_min =
+        30.0 * std::min(machine.axes[0].max_velocity, machine.axes[1].max_velocity);
+    char text[512];
+    std::snprintf(text, sizeof text,
+                  "(framing %s: X %.4f … %.4f, Y %.4f … %.4f)\n"
+                  "G90 G21 G61 M5\n"
+                  "G53 G0 X%.6f Y%.6f\n"
+                  "G53 G1 X%.6f F%.3f\n"
+                  "G53 G1 Y%.6f\n"
+                  "G53 G1 X%.6f\n"
+                  "G53 G1 Y%.6f\n"
+                  "G53 G0 X%.6f Y%.6f\n",
+                  program->name().c_str(), lo[0], hi[0], lo[1], hi[1], lo[0], lo[1], hi[0],
+                  feed_mm_min, hi[1], lo[0], lo[1], here[0], here[1]);
+    Result<std::shared_ptr<const ProgramSnapshot>> snap = ProgramSnapshot::from_text("framing", text);
+    if (!snap) return Ack{false, snap.error().code, "frame: " + snap.error().to_string()};
+    ReaderOptions ropt;
+    ropt.start = here;
+    ropt.laser_off = true;
+    Result<CheckedJob> checked = check(**snap, ropt);
+    if (!checked) return Ack{false, checked.error().code, "frame: " + checked.error().to_string()};
+    mdi_end_modes = mdi_modes;  // framing leaves the MDI modes as they are
+    Ack a = begin_job(*snap, *checked, ropt, true);
+    if (a.ok) {
+      char msg[200];
+      std::snprintf(msg, sizeof msg, "framing %s: X %.3f … %.3f, Y %.3f … %.3f mm, beam off",
+                    program->name().c_str(), lo[0], hi[0], lo[1], hi[1]);
+      a.message = msg;
+    }
+    return a;
+  }
+
+  // The work coordinates the HMIs and `lasercnc status` show: the offsets,
+  // work system and modes as `m` (a reading's end) left them.
+  void publish_work(const ReaderModes& m) {
+    for (int i = 0; i < kAxisCount; ++i) job.work_offset[i] = m.offsets[i];
+    job.coord_system = static_cast<std::uint8_t>(m.coord_system);
+    job.inch = m.inch;
+    copy_text(job.modes, m.block);
+  }
+
+  // The same, read afresh from the parameter file (after a program).
+  void refresh_work() {
+    Result<ReaderModes> m = read_work(machine, position(), mdi_modes);
+    if (!m) {
+      logger()->warn("lasercncd: the work offsets: {}", m.error().to_string());
+      return;
+    }
+    publish_work(*m);
   }
 
   // Why a load may not begin now; nothing if it may.
@@ -521,8 +704,8 @@ struct Daemon::Impl {
       kernel->command({rt::RtCommandType::StartJob, 0, 0.0});
     }
     if (feed->stopped_short() && !stop_sent) stop_sent = kernel->command({rt::RtCommandType::Stop, 0, 0.0});
-    if (loaded.summary.segments > 0)
-      job.progress = std::min(1.0, kernel->current_segment() / static_cast<double>(loaded.summary.segments));
+    if (running_segments > 0)
+      job.progress = std::min(1.0, kernel->current_segment() / static_cast<double>(running_segments));
     const std::uint32_t ended = kernel->jobs_ended();
     const bool estopped = kernel->state() == shm::MachineState::EStop;
     if (ended == jobs_ended_seen && !estopped) return;
@@ -563,12 +746,12 @@ struct Daemon::Impl {
       job.last_outcome = shm::JobOutcome::Failed;
       job.last_fault = static_cast<std::uint16_t>(planned.error.code);
       std::snprintf(msg, sizeof msg, "job failed %s: %s", where,
-                    program->rename(planned.error).to_string().c_str());
+                    running->rename(planned.error).to_string().c_str());
     } else if (planned.limit) {
       job.last_outcome = shm::JobOutcome::Stopped;
       job.last_fault = static_cast<std::uint16_t>(planned.limit_error.code);
       std::snprintf(msg, sizeof msg, "job stopped %s: %s", where,
-                    program->rename(planned.limit_error).to_string().c_str());
+                    running->rename(planned.limit_error).to_string().c_str());
     } else if (f.active) {
       job.last_outcome = estopped ? shm::JobOutcome::EStopped : shm::JobOutcome::Stopped;
       std::snprintf(msg, sizeof msg, "job %s %s: %s", estopped ? "e-stopped" : "stopped", where,
@@ -586,12 +769,17 @@ struct Daemon::Impl {
       job.last_outcome = shm::JobOutcome::Done;
       job.progress = 1.0;
       std::snprintf(msg, sizeof msg, "job done: %s, cycle %.3f s, %llu underruns, every axis within its limits, the path within its tolerance",
-                    program->name().c_str(), job.last_cycle_time_s,
+                    running->name().c_str(), job.last_cycle_time_s,
                     static_cast<unsigned long long>(job.last_underruns));
     }
     copy_text(job.message, msg);
     logger()->info("{}", msg);
     event(job.last_fault, f.line, 0, msg);
+    // the offsets as the job left them: an MDI command's modes go on to
+    // the next; a program's end starts the MDI afresh
+    mdi_modes = job.mdi ? mdi_end_modes : std::string();
+    ++params_gen;
+    refresh_work();
   }
 };
 
@@ -600,11 +788,23 @@ Result<std::unique_ptr<Daemon>> Daemon::create(const DaemonOptions& options) {
   ro.machine_file = options.machine_file;
   Result<MachineConfig> machine = load_machine(ro);
   if (!machine) return machine.error();
+  if (!options.parameter_file.empty()) {
+    machine->parameter_file = options.parameter_file;
+  } else if (machine->parameter_file.empty()) {
+    std::string warning;
+    machine->parameter_file = default_parameter_file(warning);
+    if (!warning.empty()) logger()->warn("lasercncd: {}", warning);
+  }
+  // read before the segment appears: an HMI never sees other offsets
+  Result<ReaderModes> work = read_work(*machine, Pose::Zero(), "");
+  if (!work) return work.error();
   Result<shm::ShmOwner> owner =
       shm::ShmOwner::create(options.shm_name.empty() ? shm::kDefaultName : options.shm_name);
   if (!owner) return owner.error();
   auto impl = std::make_unique<Impl>(std::move(machine).value(), std::move(owner).value());
   Impl& d = *impl;
+  d.publish_work(*work);
+  d.shm.block().job.store(d.job);
   d.realtime = options.realtime;
   for (const std::string& dir : options.program_dirs) {
     std::error_code ec;
@@ -646,6 +846,7 @@ Result<std::unique_ptr<Daemon>> Daemon::create(const DaemonOptions& options) {
     d.kernel = d.rt_kernel.get();
   }
   d.feed = std::make_unique<PlannerFeed>(d.machine, *d.buffer, *d.kernel);
+  logger()->info("lasercncd: work offsets kept in {}", d.machine.parameter_file);
   d.shm.block().job.store(d.job);
   if (options.modbus) {
     Result<std::unique_ptr<CncModbusHost>> host = CncModbusHost::start(*options.modbus, logger());

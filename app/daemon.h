@@ -33,6 +33,11 @@ struct DaemonOptions {
   // Folders a `load` may take programs from (any depth); empty: anywhere
   // the sender may read (app/program_snapshot.h).
   std::vector<std::string> program_dirs;
+  // Where the work offsets (G10 L20 touch-off, G54 … G59.3, G92), G28/G30
+  // positions and the tools programs set are kept from one job, MDI command
+  // and daemon run to the next. Empty: the machine's parameter_file, else
+  // $XDG_DATA_HOME/lasercnc/lasercncd.var (~/.local/share/lasercnc/…).
+  std::string parameter_file;
 };
 
 class Daemon {

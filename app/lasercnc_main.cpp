@@ -36,8 +36,9 @@ constexpr const char* kUsage =
     "  lasercnc check PROGRAM [--machine FILE] [--moves FILE]\n"
     "  lasercnc status [--json] [--shm NAME]\n"
     "  lasercnc send CMD [ARG...] [--wait] [--timeout S] [--shm NAME]\n"
-    "       CMD: load PROGRAM | start | hold | resume | stop | estop | reset |\n"
-    "            override PCT | jog AXIS DIST | home AXIS\n"
+    "       CMD: load PROGRAM | start [--from-line N] [--single-block] [--dry-run] |\n"
+    "            hold | resume | stop | estop | reset | override PCT | jog AXIS DIST |\n"
+    "            home AXIS | mdi G-CODE | frame\n"
     "  lasercnc drill HOLES.csv [--devices] [--clearance MM] [--settle S] [--json] ...\n"
     "                       (lasercnc drill --help for its options)\n"
     "  lasercnc decompose PART.dxf [--speed V] [--step MM] [--mode sync|seed] ...\n"
@@ -51,7 +52,16 @@ constexpr const char* kUsage =
     "          X Y Z A B C, LINE arc X Y Z A B C CX CY CZ PLANE TURNS, LINE dwell S;\n"
     "          - for standard output)\n"
     "  status  the state of lasercncd (machine, job, latency)\n"
-    "  send    a command to lasercncd; prints its answer (--wait: start waits for the job)\n"
+    "  send    a command to lasercncd; prints its answer (--wait: start, mdi and frame\n"
+    "          wait for the job's end and print how it ended)\n"
+    "          start --from-line N: reads the program up to line N without moving\n"
+    "            (modes, offsets, feed, power as there), then approaches at rapid\n"
+    "            with the beam off: up to the higher Z, across, down; runs on from N\n"
+    "          start --single-block: stops after each block; resume runs the next\n"
+    "          start --dry-run: every move as programmed, the beam off\n"
+    "          mdi \"G1 X10 F600\": one line now, in the modes the last MDI left\n"
+    "            (touch-off: mdi \"G10 L20 P0 X0 Y0\" makes here the work zero)\n"
+    "          frame: traces the loaded program's X Y extents, beam off\n"
     "  drill   runs the holes of a process-database table (CSV) as one drilling job\n"
     "  decompose  splits each contour of a DXF part into main- and auxiliary-axis paths\n"
     "  --vmax/--amax   max velocity (mm/s) / acceleration (mm/s^2) of every linear axis\n"
@@ -124,6 +134,15 @@ int main(int argc, char** argv) {
         co.json = true;
       } else if (a == "--wait") {
         co.wait = true;
+      } else if (a == "--single-block") {
+        co.single_block = true;
+      } else if (a == "--dry-run") {
+        co.dry_run = true;
+      } else if (a == "--from-line" && i + 1 < argc) {
+        const auto n = parse_number(argv[++i]);
+        if (!n || *n < 1 || *n > 4e9 || *n != std::floor(*n))
+          return usage_error("--from-line needs a line number (1 or more)");
+        co.from_line = static_cast<std::uint32_t>(*n);
       } else if (a == "--timeout" && i + 1 < argc) {
         const auto t = parse_number(argv[++i]);
         if (!t || !(*t > 0) || *t > lcnc::app::kMaxTimeoutS)
@@ -140,6 +159,8 @@ int main(int argc, char** argv) {
       if (!args.empty()) return usage_error("status takes no argument");
       return lcnc::app::client_status(co);
     }
+    if ((co.from_line != 0 || co.single_block || co.dry_run) && (args.empty() || args[0] != "start"))
+      return usage_error("--from-line, --single-block and --dry-run go with send start");
     return lcnc::app::client_send(args, co);
   }
   if (cmd != "run" && cmd != "check") return usage_error("unknown command '" + std::string(cmd) + "'");

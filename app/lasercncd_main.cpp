@@ -20,7 +20,7 @@ extern "C" void on_signal(int) { g_quit.store(true); }
 
 constexpr const char* kUsage =
     "usage: lasercncd [--machine FILE] [--shm NAME] [--no-realtime] [--hal] [--modbus ENDPOINT]\n"
-    "                 [--programs DIR]...\n"
+    "                 [--programs DIR]... [--parameter-file FILE]\n"
     "  --machine      machine config (default: share/machines/default.toml)\n"
     "  --shm          shared-memory segment name (default /lasercnc)\n"
     "  --no-realtime  do not ask for SCHED_FIFO / mlockall\n"
@@ -33,7 +33,11 @@ constexpr const char* kUsage =
     "                 tcp:HOST:PORT (port 0: any free one; bind 127.0.0.1 unless\n"
     "                 another address is given) or rtu:DEVICE[:BAUD[:PARITY]]\n"
     "  --programs     a folder `load` may take programs from (repeatable; default:\n"
-    "                 any regular file the sender may read)\n";
+    "                 any regular file the sender may read)\n"
+    "  --parameter-file  where the work offsets (touch-off, G10, G54-G59.3, G92), G28/G30\n"
+    "                 positions and program-set tools are kept from one job, MDI\n"
+    "                 command and run to the next (default: the machine's parameter_file,\n"
+    "                 else $XDG_DATA_HOME/lasercnc/lasercncd.var)\n";
 
 }  // namespace
 
@@ -56,6 +60,8 @@ int main(int argc, char** argv) {
         return 2;
       }
       opt.modbus = *ep;
+    } else if (a == "--parameter-file" && i + 1 < argc) {
+      opt.parameter_file = argv[++i];
     } else if (a == "--programs" && i + 1 < argc) {
       opt.program_dirs.emplace_back(argv[++i]);
     } else if (a == "--hal") {

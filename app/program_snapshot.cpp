@@ -184,6 +184,14 @@ Result<std::shared_ptr<const ProgramSnapshot>> ProgramSnapshot::take(const Snaps
   return std::shared_ptr<const ProgramSnapshot>(new ProgramSnapshot(path, copy.release(), total));
 }
 
+Result<std::shared_ptr<const ProgramSnapshot>> ProgramSnapshot::from_text(std::string name,
+                                                                          const std::string& text) {
+  Fd copy(open_copy());
+  if (copy.fd < 0 || !write_all(copy.fd, text.data(), text.size()))
+    return make_error(ErrorCode::FileNotFound, std::string("no room for its copy: ") + std::strerror(errno), name);
+  return std::shared_ptr<const ProgramSnapshot>(new ProgramSnapshot(std::move(name), copy.release(), text.size()));
+}
+
 ProgramSnapshot::ProgramSnapshot(std::string name, int fd, std::uint64_t bytes)
     : name_(std::move(name)), path_("/proc/self/fd/" + std::to_string(fd)), fd_(fd), bytes_(bytes) {}
 

@@ -45,6 +45,10 @@ class ProgramSnapshot {
   // Copies the file; FileNotFound (or GcodeSyntax for a file that is not a
   // program) with a message naming the path and what is allowed.
   [[nodiscard]] static Result<std::shared_ptr<const ProgramSnapshot>> take(const SnapshotRequest& r);
+  // A program the daemon writes itself (an MDI command, framing), read like
+  // a loaded one; `name` stands for it in messages ("MDI:1:7: …").
+  [[nodiscard]] static Result<std::shared_ptr<const ProgramSnapshot>> from_text(std::string name,
+                                                                               const std::string& text);
   ~ProgramSnapshot();
   ProgramSnapshot(const ProgramSnapshot&) = delete;
   ProgramSnapshot& operator=(const ProgramSnapshot&) = delete;

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <string_view>
 
 #include "geom/pose.h"
 
@@ -27,6 +28,18 @@ lcnc::Status check_command_frame(const Command& c, const CommandLimits& limits) 
     case CommandType::Load:
       if (std::memchr(c.text, '\0', sizeof c.text) == nullptr)
         return refused("bad command frame: load path not terminated");
+      return {};
+    case CommandType::Mdi:
+      if (std::memchr(c.text, '\0', sizeof c.text) == nullptr)
+        return refused("bad command frame: MDI text not terminated");
+      for (const char ch : std::string_view(c.text))
+        if ((static_cast<unsigned char>(ch) < 0x20 && ch != '\t') || ch == 0x7f)
+          return refused("mdi refused: one line of G-code, without control characters");
+      return {};
+    case CommandType::Start:
+      if (!std::isfinite(c.value) || c.value < 0.0 || c.value > 4e9 || c.value != std::floor(c.value))
+        return refused("start refused: the start line is not a line number");
+      if ((c.axis & ~kStartFlags) != 0) return refused("bad command frame: unknown start flags");
       return {};
     case CommandType::Override:
       if (!std::isfinite(c.value) || c.value < 0.0 || c.value > limits.max_override) {

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <new>
 
@@ -186,9 +187,16 @@ void sanitize(Status& s) noexcept {
 void sanitize(JobStatus& j) noexcept {
   j.message[sizeof j.message - 1] = '\0';
   j.program[sizeof j.program - 1] = '\0';
-  std::uint8_t active = 0;  // the byte as written: a bool of any other value is undefined
-  std::memcpy(&active, &j.job_active, 1);
-  j.job_active = active != 0;
+  j.modes[sizeof j.modes - 1] = '\0';
+  // the bytes as written: a bool of any other value is undefined
+  for (bool* b : {&j.job_active, &j.inch, &j.mdi, &j.single_block, &j.dry_run}) {
+    std::uint8_t byte = 0;
+    std::memcpy(&byte, b, 1);
+    *b = byte != 0;
+  }
+  if (j.coord_system >= 9) j.coord_system = 0;
+  for (double& w : j.work_offset)
+    if (!std::isfinite(w)) w = 0.0;
   std::uint8_t outcome = 0;  // likewise an enum byte out of its range
   std::memcpy(&outcome, &j.last_outcome, 1);
   if (outcome > static_cast<std::uint8_t>(JobOutcome::Failed)) j.last_outcome = JobOutcome::None;

@@ -39,14 +39,14 @@
 namespace lcnc::shm {
 
 inline constexpr std::uint32_t kMagic = 0x434E434Cu;  // "LCNC" in memory
-inline constexpr std::uint32_t kVersion = 7;
+inline constexpr std::uint32_t kVersion = 8;
 inline constexpr const char* kDefaultName = "/lasercnc";
 
 enum class MachineState : std::uint8_t { Idle, Running, FeedHold, Stopping, EStop, Jog, Homing };
 
 enum class CommandType : std::uint8_t {
   Load,      // text: program path
-  Start,
+  Start,     // value: run from this line (0: from the start); axis: StartFlags bits
   Hold,
   Resume,
   Stop,
@@ -55,8 +55,15 @@ enum class CommandType : std::uint8_t {
   Override,  // value: feed override K (1 = 100 %)
   Jog,       // axis, value: distance (mm or deg)
   Home,      // axis
+  Mdi,       // text: one line of G-code, run now from where the machine stands
+  Frame,     // traces the loaded program's X Y extents with the beam off, at the Z it stands
   Count,     // not a command: the number of them (a larger type byte is a bad frame)
 };
+
+// How a Start runs the program (Command::axis of a Start, bits).
+inline constexpr std::uint8_t kStartSingleBlock = 1u;  // a pause after each block's moves
+inline constexpr std::uint8_t kStartDryRun = 2u;       // every move with the beam off
+inline constexpr std::uint8_t kStartFlags = kStartSingleBlock | kStartDryRun;
 
 struct Command {
   CommandType type = CommandType::Stop;
@@ -144,6 +151,18 @@ struct JobStatus {
   std::uint16_t last_fault = 0;  // ErrorCode that ended the last job, 0 if it ran to the end
   JobOutcome last_outcome = JobOutcome::None;
   std::uint32_t last_line = 0;   // program line where the last job ended
+  // The work coordinates: work = machine − work_offset (mm, deg), in work
+  // system coord_system (0 = G54 … 8 = G59.3), as the last job or MDI
+  // command left them (and the parameter file keeps them).
+  std::array<double, 6> work_offset{};
+  std::uint8_t coord_system = 0;
+  bool inch = false;            // MDI commands are read in inches (G20)
+  char modes[128] = {};         // the modes the next MDI command starts in
+  // The active (or last) job: what it is and how it runs.
+  bool mdi = false;             // an MDI command or framing, not the loaded program
+  bool single_block = false;
+  bool dry_run = false;
+  std::uint32_t start_line = 0;  // run from this line; 0: from the start
 };
 
 // Blocks copied out of the segment, made safe to use: any process of the

@@ -3,6 +3,7 @@
 // of the test's own.
 #pragma once
 
+#include <algorithm>
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
@@ -136,6 +137,11 @@ class Daemon {
       : shm_(std::move(shm)), log_(temp_dir() / ("daemon_" + std::to_string(++count_) + ".log")) {
     std::vector<std::string> args = {LASERCNCD_EXE, "--shm", shm_, "--no-realtime"};
     args.insert(args.end(), extra.begin(), extra.end());
+    // the work offsets in the test's own file, never the user's (unless the test names one)
+    if (std::find(extra.begin(), extra.end(), "--parameter-file") == extra.end()) {
+      args.push_back("--parameter-file");
+      args.push_back((temp_dir() / ("daemon_" + std::to_string(count_) + ".var")).string());
+    }
     pid_ = spawn(args, "/dev/null", log_);
   }
   ~Daemon() {

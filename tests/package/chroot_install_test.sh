@@ -87,8 +87,12 @@ grep -q "^User=lasercnc$" "$unit" || fail "the unit's User"
 exec_start=$(sed -n 's/^ExecStart=//p' "$unit")
 cp "$root/usr/share/doc/lasercnc/examples/default-lasercncd" "$root/etc/default/lasercncd"
 sed -i 's/^LASERCNCD_ARGS=.*/LASERCNCD_ARGS="--no-realtime"/' "$root/etc/default/lasercncd"
+# StateDirectory=lasercnc and Environment=XDG_DATA_HOME=/var/lib, as systemd does them
+grep -q "^StateDirectory=lasercnc$" "$unit" || fail "the unit's StateDirectory"
+grep -q "^Environment=XDG_DATA_HOME=/var/lib$" "$unit" || fail "the unit's XDG_DATA_HOME"
+in_root install -d -o lasercnc -g lasercnc -m 0750 /var/lib/lasercnc
 # shellcheck disable=SC2016  # $LASERCNCD_ARGS is the chroot shell's, as systemd expands it
-chroot "$root" /usr/bin/env -i PATH=/usr/bin:/bin sh -c \
+chroot "$root" /usr/bin/env -i PATH=/usr/bin:/bin XDG_DATA_HOME=/var/lib sh -c \
   'set -a; . /etc/default/lasercncd; umask 0007; exec setpriv --reuid lasercnc --regid lasercnc --init-groups '"$exec_start" \
   >"$work/daemon.log" 2>&1 &
 daemon_pid=$!
@@ -105,6 +109,8 @@ perm=$(in_root stat -c "%U:%G %a" /dev/shm/lasercnc)
 # an operator runs a job through the service
 out=$(as_operator sh -c 'cd /tmp && lasercnc send load /usr/share/lasercnc/examples/bracket.ngc && lasercnc send start --wait' 2>&1) ||
   fail "a job through the installed service: $out"
+# the job's offsets kept in the service's state folder
+in_root test -s /var/lib/lasercnc/lasercncd.var || fail "no /var/lib/lasercnc/lasercncd.var after a job"
 kill -TERM "$daemon_pid"
 wait "$daemon_pid" || fail "the service did not end cleanly on SIGTERM: $(cat "$work/daemon.log")"
 daemon_pid=
