@@ -560,6 +560,7 @@ Result<ReadResult> read_dxf_text(std::string_view text, const std::string& file,
     out.drawing.units = "set by the caller";
   } else if (scan->insunits <= 0) {
     unit_mm = 1.0;
+    out.drawing.units_known = false;
     out.drawing.units = scan->insunits == 0 ? "unitless ($INSUNITS 0), read as mm"
                                             : "not set ($INSUNITS absent), read as mm";
   } else {
