@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "app/cli_values.h"
 #include "app/decompose_run.h"
 #include "app/output_file.h"
 #include "app/run_job.h"
@@ -90,48 +91,6 @@ std::optional<double> parse_accel(std::string_view s) {
   return std::nullopt;
 }
 
-std::optional<double> parse_plain(std::string_view s) {
-  const std::string str(s);
-  char* end = nullptr;
-  const double v = std::strtod(str.c_str(), &end);
-  if (end == str.c_str() || *end != '\0') return std::nullopt;
-  return v;
-}
-
-// The outputs of one command: each written to its temporary file as it is
-// made, all renamed over their targets by commit_all() once the command has
-// done its work; a refused or failed command leaves every target as it was.
-class Outputs {
- public:
-  explicit Outputs(std::vector<std::string> inputs) : inputs_(std::move(inputs)) {}
-  // Opens `path`, `fill` writes it; false (and the message printed) when it
-  // cannot be opened.
-  template <typename Fill>
-  bool add(const std::string& path, Fill fill) {
-    Result<OutputFile> f = OutputFile::open(path, inputs_);
-    if (!f) {
-      std::fprintf(stderr, "%s\n", f.error().to_string().c_str());
-      return false;
-    }
-    fill(*f);
-    files_.push_back(std::move(f).value());
-    return true;
-  }
-  bool commit_all() {
-    for (OutputFile& f : files_) {
-      if (Status s = f.commit(); !s) {
-        std::fprintf(stderr, "%s\n", s.error().to_string().c_str());
-        return false;
-      }
-    }
-    return true;
-  }
-
- private:
-  std::vector<std::string> inputs_;
-  std::vector<OutputFile> files_;
-};
-
 void print_group(const GroupReport& g) {
   const bool exact = g.steps_sent == g.steps_commanded;
   std::printf("  %-4s %c %lld / %lld, %c %lld / %lld steps sent / commanded%s; %llu underruns%s\n"
@@ -153,7 +112,7 @@ void print_group(const GroupReport& g) {
 std::optional<bool> run_part(const decompose::PartResult& res, const MachineConfig& main_m,
                              const MachineConfig& aux_m, const DecomposeRunOptions& run_opt,
                              const std::string& part, const std::string& svg_path,
-                             Outputs& outputs) {
+                             OutputSet& outputs) {
   std::printf("running on the simulated machine: main X, Y ('%s'), auxiliary P, Q ('%s'), "
               "period %u us, origin %.3f, %.3f mm\n",
               main_m.name.c_str(), aux_m.name.c_str(), main_m.period_ns / 1000, run_opt.origin_x_mm,
@@ -276,12 +235,9 @@ int decompose_main(int argc, char** argv) {
       else if (v == "short") opt.goal = decompose::SyncGoal::ShortestLeadIn;
       else return bad("smooth or short");
     } else if (a == "--units") {
-      if (v == "auto") read_opt.unit_mm = 0.0;
-      else if (v == "mm") read_opt.unit_mm = 1.0;
-      else if (v == "cm") read_opt.unit_mm = 10.0;
-      else if (v == "m") read_opt.unit_mm = 1000.0;
-      else if (v == "inch" || v == "in") read_opt.unit_mm = 25.4;
-      else return bad("auto, mm, cm, m or inch");
+      const std::optional<double> u = v == "auto" ? 0.0 : parse_unit_mm(v);
+      if (!u) return bad("auto, mm, cm, m or inch");
+      read_opt.unit_mm = *u;
     } else if (a == "--csv") {
       csv_path = std::string(v);
     } else if (a == "--svg") {
@@ -295,16 +251,10 @@ int decompose_main(int argc, char** argv) {
     } else if (a == "--aux-machine") {
       aux_file = std::string(v);
     } else if (a == "--origin") {
-      const std::string str(v);
-      char* end = nullptr;
-      const double x = std::strtod(str.c_str(), &end);
-      if (end == str.c_str() || *end != ',') return bad("X,Y in mm (e.g. 100,50)");
-      const char* ys = end + 1;
-      const double y = std::strtod(ys, &end);
-      if (end == ys || *end != '\0' || !std::isfinite(x) || !std::isfinite(y))
-        return bad("X,Y in mm (e.g. 100,50)");
-      run_opt.origin_x_mm = x;
-      run_opt.origin_y_mm = y;
+      const auto xy = parse_xy(v);
+      if (!xy) return bad("X,Y in mm (e.g. 100,50)");
+      run_opt.origin_x_mm = xy->first;
+      run_opt.origin_y_mm = xy->second;
     } else {
       return usage_error("unknown option " + std::string(a));
     }
@@ -325,7 +275,7 @@ int decompose_main(int argc, char** argv) {
     std::fprintf(stderr, "lasercnc decompose: %s\n", s.error().to_string().c_str());
     return 2;
   }
-  Outputs outputs(inputs);
+  OutputSet outputs(inputs);
 
   // --run: the groups' configs give the limits the user did not.
   MachineConfig main_m, aux_m;

@@ -17,6 +17,7 @@
 
 #include "app/cnc_modbus_host.h"
 #include "app/control_client.h"
+#include "app/cut_cli.h"
 #include "app/decompose_cli.h"
 #include "app/drill_cli.h"
 #include "app/moves_list.h"
@@ -43,6 +44,8 @@ constexpr const char* kUsage =
     "                       (lasercnc drill --help for its options)\n"
     "  lasercnc decompose PART.dxf [--speed V] [--step MM] [--mode sync|seed] ...\n"
     "                       (lasercnc decompose --help for its options)\n"
+    "  lasercnc cut PART.dxf -o PROGRAM.ngc [--svg FILE] [--process TABLE.csv] ...\n"
+    "                       (lasercnc cut --help for its options)\n"
     "  lasercnc --help | --version\n"
     "\n"
     "  run     plans PROGRAM, runs it on the simulated machine with the real RT thread\n"
@@ -64,6 +67,8 @@ constexpr const char* kUsage =
     "          frame: traces the loaded program's X Y extents, beam off\n"
     "  drill   runs the holes of a process-database table (CSV) as one drilling job\n"
     "  decompose  splits each contour of a DXF part into main- and auxiliary-axis paths\n"
+    "  cut     a laser cutting program from a DXF part: holes first, kerf offset,\n"
+    "          lead-ins, power and feed per layer\n"
     "  --vmax/--amax   max velocity (mm/s) / acceleration (mm/s^2) of every linear axis\n"
     "  --tolerance     path tolerance (mm)\n"
     "  --feed-override feed override for the whole run, %: feeds at PCT/100 of F, never\n"
@@ -123,6 +128,7 @@ int main(int argc, char** argv) {
   }
   if (cmd == "decompose") return lcnc::app::decompose_main(argc - 1, argv + 1);
   if (cmd == "drill") return lcnc::app::drill_main(argc - 1, argv + 1);
+  if (cmd == "cut") return lcnc::app::cut_main(argc - 1, argv + 1);
   if (cmd == "status" || cmd == "send") {
     lcnc::app::ClientOptions co;
     std::vector<std::string> args;

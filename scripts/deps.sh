@@ -11,6 +11,7 @@ packages=(
   nlohmann-json3-dev       # --json report
   libgtest-dev libgmock-dev
   libdxflib-dev            # DXF input
+  libpolyclipping-dev      # Clipper: kerf offset of lasercnc cut (core/cut)
   libmodbus-dev            # peripherals
   qtbase5-dev libqt5sql5-sqlite  # HMI, process DB
   qttools5-dev qttools5-dev-tools  # the HMI's translations (Qt Linguist: lupdate, lrelease)

@@ -5,58 +5,18 @@
 #include <cstdio>
 #include <limits>
 
+#include "common/svg_view.h"
+
 namespace lcnc::decompose {
 namespace {
 
 // A vertex closer than this to the last one drawn is skipped (pixels).
 constexpr double kMinPixelStep = 0.75;
 
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3f", v);
-  return buf;
-}
-
-std::string escape(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    if (c == '<') o += "&lt;";
-    else if (c == '>') o += "&gt;";
-    else if (c == '&') o += "&amp;";
-    else o += c;
-  }
-  return o;
-}
-
-struct Box {
-  double x0 = std::numeric_limits<double>::max(), y0 = x0;
-  double x1 = -std::numeric_limits<double>::max(), y1 = x1;
-  void add(const Vec2& p) {
-    x0 = std::min(x0, p.x());
-    y0 = std::min(y0, p.y());
-    x1 = std::max(x1, p.x());
-    y1 = std::max(y1, p.y());
-  }
-};
-
-// Maps a box into a panel (px, py, size) keeping the aspect, y up.
-struct View {
-  double sx, ox, oy, py_bottom;
-  View(const Box& b, double px, double py, double w, double h) {
-    const double bw = std::max(b.x1 - b.x0, 1e-9), bh = std::max(b.y1 - b.y0, 1e-9);
-    sx = std::min(w / bw, h / bh);
-    ox = px + 0.5 * (w - bw * sx) - b.x0 * sx;
-    oy = b.y0;
-    py_bottom = py + h - 0.5 * (h - bh * sx);
-  }
-  [[nodiscard]] Vec2 px(const Vec2& p) const {
-    return Vec2(ox + p.x() * sx, py_bottom - (p.y() - oy) * sx);
-  }
-  [[nodiscard]] std::string pt(const Vec2& p) const {
-    const Vec2 q = px(p);
-    return num(q.x()) + "," + num(q.y());
-  }
-};
+using svg::Box;
+using svg::escape;
+using svg::num;
+using svg::View;
 
 template <typename F>
 std::string polyline(std::size_t n, F point, const View& v, const char* color, double width) {
@@ -90,9 +50,7 @@ std::string paths_svg(const PartResult& r, const Options& opt, const std::string
   const double panel = (W - 3 * pad) / 2;
   const View vp(part, pad, pad + 20, panel, H - 2 * pad - 40);
   const View va(aux, 2 * pad + panel, pad + 20, panel, H - 2 * pad - 40);
-  std::string s = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + num(W) +
-                  "\" height=\"" + num(H) + "\" font-family=\"sans-serif\" font-size=\"13\">\n"
-                  "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  std::string s = svg::open(W, H);
   s += "<text x=\"" + num(pad) + "\" y=\"22\">" + escape(title) + "</text>\n";
   s += "<text x=\"" + num(pad) + "\" y=\"" + num(H - 12) +
        "\"><tspan fill=\"green\">S contour</tspan>, <tspan fill=\"blue\">S1 main axes "
@@ -146,9 +104,7 @@ std::string accel_svg(const PartResult& r, const Options& opt, const std::string
     }
     return s + "\"/>\n";
   };
-  std::string s = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + num(W) +
-                  "\" height=\"" + num(H) + "\" font-family=\"sans-serif\" font-size=\"13\">\n"
-                  "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  std::string s = svg::open(W, H);
   s += "<text x=\"" + num(left) + "\" y=\"22\">" + escape(title) + "</text>\n";
   s += "<rect x=\"" + num(left) + "\" y=\"" + num(top) + "\" width=\"" + num(pw) +
        "\" height=\"" + num(ph) + "\" fill=\"none\" stroke=\"black\"/>\n";
@@ -199,9 +155,7 @@ std::string axes_svg(const AxisCurves& c, const std::string& title) {
   const auto px = [&](double t) { return left + t / t_end * pw; };
   const auto ym = [&](double v) { return top + ph - (v - m0) / (m1 - m0) * ph; };
   const auto ya = [&](double v) { return top + ph - (v - a0) / (a1 - a0) * ph; };
-  std::string s = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + num(W) +
-                  "\" height=\"" + num(H) + "\" font-family=\"sans-serif\" font-size=\"13\">\n"
-                  "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  std::string s = svg::open(W, H);
   s += "<text x=\"" + num(left) + "\" y=\"22\">" + escape(title) + "</text>\n";
   // laser-on spans
   for (std::size_t i = 0; i < n;) {

@@ -72,6 +72,9 @@ struct Drawing {
   std::vector<Entity> entities;
   double unit_mm = 1.0;  // mm per drawing unit ($INSUNITS), already applied
   std::string units;     // "mm", "inch", ... ("unitless, read as mm" when unset)
+  // False when neither the caller nor $INSUNITS named a length unit (absent
+  // or 0, unitless): the drawing was read as mm by assumption.
+  bool units_known = true;
 };
 
 // One closed contour: entities chained head to tail, each possibly reversed,

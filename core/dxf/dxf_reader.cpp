@@ -202,6 +202,10 @@ class Collector final : public DL_CreationAdapter {
     RawEntity e = start(EntityKind::Spline, next_line(scan_.spline_lines, i_spline_));
     SplineData s;
     s.degree = static_cast<int>(d.degree);
+    // dxflib leaves an absent tangent (codes 12/22, 13/23) at 0, 0.
+    const Vec2 t0(d.tangentStartX, d.tangentStartY), t1(d.tangentEndX, d.tangentEndY);
+    if (t0.norm() > 0.0) s.start_tangent = t0;
+    if (t1.norm() > 0.0) s.end_tangent = t1;
     e.spline = std::move(s);
     e.closed = (d.flags & 1) != 0;
     spline_ = std::move(e);
@@ -455,6 +459,10 @@ class Expander {
     if (e.spline) {
       SplineData s = *e.spline;
       for (Vec2& p : s.control) p = xf(p);
+      for (Vec2& p : s.fit) p = xf(p);
+      for (std::optional<Vec2>* t : {&s.start_tangent, &s.end_tangent}) {
+        if (*t) **t = xf.m * **t;  // a direction: the linear part only
+      }
       std::string why;
       std::shared_ptr<const SplineCurve> curve =
           SplineCurve::make(s, &why, std::min(kSplineMaxNodes, spline_nodes_left_));
@@ -552,6 +560,7 @@ Result<ReadResult> read_dxf_text(std::string_view text, const std::string& file,
     out.drawing.units = "set by the caller";
   } else if (scan->insunits <= 0) {
     unit_mm = 1.0;
+    out.drawing.units_known = false;
     out.drawing.units = scan->insunits == 0 ? "unitless ($INSUNITS 0), read as mm"
                                             : "not set ($INSUNITS absent), read as mm";
   } else {

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "dxf/dxf_tolerances.h"
+#include "dxf/spline_fit.h"
 
 namespace lcnc::dxf {
 namespace {
@@ -26,8 +27,14 @@ constexpr double kArcLengthTolMm = 1e-10;
 
 }  // namespace
 
-std::shared_ptr<const SplineCurve> SplineCurve::make(const SplineData& s, std::string* why,
+std::shared_ptr<const SplineCurve> SplineCurve::make(const SplineData& given, std::string* why,
                                                      std::size_t max_nodes) {
+  SplineData fitted;
+  if (given.control.empty() && !given.fit.empty()) {
+    fitted = given;
+    if (!interpolate_fit_points(fitted, why)) return nullptr;
+  }
+  const SplineData& s = fitted.control.empty() ? given : fitted;
   const std::size_t n = s.control.size();
   const auto p = static_cast<std::size_t>(std::max(s.degree, 0));
   auto fail = [&](std::string msg) {
@@ -39,9 +46,7 @@ std::shared_ptr<const SplineCurve> SplineCurve::make(const SplineData& s, std::s
                 std::to_string(kSplineMaxDegree));
   }
   if (n == 0) {
-    return fail(s.fit.empty() ? "no control points; expected control points"
-                              : "fit points only; expected control points (save the "
-                                "spline with its control points)");
+    return fail("no control points and no fit points; expected either");
   }
   if (n < p + 1) {
     return fail(std::to_string(n) + " control points for degree " + std::to_string(p) +

@@ -16,6 +16,7 @@
 #include "dxf/dxf_tolerances.h"
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,13 +31,18 @@ struct SplineData {
   std::vector<double> knots;
   std::vector<Vec2> control;
   std::vector<double> weights;  // empty = all 1
-  std::vector<Vec2> fit;        // fit points (not used for the curve)
+  // Fit points: the curve when there are no control points (spline_fit.h
+  // interpolates them), else only informative. The end tangents (DXF codes
+  // 12/22, 13/23) when the file gives them.
+  std::vector<Vec2> fit;
+  std::optional<Vec2> start_tangent, end_tangent;
 };
 
 class SplineCurve {
  public:
   // The curve, or nullptr with the reason in `why` (knot count, order,
-  // weights, fit points only, a curve too long for its table).
+  // weights, too few fit points, a curve too long for its table). A spline
+  // of fit points only is the cubic through them (spline_fit.h).
   // At most max_nodes table nodes (kSplineMaxNodes, or what a drawing has left).
   [[nodiscard]] static std::shared_ptr<const SplineCurve> make(const SplineData& s, std::string* why,
                                                                std::size_t max_nodes = kSplineMaxNodes);
