@@ -225,10 +225,12 @@ struct Daemon::Impl {
     }
   }
 
-  void event(std::uint16_t code, std::uint32_t line, std::uint32_t seq, const std::string& text) {
+  void event(shm::Severity severity, std::uint16_t code, std::uint32_t line, std::uint32_t seq,
+             const std::string& text) {
     shm::Event e;
     e.period = kernel->periods();
     e.code = code;
+    e.severity = severity;
     e.state = kernel->state();
     e.line = line;
     e.command_seq = seq;
@@ -613,7 +615,7 @@ struct Daemon::Impl {
       const std::string why = "the command ring's indices were corrupt (a sender wrote past its turn): "
                               "its contents dropped, " + std::to_string(command_resyncs) + " so far";
       logger()->error("lasercncd: {}", why);
-      event(static_cast<std::uint16_t>(ErrorCode::RtRefused), 0, 0, why);
+      event(shm::Severity::Error, static_cast<std::uint16_t>(ErrorCode::RtRefused), 0, 0, why);
     }
   }
   std::uint64_t command_resyncs = 0;
@@ -644,7 +646,10 @@ struct Daemon::Impl {
       } else {
         logger()->info("{}", line.text);
       }
-      event(line.code, r.line, 0, line.text);
+      event(r.code == rt::RtLogCode::Fault ? shm::Severity::Error
+            : line.warning                 ? shm::Severity::Warning
+                                           : shm::Severity::Info,
+            line.code, r.line, 0, line.text);
     }
   }
 
@@ -690,7 +695,7 @@ struct Daemon::Impl {
         job.last_fault = static_cast<std::uint16_t>(ErrorCode::RtShmLink);
         const char* msg = "job failed: the HAL component that ran the kernel has gone (rtapi_app ended)";
         copy_text(job.message, msg);
-        event(job.last_fault, 0, 0, msg);
+        event(shm::Severity::Error, job.last_fault, 0, 0, msg);
       }
     }
   }
@@ -774,7 +779,10 @@ struct Daemon::Impl {
     }
     copy_text(job.message, msg);
     logger()->info("{}", msg);
-    event(job.last_fault, f.line, 0, msg);
+    event(job.last_outcome == shm::JobOutcome::Done ? shm::Severity::Info
+          : job.last_fault != 0                      ? shm::Severity::Error
+                                                     : shm::Severity::Warning,
+          job.last_fault, f.line, 0, msg);
     // the offsets as the job left them: an MDI command's modes go on to
     // the next; a program's end starts the MDI afresh
     mdi_modes = job.mdi ? mdi_end_modes : std::string();

@@ -202,7 +202,12 @@ void sanitize(JobStatus& j) noexcept {
   if (outcome > static_cast<std::uint8_t>(JobOutcome::Failed)) j.last_outcome = JobOutcome::None;
 }
 
-void sanitize(Event& e) noexcept { e.text[sizeof e.text - 1] = '\0'; }
+void sanitize(Event& e) noexcept {
+  e.text[sizeof e.text - 1] = '\0';
+  std::uint8_t severity = 0;  // an enum byte out of its range
+  std::memcpy(&severity, &e.severity, 1);
+  if (severity > static_cast<std::uint8_t>(Severity::Error)) e.severity = Severity::Error;
+}
 
 void sanitize(Answer& a) noexcept { a.message[sizeof a.message - 1] = '\0'; }
 

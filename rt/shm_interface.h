@@ -87,9 +87,12 @@ struct Answer {
 };
 inline constexpr std::size_t kAnswerSlots = 256;
 
+enum class Severity : std::uint8_t { Info, Warning, Error };
+
 struct Event {
   std::uint64_t period = 0;
   std::uint16_t code = 0;  // ErrorCode (share/errors.def), 0 for plain state changes
+  Severity severity = Severity::Info;  // Error: a fault or a failed job; Warning: worth a look
   MachineState state = MachineState::Idle;
   std::uint32_t line = 0;  // program line, 0 if none
   std::uint32_t command_seq = 0;
