@@ -312,26 +312,6 @@
         <translation>Положение</translation>
     </message>
     <message>
-        <source>X</source>
-        <translation>X</translation>
-    </message>
-    <message>
-        <source>Y</source>
-        <translation>Y</translation>
-    </message>
-    <message>
-        <source>Z</source>
-        <translation>Z</translation>
-    </message>
-    <message>
-        <source>A</source>
-        <translation>A</translation>
-    </message>
-    <message>
-        <source>C</source>
-        <translation>C</translation>
-    </message>
-    <message>
         <source>Cycle start</source>
         <translation>Пуск цикла</translation>
     </message>
@@ -350,10 +330,6 @@
     <message>
         <source>Feed override</source>
         <translation>Коррекция подачи</translation>
-    </message>
-    <message>
-        <source>100 %</source>
-        <translation>100 %</translation>
     </message>
     <message>
         <source>E-STOP</source>
@@ -392,10 +368,6 @@
         <translation>выход в ноль</translation>
     </message>
     <message>
-        <source>Jog</source>
-        <translation>Толчок</translation>
-    </message>
-    <message>
         <source> mm/°</source>
         <translation> мм/°</translation>
     </message>
@@ -418,6 +390,70 @@
     <message>
         <source>Clear the list</source>
         <translation>Очистить список</translation>
+    </message>
+    <message>
+        <source>Work</source>
+        <translation>Рабочие</translation>
+    </message>
+    <message>
+        <source>Homed</source>
+        <translation>Ноль</translation>
+    </message>
+    <message>
+        <source>Work offsets</source>
+        <translation>Смещения нуля</translation>
+    </message>
+    <message>
+        <source>Work system</source>
+        <translation>Система координат</translation>
+    </message>
+    <message>
+        <source>Touch off</source>
+        <translation>Привязка</translation>
+    </message>
+    <message>
+        <source>Set here</source>
+        <translation>Задать здесь</translation>
+    </message>
+    <message>
+        <source>MDI</source>
+        <translation>MDI</translation>
+    </message>
+    <message>
+        <source>G-code, e.g. G1 X10 F600</source>
+        <translation>G-код, напр. G1 X10 F600</translation>
+    </message>
+    <message>
+        <source>Send</source>
+        <translation>Отправить</translation>
+    </message>
+    <message>
+        <source>Job</source>
+        <translation>Задание</translation>
+    </message>
+    <message>
+        <source>Single block</source>
+        <translation>Покадрово</translation>
+    </message>
+    <message>
+        <source>Dry run (laser off)</source>
+        <translation>Пробный прогон (лазер выкл.)</translation>
+    </message>
+    <message>
+        <source>From line</source>
+        <translation>С строки</translation>
+    </message>
+    <message>
+        <source>start</source>
+        <translation>начало</translation>
+    </message>
+    <message>
+        <source>Frame</source>
+        <translation>Контур рамки</translation>
+    </message>
+    <message>
+        <source>Acknowledge</source>
+        <translation>Квитировать</translation>
     </message>
 </context>
 <context>
@@ -827,10 +863,6 @@
         <translation>Состояние: %1</translation>
     </message>
     <message>
-        <source>Time, s</source>
-        <translation>Время, с</translation>
-    </message>
-    <message>
         <source>Code</source>
         <translation>Код</translation>
     </message>
@@ -841,6 +873,86 @@
     <message>
         <source>What</source>
         <translation>Что</translation>
+    </message>
+    <message>
+        <source>Time</source>
+        <translation>Время</translation>
+    </message>
+    <message>
+        <source>Count</source>
+        <translation>Кол-во</translation>
+    </message>
+    <message>
+        <source>MDI: a line of at most %1 characters.</source>
+        <translation>MDI: строка не длиннее %1 символов.</translation>
+    </message>
+    <message numerus="yes">
+        <source>%n to acknowledge</source>
+        <translation>
+            <numerusform>%n для квитирования</numerusform>
+            <numerusform>%n для квитирования</numerusform>
+            <numerusform>%n для квитирования</numerusform>
+        </translation>
+    </message>
+    <message>
+        <source>homed</source>
+        <translation>в нуле</translation>
+    </message>
+    <message>
+        <source>not homed</source>
+        <translation>не в нуле</translation>
+    </message>
+    <message>
+        <source> — single block: Resume runs the next block</source>
+        <translation> — покадрово: «Продолжить» выполняет следующий кадр</translation>
+    </message>
+    <message>
+        <source> — program pause: Resume goes on</source>
+        <translation> — пауза программы: «Продолжить» для продолжения</translation>
+    </message>
+    <message>
+        <source> — waiting for input %1</source>
+        <translation> — ожидание входа %1</translation>
+    </message>
+    <message>
+        <source>Laser: on, %1 %</source>
+        <translation>Лазер: вкл., %1 %</translation>
+    </message>
+    <message>
+        <source>Laser: off</source>
+        <translation>Лазер: выкл.</translation>
+    </message>
+    <message>
+        <source>Program: %1</source>
+        <translation>Программа: %1</translation>
+    </message>
+    <message>
+        <source>Program: none loaded</source>
+        <translation>Программа: не загружена</translation>
+    </message>
+    <message>
+        <source>Line %1</source>
+        <translation>Строка %1</translation>
+    </message>
+    <message>
+        <source>Time left %1</source>
+        <translation>Осталось %1</translation>
+    </message>
+    <message>
+        <source>MDI</source>
+        <translation>MDI</translation>
+    </message>
+    <message>
+        <source>single block</source>
+        <translation>покадрово</translation>
+    </message>
+    <message>
+        <source>dry run</source>
+        <translation>пробный прогон</translation>
+    </message>
+    <message>
+        <source>from line %1</source>
+        <translation>со строки %1</translation>
     </message>
 </context>
 <context>

@@ -312,26 +312,6 @@
         <translation>位置</translation>
     </message>
     <message>
-        <source>X</source>
-        <translation>X</translation>
-    </message>
-    <message>
-        <source>Y</source>
-        <translation>Y</translation>
-    </message>
-    <message>
-        <source>Z</source>
-        <translation>Z</translation>
-    </message>
-    <message>
-        <source>A</source>
-        <translation>A</translation>
-    </message>
-    <message>
-        <source>C</source>
-        <translation>C</translation>
-    </message>
-    <message>
         <source>Cycle start</source>
         <translation>循环启动</translation>
     </message>
@@ -350,10 +330,6 @@
     <message>
         <source>Feed override</source>
         <translation>进给倍率</translation>
-    </message>
-    <message>
-        <source>100 %</source>
-        <translation>100 %</translation>
     </message>
     <message>
         <source>E-STOP</source>
@@ -392,10 +368,6 @@
         <translation>回零</translation>
     </message>
     <message>
-        <source>Jog</source>
-        <translation>点动</translation>
-    </message>
-    <message>
         <source> mm/°</source>
         <translation> mm/°</translation>
     </message>
@@ -418,6 +390,70 @@
     <message>
         <source>Clear the list</source>
         <translation>清空列表</translation>
+    </message>
+    <message>
+        <source>Work</source>
+        <translation>工件</translation>
+    </message>
+    <message>
+        <source>Homed</source>
+        <translation>已回零</translation>
+    </message>
+    <message>
+        <source>Work offsets</source>
+        <translation>工件偏置</translation>
+    </message>
+    <message>
+        <source>Work system</source>
+        <translation>工件坐标系</translation>
+    </message>
+    <message>
+        <source>Touch off</source>
+        <translation>对刀</translation>
+    </message>
+    <message>
+        <source>Set here</source>
+        <translation>设为此处</translation>
+    </message>
+    <message>
+        <source>MDI</source>
+        <translation>MDI</translation>
+    </message>
+    <message>
+        <source>G-code, e.g. G1 X10 F600</source>
+        <translation>G 代码，例如 G1 X10 F600</translation>
+    </message>
+    <message>
+        <source>Send</source>
+        <translation>发送</translation>
+    </message>
+    <message>
+        <source>Job</source>
+        <translation>作业</translation>
+    </message>
+    <message>
+        <source>Single block</source>
+        <translation>单段</translation>
+    </message>
+    <message>
+        <source>Dry run (laser off)</source>
+        <translation>空运行（激光关）</translation>
+    </message>
+    <message>
+        <source>From line</source>
+        <translation>从行</translation>
+    </message>
+    <message>
+        <source>start</source>
+        <translation>开头</translation>
+    </message>
+    <message>
+        <source>Frame</source>
+        <translation>巡边</translation>
+    </message>
+    <message>
+        <source>Acknowledge</source>
+        <translation>确认</translation>
     </message>
 </context>
 <context>
@@ -819,10 +855,6 @@
         <translation>状态：%1</translation>
     </message>
     <message>
-        <source>Time, s</source>
-        <translation>时间，s</translation>
-    </message>
-    <message>
         <source>Code</source>
         <translation>代码</translation>
     </message>
@@ -833,6 +865,84 @@
     <message>
         <source>What</source>
         <translation>内容</translation>
+    </message>
+    <message>
+        <source>Time</source>
+        <translation>时间</translation>
+    </message>
+    <message>
+        <source>Count</source>
+        <translation>次数</translation>
+    </message>
+    <message>
+        <source>MDI: a line of at most %1 characters.</source>
+        <translation>MDI：一行最多 %1 个字符。</translation>
+    </message>
+    <message numerus="yes">
+        <source>%n to acknowledge</source>
+        <translation>
+            <numerusform>%n 条待确认</numerusform>
+        </translation>
+    </message>
+    <message>
+        <source>homed</source>
+        <translation>已回零</translation>
+    </message>
+    <message>
+        <source>not homed</source>
+        <translation>未回零</translation>
+    </message>
+    <message>
+        <source> — single block: Resume runs the next block</source>
+        <translation> — 单段：“继续”执行下一段</translation>
+    </message>
+    <message>
+        <source> — program pause: Resume goes on</source>
+        <translation> — 程序暂停：按“继续”继续</translation>
+    </message>
+    <message>
+        <source> — waiting for input %1</source>
+        <translation> — 等待输入 %1</translation>
+    </message>
+    <message>
+        <source>Laser: on, %1 %</source>
+        <translation>激光：开，%1 %</translation>
+    </message>
+    <message>
+        <source>Laser: off</source>
+        <translation>激光：关</translation>
+    </message>
+    <message>
+        <source>Program: %1</source>
+        <translation>程序：%1</translation>
+    </message>
+    <message>
+        <source>Program: none loaded</source>
+        <translation>程序：未加载</translation>
+    </message>
+    <message>
+        <source>Line %1</source>
+        <translation>第 %1 行</translation>
+    </message>
+    <message>
+        <source>Time left %1</source>
+        <translation>剩余 %1</translation>
+    </message>
+    <message>
+        <source>MDI</source>
+        <translation>MDI</translation>
+    </message>
+    <message>
+        <source>single block</source>
+        <translation>单段</translation>
+    </message>
+    <message>
+        <source>dry run</source>
+        <translation>空运行</translation>
+    </message>
+    <message>
+        <source>from line %1</source>
+        <translation>从第 %1 行</translation>
     </message>
 </context>
 <context>

@@ -22,6 +22,10 @@
 #include <QSignalSpy>
 #include <QTableView>
 #include <QTabWidget>
+#include <QComboBox>
+#include <QLineEdit>
+#include <QSlider>
+#include <QTime>
 
 #include <filesystem>
 #include <fstream>
@@ -241,6 +245,67 @@ TEST(MachineScreen, JogsHomesAndListsTheAlarms) {
   EXPECT_GT(alarms->rowCount(), 2);  // the jogs and the homing were news too
   page.findChild<QPushButton*>("clearAlarmsButton")->click();
   EXPECT_EQ(alarms->rowCount(), 0);
+}
+
+// An operator's controls against a real lasercncd: touch-off from the
+// screen sets the work DRO, MDI moves to the touched-off zero, the buttons
+// follow the state, the override slider follows the controller.
+TEST(MachineScreen, TouchOffMdiAndTheControlsTheStateAllows) {
+  const std::string shm = "/lcnc_hmi_op_" + std::to_string(getpid());
+  e2e::Daemon daemon(shm);
+  ASSERT_TRUE(daemon.ready()) << daemon.log();
+  MachinePage page(shm);
+  auto* state = page.findChild<QLabel*>("stateLabel");
+  auto* dro_x = page.findChild<QLabel*>("droX");
+  auto* mach_x = page.findChild<QLabel*>("droMachX");
+  const auto button = [&](const char* name) { return page.findChild<QPushButton*>(name); };
+  ASSERT_TRUE(state && dro_x && mach_x && button("touchOffButton") && button("mdiSendButton"));
+  const auto idle = [&] { page.refresh(); return state->text().contains("idle") && button("cycleStartButton") != nullptr && button("jogPlusButton")->isEnabled(); };
+  EXPECT_TRUE(wait_until(idle));
+  page.findChild<QDoubleSpinBox*>("jogStepSpin")->setValue(20.0);
+  button("jogPlusButton")->click();
+  EXPECT_TRUE(wait_until([&] { page.refresh(); return mach_x->text() == "20.000"; })) << mach_x->text().toStdString();
+  EXPECT_TRUE(wait_until(idle));
+  // touch-off: here reads X 5
+  page.findChild<QComboBox*>("touchOffAxisCombo")->setCurrentIndex(0);
+  page.findChild<QDoubleSpinBox*>("touchOffSpin")->setValue(5.0);
+  button("touchOffButton")->click();
+  EXPECT_TRUE(wait_until([&] { page.refresh(); return dro_x->text() == "5.000"; })) << dro_x->text().toStdString();
+  EXPECT_EQ(mach_x->text(), "20.000");
+  // MDI to the work zero: machine X 15
+  page.findChild<QLineEdit*>("mdiEdit")->setText("G0 X0");
+  button("mdiSendButton")->click();
+  EXPECT_TRUE(wait_until([&] { page.refresh(); return mach_x->text() == "15.000" && dro_x->text() == "0.000"; }))
+      << mach_x->text().toStdString() << " " << dro_x->text().toStdString();
+  EXPECT_TRUE(wait_until(idle));
+  EXPECT_FALSE(button("cycleStartButton")->isEnabled());  // nothing loaded
+  EXPECT_FALSE(button("holdButton")->isEnabled());
+  EXPECT_FALSE(button("resetButton")->isEnabled());
+  // a long move: no start, jog, home, MDI or touch-off while it runs; hold and stop offered
+  ASSERT_TRUE(page.send_mdi("G1 X300 F600"));
+  EXPECT_TRUE(wait_until([&] { page.refresh(); return state->text().contains("running"); })) << state->text().toStdString();
+  for (const char* off : {"cycleStartButton", "jogPlusButton", "jogMinusButton", "homeButton", "mdiSendButton",
+                          "touchOffButton", "resumeButton", "resetButton", "frameButton"})
+    EXPECT_FALSE(button(off)->isEnabled()) << off;
+  EXPECT_TRUE(button("holdButton")->isEnabled());
+  EXPECT_TRUE(button("stopButton")->isEnabled());
+  EXPECT_TRUE(button("estopButton")->isEnabled());
+  // the override set elsewhere (lasercnc send override 120): the slider follows
+  auto* slider = page.findChild<QSlider*>("overrideSlider");
+  MachineLink other(shm);
+  ASSERT_TRUE(wait_until([&] { return other.poll(); }));
+  ASSERT_NE(other.send(shm::CommandType::Override, 1.2), 0u);
+  EXPECT_TRUE(wait_until([&] { page.refresh(); return slider->value() == 120; })) << slider->value();
+  button("holdButton")->click();
+  EXPECT_TRUE(wait_until([&] { page.refresh(); return button("resumeButton")->isEnabled(); }));
+  EXPECT_FALSE(button("jogPlusButton")->isEnabled());
+  button("stopButton")->click();
+  EXPECT_TRUE(wait_until(idle));
+  // the state banner is coloured by state, and the alarm rows carry a wall-clock time
+  EXPECT_TRUE(state->styleSheet().contains("#2e7d32")) << state->styleSheet().toStdString();
+  auto* alarms = page.findChild<QTableWidget*>("alarmTable");
+  ASSERT_GT(alarms->rowCount(), 0);
+  EXPECT_TRUE(QTime::fromString(alarms->item(0, 0)->text(), "HH:mm:ss").isValid()) << alarms->item(0, 0)->text().toStdString();
 }
 
 }  // namespace

@@ -5,7 +5,14 @@
 
 #include <unistd.h>
 
+#include <QAbstractButton>
+#include <QAbstractItemView>
+#include <QAbstractSpinBox>
+#include <QComboBox>
 #include <QFile>
+#include <QGroupBox>
+#include <QLabel>
+#include <QLineEdit>
 #include <QPushButton>
 #include <QRegularExpression>
 #include <QTabWidget>
@@ -15,6 +22,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 
@@ -83,6 +91,83 @@ TEST(Translations, TheScreensSpeakRussianAndChinese) {
   QString why;
   EXPECT_FALSE(install_language("de", &why));
   EXPECT_TRUE(why.contains("no translation for 'de'")) << why.toStdString();
+}
+
+// Every text a screen shows: each widget's by its object path, with what
+// kind of text it is (a label, a button, a tab, a column title, a combo
+// item, a placeholder, a tooltip).
+std::map<std::string, QString> visible_texts(QWidget& root) {
+  std::map<std::string, QString> out;
+  const auto path_of = [&root](const QObject* o) {
+    std::string p;
+    for (; o != nullptr && o != &root; o = o->parent())
+      p = (o->objectName().isEmpty() ? std::string(o->metaObject()->className()) : o->objectName().toStdString()) +
+          "/" + p;
+    return p;
+  };
+  const auto put = [&out](const std::string& key, const QString& text) {
+    if (!text.trimmed().isEmpty()) out[key] = text;
+  };
+  for (QWidget* w : root.findChildren<QWidget*>()) {
+    const std::string p = path_of(w);
+    if (auto* l = qobject_cast<QLabel*>(w)) put(p + "text", l->text());
+    if (auto* b = qobject_cast<QAbstractButton*>(w)) put(p + "text", b->text());
+    if (auto* g = qobject_cast<QGroupBox*>(w)) put(p + "title", g->title());
+    if (auto* e = qobject_cast<QLineEdit*>(w)) put(p + "placeholder", e->placeholderText());
+    if (auto* s = qobject_cast<QAbstractSpinBox*>(w)) put(p + "special", s->specialValueText());
+    if (auto* c = qobject_cast<QComboBox*>(w))
+      for (int i = 0; i < c->count(); ++i) put(p + "item" + std::to_string(i), c->itemText(i));
+    if (auto* t = qobject_cast<QTabWidget*>(w))
+      for (int i = 0; i < t->count(); ++i) put(p + "tab" + std::to_string(i), t->tabText(i));
+    if (auto* v = qobject_cast<QAbstractItemView*>(w); v && v->model())
+      for (int c = 0; c < v->model()->columnCount(); ++c)
+        put(p + "column" + std::to_string(c), v->model()->headerData(c, Qt::Horizontal).toString());
+    put(p + "tooltip", w->toolTip());
+  }
+  return out;
+}
+
+// A text that may read the same in every language: symbols, numbers, axis
+// letters, G-code, units, names.
+bool language_neutral(const QString& text) {
+  static const QRegularExpression word("[A-Za-z]{2,}");
+  static const QRegularExpression unit("\\b(mm|deg|rpm|W|s)\\b");
+  static const QStringList names = {"LaserCNC", "MDI", "DXF (*.dxf)", "CSV (*.csv)", "a_eff mm/s²"};
+  QString rest = text;
+  rest.remove(unit);
+  return !word.match(rest).hasMatch() || names.contains(text);
+}
+
+// Each screen rendered in Russian and in Chinese: no visible text stays as
+// it reads in English (a text never marked, marked in another context, or
+// not translated), and the window fits a 1280 × 800 panel in every language.
+TEST(Translations, NoScreenShowsAnUntranslatedText) {
+  auto db = ProcessDatabase::open((fs::temp_directory_path() / ("lcnc_tr3_" + std::to_string(getpid()) + ".db")).string());
+  ASSERT_TRUE(static_cast<bool>(db));
+  const auto render = [&](const char* language) {
+    EXPECT_TRUE(install_language(language));
+    MainWindow w(**db, "/lcnc_tr_none");
+    w.screenshot_all(QString::fromStdString((fs::temp_directory_path() / ("lcnc_tr3_" + std::to_string(getpid()))).string()));
+    EXPECT_LE(w.minimumSizeHint().width(), 1280) << language;
+    EXPECT_LE(w.minimumSizeHint().height(), 800) << language;
+    for (int i = 0; i < w.screens()->count(); ++i) {
+      const QSize hint = w.screens()->widget(i)->minimumSizeHint();
+      EXPECT_LE(hint.width(), 1270) << language << " " << w.screens()->widget(i)->objectName().toStdString();
+      EXPECT_LE(hint.height(), 760) << language << " " << w.screens()->widget(i)->objectName().toStdString();
+    }
+    return visible_texts(w);
+  };
+  const std::map<std::string, QString> en = render("en");
+  EXPECT_GT(en.size(), 150u);
+  for (const char* language : {"ru", "zh_CN"}) {
+    const std::map<std::string, QString> shown = render(language);
+    for (const auto& [where, text] : en) {
+      const auto it = shown.find(where);
+      if (it == shown.end() || language_neutral(text)) continue;
+      EXPECT_NE(it->second, text) << language << ": untranslated '" << text.toStdString() << "' at " << where;
+    }
+  }
+  ASSERT_TRUE(install_language("en"));
 }
 
 // Texts the code translates from tables of its own (column titles, the
