@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <limits>
 
+#include "hmi/page_support.h"
+
 namespace lcnc::hmi {
 namespace {
 
@@ -48,12 +50,7 @@ void draw(QPainter& g, std::size_t n, F point, const Frame& f, const QColor& col
 }  // namespace
 
 DecompositionView::DecompositionView(QWidget* parent) : QWidget(parent) {
-  setObjectName("decompositionView");
-  setMinimumSize(400, 240);
-  setAutoFillBackground(true);
-  QPalette p = palette();
-  p.setColor(QPalette::Window, Qt::white);
-  setPalette(p);
+  make_canvas(this, "decompositionView", 400, 240);
 }
 
 void DecompositionView::set_result(const decompose::PartResult* part, double half_field_mm) {

@@ -2,6 +2,7 @@
 // shared memory only; keeps the process database in SQLite.
 //
 //   lasercnc-hmi [--db FILE] [--shm NAME] [--import HOLES.csv] [--program FILE] [--dxf PART.dxf]
+//                [--cut PART.dxf]
 //                [--sensor|--laser|--meter|--head tcp:HOST:PORT|rtu:DEV[:BAUD[:PARITY]]]
 //                [--probe SERIAL] [--machine FILE] [--lang en|zh_CN|ru]
 //                [--screenshot DIR]
@@ -15,7 +16,8 @@
 // $XDG_DATA_HOME/lasercnc/process.db, i.e. ~/.local/share/lasercnc/process.db.
 // --import merges a hole table (holes/hole_table.h) into the database first.
 // --program opens and plans a program on the program screen; --dxf opens a
-// part on the main + auxiliary axes screen and decomposes it.
+// part on the main + auxiliary axes screen and decomposes it; --cut opens a
+// part on the laser cutting screen and plans its cut.
 // --screenshot renders every screen to DIR/<screen>.png and exits (works
 // offscreen: QT_QPA_PLATFORM=offscreen). Exit codes: 0, 1 the database
 // cannot be opened, 2 bad command line.
@@ -32,6 +34,7 @@
 #include "drivers/modbus/endpoint_spec.h"
 #include "hmi/adjust_page.h"
 #include "hmi/decomposition_page.h"
+#include "hmi/cut_page.h"
 #include "hmi/main_window.h"
 #include "hmi/program_page.h"
 #include "hmi/sim_peripherals.h"
@@ -43,19 +46,21 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: lasercnc-hmi [--db FILE] [--shm NAME] [--import HOLES.csv] [--program FILE] [--dxf PART.dxf]\n"
+    "                    [--cut PART.dxf]\n"
     "                    [--sensor|--laser|--meter|--head ENDPOINT] [--probe SERIAL]\n"
     "                    [--machine FILE] [--lang en|zh_CN|ru] [--screenshot DIR]\n";
 
 constexpr const char* kHelp =
-    "The operator HMI of LaserCNC: machine, program, process database, 3D measurement,\n"
-    "focal length, laser and head, main + auxiliary axes. Talks to lasercncd through\n"
-    "shared memory.\n"
+    "The operator HMI of LaserCNC: machine, program, laser cutting, process database,\n"
+    "3D measurement, focal length, laser and head, main + auxiliary axes. Talks to\n"
+    "lasercncd through shared memory.\n"
     "  --db FILE          the process database (SQLite); default\n"
     "                     $XDG_DATA_HOME/lasercnc/process.db (~/.local/share/lasercnc/process.db)\n"
     "  --shm NAME         the daemon's shared-memory segment (default /lasercnc)\n"
     "  --import HOLES.csv merge a hole table into the database first\n"
     "  --program FILE     open and plan a program on the program screen\n"
     "  --dxf PART.dxf     open a part on the main + auxiliary axes screen and decompose it\n"
+    "  --cut PART.dxf     open a part on the laser cutting screen and plan its cut\n"
     "  --sensor, --laser, --meter, --head ENDPOINT\n"
     "                     a real peripheral: tcp:HOST:PORT or rtu:DEV[:BAUD[:PARITY]];\n"
     "                     without any of them the peripherals are simulators\n"
@@ -83,7 +88,7 @@ int main(int argc, char** argv) {
   std::string shm_name = lcnc::shm::kDefaultName;
   QString screenshot_dir;
   std::string import_path;
-  QString dxf_path, program_path;
+  QString dxf_path, program_path, cut_path;
   std::string sensor_spec, probe_device, laser_spec, meter_spec, head_spec;
   QString language = "system";
   std::string machine_file;
@@ -92,7 +97,7 @@ int main(int argc, char** argv) {
     const QString& a = args[i];
     if ((a == "--db" || a == "--shm" || a == "--screenshot" || a == "--import" || a == "--dxf" ||
          a == "--sensor" || a == "--probe" || a == "--laser" || a == "--meter" || a == "--head" ||
-         a == "--lang" || a == "--machine" || a == "--program") &&
+         a == "--lang" || a == "--machine" || a == "--program" || a == "--cut") &&
         i + 1 < args.size()) {
       const QString v = args[++i];
       if (a == "--db") db_path = v.toStdString();
@@ -100,6 +105,7 @@ int main(int argc, char** argv) {
       else if (a == "--import") import_path = v.toStdString();
       else if (a == "--dxf") dxf_path = v;
       else if (a == "--program") program_path = v;
+      else if (a == "--cut") cut_path = v;
       else if (a == "--sensor") sensor_spec = v.toStdString();
       else if (a == "--probe") probe_device = v.toStdString();
       else if (a == "--laser") laser_spec = v.toStdString();
@@ -181,6 +187,7 @@ int main(int argc, char** argv) {
     window.program()->open_file(program_path);
     if (!screenshot_dir.isEmpty()) window.program()->wait_done();
   }
+  if (!cut_path.isEmpty()) window.cutting()->open_file(cut_path);
   if (!dxf_path.isEmpty()) {
     window.decomposition()->open_file(dxf_path);
     window.decomposition()->decompose();

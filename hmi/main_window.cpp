@@ -8,6 +8,7 @@
 #include <QTabWidget>
 
 #include "hmi/adjust_page.h"
+#include "hmi/cut_page.h"
 #include "hmi/decomposition_page.h"
 #include "hmi/focal_page.h"
 #include "hmi/measure_page.h"
@@ -42,6 +43,9 @@ MainWindow::MainWindow(ProcessDatabase& db, const std::string& shm_name,
   program_page_ = new ProgramPage(m, shm_name, tabs_);
   program_page_->setObjectName("programPage");
   tabs_->addTab(program_page_, tr("Program"));
+  cut_page_ = new CutPage(shm_name, tabs_);
+  cut_page_->setObjectName("cutPage");
+  tabs_->addTab(cut_page_, tr("Laser cutting"));
   tabs_->addTab(db_page_, tr("Process database"));
   measure_page_ = new MeasurePage(db, shm_name, peripherals.probe_serial, tabs_);
   measure_page_->setObjectName("measurePage");

@@ -20,6 +20,7 @@ class QTabWidget;
 
 namespace lcnc::hmi {
 
+class CutPage;
 class DecompositionPage;
 class AdjustPage;
 class FocalPage;
@@ -57,6 +58,7 @@ class MainWindow : public QMainWindow {
   [[nodiscard]] MeasurePage* measure() const noexcept { return measure_page_; }
   [[nodiscard]] AdjustPage* adjust() const noexcept { return adjust_page_; }
   [[nodiscard]] ProgramPage* program() const noexcept { return program_page_; }
+  [[nodiscard]] CutPage* cutting() const noexcept { return cut_page_; }
 
  private:
   QTabWidget* tabs_;
@@ -67,6 +69,7 @@ class MainWindow : public QMainWindow {
   MeasurePage* measure_page_;
   AdjustPage* adjust_page_;
   ProgramPage* program_page_;
+  CutPage* cut_page_;
 };
 
 }  // namespace lcnc::hmi

@@ -6,6 +6,8 @@
 #include <QCoreApplication>
 #include <QElapsedTimer>
 #include <QLabel>
+#include <QPalette>
+#include <QWidget>
 
 namespace lcnc::hmi {
 
@@ -15,6 +17,16 @@ inline constexpr const char* kErrorStyle = "color: #b00020;";
 inline void set_message(QLabel* label, const QString& text, bool error) {
   label->setText(text);
   label->setStyleSheet(error ? kErrorStyle : "");
+}
+
+// A drawing's widget: named, white, at least `w` × `h`.
+inline void make_canvas(QWidget* canvas, const char* name, int w, int h) {
+  canvas->setObjectName(name);
+  canvas->setMinimumSize(w, h);
+  canvas->setAutoFillBackground(true);
+  QPalette p = canvas->palette();
+  p.setColor(QPalette::Window, Qt::white);
+  canvas->setPalette(p);
 }
 
 // Processes events while `busy` holds, up to `timeout_ms`; true once not busy.

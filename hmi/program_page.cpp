@@ -1,7 +1,9 @@
 #include "hmi/program_page.h"
 
 #include <QFileDialog>
+#include <QFile>
 #include <QFileInfo>
+#include <QTextBlock>
 #include <QVBoxLayout>
 
 #include "hmi/page_support.h"
@@ -28,6 +30,10 @@ ProgramPage::ProgramPage(MachineConfig machine, std::string shm_name, QWidget* p
     if (!p.isEmpty()) open_file(p);
   });
   connect(ui_->loadButton, &QPushButton::clicked, this, [this] { load(); });
+  connect(ui_->topViewButton, &QPushButton::clicked, this, [this] { view_->set_view(kTopView); });
+  connect(ui_->isoViewButton, &QPushButton::clicked, this, [this] { view_->set_view(kIsoView); });
+  ui_->viewSplitter->setStretchFactor(0, 3);
+  ui_->viewSplitter->setStretchFactor(1, 1);
   connect(&timer_, &QTimer::timeout, this, [this] { refresh(); });
   timer_.start(100);
 }
@@ -36,8 +42,17 @@ ProgramPage::~ProgramPage() = default;
 
 void ProgramPage::open_file(const QString& path) {
   if (planning_.running()) return;
-  program_ = path;
+  program_ = QFileInfo(path).absoluteFilePath();
   ui_->fileLabel->setText(QFileInfo(path).fileName());
+  // the text as it is now (what the planner reads), at most kMaxShownBytes of it
+  {
+    QFile f(path);
+    QString text;
+    if (f.open(QIODevice::ReadOnly)) text = QString::fromUtf8(f.read(kMaxShownBytes));
+    ui_->codeView->setPlainText(text);
+    current_line_ = 0;
+    ui_->codeView->setExtraSelections({});
+  }
   ui_->fileLabel->setToolTip(path);
   ui_->loadButton->setEnabled(false);
   ui_->progressBar->setVisible(true);
@@ -96,8 +111,35 @@ bool ProgramPage::load() {
 void ProgramPage::refresh() {
   std::optional<Vec3> at;
   if (link_.poll())
-    if (const std::optional<shm::Status> st = link_.status()) at = Vec3(st->pos[0], st->pos[1], st->pos[2]);
+    if (const std::optional<shm::Status> st = link_.status()) {
+      at = Vec3(st->pos[0], st->pos[1], st->pos[2]);
+      const std::optional<shm::JobStatus> job = link_.job();
+      if (job && job->job_active && !job->mdi && !program_.isEmpty() && QString::fromUtf8(job->program) == program_)
+        set_current_line(st->line);
+    }
   view_->set_position(at);
+}
+
+void ProgramPage::set_current_line(std::uint32_t line) {
+  if (line == current_line_) return;
+  current_line_ = line;
+  QList<QTextEdit::ExtraSelection> marks;
+  const QTextBlock block = ui_->codeView->document()->findBlockByNumber(static_cast<int>(line) - 1);
+  if (line > 0 && block.isValid()) {
+    QTextEdit::ExtraSelection mark;
+    mark.format.setBackground(QColor("#fff59d"));
+    mark.format.setProperty(QTextFormat::FullWidthSelection, true);
+    mark.cursor = QTextCursor(block);
+    marks << mark;
+    ui_->codeView->setTextCursor(mark.cursor);
+    ui_->codeView->centerCursor();
+  }
+  ui_->codeView->setExtraSelections(marks);
+}
+
+QString ProgramPage::highlighted_text() const {
+  const QList<QTextEdit::ExtraSelection> marks = ui_->codeView->extraSelections();
+  return marks.isEmpty() ? QString() : marks.front().cursor.block().text();
 }
 
 bool ProgramPage::wait_done(int timeout_ms) { return planning_.wait(timeout_ms); }

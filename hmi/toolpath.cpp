@@ -2,10 +2,14 @@
 
 #include <cmath>
 
+#include "kinematics/five_axis.h"
 #include "plan/planner.h"
 #include "plan/program_source.h"
 
 namespace lcnc::hmi {
+namespace {
+const double kMinTurnCos = std::cos(kMinTurnDeg * 3.14159265358979323846 / 180.0);
+}  // namespace
 
 Result<Toolpath> plan_toolpath(const std::string& program, const MachineConfig& machine, const Pose& start,
                                const std::function<void(double)>& progress, const std::atomic<bool>* cancel) {
@@ -37,10 +41,13 @@ Result<Toolpath> plan_toolpath(const std::string& program, const MachineConfig& 
     tp.time_s = s.t_s;
     ++tp.periods;
     const bool laser = s.power_pct > 0.0f;
+    const bool rapid = s.kind == MotionKind::Rapid;
+    const Vec3 axis = tool_axis(s.pose[3], s.pose[5]);
     if (!any || (at - last.at).norm() >= kMinStepMm || std::abs(s.speed - last.speed) >= kSpeedStep * vmax ||
-        laser != last.laser || s.end_of_program) {
-      last = ToolpathPoint{at, s.speed, laser, s.line};
+        laser != last.laser || rapid != last.rapid || axis.dot(last.axis) < kMinTurnCos || s.end_of_program) {
+      last = ToolpathPoint{at, s.speed, laser, rapid, s.line, axis};
       tp.points.push_back(last);
+      tp.tilted = tp.tilted || axis.z() < kMinTurnCos;
       any = true;
     }
     if ((tp.periods & 0x3fff) == 0) {

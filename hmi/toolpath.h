@@ -3,7 +3,7 @@
 // (arc blends, look-ahead, coarse interpolation: core/plan/planner.h), and
 // its period samples thinned to what a screen can show — a point kept where
 // the path has moved kMinStepMm, the speed changed by kSpeedStep of the
-// peak, or the laser switched. Qt-free; runs on a worker thread.
+// peak, the laser switched or the tool axis turned kMinTurnDeg. Qt-free; runs on a worker thread.
 #pragma once
 
 #include <atomic>
@@ -20,12 +20,15 @@ namespace lcnc::hmi {
 
 inline constexpr double kMinStepMm = 0.05;
 inline constexpr double kSpeedStep = 0.02;
+inline constexpr double kMinTurnDeg = 1.0;
 
 struct ToolpathPoint {
   Vec3 at = Vec3::Zero();  // mm, machine
   double speed = 0.0;      // mm/s (path speed)
   bool laser = false;
+  bool rapid = false;      // G0 (else a feed move, or a dwell)
   std::uint32_t line = 0;
+  Vec3 axis = Vec3::UnitZ();  // the tool axis (A tilt, C rotary)
 };
 
 struct Toolpath {
@@ -35,6 +38,7 @@ struct Toolpath {
   double length_mm = 0.0;
   std::uint64_t periods = 0;
   std::uint32_t lines = 0;
+  bool tilted = false;  // some point's tool axis is not +Z (a 5-axis program)
 };
 
 // `progress(fraction)` now and then (any thread); `cancel` checked as it goes.

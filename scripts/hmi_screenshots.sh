@@ -28,7 +28,8 @@ for lang in en zh_CN ru; do
   rm -rf "${out:?}/$lang"
   QT_QPA_PLATFORM=offscreen build/hmi/lasercnc-hmi --db "$work/process.db" --shm "$shm" --lang "$lang" \
     --import share/examples/holes.csv --program share/examples/bracket.ngc \
-    --dxf share/examples/plate_decompose.dxf --screenshot "$out/$lang" >/dev/null
+    --dxf share/examples/plate_decompose.dxf --cut share/examples/plate_decompose.dxf \
+    --screenshot "$out/$lang" >/dev/null
   rm -f "$work/process.db"
 done
 $L send stop --shm "$shm" >/dev/null

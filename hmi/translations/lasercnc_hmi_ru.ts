@@ -105,6 +105,93 @@
     </message>
 </context>
 <context>
+    <name>CutPage</name>
+    <message>
+        <source>Laser cutting</source>
+        <translation>Лазерная резка</translation>
+    </message>
+    <message>
+        <source>Open DXF…</source>
+        <translation>Открыть DXF…</translation>
+    </message>
+    <message>
+        <source>no drawing</source>
+        <translation>нет чертежа</translation>
+    </message>
+    <message>
+        <source>Plan the cut</source>
+        <translation>Рассчитать резку</translation>
+    </message>
+    <message>
+        <source>Save G-code…</source>
+        <translation>Сохранить G-код…</translation>
+    </message>
+    <message>
+        <source>Load into the controller</source>
+        <translation>Загрузить в контроллер</translation>
+    </message>
+    <message>
+        <source>Cutting</source>
+        <translation>Резка</translation>
+    </message>
+    <message>
+        <source>Kerf, mm</source>
+        <translation>Ширина реза, мм</translation>
+    </message>
+    <message>
+        <source>Lead-in, mm</source>
+        <translation>Врезка, мм</translation>
+    </message>
+    <message>
+        <source>Lead-out, mm</source>
+        <translation>Вывод, мм</translation>
+    </message>
+    <message>
+        <source>Feed, mm/min</source>
+        <translation>Подача, мм/мин</translation>
+    </message>
+    <message>
+        <source>Power, %</source>
+        <translation>Мощность, %</translation>
+    </message>
+    <message>
+        <source>Pierce, s</source>
+        <translation>Пробивка, с</translation>
+    </message>
+    <message>
+        <source>Origin X, mm</source>
+        <translation>Начало X, мм</translation>
+    </message>
+    <message>
+        <source>Origin Y, mm</source>
+        <translation>Начало Y, мм</translation>
+    </message>
+    <message>
+        <source>Outline</source>
+        <translation>Внешний контур</translation>
+    </message>
+    <message>
+        <source>clockwise (holes counter-clockwise)</source>
+        <translation>по часовой (отверстия — против)</translation>
+    </message>
+    <message>
+        <source>counter-clockwise (holes clockwise)</source>
+        <translation>против часовой (отверстия — по)</translation>
+    </message>
+    <message>
+        <source>Units</source>
+        <translation>Единицы</translation>
+    </message>
+    <message>
+        <source>from the drawing</source>
+        <translation>из чертежа</translation>
+    </message>
+    <message>
+        <source>inch</source>
+        <translation>дюйм</translation>
+    </message>
+</context>
+<context>
     <name>DecompositionPage</name>
     <message>
         <source>Main + auxiliary axes</source>
@@ -564,6 +651,14 @@
         <source>Load into the controller</source>
         <translation>Загрузить в контроллер</translation>
     </message>
+    <message>
+        <source>Top</source>
+        <translation>Сверху</translation>
+    </message>
+    <message>
+        <source>3D</source>
+        <translation>3D</translation>
+    </message>
 </context>
 <context>
     <name>lcnc::hmi::AdjustPage</name>
@@ -670,6 +765,61 @@
     <message>
         <source>Refused: %1</source>
         <translation>Отклонено: %1</translation>
+    </message>
+</context>
+<context>
+    <name>lcnc::hmi::CutPage</name>
+    <message>
+        <source>Open a DXF part to plan its cut.</source>
+        <translation>Откройте деталь DXF, чтобы рассчитать резку.</translation>
+    </message>
+    <message>
+        <source>Open a part</source>
+        <translation>Открыть деталь</translation>
+    </message>
+    <message>
+        <source>DXF (*.dxf)</source>
+        <translation>DXF (*.dxf)</translation>
+    </message>
+    <message>
+        <source>Save the cutting program</source>
+        <translation>Сохранить программу резки</translation>
+    </message>
+    <message>
+        <source>G-code (*.ngc)</source>
+        <translation>G-код (*.ngc)</translation>
+    </message>
+    <message>
+        <source>Choose the drawing&apos;s units above, then plan again.</source>
+        <translation>Выберите единицы чертежа выше и рассчитайте снова.</translation>
+    </message>
+    <message>
+        <source>%1 contours (%2 holes, %3 parts), holes first; cut %4 mm, lead-ins %5 mm, rapids %6 mm; about %7 s</source>
+        <translation>контуров: %1 (отверстий %2, деталей %3), сначала отверстия; рез %4 мм, врезки %5 мм, быстрые ходы %6 мм; около %7 с</translation>
+    </message>
+    <message>
+        <source>Planned. Save the program, or load it into the controller.</source>
+        <translation>Рассчитано. Сохраните программу или загрузите её в контроллер.</translation>
+    </message>
+    <message>
+        <source>Cannot write %1: %2</source>
+        <translation>Не удаётся записать %1: %2</translation>
+    </message>
+    <message>
+        <source>Saved %1.</source>
+        <translation>Сохранено: %1.</translation>
+    </message>
+    <message>
+        <source>Cannot make %1.</source>
+        <translation>Не удаётся создать %1.</translation>
+    </message>
+    <message>
+        <source>Saved %1; not loaded: no link to the controller.</source>
+        <translation>Сохранено: %1; не загружено: нет связи с контроллером.</translation>
+    </message>
+    <message>
+        <source>Loaded %1 into the controller (cycle start on the machine screen).</source>
+        <translation>%1 загружена в контроллер (пуск цикла — на экране станка).</translation>
     </message>
 </context>
 <context>
@@ -989,6 +1139,10 @@
         <source>Program</source>
         <translation>Программа</translation>
     </message>
+    <message>
+        <source>Laser cutting</source>
+        <translation>Лазерная резка</translation>
+    </message>
 </context>
 <context>
     <name>lcnc::hmi::MeasurePage</name>
@@ -1148,6 +1302,26 @@
     <message>
         <source>mm/s</source>
         <translation>мм/с</translation>
+    </message>
+    <message>
+        <source>Cut: X %1 … %2, Y %3 … %4, Z %5 … %6 mm; grid %7 mm</source>
+        <translation>Рез: X %1 … %2, Y %3 … %4, Z %5 … %6 мм; сетка %7 мм</translation>
+    </message>
+    <message>
+        <source>cut (colour: speed)</source>
+        <translation>рез (цвет: скорость)</translation>
+    </message>
+    <message>
+        <source>feed, laser off</source>
+        <translation>подача, лазер выкл.</translation>
+    </message>
+    <message>
+        <source>rapid</source>
+        <translation>быстрый ход</translation>
+    </message>
+    <message>
+        <source>tool axis</source>
+        <translation>ось инструмента</translation>
     </message>
 </context>
 </TS>

@@ -105,6 +105,93 @@
     </message>
 </context>
 <context>
+    <name>CutPage</name>
+    <message>
+        <source>Laser cutting</source>
+        <translation>激光切割</translation>
+    </message>
+    <message>
+        <source>Open DXF…</source>
+        <translation>打开 DXF…</translation>
+    </message>
+    <message>
+        <source>no drawing</source>
+        <translation>无图纸</translation>
+    </message>
+    <message>
+        <source>Plan the cut</source>
+        <translation>规划切割</translation>
+    </message>
+    <message>
+        <source>Save G-code…</source>
+        <translation>保存 G 代码…</translation>
+    </message>
+    <message>
+        <source>Load into the controller</source>
+        <translation>载入控制器</translation>
+    </message>
+    <message>
+        <source>Cutting</source>
+        <translation>切割</translation>
+    </message>
+    <message>
+        <source>Kerf, mm</source>
+        <translation>割缝宽度，mm</translation>
+    </message>
+    <message>
+        <source>Lead-in, mm</source>
+        <translation>引入线，mm</translation>
+    </message>
+    <message>
+        <source>Lead-out, mm</source>
+        <translation>引出线，mm</translation>
+    </message>
+    <message>
+        <source>Feed, mm/min</source>
+        <translation>进给，mm/min</translation>
+    </message>
+    <message>
+        <source>Power, %</source>
+        <translation>功率，%</translation>
+    </message>
+    <message>
+        <source>Pierce, s</source>
+        <translation>穿孔，s</translation>
+    </message>
+    <message>
+        <source>Origin X, mm</source>
+        <translation>原点 X，mm</translation>
+    </message>
+    <message>
+        <source>Origin Y, mm</source>
+        <translation>原点 Y，mm</translation>
+    </message>
+    <message>
+        <source>Outline</source>
+        <translation>外轮廓</translation>
+    </message>
+    <message>
+        <source>clockwise (holes counter-clockwise)</source>
+        <translation>顺时针（孔逆时针）</translation>
+    </message>
+    <message>
+        <source>counter-clockwise (holes clockwise)</source>
+        <translation>逆时针（孔顺时针）</translation>
+    </message>
+    <message>
+        <source>Units</source>
+        <translation>单位</translation>
+    </message>
+    <message>
+        <source>from the drawing</source>
+        <translation>按图纸</translation>
+    </message>
+    <message>
+        <source>inch</source>
+        <translation>英寸</translation>
+    </message>
+</context>
+<context>
     <name>DecompositionPage</name>
     <message>
         <source>Main + auxiliary axes</source>
@@ -564,6 +651,14 @@
         <source>Load into the controller</source>
         <translation>载入控制器</translation>
     </message>
+    <message>
+        <source>Top</source>
+        <translation>俯视</translation>
+    </message>
+    <message>
+        <source>3D</source>
+        <translation>3D</translation>
+    </message>
 </context>
 <context>
     <name>lcnc::hmi::AdjustPage</name>
@@ -670,6 +765,61 @@
     <message>
         <source>Refused: %1</source>
         <translation>被拒绝：%1</translation>
+    </message>
+</context>
+<context>
+    <name>lcnc::hmi::CutPage</name>
+    <message>
+        <source>Open a DXF part to plan its cut.</source>
+        <translation>打开 DXF 零件以规划切割。</translation>
+    </message>
+    <message>
+        <source>Open a part</source>
+        <translation>打开零件</translation>
+    </message>
+    <message>
+        <source>DXF (*.dxf)</source>
+        <translation>DXF (*.dxf)</translation>
+    </message>
+    <message>
+        <source>Save the cutting program</source>
+        <translation>保存切割程序</translation>
+    </message>
+    <message>
+        <source>G-code (*.ngc)</source>
+        <translation>G 代码 (*.ngc)</translation>
+    </message>
+    <message>
+        <source>Choose the drawing&apos;s units above, then plan again.</source>
+        <translation>请在上方选择图纸单位，然后重新规划。</translation>
+    </message>
+    <message>
+        <source>%1 contours (%2 holes, %3 parts), holes first; cut %4 mm, lead-ins %5 mm, rapids %6 mm; about %7 s</source>
+        <translation>%1 个轮廓（%2 个孔，%3 个零件），先切孔；切割 %4 mm，引入线 %5 mm，快移 %6 mm；约 %7 s</translation>
+    </message>
+    <message>
+        <source>Planned. Save the program, or load it into the controller.</source>
+        <translation>已规划。保存程序或将其加载到控制器。</translation>
+    </message>
+    <message>
+        <source>Cannot write %1: %2</source>
+        <translation>无法写入 %1：%2</translation>
+    </message>
+    <message>
+        <source>Saved %1.</source>
+        <translation>已保存 %1。</translation>
+    </message>
+    <message>
+        <source>Cannot make %1.</source>
+        <translation>无法创建 %1。</translation>
+    </message>
+    <message>
+        <source>Saved %1; not loaded: no link to the controller.</source>
+        <translation>已保存 %1；未加载：与控制器无连接。</translation>
+    </message>
+    <message>
+        <source>Loaded %1 into the controller (cycle start on the machine screen).</source>
+        <translation>已将 %1 加载到控制器（在机床界面循环启动）。</translation>
     </message>
 </context>
 <context>
@@ -979,6 +1129,10 @@
         <source>Program</source>
         <translation>程序</translation>
     </message>
+    <message>
+        <source>Laser cutting</source>
+        <translation>激光切割</translation>
+    </message>
 </context>
 <context>
     <name>lcnc::hmi::MeasurePage</name>
@@ -1134,6 +1288,26 @@
     <message>
         <source>mm/s</source>
         <translation>mm/s</translation>
+    </message>
+    <message>
+        <source>Cut: X %1 … %2, Y %3 … %4, Z %5 … %6 mm; grid %7 mm</source>
+        <translation>切割：X %1 … %2，Y %3 … %4，Z %5 … %6 mm；网格 %7 mm</translation>
+    </message>
+    <message>
+        <source>cut (colour: speed)</source>
+        <translation>切割（颜色：速度）</translation>
+    </message>
+    <message>
+        <source>feed, laser off</source>
+        <translation>进给，激光关</translation>
+    </message>
+    <message>
+        <source>rapid</source>
+        <translation>快速移动</translation>
+    </message>
+    <message>
+        <source>tool axis</source>
+        <translation>刀具轴线</translation>
     </message>
 </context>
 </TS>

@@ -131,7 +131,7 @@ std::map<std::string, QString> visible_texts(QWidget& root) {
 // letters, G-code, units, names.
 bool language_neutral(const QString& text) {
   static const QRegularExpression word("[A-Za-z]{2,}");
-  static const QRegularExpression unit("\\b(mm|deg|rpm|W|s)\\b");
+  static const QRegularExpression unit("\\b(mm|cm|m|deg|rpm|W|s)\\b");
   static const QStringList names = {"LaserCNC", "MDI", "DXF (*.dxf)", "CSV (*.csv)", "a_eff mm/s²"};
   QString rest = text;
   rest.remove(unit);
