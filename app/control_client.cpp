@@ -143,6 +143,7 @@ std::string format_status(const shm::Status& st, const shm::JobStatus& job, bool
     j["periods"] = st.periods;
     j["machine_time_s"] = st.machine_time_s;
     j["power_pct"] = st.power_pct;
+    j["outputs"] = st.outputs;  // P0 … P7 in bits 0 … 7, gas M7 bit 8, M8 bit 9
     j["latency_us"] = {{"p50", st.latency_p50_us}, {"p99", st.latency_p99_us}, {"max", st.latency_max_us}};
     j["program"] = job.program;
     j["job_active"] = job.job_active;

@@ -255,6 +255,9 @@ void MachinePage::show_status(const shm::Status& st, const shm::JobStatus* job) 
   ui_->laserLabel->setText(st.power_pct > 0.0f ? tr("Laser: on, %1 %").arg(static_cast<double>(st.power_pct), 0, 'f', 0)
                                                : tr("Laser: off"));
   ui_->laserLabel->setStyleSheet(st.power_pct > 0.0f ? "color: #c62828; font-weight: bold;" : "");
+  ui_->gasLabel->setText((st.outputs & shm::kGasHighBit) != 0  ? tr("Gas: high (M8)")
+                         : (st.outputs & shm::kGasLowBit) != 0 ? tr("Gas: low (M7)")
+                                                                : tr("Gas: off"));
   if (!job) return;
   if (job->job_active && !job_was_active_) job_started_s_ = st.machine_time_s;
   job_was_active_ = job->job_active;

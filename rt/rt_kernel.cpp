@@ -728,6 +728,7 @@ void RtKernel::publish_status(bool force) noexcept {
   st.machine_time_s = static_cast<double>(port_.machine_time_ns.load(std::memory_order_relaxed)) * 1e-9;
   st.buffer_fill = static_cast<std::uint32_t>(buffer_.size());
   st.power_pct = power_now_;
+  st.outputs = frame_.outputs;
   st.latency_p50_us = static_cast<float>(lat_p50_);
   st.latency_p99_us = static_cast<float>(lat_p99_);
   st.latency_max_us = static_cast<float>(static_cast<double>(latency_.max_ns()) / 1000.0);

@@ -15,6 +15,9 @@
 #include <cstring>
 #include <new>
 
+static_assert(lcnc::shm::kGasLowBit == lcnc::kOutputMist && lcnc::shm::kGasHighBit == lcnc::kOutputFlood,
+              "the status's gas bits are the segments' output bits");
+
 namespace lcnc::shm {
 namespace {
 

@@ -116,6 +116,9 @@ struct Status {
   double machine_time_s = 0.0;
   std::uint32_t buffer_fill = 0;
   float power_pct = 0.0f;
+  // The outputs the job drives now: digital outputs P0 … P7 in bits 0 … 7,
+  // the assist gas in kGasLowBit (M7) and kGasHighBit (M8).
+  std::uint16_t outputs = 0;
   float latency_p50_us = 0.0f, latency_p99_us = 0.0f, latency_max_us = 0.0f;
   // The program paused itself (M0, M1, M60): FeedHold at rest until a
   // resume, which then goes on with the program.
@@ -124,6 +127,9 @@ struct Status {
   // or its timeout; −1: none.
   std::int8_t input_wait = -1;
 };
+
+inline constexpr std::uint16_t kGasLowBit = 1u << 8;   // Status::outputs: M7 (mist)
+inline constexpr std::uint16_t kGasHighBit = 1u << 9;  // M8 (flood)
 
 // How the last job ended.
 enum class JobOutcome : std::uint8_t {

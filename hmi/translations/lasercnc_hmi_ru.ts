@@ -1104,6 +1104,18 @@
         <source>from line %1</source>
         <translation>со строки %1</translation>
     </message>
+    <message>
+        <source>Gas: high (M8)</source>
+        <translation>Газ: высокое давление (M8)</translation>
+    </message>
+    <message>
+        <source>Gas: low (M7)</source>
+        <translation>Газ: низкое давление (M7)</translation>
+    </message>
+    <message>
+        <source>Gas: off</source>
+        <translation>Газ: выкл.</translation>
+    </message>
 </context>
 <context>
     <name>lcnc::hmi::MainWindow</name>

@@ -1094,6 +1094,18 @@
         <source>from line %1</source>
         <translation>从第 %1 行</translation>
     </message>
+    <message>
+        <source>Gas: high (M8)</source>
+        <translation>气体：高压 (M8)</translation>
+    </message>
+    <message>
+        <source>Gas: low (M7)</source>
+        <translation>气体：低压 (M7)</translation>
+    </message>
+    <message>
+        <source>Gas: off</source>
+        <translation>气体：关</translation>
+    </message>
 </context>
 <context>
     <name>lcnc::hmi::MainWindow</name>

@@ -282,8 +282,10 @@ TEST(MachineScreen, TouchOffMdiAndTheControlsTheStateAllows) {
   EXPECT_FALSE(button("holdButton")->isEnabled());
   EXPECT_FALSE(button("resetButton")->isEnabled());
   // a long move: no start, jog, home, MDI or touch-off while it runs; hold and stop offered
-  ASSERT_TRUE(page.send_mdi("G1 X300 F600"));
+  ASSERT_TRUE(page.send_mdi("M8 G1 X300 F600"));
   EXPECT_TRUE(wait_until([&] { page.refresh(); return state->text().contains("running"); })) << state->text().toStdString();
+  auto* gas = page.findChild<QLabel*>("gasLabel");
+  EXPECT_TRUE(wait_until([&] { page.refresh(); return gas->text().contains("high"); })) << gas->text().toStdString();
   for (const char* off : {"cycleStartButton", "jogPlusButton", "jogMinusButton", "homeButton", "mdiSendButton",
                           "touchOffButton", "resumeButton", "resetButton", "frameButton"})
     EXPECT_FALSE(button(off)->isEnabled()) << off;
