@@ -121,6 +121,7 @@ AdjustPage::AdjustPage(const AdjustEndpoints& at, QWidget* parent)
   t->setColumnCount(6);
   t->setHorizontalHeaderLabels({tr("Device"), tr("Link"), tr("Requests"), tr("Failed"), tr("Retries"), tr("Last error")});
   t->verticalHeader()->hide();
+  t->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
   t->horizontalHeader()->setStretchLastSection(true);
   connect(ui_->applySetpointButton, &QPushButton::clicked, this, [this] {
     if (laser_) laser_->write("power_setpoint_pct", ui_->setpointSpin->value());
@@ -164,6 +165,11 @@ void AdjustPage::refresh() {
     const PollSnapshot s = laser_->snapshot();
     ui_->laserStateLabel->setText(s.linked ? laser_state(value(s, "status")) : tr("no link"));
     ui_->laserPowerLabel->setText(QString::number(value(s, "output_power_w"), 'f', 2));
+    // the setpoint in W too, as the plot shows it
+    const double rated_w = value(s, "rated_power_w");
+    ui_->setpointWattLabel->setText(s.linked && rated_w > 0.0
+                                        ? tr("= %1 W").arg(ui_->setpointSpin->value() / 100.0 * rated_w, 0, 'f', 1)
+                                        : QString());
     ui_->laserTempLabel->setText(QString::number(value(s, "temperature_c"), 'f', 1));
     const int alarm = static_cast<int>(value(s, "alarm_code"));
     ui_->laserAlarmLabel->setText(alarm == 0 ? tr("none") : (alarm & 1 ? tr("over-temperature") : QString::number(alarm)));

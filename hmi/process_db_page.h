@@ -1,12 +1,16 @@
-// The process-database screen (seed 000 Fig. 9, DESIGN §6): the holes as a
-// table to edit in place (every edit validated and stored at once, a refusal
-// shown with the field and range), add and remove holes, import and export
-// the CSV hole table; send the holes to lasercncd as a drilling job, each
-// hole's Z raised by its measured focus offset (the focal-length workflow's)
-// — the run takes the database as it is. Layout and object names in
+// The process-database screen: the holes as a table to edit in place
+// (every edit validated and stored at once, a refusal shown with the field
+// and range; the columns all, or those of the position or of the process),
+// and below it the holes plotted where they are (X Y, numbered, the tilted
+// ones with their tool direction, the selected ones marked; a click on a
+// hole selects its row); add and remove holes, import and export the CSV
+// hole table; send the holes to lasercncd as a drilling job, each hole's Z
+// raised by its measured focus offset (the focal-length workflow's) — the
+// run takes the database as it is. Layout and object names in
 // process_db_page.ui.
 #pragma once
 
+#include <QPointF>
 #include <QWidget>
 
 #include <memory>
@@ -30,6 +34,9 @@ class ProcessDbPage : public QWidget {
   ~ProcessDbPage() override;
 
   [[nodiscard]] HoleTableModel& model() noexcept { return *model_; }
+  // Where the plot draws the hole of table row `row` (its pixel; a test seam).
+  [[nodiscard]] QPointF plotted_at(int row) const;
+  [[nodiscard]] QWidget* plot() const noexcept;
   // Test seams of the file dialogs: import/export this path.
   bool import_file(const QString& path, ProcessDatabase::ImportMode mode);
   bool export_file(const QString& path);
@@ -48,6 +55,7 @@ class ProcessDbPage : public QWidget {
   std::unique_ptr<Ui::ProcessDbPage> ui_;
   ProcessDatabase& db_;
   std::unique_ptr<HoleTableModel> model_;
+  class HolePlot* plot_ = nullptr;
   MachineLink link_;
 };
 

@@ -632,6 +632,18 @@
         <source>Send the holes to the controller</source>
         <translation>Отправить отверстия в контроллер</translation>
     </message>
+    <message>
+        <source>All columns</source>
+        <translation>Все столбцы</translation>
+    </message>
+    <message>
+        <source>Position columns</source>
+        <translation>Столбцы положения</translation>
+    </message>
+    <message>
+        <source>Process columns</source>
+        <translation>Столбцы процесса</translation>
+    </message>
 </context>
 <context>
     <name>ProgramPage</name>
@@ -765,6 +777,10 @@
     <message>
         <source>Refused: %1</source>
         <translation>Отклонено: %1</translation>
+    </message>
+    <message>
+        <source>= %1 W</source>
+        <translation>= %1 Вт</translation>
     </message>
 </context>
 <context>
@@ -1272,6 +1288,10 @@
     <message>
         <source>Sent %1 holes (%2 with a measured focus offset) to the controller; start the cycle on the machine screen.</source>
         <translation>Отправлено отверстий: %1 (с измеренным смещением фокуса: %2); запустите цикл на экране станка.</translation>
+    </message>
+    <message>
+        <source>No holes yet.</source>
+        <translation>Отверстий пока нет.</translation>
     </message>
 </context>
 <context>

@@ -632,6 +632,18 @@
         <source>Send the holes to the controller</source>
         <translation>将孔发送到控制器</translation>
     </message>
+    <message>
+        <source>All columns</source>
+        <translation>全部列</translation>
+    </message>
+    <message>
+        <source>Position columns</source>
+        <translation>位置列</translation>
+    </message>
+    <message>
+        <source>Process columns</source>
+        <translation>工艺列</translation>
+    </message>
 </context>
 <context>
     <name>ProgramPage</name>
@@ -765,6 +777,10 @@
     <message>
         <source>Refused: %1</source>
         <translation>被拒绝：%1</translation>
+    </message>
+    <message>
+        <source>= %1 W</source>
+        <translation>= %1 W</translation>
     </message>
 </context>
 <context>
@@ -1258,6 +1274,10 @@
     <message>
         <source>Sent %1 holes (%2 with a measured focus offset) to the controller; start the cycle on the machine screen.</source>
         <translation>已将 %1 个孔（其中 %2 个带测得的焦点偏移）发送到控制器；请在机床画面启动循环。</translation>
+    </message>
+    <message>
+        <source>No holes yet.</source>
+        <translation>尚无孔。</translation>
     </message>
 </context>
 <context>

@@ -20,6 +20,7 @@
 #include <QLabel>
 #include <QPushButton>
 #include <QSignalSpy>
+#include <QTest>
 #include <QTableView>
 #include <QTabWidget>
 #include <QComboBox>
@@ -105,6 +106,58 @@ TEST(ProcessDbScreen, ImportShowsWhereTheFileIsWrongAndAddsHoles) {
   EXPECT_TRUE(page.export_file(QString::fromStdString((dir / "out.csv").string())));
   EXPECT_TRUE(page.import_file(QString::fromStdString((dir / "out.csv").string()), ProcessDatabase::ImportMode::Replace));
   EXPECT_EQ(table->model()->rowCount(), 3);
+}
+
+// The holes plotted where they are, the selected one marked, a click on a
+// hole selecting its row; the columns shown by group.
+TEST(ProcessDbScreen, PlotsTheHolesAndShowsTheColumnsByGroup) {
+  const fs::path dir = temp_dir();
+  auto db = db_with_holes(dir, 4);  // X 101 … 104, Y 50
+  ProcessDbPage page(*db);
+  page.resize(1000, 700);
+  page.show();
+  auto* table = page.findChild<QTableView*>("holeTable");
+  QWidget* plot = page.plot();
+  ASSERT_TRUE(table && plot);
+  // left to right in hole order, on one row
+  for (int r = 1; r < 4; ++r) {
+    EXPECT_GT(page.plotted_at(r).x(), page.plotted_at(r - 1).x() + 5);
+    EXPECT_NEAR(page.plotted_at(r).y(), page.plotted_at(0).y(), 1e-9);
+  }
+  // the pixels in the selection colour, and those right of the middle of holes 2 and 3
+  const auto marked = [&](double from_x, double to_x) {
+    const QImage img = plot->grab().toImage();
+    int n = 0;
+    for (int y = 0; y < img.height(); ++y)
+      for (int x = static_cast<int>(from_x); x < static_cast<int>(to_x); ++x) {
+        const QColor px = img.pixelColor(x, y);
+        n += px.red() > 150 && px.green() < 80 && px.blue() < 80 ? 1 : 0;
+      }
+    return n;
+  };
+  const double mid12 = 0.5 * (page.plotted_at(1).x() + page.plotted_at(2).x());
+  const double mid23 = 0.5 * (page.plotted_at(2).x() + page.plotted_at(3).x());
+  EXPECT_EQ(marked(0, plot->width()), 0);
+  // a click on hole 3 selects its row, and it is drawn marked
+  QTest::mouseClick(plot, Qt::LeftButton, {}, page.plotted_at(2).toPoint());
+  ASSERT_EQ(table->selectionModel()->selectedRows().size(), 1);
+  EXPECT_EQ(table->selectionModel()->selectedRows().front().row(), 2);
+  EXPECT_GT(marked(mid12, mid23), 10);
+  EXPECT_EQ(marked(0, mid12 - 0.5 * (mid23 - mid12)), 0);  // holes 1 and 2 not
+  // the position's columns, then the process's; the hole number always
+  auto* columns = page.findChild<QComboBox*>("columnsCombo");
+  ASSERT_NE(columns, nullptr);
+  const int n = table->model()->columnCount();
+  columns->setCurrentIndex(1);
+  EXPECT_FALSE(table->isColumnHidden(0));
+  EXPECT_FALSE(table->isColumnHidden(1));  // X
+  EXPECT_TRUE(table->isColumnHidden(6));   // feed
+  EXPECT_FALSE(table->isColumnHidden(n - 1));  // the focus offset
+  columns->setCurrentIndex(2);
+  EXPECT_TRUE(table->isColumnHidden(1));
+  EXPECT_FALSE(table->isColumnHidden(6));
+  columns->setCurrentIndex(0);
+  for (int c = 0; c < n; ++c) EXPECT_FALSE(table->isColumnHidden(c)) << c;
 }
 
 TEST(MainWindow, EveryScreenRendersToPng) {
