@@ -126,6 +126,7 @@ std::string format_status(const shm::Status& st, const shm::JobStatus& job, bool
       j["work_position"] = work;  // machine − work_offset, mm / deg
     }
     j["work_offset"] = job.work_offset;
+    j["distance_to_go"] = job.distance_to_go;  // X Y Z to the end of the move, mm
     j["coord_system"] = coord_system_name(job.coord_system);
     j["modes"] = job.modes;
     j["mdi"] = job.mdi;

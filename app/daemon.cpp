@@ -657,7 +657,10 @@ struct Daemon::Impl {
   // job's start; idle periods before it are skipped), else dropped.
   void drain_trace() {
     rt::TraceRecord r;
+    bool moved = false;
     while (trace->try_pop(r)) {
+      moved = true;
+      trace_last = r;
       if (motion && r.t_ns > job_time_start_ns) {
         if (r.period != next_period) motion->gap();
         motion->add(r.t_ns - job_time_start_ns, r.pos_steps, r.line);
@@ -671,6 +674,19 @@ struct Daemon::Impl {
       }
       next_period = r.period + 1;
     }
+    if (moved) publish_distance_to_go();
+  }
+  rt::TraceRecord trace_last{};
+
+  // From the last traced position to the end of its programmed move.
+  void publish_distance_to_go() {
+    job.distance_to_go = {};
+    if (!job_active || !path || !trace_last.on_path) return;
+    const std::optional<Vec3> end = path->segment_end(trace_last.segment);
+    if (!end) return;
+    for (int i = 0; i < 3; ++i)
+      if (machine.axes[i].present)
+        job.distance_to_go[i] = (*end)[i] - static_cast<double>(trace_last.pos_steps[i]) / machine.axes[i].steps_per_unit;
   }
 
   // --hal: says when the component attaches and when its process goes.
@@ -735,6 +751,7 @@ struct Daemon::Impl {
     start_pending = false;
     const rt::RtFault f = kernel->fault();
     job.job_active = false;
+    job.distance_to_go = {};
     job.jobs_ended = ended;
     job.last_cycle_time_s = static_cast<double>(kernel->machine_time_ns() - job_time_start_ns) * 1e-9;
     job.last_underruns = kernel->underruns() - job_underruns_start;

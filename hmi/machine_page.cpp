@@ -199,6 +199,7 @@ void MachinePage::refresh() {
   QLabel* dro[5] = {ui_->droX, ui_->droY, ui_->droZ, ui_->droA, ui_->droC};
   QLabel* mach[5] = {ui_->droMachX, ui_->droMachY, ui_->droMachZ, ui_->droMachA, ui_->droMachC};
   QLabel* homed[5] = {ui_->homedX, ui_->homedY, ui_->homedZ, ui_->homedA, ui_->homedC};
+  QLabel* to_go[5] = {ui_->toGoX, ui_->toGoY, ui_->toGoZ, ui_->toGoA, ui_->toGoC};
   const std::optional<shm::Status> st = up ? link_.status() : std::nullopt;
   if (!st) {
     enable(ControlView{});
@@ -209,6 +210,7 @@ void MachinePage::refresh() {
     for (QLabel* l : dro) l->setText("—");
     for (QLabel* l : mach) l->setText("—");
     for (QLabel* l : homed) l->setText("—");
+    for (QLabel* l : to_go) l->setText("—");
     return;
   }
   ui_->linkLabel->setText(tr("Controller: connected"));
@@ -229,6 +231,9 @@ void MachinePage::refresh() {
     const double work = st->pos[a] - (job ? job->work_offset[a] : 0.0);
     dro[i]->setText(present ? QString::number(work, 'f', 3) : QString("—"));
     mach[i]->setText(present ? QString::number(st->pos[a], 'f', 3) : QString("—"));
+    // the distance to go of the linear axes while a job moves
+    to_go[i]->setText(present && a < 3 && job && job->job_active ? QString::number(job->distance_to_go[a], 'f', 3)
+                                                                   : QString("—"));
     const bool is_homed = (st->homed_mask >> a) & 1u;
     homed[i]->setText(!present ? QString("—") : is_homed ? QString("✔") : QString("✘"));
     homed[i]->setStyleSheet(!present ? "" : is_homed ? "color: #2e7d32; font-size: 16pt;" : "color: #b00020; font-size: 16pt;");

@@ -1,7 +1,7 @@
 // The machine screen, for an operator's shift: a state banner in the
 // state's colour; the work-coordinate DRO (large) with the machine
-// coordinates and each axis's homed flag beside it; the work system and
-// touch-off (G10 L20, kept by the controller); the job — program, line,
+// coordinates, the distance to go and each axis's homed flag beside it;
+// the work system and touch-off (G10 L20, kept by the controller); the job — program, line,
 // progress, time left, laser power, how it runs (single block, dry run,
 // from a line); cycle start / feed hold / resume / stop, framing, feed
 // override that follows the controller, e-stop and reset, jog and home, MDI;

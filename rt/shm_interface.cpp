@@ -200,6 +200,8 @@ void sanitize(JobStatus& j) noexcept {
   if (j.coord_system >= 9) j.coord_system = 0;
   for (double& w : j.work_offset)
     if (!std::isfinite(w)) w = 0.0;
+  for (double& d : j.distance_to_go)
+    if (!std::isfinite(d)) d = 0.0;
   std::uint8_t outcome = 0;  // likewise an enum byte out of its range
   std::memcpy(&outcome, &j.last_outcome, 1);
   if (outcome > static_cast<std::uint8_t>(JobOutcome::Failed)) j.last_outcome = JobOutcome::None;

@@ -172,6 +172,9 @@ struct JobStatus {
   bool single_block = false;
   bool dry_run = false;
   std::uint32_t start_line = 0;  // run from this line; 0: from the start
+  // X Y Z from where the machine is to the end of the programmed move it is
+  // making (mm, machine axes); 0 with no job moving.
+  std::array<double, 3> distance_to_go{};
 };
 
 // Blocks copied out of the segment, made safe to use: any process of the

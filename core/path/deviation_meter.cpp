@@ -61,4 +61,10 @@ double DeviationMeter::add(const Vec3& point, std::uint32_t index) {
   return best;
 }
 
+std::optional<Vec3> DeviationMeter::end_of(std::uint32_t index) const {
+  for (const Entry& e : window_)
+    if (e.index == index) return e.geo.at(e.geo.length()).head<3>();
+  return std::nullopt;
+}
+
 }  // namespace lcnc

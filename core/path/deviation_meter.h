@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <optional>
 
 #include "path/segment_geometry.h"
 #include "plan/planned_segment.h"
@@ -48,6 +49,9 @@ class DeviationMeter {
   // compared with the last segment of that line and those around it.
   double add_at_line(const Vec3& point, std::uint32_t line);
 
+  // Where programmed segment `index` ends (X Y Z, mm), while it is in the
+  // window (the segments around the last point added); nothing otherwise.
+  [[nodiscard]] std::optional<Vec3> end_of(std::uint32_t index) const;
   [[nodiscard]] double max_mm() const noexcept { return max_; }
   [[nodiscard]] std::uint64_t points() const noexcept { return points_; }
   // The worst point beyond its tolerance: by how much (mm; 0 when every

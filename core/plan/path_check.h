@@ -36,6 +36,10 @@ class PathCheck {
   // was running.
   void add(const Pose& joints, std::uint32_t segment, std::uint32_t line);
 
+  // Where the segment of the last pose added ends (joints X Y Z, mm): the
+  // distance to go is that less the position. Nothing before a pose.
+  [[nodiscard]] std::optional<Vec3> segment_end(std::uint32_t segment) const { return joints_->end_of(segment); }
+
   // The largest deviation: the tool tip's under TCP, else the joints'.
   [[nodiscard]] double max_mm() const noexcept;
   // One line per tolerance exceeded, e.g. "path deviation 0.0712 mm, beyond

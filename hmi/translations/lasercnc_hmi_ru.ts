@@ -542,6 +542,10 @@
         <source>Acknowledge</source>
         <translation>Квитировать</translation>
     </message>
+    <message>
+        <source>To go</source>
+        <translation>Осталось</translation>
+    </message>
 </context>
 <context>
     <name>MeasurePage</name>

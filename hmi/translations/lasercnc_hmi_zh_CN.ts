@@ -542,6 +542,10 @@
         <source>Acknowledge</source>
         <translation>确认</translation>
     </message>
+    <message>
+        <source>To go</source>
+        <translation>剩余距离</translation>
+    </message>
 </context>
 <context>
     <name>MeasurePage</name>

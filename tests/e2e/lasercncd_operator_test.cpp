@@ -178,6 +178,11 @@ TEST(LasercncdOperator, MdiMovesInTheModesTheLastCommandLeft) {
   r = send(shm, "mdi G0 X0");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("mdi refused: the machine is running"), std::string::npos) << r.err;
+  // the distance to go: to X 400, as far as the machine has still to move
+  s = status(shm);
+  EXPECT_GT(at(s, "distance_to_go", 0), 1.0);
+  EXPECT_NEAR(at(s, "distance_to_go", 0), 400.0 - at(s, "position", 0), 1.0);  // the status and job blocks differ by a few periods
+  EXPECT_NEAR(at(s, "distance_to_go", 1), 0.0, 1e-9);
   ASSERT_EQ(send(shm, "stop").exit_code, 0);
 }
 

@@ -337,6 +337,13 @@ TEST(MachineScreen, TouchOffMdiAndTheControlsTheStateAllows) {
   // a long move: no start, jog, home, MDI or touch-off while it runs; hold and stop offered
   ASSERT_TRUE(page.send_mdi("M8 G1 X300 F600"));
   EXPECT_TRUE(wait_until([&] { page.refresh(); return state->text().contains("running"); })) << state->text().toStdString();
+  auto* to_go = page.findChild<QLabel*>("toGoX");
+  EXPECT_TRUE(wait_until([&] {
+    page.refresh();
+    bool ok = false;
+    const double left = to_go->text().toDouble(&ok);
+    return ok && left > 10.0 && left < 285.0;  // X 15 → 300, under way
+  })) << to_go->text().toStdString();
   auto* gas = page.findChild<QLabel*>("gasLabel");
   EXPECT_TRUE(wait_until([&] { page.refresh(); return gas->text().contains("high"); })) << gas->text().toStdString();
   for (const char* off : {"cycleStartButton", "jogPlusButton", "jogMinusButton", "homeButton", "mdiSendButton",
