@@ -375,6 +375,9 @@ ProgramReader::Next ProgramReader::Impl::read_program(Segment& out) {
 }
 
 ProgramReader::Next ProgramReader::Impl::read(Segment& out) {
+  // a plain reading (a program run from its start) takes the segments as
+  // they come, without a copy through the queue
+  if (options.start_line == 0 && !options.single_block && !options.laser_off) return read_program(out);
   for (;;) {
     if (queued_next < queued.size()) {
       out = queued[queued_next++];
