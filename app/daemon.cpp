@@ -439,8 +439,8 @@ struct Daemon::Impl {
                     ", addf lasercnc.update to a thread, start)");
     if (const std::string u = unhomed(); !u.empty())
       return refuse("not homed: " + u + " (home every axis, or set [machine] allow_unhomed)");
-    if (job_active || st != shm::MachineState::Idle)
-      return refuse(std::string("the machine is ") + state_name(st));
+    if (job_active) return refuse(st == shm::MachineState::Idle ? "a job is starting" : "a job is running");
+    if (st != shm::MachineState::Idle) return refuse(std::string("the machine is ") + state_name(st));
     return std::nullopt;
   }
 
