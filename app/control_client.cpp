@@ -18,6 +18,7 @@
 
 #include "common/error.h"
 #include "geom/pose.h"
+#include "machine/machine_config.h"
 #include "app/json_text.h"
 #include "app/run_job.h"
 #include "rt/shm_interface.h"
@@ -84,8 +85,7 @@ std::string local_file_problem(const std::string& path) {
 }
 
 const char* coord_system_name(std::uint8_t index) {
-  static constexpr const char* kNames[] = {"G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3"};
-  return index < std::size(kNames) ? kNames[index] : "?";
+  return index < kWorkOffsetNames.size() ? kWorkOffsetNames[index] : "?";
 }
 
 const char* outcome_name(shm::JobOutcome o) {

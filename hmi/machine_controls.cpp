@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "geom/pose.h"
+#include "machine/machine_config.h"
 
 namespace lcnc::hmi {
 
@@ -87,8 +88,7 @@ std::string touch_off_gcode(int axis, double value) {
 }
 
 const char* work_system_name(int index) noexcept {
-  static constexpr const char* kNames[] = {"G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3"};
-  return index >= 0 && index < kWorkSystems ? kNames[index] : "G54";
+  return kWorkOffsetNames[static_cast<std::size_t>(index >= 0 && index < kWorkOffsetCount ? index : 0)];
 }
 
 std::string work_system_gcode(int index) { return work_system_name(index); }

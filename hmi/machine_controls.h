@@ -71,8 +71,7 @@ class AlarmLog {
 // Touch-off: the current work system's origin set so that here reads
 // `value` on `axis` (G10 L20 P0), in the units MDI is in (G20/G21).
 [[nodiscard]] std::string touch_off_gcode(int axis, double value);
-// Selects work system `index` (0 = G54 … kWorkSystems − 1 = G59.3).
-inline constexpr int kWorkSystems = 9;
+// Selects work system `index` (0 = G54 … 8 = G59.3: kWorkOffsetNames).
 [[nodiscard]] std::string work_system_gcode(int index);
 [[nodiscard]] const char* work_system_name(int index) noexcept;
 

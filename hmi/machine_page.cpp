@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "hmi/page_support.h"
+#include "machine/machine_config.h"
 #include "ui_machine_page.h"
 
 namespace lcnc::hmi {
@@ -58,7 +59,7 @@ QString format_seconds(double s) {
 MachinePage::MachinePage(const std::string& shm_name, QWidget* parent)
     : QWidget(parent), ui_(std::make_unique<Ui::MachinePage>()), link_(shm_name) {
   ui_->setupUi(this);
-  for (int i = 0; i < kWorkSystems; ++i) ui_->workSystemCombo->addItem(work_system_name(i));
+  for (int i = 0; i < lcnc::kWorkOffsetCount; ++i) ui_->workSystemCombo->addItem(work_system_name(i));
   connect(ui_->cycleStartButton, &QPushButton::clicked, this, [this] { start(); });
   connect(ui_->holdButton, &QPushButton::clicked, this, [this] { send(shm::CommandType::Hold); });
   connect(ui_->resumeButton, &QPushButton::clicked, this, [this] { send(shm::CommandType::Resume); });

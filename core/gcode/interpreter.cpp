@@ -1109,10 +1109,8 @@ std::string Interpreter::modes_block() const {
   out += m.absolute ? " G90" : " G91";
   out += m.arc_absolute ? " G90.1" : " G91.1";
   out += m.inverse_time ? " G93" : " G94";
-  static constexpr const char* kSystems[kWorkOffsetCount] = {"G54",   "G55",   "G56",   "G57",  "G58",
-                                                             "G59",   "G59.1", "G59.2", "G59.3"};
   out += ' ';
-  out += kSystems[std::clamp(m.coord_system, 0, kWorkOffsetCount - 1)];
+  out += kWorkOffsetNames[static_cast<std::size_t>(std::clamp(m.coord_system, 0, kWorkOffsetCount - 1))];
   switch (m.path_mode) {
     case PathMode::ExactPath: out += " G61"; break;
     case PathMode::ExactStop: out += " G61.1"; break;
