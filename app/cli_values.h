@@ -1,5 +1,6 @@
-// Option values the DXF sub-commands (decompose, cut) read alike: a plain
-// number, an X,Y pair in mm, a drawing unit.
+// Option values the command line reads alike: a number, an X,Y pair in mm,
+// a drawing unit. One parser of numbers for every sub-command and the
+// daemon's client, so "1e3" or "nan" means the same to each.
 #pragma once
 
 #include <cmath>
@@ -11,25 +12,31 @@
 
 namespace lcnc::app {
 
-// "12.5" → 12.5; nothing else may follow the number.
-inline std::optional<double> parse_plain(std::string_view s) {
+// "6m/min" → (6, "m/min"): a finite number, then its unit (maybe empty).
+inline std::optional<std::pair<double, std::string>> parse_quantity(std::string_view s) {
   const std::string str(s);
   char* end = nullptr;
   const double v = std::strtod(str.c_str(), &end);
-  if (end == str.c_str() || *end != '\0') return std::nullopt;
-  return v;
+  if (end == str.c_str() || !std::isfinite(v)) return std::nullopt;
+  return std::pair{v, std::string(end)};
 }
 
-// "100,50" → (100, 50), both finite.
+// "12.5" → 12.5: a finite number and nothing after it ("nan", "inf", "",
+// "12mm" are not numbers).
+inline std::optional<double> parse_number(std::string_view s) {
+  const auto q = parse_quantity(s);
+  if (!q || !q->second.empty()) return std::nullopt;
+  return q->first;
+}
+
+// "100,50" → (100, 50).
 inline std::optional<std::pair<double, double>> parse_xy(std::string_view s) {
-  const std::string str(s);
-  char* end = nullptr;
-  const double x = std::strtod(str.c_str(), &end);
-  if (end == str.c_str() || *end != ',') return std::nullopt;
-  const char* ys = end + 1;
-  const double y = std::strtod(ys, &end);
-  if (end == ys || *end != '\0' || !std::isfinite(x) || !std::isfinite(y)) return std::nullopt;
-  return std::pair{x, y};
+  const std::size_t comma = s.find(',');
+  if (comma == std::string_view::npos) return std::nullopt;
+  const auto x = parse_number(s.substr(0, comma));
+  const auto y = parse_number(s.substr(comma + 1));
+  if (!x || !y) return std::nullopt;
+  return std::pair{*x, *y};
 }
 
 // mm per drawing unit of "mm", "cm", "m", "inch" (or "in").

@@ -19,6 +19,7 @@
 #include "common/error.h"
 #include "geom/pose.h"
 #include "machine/machine_config.h"
+#include "app/cli_values.h"
 #include "app/json_text.h"
 #include "app/run_job.h"
 #include "rt/shm_interface.h"
@@ -58,13 +59,6 @@ std::optional<int> axis_index(const std::string& s) {
   for (int i = 0; i < kAxisCount; ++i)
     if (std::toupper(static_cast<unsigned char>(s[0])) == kAxisLetters[i]) return i;
   return std::nullopt;
-}
-
-std::optional<double> number(const std::string& s) {
-  char* end = nullptr;
-  const double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || *end != '\0' || !std::isfinite(v)) return std::nullopt;
-  return v;
 }
 
 // What the sender can say of a program file before the daemon reads it: it
@@ -273,7 +267,7 @@ int client_send(const std::vector<std::string>& args, const ClientOptions& optio
     }
   } else if (cmd == "override") {
     if (!need(1, "a percentage (0 … 150)")) return 2;
-    const auto v = number(args[1]);
+    const auto v = parse_number(args[1]);
     if (!v) {
       std::fprintf(stderr, "lasercnc send override: '%s' is not a number\n", args[1].c_str());
       return 2;
@@ -283,7 +277,7 @@ int client_send(const std::vector<std::string>& args, const ClientOptions& optio
   } else if (cmd == "jog") {
     if (!need(2, "an axis and a distance, e.g. jog X 10")) return 2;
     const auto a = axis_index(args[1]);
-    const auto v = number(args[2]);
+    const auto v = parse_number(args[2]);
     if (!a || !v) {
       std::fprintf(stderr, "lasercnc send jog: expects an axis (X Y Z A B C) and a distance\n");
       return 2;

@@ -101,7 +101,7 @@ int cut_main(int argc, char** argv) {
       return usage_error(std::string(a) + " " + std::string(v) + ": expected " + expected);
     };
     // NaN when not a number: every range check below then fails
-    const double x = parse_plain(v).value_or(std::nan(""));
+    const double x = parse_number(v).value_or(std::nan(""));
     if (a == "-o" || a == "--output") {
       out_path = std::string(v);
     } else if (a == "--svg") {

@@ -66,11 +66,9 @@ int usage_error(const std::string& msg) {
 
 // "6m/min" → 100 (mm/s). Units: mm/s (bare), mm/min, m/min, m/s.
 std::optional<double> parse_speed(std::string_view s) {
-  const std::string str(s);
-  char* end = nullptr;
-  const double v = std::strtod(str.c_str(), &end);
-  if (end == str.c_str()) return std::nullopt;
-  const std::string_view unit(end);
+  const auto q = parse_quantity(s);
+  if (!q) return std::nullopt;
+  const auto& [v, unit] = *q;
   if (unit.empty() || unit == "mm/s") return v;
   if (unit == "mm/min") return v / 60.0;
   if (unit == "m/min") return v * 1000.0 / 60.0;
@@ -80,11 +78,9 @@ std::optional<double> parse_speed(std::string_view s) {
 
 // "0.5g" → 4903.3 (mm/s²). Units: mm/s2 (bare), m/s2, g.
 std::optional<double> parse_accel(std::string_view s) {
-  const std::string str(s);
-  char* end = nullptr;
-  const double v = std::strtod(str.c_str(), &end);
-  if (end == str.c_str()) return std::nullopt;
-  const std::string_view unit(end);
+  const auto q = parse_quantity(s);
+  if (!q) return std::nullopt;
+  const auto& [v, unit] = *q;
   if (unit.empty() || unit == "mm/s2" || unit == "mm/s^2") return v;
   if (unit == "m/s2" || unit == "m/s^2") return v * 1000.0;
   if (unit == "g") return v * kG_mm_s2;
@@ -214,16 +210,16 @@ int decompose_main(int argc, char** argv) {
       opt.main_accel_mm_s2 = *s;
       main_accel_given = true;
     } else if (a == "--step") {
-      const std::optional<double> s = parse_plain(v);
+      const std::optional<double> s = parse_number(v);
       if (!s || !(*s >= 0.001)) return bad("a step in mm, at least 0.001 (1 um)");
       step_mm = *s;
     } else if (a == "--field") {
-      const std::optional<double> s = parse_plain(v);
+      const std::optional<double> s = parse_number(v);
       if (!s || !(*s > 0.0)) return bad("the field's full width in mm, > 0");
       opt.aux_half_field_mm = *s / 2.0;
       field_given = true;
     } else if (a == "--critical-angle") {
-      const std::optional<double> s = parse_plain(v);
+      const std::optional<double> s = parse_number(v);
       if (!s || !(*s > 0.0 && *s < 180.0)) return bad("an angle in degrees, 0 < angle < 180");
       opt.critical_angle_deg = *s;
     } else if (a == "--mode") {

@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/cli_values.h"
 #include "app/json_text.h"
 #include "app/run_job.h"
 #include "drivers/devices/scan_head_sim.h"
@@ -36,15 +37,6 @@ constexpr const char* kUsage =
 int usage_error(const std::string& msg) {
   std::fprintf(stderr, "lasercnc drill: %s\n%s", msg.c_str(), kUsage);
   return 2;
-}
-
-std::optional<double> number(std::string_view s) {
-  if (s.empty()) return std::nullopt;
-  char* end = nullptr;
-  const std::string t(s);
-  const double v = std::strtod(t.c_str(), &end);
-  if (end != t.c_str() + t.size()) return std::nullopt;
-  return v;
 }
 
 // What one hole did, for the report.
@@ -147,7 +139,7 @@ int drill_main(int argc, char** argv) {
       (a == "--machine" ? opt.machine_file : opt.trace_file) = std::string(*v);
     } else if (a == "--clearance" || a == "--settle" || a == "--feed-override") {
       auto v = value();
-      const std::optional<double> x = v ? number(*v) : std::nullopt;
+      const std::optional<double> x = v ? parse_number(*v) : std::nullopt;
       if (!x || *x < 0.0) return usage_error(std::string(a) + " needs a number ≥ 0");
       if (a == "--clearance") dopt.clearance_mm = *x;
       else if (a == "--settle") dopt.head_settle_s = *x;

@@ -15,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "app/cli_values.h"
 #include "app/cnc_modbus_host.h"
 #include "app/control_client.h"
 #include "app/cut_cli.h"
@@ -27,6 +28,8 @@
 #include "plan/program_source.h"
 
 namespace {
+
+using lcnc::app::parse_number;
 
 constexpr const char* kUsage =
     "usage:\n"
@@ -93,14 +96,6 @@ constexpr const char* kUsage =
 int usage_error(const std::string& msg) {
   std::fprintf(stderr, "lasercnc: %s\n%s", msg.c_str(), kUsage);
   return 2;
-}
-
-std::optional<double> parse_number(std::string_view s) {
-  char* end = nullptr;
-  const std::string str(s);
-  const double v = std::strtod(str.c_str(), &end);
-  if (end == str.c_str() || *end != '\0') return std::nullopt;
-  return v;
 }
 
 void draw_progress(double f) {
