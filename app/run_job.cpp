@@ -15,6 +15,7 @@
 #include "common/share_path.h"
 #include "drivers/sim_machine.h"
 #include "gcode/program_reader.h"
+#include "machine/feed_override_percent.h"
 #include "plan/motion_check.h"
 #include "plan/path_check.h"
 #include "plan/program_source.h"
@@ -206,16 +207,6 @@ Result<MachineConfig> load_machine(const RunOptions& options) {
   return m;
 }
 
-Status check_feed_override(double pct, const MachineConfig& machine) {
-  const double max_pct = 100.0 * machine.max_feed_override;
-  if (pct >= kMinRunOverridePct && pct <= max_pct) return {};
-  char msg[200];
-  std::snprintf(msg, sizeof msg,
-                "--feed-override %g: allowed %g <= PCT <= %g (%%, machine.max_feed_override = %g)",
-                pct, kMinRunOverridePct, max_pct, machine.max_feed_override);
-  return make_error(ErrorCode::Usage, msg);
-}
-
 bool run_succeeded(const RunReport& report) {
   return report.steps_match && report.bad_frames == 0 && report.fault.empty() &&
          report.breaches.empty();
@@ -320,7 +311,10 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   Result<MachineConfig> loaded = load_machine(options);
   if (!loaded) return loaded.error();
   const MachineConfig machine = std::move(loaded).value();
-  if (Status s = check_feed_override(options.feed_override_pct, machine); !s) return s.error();
+  const Result<double> k_start = override_from_percent(options.feed_override_pct, kMinRunOverridePct,
+                                                       machine.max_feed_override, ErrorCode::Usage,
+                                                       "--feed-override");
+  if (!k_start) return k_start.error();
 
   // The whole program is checked before anything moves.
   ReaderOptions ropt;
@@ -384,7 +378,7 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   // Planner thread: plan, coarse-interpolate, quantize, keep the buffer
   // full; the RT thread starts once half the buffer (or the whole job) is in.
   // The override first: one above 100 % is planned for from the first entry.
-  kernel.set_feed_override(options.feed_override_pct / 100.0);  // before start: no ramp
+  kernel.set_feed_override(*k_start);  // before start: no ramp
   PlannerFeed feed(machine, *buffer, kernel);
   if (options.segments) {
     feed.start(options.segments, ropt.start, options.program);

@@ -107,13 +107,6 @@ struct RunReport {
 using ProgressFn = std::function<void(double fraction)>;
 
 [[nodiscard]] Result<MachineConfig> load_machine(const RunOptions& options);
-// The lowest constant override a run takes, %: a whole run at 1 % of its
-// speed already takes 100 × its time; below, a period would last so long
-// that the run never ends (1e-300 % is 10^297 s a period).
-inline constexpr double kMinRunOverridePct = 1.0;
-// A Usage error unless kMinRunOverridePct ≤ pct ≤ 100·machine.max_feed_override;
-// names the range.
-[[nodiscard]] Status check_feed_override(double pct, const MachineConfig& machine);
 [[nodiscard]] Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress = {});
 
 // "soft limit reached: axis X (travel 0 … 1000) at line 12"

@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "geom/pose.h"
+#include "machine/feed_override_percent.h"
 
 namespace lcnc::shm {
 namespace {
@@ -42,12 +43,11 @@ lcnc::Status check_command_frame(const Command& c, const CommandLimits& limits) 
       if ((c.axis & ~kStartFlags) != 0) return refused("bad command frame: unknown start flags");
       return {};
     case CommandType::Override:
-      if (!std::isfinite(c.value) || c.value < 0.0 || c.value > limits.max_override) {
-        char msg[160];
-        std::snprintf(msg, sizeof msg, "override %g %% refused: allowed 0 … %g %%", c.value * 100.0,
-                      limits.max_override * 100.0);
-        return refused(msg);
-      }
+      if (const Result<double> k = override_from_percent(c.value * 100.0, kMinLiveOverridePct,
+                                                         limits.max_override, ErrorCode::RtRefused,
+                                                         "override");
+          !k)
+        return k.error();
       return {};
     case CommandType::Jog:
       if (!has_axis(c.axis, limits.axes_mask)) return refused("jog refused: no axis " + axis_text(c.axis));
