@@ -318,14 +318,17 @@ void ModbusMaster::submit(RawRequest request, RawCallback done) {
   impl_->submit(std::move(request), std::move(done));
 }
 
-std::future<Result<RawReply>> ModbusMaster::request(RawRequest r) {
-  auto p = std::make_shared<std::promise<Result<RawReply>>>();
-  auto f = p->get_future();
-  submit(std::move(r), [p](Result<RawReply> res) { p->set_value(std::move(res)); });
+namespace {
+
+// A call that answers through a callback, as a future: `start(done)` with
+// done(T) fulfilling it.
+template <typename T, typename Start>
+std::future<T> as_future(Start&& start) {
+  auto p = std::make_shared<std::promise<T>>();
+  std::future<T> f = p->get_future();
+  start([p](T v) { p->set_value(std::move(v)); });
   return f;
 }
-
-namespace {
 
 Function read_function(Table t) noexcept {
   switch (t) {
@@ -348,6 +351,10 @@ Result<double> checked(const DeviceMap& map, const RegisterDef& r, double v, con
 
 }  // namespace
 
+std::future<Result<RawReply>> ModbusMaster::request(RawRequest r) {
+  return as_future<Result<RawReply>>([&](auto done) { submit(std::move(r), std::move(done)); });
+}
+
 void ModbusMaster::read_async(std::string_view name, std::function<void(Result<double>)> done) {
   auto reg = impl_->map.lookup(name);
   if (!reg) {
@@ -364,10 +371,7 @@ void ModbusMaster::read_async(std::string_view name, std::function<void(Result<d
 }
 
 std::future<Result<double>> ModbusMaster::read(std::string_view name) {
-  auto p = std::make_shared<std::promise<Result<double>>>();
-  auto f = p->get_future();
-  read_async(name, [p](Result<double> v) { p->set_value(std::move(v)); });
-  return f;
+  return as_future<Result<double>>([&](auto done) { read_async(name, std::move(done)); });
 }
 
 void ModbusMaster::write_async(std::string_view name, double value, std::function<void(Status)> done) {
@@ -396,31 +400,32 @@ void ModbusMaster::write_async(std::string_view name, double value, std::functio
 }
 
 std::future<Status> ModbusMaster::write(std::string_view name, double value) {
-  auto p = std::make_shared<std::promise<Status>>();
-  auto f = p->get_future();
-  write_async(name, value, [p](Status s) { p->set_value(std::move(s)); });
-  return f;
+  return as_future<Status>([&](auto done) { write_async(name, value, std::move(done)); });
 }
 
 std::future<Result<std::vector<double>>> ModbusMaster::read_block(std::vector<std::string> names) {
-  auto p = std::make_shared<std::promise<Result<std::vector<double>>>>();
-  auto f = p->get_future();
+  return as_future<Result<std::vector<double>>>(
+      [&](auto done) { read_block_async(std::move(names), std::move(done)); });
+}
+
+void ModbusMaster::read_block_async(std::vector<std::string> names,
+                                    std::function<void(Result<std::vector<double>>)> done) {
   auto refuse = [&](ErrorCode c, const std::string& why) {
     impl_->n.refused.fetch_add(1, std::memory_order_relaxed);
-    p->set_value(make_error(c, who() + ": read block: " + why));
+    done(make_error(c, who() + ": read block: " + why));
   };
   std::vector<const RegisterDef*> regs;
   for (const std::string& nm : names) {
     auto r = impl_->map.lookup(nm);
     if (!r) {
       refuse(r.error().code, r.error().message);
-      return f;
+      return;
     }
     regs.push_back(r.value());
   }
   if (regs.empty()) {
     refuse(ErrorCode::PeripheralBadRequest, "no registers named");
-    return f;
+    return;
   }
   std::uint32_t lo = 0xFFFF, hi = 0;
   for (const RegisterDef* r : regs) {
@@ -429,7 +434,7 @@ std::future<Result<std::vector<double>>> ModbusMaster::read_block(std::vector<st
              r->name + " is in table " + std::string(table_name(r->table)) + ", " +
                  regs[0]->name + " in " + std::string(table_name(regs[0]->table)) +
                  "; one request reads one table");
-      return f;
+      return;
     }
     lo = std::min<std::uint32_t>(lo, r->address);
     hi = std::max<std::uint32_t>(hi, r->address + r->words());
@@ -439,31 +444,27 @@ std::future<Result<std::vector<double>>> ModbusMaster::read_block(std::vector<st
       refuse(ErrorCode::PeripheralBadRequest,
              std::string(table_name(regs[0]->table)) + " " + std::to_string(a) +
                  " inside the block holds no register; read in two requests");
-      return f;
+      return;
     }
   RawRequest req{read_function(regs[0]->table), static_cast<std::uint16_t>(lo),
                  static_cast<std::uint16_t>(hi - lo), {}, "read block of " + std::to_string(regs.size())};
-  submit(std::move(req), [p, regs, lo, impl = impl_](Result<RawReply> res) {
-    if (!res) return p->set_value(res.error());
+  submit(std::move(req), [done = std::move(done), regs, lo, impl = impl_](Result<RawReply> res) {
+    if (!res) return done(res.error());
     std::vector<double> out;
     for (const RegisterDef* r : regs) {
       auto v = checked(impl->map, *r,
                        r->decode(std::span<const std::uint16_t>(res.value().data() + (r->address - lo),
                                                                 r->words())),
                        impl->who());
-      if (!v) return p->set_value(v.error());
+      if (!v) return done(v.error());
       out.push_back(v.value());
     }
-    p->set_value(std::move(out));
+    done(std::move(out));
   });
-  return f;
 }
 
 std::future<Status> ModbusMaster::write_block(std::vector<std::pair<std::string, double>> values) {
-  auto p = std::make_shared<std::promise<Status>>();
-  auto f = p->get_future();
-  write_block_async(std::move(values), [p](Status s) { p->set_value(std::move(s)); });
-  return f;
+  return as_future<Status>([&](auto done) { write_block_async(std::move(values), std::move(done)); });
 }
 
 void ModbusMaster::write_block_async(std::vector<std::pair<std::string, double>> values,

@@ -102,6 +102,8 @@ class ModbusMaster {
   // Several registers of one table in one request (FC1/2/3/4 over the span
   // from the lowest to the highest address; every address of it mapped).
   [[nodiscard]] std::future<Result<std::vector<double>>> read_block(std::vector<std::string> names);
+  void read_block_async(std::vector<std::string> names,
+                        std::function<void(Result<std::vector<double>>)> done);
   // A parameter block: registers of one writable table that are contiguous
   // once sorted by address, written with one FC16 (holding) or FC15 (coils).
   // All values are range-checked first; one bad value sends nothing.
