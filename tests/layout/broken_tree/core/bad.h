@@ -1,0 +1,2 @@
+// A core header that reaches for Qt, for the checker's own test.
+#include <QString>
