@@ -16,11 +16,13 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/result.h"
 #include "geom/pose.h"
 #include "machine/machine_config.h"
+#include "path/motion_summary.h"
 #include "path/segment.h"
 
 namespace lcnc {
@@ -96,18 +98,12 @@ class ProgramReader {
   std::unique_ptr<Impl> impl_;
 };
 
-struct ProgramSummary {
-  std::uint64_t segments = 0;
-  std::uint32_t lines = 0;
-  double path_length_mm = 0.0;  // X Y Z path length of all moves (rapids included)
-  double feed_length_mm = 0.0;  // of feed moves (G1 G2 G3) only
-  Pose min = Pose::Zero();      // bounding box of all positions reached
-  Pose max = Pose::Zero();
-  // bounding box of the feed moves (G1 G2 G3): min > max when there are none
-  Pose feed_min = Pose::Constant(std::numeric_limits<double>::infinity());
-  Pose feed_max = Pose::Constant(-std::numeric_limits<double>::infinity());
-  std::vector<Diagnostic> warnings;
-  ReaderModes end;  // the modes and offsets at the program's end
+// A program's motion summed (path/motion_summary.h), and the modes and
+// offsets at its end.
+struct ProgramSummary : MotionSummary {
+  ProgramSummary() = default;
+  explicit ProgramSummary(MotionSummary motion) : MotionSummary(std::move(motion)) {}
+  ReaderModes end;
 };
 
 // Reads the whole program, checking syntax, modal conflicts, arcs, feeds and

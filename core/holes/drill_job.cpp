@@ -71,7 +71,7 @@ Result<ProgramSummary> check_drill_job(const DrillJob& job, const MachineConfig&
   TravelCheck check(machine, name, "hole");
   for (const Segment& s : job.segments)
     if (Status st = check.add(s); !st) return st.error();
-  ProgramSummary sum = check.summary();
+  ProgramSummary sum(check.summary());
   sum.lines = static_cast<std::uint32_t>(job.holes.size());
   return sum;
 }

@@ -17,7 +17,7 @@
 #include <optional>
 
 #include "path/segment_geometry.h"
-#include "plan/planned_segment.h"
+#include "path/segment_source.h"
 
 namespace lcnc {
 

@@ -8,8 +8,8 @@
 #include <string>
 
 #include "common/result.h"
-#include "gcode/program_reader.h"
 #include "machine/machine_config.h"
+#include "path/motion_summary.h"
 #include "path/segment.h"
 
 namespace lcnc {
@@ -20,13 +20,13 @@ class TravelCheck {
   TravelCheck(const MachineConfig& machine, std::string file, std::string what);
   // GcodeBeyondTravel (or GcodeNoSuchAxis) naming the line and the axis.
   [[nodiscard]] Status add(const Segment& s);
-  [[nodiscard]] ProgramSummary& summary() noexcept { return sum_; }
+  [[nodiscard]] MotionSummary& summary() noexcept { return sum_; }
 
  private:
   [[nodiscard]] Status reach(const Pose& p, std::uint32_t line);
   const MachineConfig& machine_;
   std::string file_, what_;
-  ProgramSummary sum_;
+  MotionSummary sum_;
   bool first_ = true;
 };
 

@@ -7,6 +7,7 @@
 
 #include "path/segment.h"
 #include "path/segment_geometry.h"
+#include "path/segment_source.h"
 #include "plan/trapezoid.h"
 
 namespace lcnc {
@@ -23,12 +24,8 @@ struct PlannedSegment {
   std::uint32_t index = 0;        // position in the program's segment stream
 };
 
-enum class SourceStatus : std::uint8_t { Item, End, Error };
-
-// Pull-style streams: each stage asks the previous one for its next item.
 // Planned segments are handed out by reference (some 600 bytes each, not
 // copied): the one handed out stays valid until the source is asked again.
-using SegmentSource = std::function<SourceStatus(Segment&)>;
 using PlannedSource = std::function<SourceStatus(const PlannedSegment*&)>;
 
 }  // namespace lcnc

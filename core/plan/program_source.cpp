@@ -72,7 +72,7 @@ Result<ProgramSummary> check_job_program(const std::string& path, const MachineC
   while ((st = (*src)->next(s)) == SourceStatus::Item)
     if (Status e = check.add(s); !e) return e.error();
   if (st == SourceStatus::Error) return (*src)->error();
-  ProgramSummary sum = check.summary();
+  ProgramSummary sum(check.summary());
   sum.lines = read->lines;
   sum.warnings = read->warnings;
   sum.end = read->end;
