@@ -21,7 +21,7 @@
 #include "machine/machine_config.h"
 #include "app/cli_values.h"
 #include "app/json_text.h"
-#include "app/run_job.h"
+#include "app/rt_text.h"
 #include "rt/shm_interface.h"
 
 namespace lcnc::app {

@@ -16,6 +16,9 @@
 #include "app/cnc_modbus_host.h"
 #include "app/planner_feed.h"
 #include "app/program_snapshot.h"
+#include "app/job_session.h"
+#include "app/machine_files.h"
+#include "app/rt_text.h"
 #include "app/run_job.h"
 #include "drivers/sim_machine.h"
 #include "gcode/program_reader.h"
@@ -150,8 +153,7 @@ struct Daemon::Impl {
   // period the RT traced from the job's start, measured against the axis
   // limits and the program's path; a job that breaks one has failed,
   // whatever else it did.
-  std::unique_ptr<MotionCheck> motion;
-  std::unique_ptr<PathCheck> path;  // and the executed path against the program
+  std::unique_ptr<JobCheck> job_check;
   std::uint64_t next_period = 0;  // the trace's next record, to see lost ones
   std::uint64_t job_underruns_start = 0;
   shm::JobStatus job{};
@@ -448,17 +450,12 @@ struct Daemon::Impl {
   // command or the framing (`mdi`) leaves the loaded program as it is.
   Ack begin_job(std::shared_ptr<const ProgramSnapshot> snap, const CheckedJob& checked,
                 const ReaderOptions& ropt, bool mdi) {
-    if (checked.drill_segments) {
-      path = PathCheck::for_segments(checked.drill_segments, machine);
-      feed->start(checked.drill_segments, ropt.start, snap->name());
-    } else {
-      Result<std::unique_ptr<PathCheck>> p = PathCheck::for_program(snap->path(), machine, ropt);
-      if (!p) return Ack{false, p.error().code, "start: " + snap->rename(p.error()).to_string()};
-      path = std::move(p).value();
-      ReaderOptions job_options = ropt;
-      job_options.keep_parameters = true;  // what it sets outlives it (the parameter file)
-      feed->start(snap->path(), job_options);
-    }
+    const JobSource source = checked.drill_segments
+                                 ? JobSource::segments(checked.drill_segments, snap->name(), ropt.start)
+                                 : JobSource::program(snap->path(), ropt);
+    Result<std::unique_ptr<PathCheck>> path = source.path_check(machine);
+    if (!path) return Ack{false, path.error().code, "start: " + snap->rename(path.error()).to_string()};
+    source.start(*feed);
     running = std::move(snap);
     running_segments = checked.summary.segments;
     job_active = true;
@@ -476,7 +473,8 @@ struct Daemon::Impl {
     {
       std::array<std::int64_t, kAxisCount> at{};
       for (int i = 0; i < kAxisCount; ++i) at[i] = kernel->position_steps(i);
-      motion = std::make_unique<MotionCheck>(machine, at);
+      job_check = std::make_unique<JobCheck>(machine, std::move(path).value(), at, job_time_start_ns,
+                                             next_period);
     }
     std::string how;
     if (ropt.start_line > 0) how += ", from line " + std::to_string(ropt.start_line);
@@ -661,17 +659,7 @@ struct Daemon::Impl {
     while (trace->try_pop(r)) {
       moved = true;
       trace_last = r;
-      if (motion && r.t_ns > job_time_start_ns) {
-        if (r.period != next_period) motion->gap();
-        motion->add(r.t_ns - job_time_start_ns, r.pos_steps, r.line);
-        if (path && r.on_path) {  // (idle and underrun periods hold a position of no segment)
-          Pose p = Pose::Zero();
-          for (int i = 0; i < kAxisCount; ++i) {
-            if (machine.axes[i].present) p[i] = static_cast<double>(r.pos_steps[i]) / machine.axes[i].steps_per_unit;
-          }
-          path->add(p, r.segment, r.line);
-        }
-      }
+      if (job_check) job_check->add(r);
       next_period = r.period + 1;
     }
     if (moved) publish_distance_to_go();
@@ -681,8 +669,8 @@ struct Daemon::Impl {
   // From the last traced position to the end of its programmed move.
   void publish_distance_to_go() {
     job.distance_to_go = {};
-    if (!job_active || !path || !trace_last.on_path) return;
-    const std::optional<Vec3> end = path->segment_end(trace_last.segment);
+    if (!job_active || !job_check || !trace_last.on_path) return;
+    const std::optional<Vec3> end = job_check->path().segment_end(trace_last.segment);
     if (!end) return;
     for (int i = 0; i < 3; ++i)
       if (machine.axes[i].present)
@@ -704,8 +692,7 @@ struct Daemon::Impl {
         feed->abort();
         job_active = false;
         start_pending = false;
-        motion.reset();
-        path.reset();
+        job_check.reset();
         job.job_active = false;
         job.last_outcome = shm::JobOutcome::Failed;
         job.last_fault = static_cast<std::uint16_t>(ErrorCode::RtShmLink);
@@ -733,16 +720,12 @@ struct Daemon::Impl {
     jobs_ended_seen = ended;
     drain_trace();
     std::vector<std::string> breaches;
-    if (motion) {
-      motion->finish();
-      breaches = motion->breaches();
-      if (motion->gaps() > 0)  // the control thread starved of the CPU: the guard still held every entry
+    if (job_check) {
+      job_check->finish();
+      breaches = job_check->breaches();
+      if (job_check->motion().gaps() > 0)  // the control thread starved of the CPU: the guard still held every entry
         logger()->warn("job check: the RT trace lost records; those periods were held to the increment guard only");
-      motion.reset();
-    }
-    if (path) {
-      for (std::string& b : path->breaches()) breaches.push_back(std::move(b));
-      path.reset();
+      job_check.reset();
     }
     feed->abort();  // a stopped job: the planner stops; a finished one has
     const PlannedJob& planned = feed->result();

@@ -20,7 +20,10 @@
 #include "plan/path_check.h"
 #include "plan/program_source.h"
 #include "plan/tolerances.h"
+#include "app/machine_files.h"
+#include "app/job_session.h"
 #include "app/output_file.h"
+#include "app/rt_text.h"
 #include "app/planner_feed.h"
 #include "rt/rt_kernel.h"
 #include "rt/rt_log.h"
@@ -74,119 +77,6 @@ void drain_rt_log(rt::RtLogRing& ring, const MachineConfig& machine) {
 
 }  // namespace
 
-std::string describe_fault(const rt::RtFault& f, const MachineConfig& machine) {
-  std::string text(error_summary(f.code));
-  if (f.axis >= 0 && f.axis < kAxisCount) {
-    const AxisConfig& ax = machine.axes[f.axis];
-    text += std::string(": axis ") + kAxisLetters[f.axis];
-    char range[96];
-    std::snprintf(range, sizeof range, " (travel %g … %g)", ax.min, ax.max);
-    if (f.code == ErrorCode::RtSoftLimit || f.code == ErrorCode::RtHardLimit) text += range;
-  }
-  if (f.line > 0) text += " at line " + std::to_string(f.line);
-  return text;
-}
-
-RtLogLine describe_rt_log(const rt::RtLogRecord& r, const MachineConfig& machine) {
-  RtLogLine out;
-  out.text = rt::rt_log_text(r.code);
-  const std::string axis = r.axis >= 0 && r.axis < kAxisCount
-                               ? std::string(": axis ") + kAxisLetters[r.axis] : std::string();
-  switch (r.code) {
-    case rt::RtLogCode::UnderrunBegin:
-      out.code = static_cast<std::uint16_t>(ErrorCode::RtUnderrun);
-      out.warning = true;
-      break;
-    case rt::RtLogCode::UnderrunEnd:
-      out.text += " after " + std::to_string(r.value) + " periods";
-      out.warning = true;
-      break;
-    case rt::RtLogCode::HoldBegin:
-    case rt::RtLogCode::HoldEnd:
-    case rt::RtLogCode::StarveBegin:
-    case rt::RtLogCode::StarveEnd:
-      out.warning = true;
-      break;
-    case rt::RtLogCode::LateWakeup: {
-      char ms[64];
-      std::snprintf(ms, sizeof ms, " by %.3f ms", static_cast<double>(r.value) * 1e-6);
-      out.text += ms;
-      out.warning = true;
-      break;
-    }
-    case rt::RtLogCode::StateChange:
-      out.text = std::string("state: ") + state_name(static_cast<rt::MachineState>(r.value));
-      break;
-    case rt::RtLogCode::Fault: {
-      rt::RtFault f;
-      f.code = static_cast<ErrorCode>(r.value);
-      f.axis = r.axis;
-      f.line = r.line;
-      f.active = true;
-      out.code = static_cast<std::uint16_t>(r.value);
-      out.text = "fault: " + describe_fault(f, machine);
-      out.warning = true;
-      break;
-    }
-    case rt::RtLogCode::JogShort:
-      out.text += axis + " (" + std::to_string(r.value) + " steps short)";
-      break;
-    case rt::RtLogCode::Homed:
-      out.text += axis;
-      break;
-    case rt::RtLogCode::ProgramPause:
-      out.text += " at line " + std::to_string(r.line);
-      break;
-    case rt::RtLogCode::InputWait: {
-      static constexpr const char* kMode[] = {"", "to rise", "to fall", "high", "low"};
-      out.text += " P" + std::to_string(r.value) + " " + kMode[std::clamp<int>(r.axis, 0, 4)] +
-                  " at line " + std::to_string(r.line);
-      break;
-    }
-    case rt::RtLogCode::InputWaitEnd:
-      out.text += " (line " + std::to_string(r.line) + ", after " + std::to_string(r.value) +
-                  " periods)";
-      break;
-    case rt::RtLogCode::Refused:
-      out.text += std::string(": ") + rt_command_name(static_cast<rt::RtCommandType>(r.value)) + axis;
-      out.code = static_cast<std::uint16_t>(ErrorCode::RtRefused);
-      out.warning = true;
-      break;
-  }
-  return out;
-}
-
-const char* state_name(rt::MachineState s) {
-  switch (s) {
-    case rt::MachineState::Idle: return "idle";
-    case rt::MachineState::Running: return "running";
-    case rt::MachineState::FeedHold: return "feed hold";
-    case rt::MachineState::Stopping: return "stopping";
-    case rt::MachineState::EStop: return "e-stop";
-    case rt::MachineState::Jog: return "jog";
-    case rt::MachineState::Homing: return "homing";
-  }
-  return "?";
-}
-
-const char* rt_command_name(rt::RtCommandType t) {
-  switch (t) {
-    case rt::RtCommandType::StartJob: return "start";
-    case rt::RtCommandType::Hold: return "hold";
-    case rt::RtCommandType::Resume: return "resume";
-    case rt::RtCommandType::Stop: return "stop";
-    case rt::RtCommandType::EStop: return "e-stop";
-    case rt::RtCommandType::Reset: return "reset";
-    case rt::RtCommandType::Jog: return "jog";
-    case rt::RtCommandType::Home: return "home";
-  }
-  return "?";
-}
-
-std::string shipped_machine_file(const std::string& name) { return share_path("machines/" + name + ".toml"); }
-
-std::string default_machine_file() { return shipped_machine_file("default"); }
-
 Result<MachineConfig> load_machine(const RunOptions& options) {
   const std::string file =
       options.machine_file.empty() ? default_machine_file() : options.machine_file;
@@ -229,7 +119,8 @@ constexpr double kPlannedAccelSlack = kPlannedPeakSlack + plan::kJunctionJumpSha
 // The run's own check (RunReport::breaches): the plan's peaks at the run's
 // override and the trace's measured motion against every axis limit, and
 // the executed path against its tolerance.
-void check_run(RunReport& report, const MotionCheck& motion, const PathCheck& path) {
+void check_run(RunReport& report, const JobCheck& check) {
+  const MotionCheck& motion = check.motion();
   report.velocity_window = motion.velocity_window();
   report.acceleration_window = motion.acceleration_window();
   for (int i = 0; i < kAxisCount; ++i) {
@@ -254,8 +145,7 @@ void check_run(RunReport& report, const MotionCheck& motion, const PathCheck& pa
       report.breaches.emplace_back(msg);
     }
   }
-  for (std::string& b : motion.breaches()) report.breaches.push_back(std::move(b));
-  for (std::string& b : path.breaches()) report.breaches.push_back(std::move(b));
+  for (std::string& b : check.breaches()) report.breaches.push_back(std::move(b));
 }
 
 // Trace records read between two looks at the kernel (segment, laser,
@@ -317,13 +207,16 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   if (!k_start) return k_start.error();
 
   // The whole program is checked before anything moves.
-  ReaderOptions ropt;
+  const ReaderOptions ropt;
   Result<ProgramSummary> summary =
       options.segments ? (options.summary ? Result<ProgramSummary>(*options.summary)
                                           : Result<ProgramSummary>(make_error(
                                                 ErrorCode::Internal, "a segment job needs its summary")))
                        : check_job_program(options.program, machine, ropt);
   if (!summary) return summary.error();
+  const JobSource source = options.segments
+                               ? JobSource::segments(options.segments, options.program, ropt.start)
+                               : JobSource::program(options.program, ropt);
 
   RunReport report;
   report.program = options.program;
@@ -353,59 +246,27 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
     }
   }
 
-  auto buffer = std::make_unique<rt::PositionBuffer>();
-  auto trace = std::make_unique<rt::TraceRing>();
-  drivers::SimMachine sim(start_steps);
-  sim.set_digital_inputs(options.inputs_high);
-  sim.set_adaptive_feed(options.adaptive_feed);
-  auto rt_log = std::make_unique<rt::RtLogRing>();
-  rt::RtKernel kernel(machine, *buffer, sim, trace.get(), start_steps);
-  kernel.set_log(rt_log.get());
-
+  // Every return from here on tears the session down in order (planner,
+  // laser, RT thread).
+  JobSession session(machine, start_steps, options.inputs_high, options.adaptive_feed);
+  rt::RtKernel& kernel = session.kernel();
+  rt::TraceRing& trace = session.trace();
+  PlannerFeed& feed = session.feed();
   // The laser source over Modbus: enabled and ready, or nothing moves.
-  std::unique_ptr<LaserLink> laser;
   if (options.devices || options.laser) {
-    Result<std::unique_ptr<LaserLink>> link =
-        options.devices ? LaserLink::simulated() : LaserLink::connect(*options.laser, options.power_meter);
-    if (!link) return link.error();
-    laser = std::move(link).value();
-    if (Status s = laser->enable(); !s) {
-      (void)laser->finish();
+    if (Status s = session.link_laser(options.devices, options.laser, options.power_meter); !s)
       return s.error();
-    }
   }
+  LaserLink* const laser = session.laser();
 
   // Planner thread: plan, coarse-interpolate, quantize, keep the buffer
   // full; the RT thread starts once half the buffer (or the whole job) is in.
-  // The override first: one above 100 % is planned for from the first entry.
-  kernel.set_feed_override(*k_start);  // before start: no ramp
-  PlannerFeed feed(machine, *buffer, kernel);
-  if (options.segments) {
-    feed.start(options.segments, ropt.start, options.program);
-  } else {
-    ReaderOptions job = ropt;
-    job.keep_parameters = true;  // what it sets outlives it (machine.parameter_file)
-    feed.start(options.program, job);
-  }
-  feed.wait_prefilled();
-  rt::RtOptions rt_options;
-  rt_options.try_realtime = options.realtime;
-  kernel.start(rt_options);
+  session.start(source, *k_start, options.realtime);
 
-  // Drain the trace while the job runs: CSV, deviation, progress.
-  Result<std::unique_ptr<PathCheck>> path_check =
-      options.segments ? Result<std::unique_ptr<PathCheck>>(PathCheck::for_segments(options.segments, machine))
-                       : PathCheck::for_program(options.program, machine, ropt);
-  if (!path_check) {
-    feed.abort();
-    kernel.shutdown();
-    kernel.join();
-    if (laser) (void)laser->finish();
-    return path_check.error();
-  }
-  PathCheck& path = **path_check;
-  MotionCheck motion(machine, start_steps);
-  std::uint64_t next_period = 0;  // the RT numbers its periods from 0
+  // Drain the trace while the job runs: CSV, the job's check, progress.
+  Result<std::unique_ptr<PathCheck>> path_check = source.path_check(machine);
+  if (!path_check) return path_check.error();
+  JobCheck check(machine, std::move(path_check).value(), start_steps);
   std::uint32_t segment_seen = UINT32_MAX;
   const double total_segments = std::max<double>(1.0, static_cast<double>(summary->segments));
   auto last_progress = std::chrono::steady_clock::now();
@@ -417,19 +278,16 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   float power_now = 0.0f;  // the commanded laser power of the latest period, %
   for (;;) {
     bool got = false;
-    drain_rt_log(*rt_log, machine);
+    drain_rt_log(session.rt_log(), machine);
     // in chunks: the segment, the laser and the progress below are followed
     // between them however far the trace's reading lags (a slow machine, a
     // sanitizer build)
-    for (int n = 0; n < kDrainChunk && trace->try_pop(rec); ++n) {
+    for (int n = 0; n < kDrainChunk && trace.try_pop(rec); ++n) {
       got = true;
       Pose p = Pose::Zero();
       for (int i = 0; i < kAxisCount; ++i) p[i] = static_cast<double>(rec.pos_steps[i]) / spu[i];
       trace_out.write(static_cast<double>(rec.t_ns) * 1e-9, p, rec.power_pct);
-      if (rec.on_path) path.add(p, rec.segment, rec.line);  // (an underrun holds a position of no segment)
-      if (rec.period != next_period) motion.gap();
-      next_period = rec.period + 1;
-      motion.add(rec.t_ns, rec.pos_steps, rec.line);
+      check.add(rec);
       power_now = rec.power_pct;
     }
     if (laser) {
@@ -470,24 +328,24 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
     if (kernel.state() == rt::MachineState::EStop || kernel.fault().active ||
         kernel.jobs_ended() > 0)
       feed.abort();
-    if (kernel.finished() && trace->empty()) break;
+    if (kernel.finished() && trace.empty()) break;
     if (!got) std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
   kernel.join();
-  drain_rt_log(*rt_log, machine);
+  drain_rt_log(session.rt_log(), machine);
   feed.abort();
   if (laser) report.peripherals = laser->finish();
   if (progress) progress(1.0);
   const PlannedJob& planned = feed.result();
   if (planned.failed) return planned.error;
 
-  fill_run_figures(report, kernel, sim, planned, machine, start_steps);
+  fill_run_figures(report, kernel, session.sim(), planned, machine, start_steps);
   report.program_pauses = kernel.program_pauses();
   for (const Diagnostic& w : planned.warnings) report.program_warnings.push_back(w.to_string());
   if (!laser_fault.empty() && report.fault.empty()) report.fault = "laser source: " + laser_fault;
-  report.max_deviation_mm = path.max_mm();
-  motion.finish();
-  check_run(report, motion, path);
+  report.max_deviation_mm = check.path().max_mm();
+  check.finish();
+  check_run(report, check);
   // The job ran to its end (its checks may still fail: then the trace is
   // what shows why), so its trace replaces the old file.
   if (Status s = trace_out.commit(); !s) return s.error();

@@ -109,29 +109,11 @@ using ProgressFn = std::function<void(double fraction)>;
 [[nodiscard]] Result<MachineConfig> load_machine(const RunOptions& options);
 [[nodiscard]] Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress = {});
 
-// "soft limit reached: axis X (travel 0 … 1000) at line 12"
-[[nodiscard]] std::string describe_fault(const rt::RtFault& f, const MachineConfig& machine);
-
-// The RT kernel's log records in words, for the log and the HMI's events.
-struct RtLogLine {
-  std::string text;
-  std::uint16_t code = 0;  // ErrorCode when it is a fault or a warning with one, else 0
-  bool warning = false;
-};
-[[nodiscard]] RtLogLine describe_rt_log(const rt::RtLogRecord& r, const MachineConfig& machine);
-[[nodiscard]] const char* state_name(rt::MachineState s);
-[[nodiscard]] const char* rt_command_name(rt::RtCommandType t);
-
 // The run did what was commanded and kept every limit: the steps match, no
 // bad frame, no fault, no breach of its own check. Otherwise the CLI exits 3.
 [[nodiscard]] bool run_succeeded(const RunReport& report);
 
 [[nodiscard]] std::string format_report(const RunReport& report);
 [[nodiscard]] std::string report_json(const RunReport& report);
-
-// A machine config shipped in share/machines (NAME.toml; $LASERCNC_SHARE
-// overrides where share/ is), and the default one (default.toml).
-[[nodiscard]] std::string shipped_machine_file(const std::string& name);
-[[nodiscard]] std::string default_machine_file();
 
 }  // namespace lcnc::app

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "app/decompose_run.h"
+#include "app/machine_files.h"
 #include "app/run_job.h"
 #include "decompose/part_decomposition.h"
 #include "dxf/dxf_reader.h"
