@@ -29,6 +29,7 @@ RtKernel::RtKernel(const MachineConfig& machine, PositionBuffer& buffer, PulseSi
                    KernelPort* port)
     : KernelControl(machine, port != nullptr ? *port : own_port_),
       period_ns_(machine.period_ns),
+      mover_(machine, ramp_.rate_per_s()),
       buffer_(buffer),
       sink_(sink),
       trace_(trace),
@@ -46,29 +47,7 @@ RtKernel::RtKernel(const MachineConfig& machine, PositionBuffer& buffer, PulseSi
     const AxisConfig& ax = machine.axes[i];
     port_.pos_pub[i].store(start_steps[i], std::memory_order_relaxed);
     units_per_step_[i] = 1.0 / (ax.present ? ax.steps_per_unit : 1.0);
-    if (!ax.present) continue;
-    AxisLimits& l = axes_[i];
-    const double spu = ax.steps_per_unit;
-    l.present = true;
-    l.min_steps = std::llround(ax.min * spu);
-    l.max_steps = std::llround(ax.max * spu);
-    // Jog and homing moves: the jog at a quarter of the speed — an
-    // operator's speed, not a rapid. The override scales their periods too,
-    // and its ramp adds up to ρ_max·v (rt/feed_override.h, eq. 1): their
-    // acceleration leaves that much of the axis's.
-    l.jog_speed = 0.25 * ax.max_velocity * spu;
-    l.search_speed = ax.home_search_velocity_or_default() * spu;
-    l.latch_speed = ax.home_latch_velocity_or_default() * spu;
-    const double fastest = std::max({l.jog_speed, std::abs(l.search_speed), std::abs(l.latch_speed)});
-    l.accel = std::max(0.5 * ax.max_acceleration * spu,
-                       ax.max_acceleration * spu - ramp_.rate_per_s() * fastest);
-    l.home_steps = std::llround(ax.home_position_or_default() * spu);
-    // A rotary axis that wraps has no travel limits.
-    if (ax.wrap) {
-      l.min_steps = std::numeric_limits<std::int64_t>::min() / 2;
-      l.max_steps = std::numeric_limits<std::int64_t>::max() / 2;
-    }
-    known |= 1u << i;
+    if (ax.present) known |= 1u << i;
   }
   axes_mask_ = known;
   // The simulated machine's position is known at power-on.
@@ -300,99 +279,85 @@ void RtKernel::take_commands() noexcept {
       enter_estop(ErrorCode::RtEstop, -1, line_);
     }
   }
-  RtCommand c;
+  // Every command of the period is taken in the state the period began in,
+  // but none moves the machine after an e-stop among them.
   const MachineState s = state_now_;
-  while (port_.commands.try_pop(c)) {
-    const int axis = c.axis;
-    const bool axis_ok = axis >= 0 && axis < kAxisCount && axes_[axis].present;
-    bool refused = false;
-    switch (c.type) {
-      case RtCommandType::EStop:
-        enter_estop(ErrorCode::RtEstop, -1, line_);
-        break;
-      case RtCommandType::Reset:
-        if (s == MachineState::EStop) reset_asked_ = true;
-        break;
-      case RtCommandType::StartJob:
-        if (s != MachineState::Idle || flushing_) {
-          refused = true;
-          break;
-        }
-        port_.fault_code.store(0, std::memory_order_release);
-        hold_ = stopping_ = starving_ = job_aborted_ = false;
-        end_seen_ = false;
-        // a job starts at rest: at the operator's override, no ramp
-        begin_at_override();
-        set_state(MachineState::Running);
-        break;
-      case RtCommandType::Hold:
-        if (s == MachineState::Running) {
-          hold_ = true;
-          set_state(MachineState::FeedHold);
-        }
-        break;
-      case RtCommandType::Resume:
-        if (s == MachineState::FeedHold && !waiting_) {  // an M66 waits for its input
-          hold_ = false;
-          set_state(MachineState::Running);  // (ends a program pause)
-        }
-        break;
-      case RtCommandType::Stop:
-        if (on_path_state()) {
-          begin_stop(ErrorCode::Ok, -1, 0);  // the operator's: no fault
-        } else if (s == MachineState::Jog || s == MachineState::Homing) {
-          move_.stop();
-          move_abort_ = true;
-        }
-        break;
-      case RtCommandType::Jog: {
-        if (s != MachineState::Idle || flushing_ || !axis_ok) {
-          refused = true;
-          break;
-        }
-        const AxisLimits& l = axes_[axis];
-        std::int64_t target = pos_steps_[axis] + std::llround(c.value / units_per_step_[axis]);
-        if ((port_.homed.load(std::memory_order_relaxed) >> axis) & 1u) {
-          const std::int64_t clamped = std::clamp(target, std::min(l.min_steps, pos_steps_[axis]),
-                                                  std::max(l.max_steps, pos_steps_[axis]));
-          if (clamped != target) log(RtLogCode::JogShort, std::llabs(target - clamped), axis);
-          target = clamped;
-        }
-        move_axis_ = axis;
-        move_abort_ = false;
-        move_.start(target - pos_steps_[axis], l.jog_speed, l.accel, period_s_);
-        set_state(MachineState::Jog);
-        break;
-      }
-      case RtCommandType::Home: {
-        if (s != MachineState::Idle || flushing_ || !axis_ok || axes_[axis].search_speed == 0.0) {
-          refused = true;
-          break;
-        }
-        move_axis_ = axis;
-        move_abort_ = false;
-        port_.homed.fetch_and(~(1u << axis), std::memory_order_relaxed);
-        home_travel_ = 0;
-        const AxisLimits& l = axes_[axis];
-        if (inputs_.home[axis]) {
-          // already on the switch: back off and latch
-          home_phase_ = HomePhase::Latch;
-          move_.start_velocity(l.search_speed < 0 ? l.latch_speed : -l.latch_speed, l.accel, period_s_);
-        } else {
-          home_phase_ = HomePhase::Search;
-          move_.start_velocity(l.search_speed, l.accel, period_s_);
-        }
-        set_state(MachineState::Homing);
-        break;
-      }
-    }
-    if (refused) log(RtLogCode::Refused, static_cast<std::int64_t>(c.type), axis);
-  }
+  RtCommand c;
+  while (port_.commands.try_pop(c))
+    if (!take_command(c, s)) log(RtLogCode::Refused, static_cast<std::int64_t>(c.type), c.axis);
   if (reset_asked_ && !flushing_ && state_now_ == MachineState::EStop) {
     reset_asked_ = false;
     port_.fault_code.store(0, std::memory_order_release);
     set_state(MachineState::Idle);
   }
+}
+
+bool RtKernel::take_command(const RtCommand& c, MachineState s) noexcept {
+  // a motion command needs Idle, at the period's start and still now
+  const bool may_move = s == MachineState::Idle && state_now_ != MachineState::EStop && !flushing_;
+  switch (c.type) {
+    case RtCommandType::EStop:
+      enter_estop(ErrorCode::RtEstop, -1, line_);
+      return true;
+    case RtCommandType::Reset:
+      if (s == MachineState::EStop) reset_asked_ = true;
+      return true;
+    case RtCommandType::StartJob:
+      return may_move && start_job();
+    case RtCommandType::Hold:
+      if (s == MachineState::Running) {
+        hold_ = true;
+        set_state(MachineState::FeedHold);
+      }
+      return true;
+    case RtCommandType::Resume:
+      if (s == MachineState::FeedHold && !waiting_) {  // an M66 waits for its input
+        hold_ = false;
+        set_state(MachineState::Running);  // (ends a program pause)
+      }
+      return true;
+    case RtCommandType::Stop:
+      if (on_path_state()) {
+        begin_stop(ErrorCode::Ok, -1, 0);  // the operator's: no fault
+      } else if (s == MachineState::Jog || s == MachineState::Homing) {
+        mover_.stop();
+      }
+      return true;
+    case RtCommandType::Jog:
+      return may_move && start_jog(c.axis, c.value);
+    case RtCommandType::Home:
+      return may_move && start_home(c.axis);
+  }
+  return true;
+}
+
+bool RtKernel::start_job() noexcept {
+  port_.fault_code.store(0, std::memory_order_release);
+  hold_ = stopping_ = starving_ = job_aborted_ = false;
+  end_seen_ = false;
+  // a job starts at rest: at the operator's override, no ramp
+  begin_at_override();
+  set_state(MachineState::Running);
+  return true;
+}
+
+bool RtKernel::start_jog(int axis, double distance) noexcept {
+  if (axis < 0 || axis >= kAxisCount || !mover_.limits(axis).present) return false;
+  const std::int64_t target = pos_steps_[axis] + std::llround(distance / units_per_step_[axis]);
+  const bool homed = ((port_.homed.load(std::memory_order_relaxed) >> axis) & 1u) != 0;
+  const std::int64_t short_by = mover_.start_jog(axis, pos_steps_[axis], target, homed, period_s_);
+  if (short_by != 0) log(RtLogCode::JogShort, short_by, axis);
+  set_state(MachineState::Jog);
+  return true;
+}
+
+bool RtKernel::start_home(int axis) noexcept {
+  if (axis < 0 || axis >= kAxisCount || !mover_.limits(axis).present || !mover_.can_home(axis))
+    return false;
+  port_.homed.fetch_and(~(1u << axis), std::memory_order_relaxed);
+  mover_.start_home(axis, inputs_.home[axis], period_s_);
+  set_state(MachineState::Homing);
+  return true;
 }
 
 void RtKernel::take_inputs() noexcept {
@@ -452,8 +417,7 @@ void RtKernel::enter_estop(ErrorCode code, int axis, std::uint32_t line) noexcep
     port_.jobs_ended.fetch_add(1, std::memory_order_release);
   }
   hold_ = stopping_ = starving_ = false;
-  move_ = AxisMove{};
-  move_axis_ = -1;
+  mover_.cancel();
   reset_asked_ = false;
   set_state(MachineState::EStop);
 }
@@ -542,63 +506,26 @@ void RtKernel::path_motion(Motion& m) noexcept {
 }
 
 void RtKernel::axis_motion(Motion& m) noexcept {
-  if (state_now_ == MachineState::Homing) homing_step();
-  if (move_axis_ < 0) return;
-  m.inc.steps[move_axis_] = move_.next();
-  if (move_.done() && state_now_ == MachineState::Jog) {
-    move_axis_ = -1;
-    set_state(MachineState::Idle);
-  }
-}
-
-void RtKernel::homing_step() noexcept {
-  const int a = move_axis_;
-  const AxisLimits& l = axes_[a];
-  const bool on_switch = inputs_.home[a];
-  if (move_abort_) {  // the operator stopped homing: brake, then Idle
-    if (move_.done()) {
-      move_axis_ = -1;
+  const int a = mover_.axis();
+  if (a < 0) return;
+  const AxisMover::Step step = mover_.next(inputs_, pos_steps_[a]);
+  m.inc.steps[a] = step.steps;
+  switch (step.event) {
+    case AxisMover::Event::None:
+      break;
+    case AxisMover::Event::SearchFailed:
+      set_fault(ErrorCode::RtHoming, a, 0);
+      break;
+    case AxisMover::Event::Homed:
+      pos_steps_[a] = step.rebased;
+      port_.pos_pub[a].store(pos_steps_[a], std::memory_order_relaxed);
+      comp_now_[a] = comp_[a].correction_steps(pos_steps_[a]);  // a coordinate, not a move
+      port_.homed.fetch_or(1u << a, std::memory_order_relaxed);
+      log(RtLogCode::Homed, mover_.limits(a).home_steps, a);
       set_state(MachineState::Idle);
-    }
-    return;
-  }
-  switch (home_phase_) {
-    case HomePhase::Search:
-      if (on_switch) {
-        move_.stop();
-        home_phase_ = HomePhase::SearchBrake;
-      } else if (std::llabs(home_travel_) > 2 * (l.max_steps - l.min_steps) + 1) {
-        // twice the travel and no switch: give up, brake, then Idle
-        set_fault(ErrorCode::RtHoming, a, 0);
-        move_.stop();
-        move_abort_ = true;
-      }
       break;
-    case HomePhase::SearchBrake:
-      if (move_.done())  {
-        home_phase_ = HomePhase::Latch;
-        move_.start_velocity(l.search_speed < 0 ? l.latch_speed : -l.latch_speed, l.accel, period_s_);
-      }
-      break;
-    case HomePhase::Latch:
-      if (!on_switch) {
-        // the switch released at the last step: that is its position
-        home_latch_ = pos_steps_[a];
-        move_.stop();
-        home_phase_ = HomePhase::LatchBrake;
-      }
-      break;
-    case HomePhase::LatchBrake:
-      if (move_.done()) {
-        // re-base the coordinate: the latch position is home_steps
-        pos_steps_[a] = l.home_steps + (pos_steps_[a] - home_latch_);
-        port_.pos_pub[a].store(pos_steps_[a], std::memory_order_relaxed);
-        comp_now_[a] = comp_[a].correction_steps(pos_steps_[a]);  // a coordinate, not a move
-        port_.homed.fetch_or(1u << a, std::memory_order_relaxed);
-        log(RtLogCode::Homed, l.home_steps, a);
-        move_axis_ = -1;
-        set_state(MachineState::Idle);
-      }
+    case AxisMover::Event::Done:
+      set_state(MachineState::Idle);
       break;
   }
 }
@@ -625,7 +552,7 @@ void RtKernel::guard_limits(Motion& m) noexcept {
       return;
     }
     if (!((homed >> i) & 1u)) continue;
-    const AxisLimits& l = axes_[i];
+    const AxisMover::AxisLimits& l = mover_.limits(i);
     const std::int64_t next = pos_steps_[i] + s;
     if (next < l.min_steps || next > l.max_steps) {
       // this entry would cross the soft limit: not executed; e-stop. (The
@@ -677,7 +604,7 @@ void RtKernel::cycle(const Motion& m, double length_ns, std::int64_t end_ns) noe
     if (d == 0) continue;
     pos_steps_[i] += d;
     port_.pos_pub[i].store(pos_steps_[i], std::memory_order_relaxed);
-    if (state_now_ == MachineState::Homing && i == move_axis_) home_travel_ += d;
+    if (i == mover_.axis()) mover_.travelled(d);
   }
   port_.machine_time_ns.store(end_ns, std::memory_order_relaxed);
   if (power > 0.0f) {
@@ -701,14 +628,7 @@ void RtKernel::cycle(const Motion& m, double length_ns, std::int64_t end_ns) noe
 }
 
 void RtKernel::publish_status(bool force) noexcept {
-  if (status_ == nullptr) return;
-  if (!force && period_ - last_status_ < kStatusEvery) return;
-  last_status_ = period_;
-  // quantiles scan the histogram: once every 64 publications
-  if (force || (period_ / kStatusEvery) % 64 == 0) {
-    lat_p50_ = latency_.quantile_us(0.50);
-    lat_p99_ = latency_.quantile_us(0.99);
-  }
+  if (!status_.due(period_, force)) return;
   shm::Status st;
   st.state = state_now_;
   st.fault = port_.fault_code.load(std::memory_order_relaxed);
@@ -729,12 +649,9 @@ void RtKernel::publish_status(bool force) noexcept {
   st.buffer_fill = static_cast<std::uint32_t>(buffer_.size());
   st.power_pct = power_now_;
   st.outputs = frame_.outputs;
-  st.latency_p50_us = static_cast<float>(lat_p50_);
-  st.latency_p99_us = static_cast<float>(lat_p99_);
-  st.latency_max_us = static_cast<float>(static_cast<double>(latency_.max_ns()) / 1000.0);
   st.program_pause = program_pause_;
   st.input_wait = waiting_ ? wait_input_ : std::int8_t{-1};
-  status_->store(st);
+  status_.publish(st, latency_, period_, force);
 }
 
 }  // namespace lcnc::rt

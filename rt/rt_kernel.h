@@ -20,7 +20,7 @@
 //          operator holds, while stopping and while the buffer is below its
 //          braking reserve (a streaming producer fell behind): the machine
 //          then decelerates along the path instead of running dry.
-//        Jog/Homing: the kernel's own single-axis move (rt/axis_move.h)
+//        Jog/Homing: the kernel's own single-axis move (rt/axis_mover.h)
 //        Idle/EStop: none (an aborted job's entries are discarded)
 //   6. limits: hard-limit inputs in the direction of motion → e-stop; an
 //      entry that would take a homed axis across its soft limit is not
@@ -29,8 +29,8 @@
 //      along the path: app/planner_feed.h.)
 //   7. DDA for all axes → PulseFrame; emit to the pulse sink (M4 power × K up
 //      to the programmed power; laser off when not on the path)
-//   8. account the position and machine time; trace record; status (under
-//      the seqlock, every kStatusEvery periods and on every state change)
+//   8. account the position and machine time; trace record; status
+//      (rt/status_publisher.h)
 //   9. ramp K one step toward the effective target
 // A period lasts T/K on the path (T while held, for a dwell, and in every
 // other state). Deadlines follow machine time: deadline(i) = t0 + Σ lengths.
@@ -54,12 +54,13 @@
 #include "rt/feed_override.h"
 #include "rt/kernel_control.h"
 #include "rt/kernel_port.h"
-#include "rt/axis_move.h"
+#include "rt/axis_mover.h"
 #include "rt/latency_histogram.h"
 #include "rt/pitch_compensation.h"
 #include "rt/rt_log.h"
 #include "rt/shm_interface.h"
 #include "rt/spsc_ring.h"
+#include "rt/status_publisher.h"
 
 namespace lcnc::rt {
 
@@ -85,9 +86,6 @@ using TraceRing = SpscRing<TraceRecord, kTraceRingCapacity>;
 
 enum class RtSchedule : std::uint8_t { Fifo, Normal };
 
-
-// Status publication period (periods): ~5 ms at 75 µs.
-inline constexpr std::uint64_t kStatusEvery = 64;
 
 struct RtOptions {
   bool try_realtime = true;  // SCHED_FIFO + mlockall when permitted
@@ -141,7 +139,7 @@ class RtKernel : private OwnKernelPort, public KernelControl {
 
   // Where the RT thread publishes its status (the shm block's seqlock); set
   // before start(). Null: none.
-  void set_status(Seqlock<shm::Status>* status) noexcept { status_ = status; }
+  void set_status(Seqlock<shm::Status>* status) noexcept { status_.attach(status); }
 
   // The e-stop word the RT thread polls every period (the shm block's
   // EStopWord): a count that differs from the one last seen is an e-stop,
@@ -194,6 +192,13 @@ class RtKernel : private OwnKernelPort, public KernelControl {
   // Virtual time: until the producer has filled the buffer to refill_level().
   void wait_for_producer() const noexcept;
   void take_commands() noexcept;
+  // One command of the control thread's, `s` the state the period began
+  // in; false: refused.
+  [[nodiscard]] bool take_command(const RtCommand& c, MachineState s) noexcept;
+  // The motion commands, from Idle.
+  [[nodiscard]] bool start_job() noexcept;
+  [[nodiscard]] bool start_jog(int axis, double distance) noexcept;
+  [[nodiscard]] bool start_home(int axis) noexcept;
   void take_inputs() noexcept;
   void set_fault(ErrorCode code, int axis, std::uint32_t line) noexcept;
   void enter_estop(ErrorCode code, int axis, std::uint32_t line) noexcept;
@@ -205,7 +210,6 @@ class RtKernel : private OwnKernelPort, public KernelControl {
   [[nodiscard]] double path_target(double e, std::uint8_t feed_control) const noexcept;
   void path_motion(Motion& m) noexcept;
   void axis_motion(Motion& m) noexcept;
-  void homing_step() noexcept;
   void flush_some() noexcept;
   void guard_limits(Motion& m) noexcept;
   // Steps 7–8 for a period of length_ns ending at machine time end_ns.
@@ -216,26 +220,11 @@ class RtKernel : private OwnKernelPort, public KernelControl {
            state_now_ == MachineState::Stopping;
   }
 
-  // Homing of one axis (issue "RT kernel"): search toward the switch at the
-  // search speed, brake, back off at the latch speed until the switch
-  // releases — that step is the switch's position — brake, and re-base the
-  // axis's coordinate there.
-  enum class HomePhase : std::uint8_t { Search, SearchBrake, Latch, LatchBrake };
-  struct AxisLimits {
-    bool present = false;
-    std::int64_t min_steps = 0, max_steps = 0;  // soft limits
-    double jog_speed = 0.0;                     // steps/s
-    double accel = 0.0;                         // steps/s², jog and homing
-    double search_speed = 0.0;                  // steps/s, signed toward the switch
-    double latch_speed = 0.0;                   // steps/s, > 0
-    std::int64_t home_steps = 0;                // coordinate of the switch
-  };
-
   std::uint32_t period_ns_;
-  std::array<AxisLimits, kAxisCount> axes_{};
+  AxisMover mover_;  // jog and homing; and the axes' soft limits
   std::array<double, kAxisCount> units_per_step_{};
   std::uint32_t axes_mask_ = 0;  // bit per axis present
-  Seqlock<shm::Status>* status_ = nullptr;
+  StatusPublisher status_;
   const std::atomic<std::uint32_t>* estop_word_ = nullptr;
   std::uint32_t estop_seen_ = 0;  // the word's count at start or at the last e-stop taken
   RtOptions options_;
@@ -257,18 +246,10 @@ class RtKernel : private OwnKernelPort, public KernelControl {
   bool flushing_ = false;     // discarding an aborted job's entries
   bool reset_asked_ = false;  // EStop → Idle once the flush is done
   bool job_aborted_ = false;  // the job ended by a stop or an e-stop
-  bool move_abort_ = false;   // Jog/Homing stopped by the operator or a fault
-  int move_axis_ = -1;        // Jog/Homing: the axis
-  AxisMove move_;
-  HomePhase home_phase_ = HomePhase::Search;
-  std::int64_t home_latch_ = 0;
-  std::int64_t home_travel_ = 0;  // steps searched so far
   std::uint32_t line_ = 0;        // line of the last entry executed
   std::uint64_t period_ = 0;      // index of the period being executed
-  std::uint64_t last_status_ = 0;
   MachineInputs inputs_{};
   float power_now_ = 0.0f;
-  double lat_p50_ = 0.0, lat_p99_ = 0.0;
   std::array<std::int64_t, kAxisCount> emitted_{};
   // Pitch-error compensation (rt/pitch_compensation.h): the pulses are the
   // commanded steps plus the change of the correction; what the DDA cannot

@@ -599,6 +599,44 @@ TEST(RtKernelControl, CommandsOutsideTheirStatesAreRefused) {
   r.kernel->shutdown();
 }
 
+// The commands of one period are taken in the state it began in, but none
+// moves the machine after an e-stop among them: a jog after an e-stop once
+// read "Idle" and moved the machine out of its e-stop.
+TEST(RtKernelControl, NoCommandOfThePeriodMovesTheMachineAfterAnEStop) {
+  const auto now_ns = [] {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(
+               std::chrono::steady_clock::now().time_since_epoch()).count();
+  };
+  Rig r;
+  RtOptions o;
+  o.try_realtime = false;
+  o.exit_at_end = false;
+  o.start_running = false;
+  r.kernel->begin(o);
+  r.send(RtCommandType::EStop);
+  r.send(RtCommandType::Jog, 0, 1.0);
+  for (int i = 0; i < 200; ++i) ASSERT_TRUE(r.kernel->period(now_ns(), -1));
+  EXPECT_EQ(r.kernel->state(), MachineState::EStop);
+  EXPECT_EQ(r.kernel->position_steps(0), 0);
+  int refused = 0;
+  for (const RtLogRecord& l : r.logs()) refused += l.code == RtLogCode::Refused;
+  EXPECT_EQ(refused, 1);
+
+  // nor a start or a homing
+  r.send(RtCommandType::Reset);
+  ASSERT_TRUE(r.kernel->period(now_ns(), -1));
+  ASSERT_EQ(r.kernel->state(), MachineState::Idle);
+  for (int i = 0; i < 100; ++i) ASSERT_TRUE(r.buffer->try_push(step_x(5)));
+  r.send(RtCommandType::EStop);
+  r.send(RtCommandType::StartJob);
+  r.send(RtCommandType::Home, 1);
+  for (int i = 0; i < 200; ++i) ASSERT_TRUE(r.kernel->period(now_ns(), -1));
+  EXPECT_EQ(r.kernel->state(), MachineState::EStop);
+  EXPECT_EQ(r.kernel->position_steps(0), 0);
+  EXPECT_EQ(r.kernel->position_steps(1), 0);
+  r.kernel->end_periods();
+}
+
 TEST(RtKernelControl, HomingFindsTheSwitchAndRebasesTheAxis) {
   // The kernel believes X is at 50 mm; the switches sit 3 mm lower than it
   // thinks: the home switch trips where it would count −3 mm.
