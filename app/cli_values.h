@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <optional>
 #include <string>
@@ -11,6 +12,14 @@
 #include <utility>
 
 namespace lcnc::app {
+
+// "COMMAND: MSG", then the command's usage, on standard error; returns the
+// exit code of a usage error, 2.
+inline int usage_error(std::string_view command, const std::string& msg, const char* usage) {
+  std::fprintf(stderr, "%.*s: %s\n%s", static_cast<int>(command.size()), command.data(), msg.c_str(),
+               usage);
+  return 2;
+}
 
 // "6m/min" → (6, "m/min"): a finite number, then its unit (maybe empty).
 inline std::optional<std::pair<double, std::string>> parse_quantity(std::string_view s) {

@@ -49,10 +49,7 @@ constexpr const char* kUsage =
     "               1 mm or over 10 m across, until they are given)\n"
     "  --origin     where the drawing's 0,0 is in the program, mm (default 0,0)\n";
 
-int usage_error(const std::string& msg) {
-  std::fprintf(stderr, "lasercnc cut: %s\n%s", msg.c_str(), kUsage);
-  return 2;
-}
+int usage_error(const std::string& msg) { return lcnc::app::usage_error("lasercnc cut", msg, kUsage); }
 
 void print_summary(std::FILE* out, const std::string& part, const cut::CutPlan& plan,
                    const std::vector<std::string>& notes) {

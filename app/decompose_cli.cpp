@@ -60,10 +60,7 @@ constexpr const char* kUsage =
     "  Speeds take mm/s (default unit), mm/min, m/min, m/s; accelerations mm/s2\n"
     "  (default), m/s2, g.\n";
 
-int usage_error(const std::string& msg) {
-  std::fprintf(stderr, "lasercnc decompose: %s\n%s", msg.c_str(), kUsage);
-  return 2;
-}
+int usage_error(const std::string& msg) { return lcnc::app::usage_error("lasercnc decompose", msg, kUsage); }
 
 // "6m/min" → 100 (mm/s). Units: mm/s (bare), mm/min, m/min, m/s.
 std::optional<double> parse_speed(std::string_view s) {

@@ -29,15 +29,12 @@ constexpr const char* kUsage =
     "usage: lasercnc drill HOLES.csv [--machine FILE] [--devices] [--clearance MM] [--settle S]\n"
     "                      [--feed-override PCT] [--trace FILE.csv] [--json] [--[no-]progress]\n"
     "                      [--no-realtime]\n"
-    "  HOLES.csv      the process database's rows (fields 1-18 of DESIGN 6; README: hole tables)\n"
+    "  HOLES.csv      the process database's rows, one hole a row (README: hole tables)\n"
     "  --devices      scanning head, laser source and power meter as simulated Modbus devices\n"
     "  --clearance    approach and retract height above each hole, mm along the tool axis (5)\n"
     "  --settle       dwell at the clearance point while the head takes its block, s (0.2)\n";
 
-int usage_error(const std::string& msg) {
-  std::fprintf(stderr, "lasercnc drill: %s\n%s", msg.c_str(), kUsage);
-  return 2;
-}
+int usage_error(const std::string& msg) { return lcnc::app::usage_error("lasercnc drill", msg, kUsage); }
 
 // What one hole did, for the report.
 struct HoleRecord {

@@ -17,6 +17,7 @@
 #include <thread>
 #include <vector>
 
+#include "app/cli_values.h"
 #include "drivers/devices/displacement_sensor_sim.h"
 #include "drivers/devices/laser_source_sim.h"
 #include "drivers/devices/power_meter_sim.h"
@@ -41,10 +42,7 @@ constexpr const char* kUsage =
     "  --rtu           Modbus RTU on pseudo-terminals instead of TCP (one pty per device)\n"
     "  --seconds S     stop after S seconds (default: until SIGINT/SIGTERM)\n";
 
-int usage_error(const std::string& msg) {
-  std::fprintf(stderr, "lasercnc-devices: %s\n%s", msg.c_str(), kUsage);
-  return 2;
-}
+int usage_error(const std::string& msg) { return lcnc::app::usage_error("lasercnc-devices", msg, kUsage); }
 
 template <typename Sim>
 std::unique_ptr<Sim> must(Result<std::unique_ptr<Sim>> made) {

@@ -93,10 +93,7 @@ constexpr const char* kUsage =
     "  --laser, --power-meter  the real devices instead: tcp:HOST:PORT or\n"
     "                  rtu:DEVICE[:BAUD[:PARITY]]\n";
 
-int usage_error(const std::string& msg) {
-  std::fprintf(stderr, "lasercnc: %s\n%s", msg.c_str(), kUsage);
-  return 2;
-}
+int usage_error(const std::string& msg) { return lcnc::app::usage_error("lasercnc", msg, kUsage); }
 
 void draw_progress(double f) {
   constexpr int kWidth = 40;
