@@ -37,8 +37,9 @@ constexpr const char* kUsage =
     "  --speed       contour speed (default 6m/min)\n"
     "  --step        discretization step, mm, >= 0.001 (default 0.01)\n"
     "  --mode        sync: S1(t) + S2(t) = S(t) at constant speed, limits guaranteed\n"
-    "                (default); seed: the seed's algorithm (seed 004 eq. 1-13), limits\n"
-    "                only reported\n"
+    "                (default); seed: the published algorithm (Kondratenko, Tretiyakova\n"
+    "                and Shevchenko 2015, eq. 1-13; docs/design.md 5.7), limits only\n"
+    "                reported\n"
     "  --main-accel  main-axis acceleration limit (default 0.5g)\n"
     "  --main-speed  main-axis speed limit (default 40m/min)\n"
     "  --aux-speed   auxiliary speed limit (default 300m/min)\n"
@@ -163,7 +164,7 @@ int decompose_main(int argc, char** argv) {
   std::string part;
   double step_mm = 0.01;
   decompose::Options opt;
-  opt.speed_mm_s = 100.0;  // 6 m/min, the seed's test case
+  opt.speed_mm_s = 100.0;  // 6 m/min, the paper's test case
   dxf::ReadOptions read_opt;
   std::string csv_path, svg_path, accel_svg_path, run_svg_path;
   bool run = false;
@@ -309,7 +310,7 @@ int decompose_main(int argc, char** argv) {
 
   const bool seed = opt.mode == decompose::Mode::Seed;
   std::printf("%s: %zu contours, %zu points, step %.4f mm, mode %s\n", part.c_str(),
-              res->contours.size(), res->points, step_mm, seed ? "seed (seed 004 eq. 1-13)" : "sync");
+              res->contours.size(), res->points, step_mm, seed ? "seed (Kondratenko et al. 2015 eq. 1-13)" : "sync");
   for (const std::string& n : read->notes) std::printf("  %s\n", n.c_str());
   std::printf("contour speed %.1f mm/s (%.2f m/min); main axes <= %.1f mm/s2 (%.2f g), "
               "<= %.1f mm/s; aux <= %.1f mm/s, field +-%.3f mm\n",
@@ -344,7 +345,7 @@ int decompose_main(int argc, char** argv) {
               total_t, a_main, a_main / kG_mm_s2, a_eff, a_eff / kG_mm_s2,
               a_main > 0 ? a_eff / a_main : 0.0, aux_max, exact);
   if (seed && warnings > 0) {
-    std::printf("the seed's algorithm does not guarantee the limits: %d exceeded "
+    std::printf("the published algorithm does not guarantee the limits: %d exceeded "
                 "(--mode sync does)\n", warnings);
   }
 

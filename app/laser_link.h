@@ -7,7 +7,7 @@
 // Before motion: the source is enabled and must report ready — a latched
 // alarm refuses the run before anything moves. While the job runs: the
 // power setpoint follows the commanded power (the RT thread's per-period
-// output, DESIGN §2) whenever it changes by more than kSetpointDeadband,
+// output, docs/design.md §2) whenever it changes by more than kSetpointDeadband,
 // at most every kSetpointInterval, and the meter is read every
 // kMeterInterval — all asynchronous (ModbusMaster's worker), so the job's
 // drain loop never waits on the wire. The source's alarm and temperature

@@ -1,4 +1,4 @@
-// The planner thread of a job (DESIGN §2, §5.3): reads the program, plans it
+// The planner thread of a job (docs/design.md §2, §5.3): reads the program, plans it
 // (blends, look-ahead, coarse interpolation), quantizes to steps and keeps
 // the RT kernel's position buffer filled, streaming: memory stays bounded
 // whatever the program's length. Used by `lasercnc run` and by lasercncd.

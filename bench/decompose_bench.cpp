@@ -1,4 +1,4 @@
-// Main + auxiliary axes decomposition (issue 9, DESIGN §5.7):
+// Main + auxiliary axes decomposition (issue 9, docs/design.md §5.7):
 //  1. throughput — contour points per second through chaining,
 //     discretization, crossing checks and the decomposition (sync and seed
 //     modes), on the sample part at 0.01 mm and at 1 µm (goal ≥ 1,000,000
@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   const dxf::Drawing& drawing = read->drawing;
-  // A part with sharp corners, where the seed's smoothing acts.
+  // A part with sharp corners, where the paper's smoothing acts.
   Result<dxf::ReadResult> read_star =
       dxf::read_dxf_file(std::string(LCNC_SHARE_DIR) + "/examples/star_decompose.dxf");
   if (!read_star) {

@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
   const DeviceMap map = cnc.value();
 
   // FC3 of 10 holding registers (part of the hole block) and FC16 of the
-  // whole 25-register hole parameter block (DESIGN §6 fields 1–18).
+  // whole 25-register hole parameter block (docs/design.md §6 fields 1–18).
   const RawRequest fc3{Function::ReadHoldingRegisters, 0, 10, {}, "bench read"};
   RawRequest fc16{Function::WriteMultipleRegisters, 0, 25, std::vector<std::uint16_t>(25, 0), "bench write"};
   fc16.data[0] = 1;   // hole_number ≥ 1

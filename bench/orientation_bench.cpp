@@ -1,5 +1,5 @@
 // Orientation interpolators on a path through the A = 0 singularity
-// (DESIGN §5.6, seed 000 §4 and Fig. 16): maximum orientation error against
+// (docs/design.md §5.6, Shao (2022) §4 and Fig. 16): maximum orientation error against
 // the great circle and peak A/C speed and acceleration of each, and the CSV
 // of the A/C curves and the error along the move for bench/plot_orientation.py.
 //

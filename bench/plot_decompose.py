@@ -2,7 +2,7 @@
 """Plots a main + auxiliary axes decomposition from its kinematics table
 (the CSV of `lasercnc decompose --csv` or `decompose_bench --csv`):
 
-  left:   the contour S green and the main-axis path S1 blue (seed 004 Fig. 6)
+  left:   the contour S green and the main-axis path S1 blue (Kondratenko et al. 2015 Fig. 6)
   middle: the auxiliary path S2 = S - S1 red, in its field
   right:  effective (beam) and main-axis acceleration over time (Fig. 8)
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Plots the orientation benchmark (the A/C axis curves of seed 000 Fig. 16):
+"""Plots the orientation benchmark (the A/C axis curves of Shao (2022) Fig. 16):
 A and C position, C speed and orientation error along a move that passes
 0.005° from the A = 0 singularity, for the three interpolators.
 

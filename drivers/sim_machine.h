@@ -1,5 +1,5 @@
 // The simulated machine: a faithful stand-in for the drives, the switches and
-// the laser where no hardware exists (named as such, DESIGN §2). It receives
+// the laser where no hardware exists (named as such, docs/design.md §2). It receives
 // the DDA's pulse frames, counts pulses per axis into positions (in steps),
 // checks every frame as a drive would see it (pulse ticks increasing and
 // inside the period, at most one pulse per tick), and follows the laser power.

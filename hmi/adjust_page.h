@@ -1,4 +1,4 @@
-// The laser and head adjustment and monitoring screen (seed 000 Fig. 9):
+// The laser and head adjustment and monitoring screen (Shao 2022 Fig. 9):
 // the laser source's power setpoint, emission gate and alarm reset with its
 // read-back (state, monitor-diode power, pump temperature, alarms); the
 // power meter's reading and a power-over-time plot (setpoint, laser output,

@@ -176,7 +176,7 @@ void DecompositionPage::present(const Outcome& o) {
   ui_->summaryLabel->setText(s);
   ui_->exportButton->setEnabled(true);
   QString msg = tr("Decomposed.");
-  if (exceeded > 0) msg = tr("The seed's algorithm breaks %n limit(s) (see the table's tooltips); "
+  if (exceeded > 0) msg = tr("The published algorithm breaks %n limit(s) (see the table's tooltips); "
                              "the synchronous mode guarantees them.", nullptr, exceeded);
   for (const std::string& n : o.notes) msg += "\n" + QString::fromStdString(n);
   show_message(msg, exceeded > 0);

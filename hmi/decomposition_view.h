@@ -1,4 +1,4 @@
-// The picture of a decomposition (seed 004 Fig. 6), drawn with QPainter:
+// The picture of a decomposition (Kondratenko et al. 2015 Fig. 6), drawn with QPainter:
 // left, the contour S green and the main-axis path S1 blue in part
 // coordinates; right, the auxiliary path S2 = S − S1 red in its field (the
 // field dashed). Empty until given a result.

@@ -1,4 +1,4 @@
-// The focal-length screen (DESIGN §7): the process database's holes with a
+// The focal-length screen (docs/design.md §7): the process database's holes with a
 // tick each; "Measure selected" runs the focal-length workflow
 // (hmi/focal_workflow.h) on a worker thread — the machine visits each hole
 // through lasercncd, the displacement sensor reads — with progress and a

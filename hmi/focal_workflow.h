@@ -1,4 +1,4 @@
-// The focal-length workflow (DESIGN §7, seed 000 §4): for the holes chosen,
+// The focal-length workflow (docs/design.md §7, Shao (2022) §4): for the holes chosen,
 // the machine goes over each with the point-laser displacement sensor (on
 // the Z carriage, beam down −Z, coaxial with the tool) at the stand-off from
 // the hole's Z, the sensor reads, and the hole's focus offset is

@@ -1,5 +1,5 @@
 // The HMI's link to lasercncd, through the shared-memory interface alone
-// (rt/shm_interface.h, DESIGN §2): the kernel's status read under its
+// (rt/shm_interface.h, docs/design.md §2): the kernel's status read under its
 // seqlock, the daemon's answers, commands into the command ring. Qt-free.
 // The link is lost when the daemon's heartbeat stops or its process is gone
 // (a daemon killed with SIGKILL shows within kLostAfter), and is taken up

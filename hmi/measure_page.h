@@ -1,4 +1,4 @@
-// The 3D-measurement screen (six-point positioning, DESIGN §7): the drawing's
+// The 3D-measurement screen (six-point positioning, docs/design.md §7): the drawing's
 // block and where it nominally stands, 3-2-1 or a best fit on ten points;
 // "Measure" runs the
 // workflow (hmi/measure_workflow.h) on a worker thread with progress and a

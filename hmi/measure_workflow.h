@@ -1,4 +1,4 @@
-// The 3D-measurement workflow (six-point positioning, DESIGN §7, seed 000
+// The 3D-measurement workflow (six-point positioning, docs/design.md §7, Shao (2022)
 // §4): the workpiece is located on the machine by probing its three datum
 // faces — 3 points on the primary (the top, z = 0 of the drawing), 2 on the
 // secondary (the front, y = 0), 1 on the tertiary (the left, x = 0) — and

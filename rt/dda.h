@@ -1,4 +1,4 @@
-// DDA fine interpolation (DESIGN §5.4, seed 001 §3.1), bit-exact with hdl/.
+// DDA fine interpolation (docs/design.md §5.4, Chi, Wu and Cui (2020) §3.1), bit-exact with hdl/.
 //
 // Per axis an accumulator of capacity N, preset to N/2 at start and carried
 // across periods. On each of the N clock ticks of a period: acc += n; when

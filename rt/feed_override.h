@@ -19,7 +19,7 @@
 // acceleration does not use. Each entry carries that room (RampRoom,
 // plan/ramp_room.h): |dK/dt| ≤ r0·(1 − K²·f), f for the ramp's direction.
 //
-// Ramp rate. K changes linearly in machine time at ρ = |dK/dt| — the seed's
+// Ramp rate. K changes linearly in machine time at ρ = |dK/dt| — the paper's
 // V(i+1) = V(i) + a·T(i) with V ∝ K and T(i) = T/K(i) the length of period i:
 //
 //     K(i+1) = K(i) ± ρ·T(i),   T(i) = T/K(i)  (T while held)           (2)

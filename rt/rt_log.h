@@ -1,4 +1,4 @@
-// Logging from the RT thread (DESIGN §2): the RT path may not log, so it
+// Logging from the RT thread (docs/design.md §2): the RT path may not log, so it
 // pushes fixed records into a lock-free ring; a normal thread drains them
 // into the log (spdlog, in app/) and, in the daemon, into the shared-memory
 // event ring. A full ring drops the record and counts it: the RT thread never

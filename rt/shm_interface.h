@@ -1,4 +1,4 @@
-// The kernel ↔ HMI interface in POSIX shared memory (DESIGN §2; issue "RT
+// The kernel ↔ HMI interface in POSIX shared memory (docs/design.md §2; issue "RT
 // kernel"): the one header of rt/ the HMI includes. Fixed size, no pointers
 // (offsets only), versioned; mode 0660.
 //

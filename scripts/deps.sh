@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config
-  libeigen3-dev            # geometry (DESIGN §3)
+  libeigen3-dev            # geometry (docs/design.md §3)
   libtomlplusplus-dev      # machine config (TOML)
   libspdlog-dev            # logging outside the RT path
   nlohmann-json3-dev       # --json report

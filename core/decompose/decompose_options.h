@@ -1,5 +1,5 @@
 // What the user asks of a decomposition: the contour speed and the limits of
-// the two axis groups (DESIGN §5.7, seed 004). mm, s, mm/s, mm/s², degrees.
+// the two axis groups (docs/design.md §5.7, Kondratenko et al. (2015)). mm, s, mm/s, mm/s², degrees.
 #pragma once
 
 #include <cstdint>
@@ -9,7 +9,7 @@
 namespace lcnc::decompose {
 
 enum class Mode : std::uint8_t {
-  Seed,  // seed 004 eq. 1–13, faithfully (limits reported, not guaranteed)
+  Seed,  // Kondratenko et al. (2015) eq. 1–13, faithfully (limits reported, not guaranteed)
   Sync,  // time-synchronous: S1(t) + S2(t) = S(t), limits guaranteed
 };
 

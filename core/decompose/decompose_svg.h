@@ -1,8 +1,8 @@
 // Pictures of a decomposition, as SVG text (no dependency):
-//  * paths_svg: seed 004 Fig. 6 — the contour S green, the main path S1 blue
+//  * paths_svg: Kondratenko et al. (2015) Fig. 6 — the contour S green, the main path S1 blue
 //    (left panel, part coordinates), the auxiliary path S2 = S − S1 red in
 //    its field (right panel, its own scale, the field drawn as a square);
-//  * accel_svg: seed 004 Fig. 8 — the effective acceleration (beam) and the
+//  * accel_svg: Kondratenko et al. (2015) Fig. 8 — the effective acceleration (beam) and the
 //    main-axis acceleration over time, the main-axis limit dashed;
 //  * axes_svg: the axis curves of a run — X, Y (main group, left scale) and
 //    P, Q (auxiliary group, right scale) over time, the laser-on spans shaded.

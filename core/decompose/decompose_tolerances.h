@@ -1,5 +1,5 @@
 // Limits, defaults and tolerances of the main + auxiliary axes decomposition
-// (DESIGN §5.7, seed 004 "technological limits"), in one place (STYLE §4).
+// (docs/design.md §5.7, Kondratenko et al. (2015) "technological limits"), in one place (STYLE §4).
 // Units: mm, s, mm/s, mm/s².
 #pragma once
 

@@ -1,4 +1,4 @@
-// The kinematics table of a decomposed contour (seed 004 Fig. 7: X, Y, P, Q,
+// The kinematics table of a decomposed contour (Kondratenko et al. 2015 Fig. 7: X, Y, P, Q,
 // TIME, Vbig, Vsmall, Abig …), one row per point in time.
 //
 // Main axes X, Y follow S1; auxiliary axes P, Q hold the offset S2 = S − S1,
@@ -45,7 +45,7 @@ struct Peaks {
 };
 
 // Fills v_*, at_*, a_* from beam, main and t_s; v_main[0] and v_aux[0] are
-// `v0_main`, `v0_aux` (the seed starts both at vk/2; the synchronous mode at
+// `v0_main`, `v0_aux` (the paper's method starts both at vk/2; the synchronous mode at
 // rest).
 void fill_derivatives(KinematicsTable& t, double v0_main, double v0_aux);
 

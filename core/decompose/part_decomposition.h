@@ -1,4 +1,4 @@
-// A whole part, DXF drawing to kinematics tables (DESIGN §5.7, seed 004 Fig. 4):
+// A whole part, DXF drawing to kinematics tables (docs/design.md §5.7, Kondratenko et al. (2015) Fig. 4):
 // chain the entities into contours → discretize every contour with the
 // user's step → check every contour closed and free of crossings → decompose
 // each contour (seed or synchronous mode). Nothing is decomposed unless the
@@ -22,7 +22,7 @@ struct ContourResult {
   KinematicsTable table;
   Peaks peaks;
   double tau_s = 0.0;  // Sync: the main-path filter's half-width
-  // Seed mode: which limits the table breaks (the seed guarantees none);
+  // Seed mode: which limits the table breaks (the paper's method guarantees none);
   // empty when it keeps them all. Sync mode: always empty.
   std::vector<std::string> exceeded;
 };

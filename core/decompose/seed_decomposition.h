@@ -1,4 +1,4 @@
-// The seed's decomposition (seed 004 eq. 1–13, "DopOs2"), faithfully.
+// The paper's decomposition (Kondratenko et al. 2015 eq. 1–13, "DopOs2"), faithfully.
 //
 // Smoothing (eq. 1–5): walking the closed polyline S, the cosine of the turn
 // at vertex j is
@@ -18,9 +18,9 @@
 //   a1 = Δv1 / Δt,  a2 = Δv2 / Δt                   (12, 13) → at_main, at_aux
 // Where S1 = S, h2 = 0 and the main axes carry the whole speed. (The paper's
 // prose says unchanged steps weigh 0.5 each, which does not follow from its
-// own S2 = S − S1; the equations are implemented, as DESIGN §5.7 states them.)
+// own S2 = S − S1; the equations are implemented, as docs/design.md §5.7 states them.)
 //
-// What the seed does not do, and the table shows: the contour speed is
+// What the paper's method does not do, and the table shows: the contour speed is
 // h / Δt ≤ vk (it drops where S1 and S2 diverge), the accelerations of
 // eq. 12/13 are tangential only, and nothing bounds the main-axis
 // acceleration or the auxiliary excursion — Mode::Sync does.

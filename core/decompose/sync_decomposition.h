@@ -1,4 +1,4 @@
-// The time-synchronous decomposition (DESIGN §5.7 "go beyond the seed").
+// The time-synchronous decomposition (docs/design.md §5.7).
 //
 // The beam runs the contour S at constant speed vk: with Δ the discretization
 // step, point k is reached at t_k = kΔt, Δt = Δ/vk (before and after, the

@@ -1,4 +1,4 @@
-// Chaining a drawing's entities into closed contours (seed 004: "every
+// Chaining a drawing's entities into closed contours (Kondratenko et al. 2015: "every
 // contour is checked closed"; a laser cannot cut an open one).
 //
 // Entity ends closer than kJoinToleranceMm are one vertex. Starting from the

@@ -1,4 +1,4 @@
-// Crossing check of discretized contours (seed 004: "all contours are checked
+// Crossing check of discretized contours (Kondratenko et al. 2015: "all contours are checked
 // ... for the absence of intersections"): no contour may cross or touch
 // itself or another one — the part would fall apart or be cut twice there.
 //

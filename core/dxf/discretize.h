@@ -1,4 +1,4 @@
-// Discretization of a contour into n equal steps (seed 004: "the whole
+// Discretization of a contour into n equal steps (Kondratenko et al. 2015: "the whole
 // contour S is split into n equal, consecutive pieces of length Δφ").
 //
 // n = max(kMinContourPoints, ⌈L / step⌉), Δ = L / n ≤ step: the points lie on

@@ -1,4 +1,4 @@
-// Reading a DXF drawing (DESIGN §5.7, seed 004 "DXF input"): LINE, ARC,
+// Reading a DXF drawing (docs/design.md §5.7, Kondratenko et al. (2015) "DXF input"): LINE, ARC,
 // CIRCLE, LWPOLYLINE and POLYLINE (bulges as arcs), SPLINE (NURBS, sampled at
 // exact arc lengths), INSERT of blocks (base point, scale, rotation, column
 // and row arrays, nested), in the drawing's units ($INSUNITS) converted to mm.

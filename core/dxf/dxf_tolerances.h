@@ -7,7 +7,7 @@
 namespace lcnc::dxf {
 
 // Two entity ends are joined into one contour vertex when closer than this.
-// One machine step (1 µm, DESIGN §4): CAD files print 6–16 digits, so real
+// One machine step (1 µm, docs/design.md §4): CAD files print 6–16 digits, so real
 // gaps between touching entities are far below it, and a gap the machine
 // could resolve is an open contour, not noise.
 inline constexpr double kJoinToleranceMm = 1e-3;
@@ -76,8 +76,8 @@ inline constexpr double kExtrusionTol = 1e-9;
 
 namespace lcnc::dxf {
 
-// The finest discretization step a user may ask for (seed 004: "down to
-// microns between neighbouring points"; DESIGN §5.7: 1 µm).
+// The finest discretization step a user may ask for (Kondratenko et al. 2015: "down to
+// microns between neighbouring points"; docs/design.md §5.7: 1 µm).
 inline constexpr double kMinStepMm = 1e-3;
 
 // Fewest points of a discretized contour, and the most of one drawing

@@ -1,5 +1,5 @@
 // Machine axes and poses. Units at every interface: mm for X Y Z, degrees for
-// A B C (DESIGN §4). A Pose holds all six; axes the machine lacks stay 0.
+// A B C (docs/design.md §4). A Pose holds all six; axes the machine lacks stay 0.
 #pragma once
 
 #include <array>

@@ -1,4 +1,4 @@
-// 5-axis kinematics of the X Y Z A C laser machine (DESIGN §5.6, seed 000 §4):
+// 5-axis kinematics of the X Y Z A C laser machine (docs/design.md §5.6, Shao (2022) §4):
 // forward (joints → tool tip + tool axis in the workpiece frame) and inverse
 // (tip + axis → joints) for a head-head and a table-table variant, and the
 // choice of the inverse solution for the shortest, limit-respecting motion.
@@ -31,7 +31,7 @@
 // Joints are a Pose (X Y Z A B C; B stays 0). C is continuous: the inverse
 // returns it unwrapped, as the nearest turn to the previous C, so the motion
 // never goes the long way round; the axis' wrap shows it modulo 360.
-// Units: mm, degrees (DESIGN §4).
+// Units: mm, degrees (docs/design.md §4).
 #pragma once
 
 #include <array>

@@ -16,7 +16,7 @@ enum class MachineVariant : std::uint8_t {
 
 // Offsets and pivot lengths (mm), the machine config's [kinematics]
 // (machine/machine_config.h). The defaults describe a mid-size machine of the
-// default travel (DESIGN §4).
+// default travel (docs/design.md §4).
 struct FiveAxisGeometry {
   MachineVariant variant = MachineVariant::HeadHead;
   // Head-head: from the head reference point P (on the C axis) to the A

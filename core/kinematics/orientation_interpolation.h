@@ -1,5 +1,5 @@
 // Tool-orientation interpolation between two orientations of one move
-// (DESIGN §5.6, seed 000 §4 and its Fig. 16), parametrised by u ∈ [0, 1].
+// (docs/design.md §5.6, Shao (2022) §4 and its Fig. 16), parametrised by u ∈ [0, 1].
 //
 // The ideal orientation is the great circle (slerp) from k0 to k1:
 //   k*(u) = cos(uΘ)·k0 + sin(uΘ)·t0,   Θ = ∠(k0, k1),  t0 = n × k0,  n = k0×k1/|k0×k1|
@@ -8,14 +8,14 @@
 // * JointLinear: A and C linear in u between the start and end joints, as a
 //   G1 with A and C words moves. Tool axis k(A(u), C(u)); its error against
 //   k*(u) is largest of the three (tens of degrees when C turns far at a
-//   large A, seed 000: 44°).
+//   large A, Shao (2022): 44°).
 // * Vector: k(u) = k*(u) exactly; the joints by the inverse of five_axis.h on
 //   the start's branch (sign of A) with C continuous. Along a great circle
 //   that misses the pole, C turns monotonically at
 //     dC/dα = n_z / sin²θ     (θ = |A|, α = uΘ the arc angle)
 //   which near the pole peaks at 1/sin δ, δ the distance of the arc from the
 //   pole: C swings ~180° within a few δ of arc. On a path through A = 0 that
-//   is a C-speed spike far beyond the axis (seed 000 Fig. 16).
+//   is a C-speed spike far beyond the axis (Shao 2022 Fig. 16).
 // * PoleSmoothed (the improved vector interpolation): when the arc passes
 //   the pole at δ ≤ the orientation tolerance ε (default 0.01°), the great
 //   circle is turned by δ·w(α) about its own direction of travel t_m at the

@@ -46,7 +46,7 @@ RetimedLaw retime(const OrientationMove& move, const RotaryLimits& lim, double m
                        limit_ratio((1.0 - kCurvatureShare) * lim.a_max_accel_deg_s2, d1a),
                        limit_ratio((1.0 - kCurvatureShare) * lim.c_max_accel_deg_s2, d1c)});
   }
-  // Forward from rest, backward to rest (squared rates, DESIGN §5.2).
+  // Forward from rest, backward to rest (squared rates, docs/design.md §5.2).
   std::vector<double> v_sqr(n + 1);
   v_sqr[0] = 0.0;
   for (int i = 0; i < n; ++i)

@@ -4,7 +4,7 @@
 // rest-to-rest time law u(t) within
 //   |X'·u̇| ≤ v_max,   |X''·u̇² + X'·ü| ≤ a_max      (X = A, C; ' = d/du)
 // and the programmed caps u̇ ≤ max_u_rate, |ü| ≤ max_u_accel.
-// Method (the look-ahead of DESIGN §5.2 along u): on a grid of
+// Method (the look-ahead of docs/design.md §5.2 along u): on a grid of
 // kRetimeSamples, the velocity limit curve
 //   u̇_lim = min(v_max/|X'|, sqrt(½·a_max/|X''|), max_u_rate)
 // gives half of each axis' acceleration to the curvature term X''·u̇²; the

@@ -1,4 +1,4 @@
-// Tool-centre-point (TCP) control of a straight tip move (DESIGN §5.6): the
+// Tool-centre-point (TCP) control of a straight tip move (docs/design.md §5.6): the
 // tool tip runs on the straight line a → b while A and C follow an
 // orientation interpolator, both driven by the same u ∈ [0, 1]:
 //   tip(u) = a + u·(b − a),   (A, C)(u) = move.joints_at(u)

@@ -1,4 +1,4 @@
-// Tool-centre-point control of G-code programs (DESIGN §5.6, seed 000 §4):
+// Tool-centre-point control of G-code programs (docs/design.md §5.6, Shao (2022) §4):
 // with the machine config's [kinematics] tcp = true, a program's X Y Z are
 // the tool tip in the workpiece frame and A C the rotary joints, and this
 // stage of the planner's input turns each programmed move into joint moves:

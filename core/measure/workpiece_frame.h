@@ -1,5 +1,5 @@
-// Locating the workpiece on the machine from probed points (DESIGN §7,
-// seed 000 §4 "six-point positioning"): the rigid transform T from the
+// Locating the workpiece on the machine from probed points (docs/design.md §7,
+// Shao (2022) §4 "six-point positioning"): the rigid transform T from the
 // workpiece's own (drawing) frame to machine coordinates, machine = T·work.
 //
 // 3-2-1. The drawing's three datum faces are the planes z = 0 (primary),

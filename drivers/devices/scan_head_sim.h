@@ -1,5 +1,5 @@
 // Simulated four-beam wedge scanning head (register map device "scan_head";
-// its holding registers are process fields 12–18 of DESIGN §6).
+// its holding registers are process fields 12–18 of docs/design.md §6).
 //
 // Two counter-rotating wedge pairs turn at the wedge speed; one wedge turn
 // is one turn of the beam circle. Writing run = 1 spins the wedges up to

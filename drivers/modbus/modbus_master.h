@@ -1,7 +1,7 @@
 // Modbus master (client) for one device of the register map, over libmodbus
 // RTU or TCP. Asynchronous: every call queues a request for the master's own
 // worker thread and returns at once — a future, or a callback run on the
-// worker thread — so a GUI thread never waits on the wire (DESIGN §8).
+// worker thread — so a GUI thread never waits on the wire (docs/design.md §8).
 //
 // Per request, in order:
 //   1. connect if the link is down (at most once per reconnect_interval;

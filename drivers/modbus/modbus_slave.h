@@ -1,7 +1,7 @@
 // Modbus slave (server) for one device of the register map, over RTU (a
 // serial line) or TCP (bound to 127.0.0.1 unless configured otherwise), on
 // its own thread. It is what lasercncd exposes to a PLC or an MES, and what
-// every virtual device is built on. (DESIGN §8, seed 000 §4 and fig. 15: the
+// every virtual device is built on. (docs/design.md §8, Shao (2022) §4 and fig. 15: the
 // slave checks the address, parses function code and offset, then answers
 // or reports an exception.)
 //

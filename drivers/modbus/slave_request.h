@@ -1,5 +1,5 @@
 // One Modbus request as the slave takes it: received and framed by libmodbus
-// (RTU CRC, TCP MBAP), checked against the register map (seed 000 fig. 15:
+// (RTU CRC, TCP MBAP), checked against the register map (Shao 2022 fig. 15:
 // every address must hold a register of the map, writes must hit whole
 // writable registers, every value must be in range), offered to the owner's
 // write hook, then answered by libmodbus — all before anything changes, so

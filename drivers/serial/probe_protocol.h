@@ -1,4 +1,4 @@
-// The RS-232 line protocol of the 3D point probe (seed 000 §4: the 3D
+// The RS-232 line protocol of the 3D point probe (Shao 2022 §4: the 3D
 // measuring device talks to the industrial PC over RS-232). ASCII sentences
 // in the style of NMEA 0183, one per line, each with a checksum:
 //

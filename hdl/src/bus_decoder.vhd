@@ -1,6 +1,6 @@
--- Bus decoder and register file (seed 001 §3.1 "译码单元"): the PC's side of
+-- Bus decoder and register file (Chi, Wu and Cui 2020 §3.1 "译码单元"): the PC's side of
 -- the interpolator. The software writes each axis's increment for the next
--- period (magnitude + direction, the seed's PulDat and d7, one axis per bus
+-- period (magnitude + direction, the paper's PulDat and d7, one axis per bus
 -- write) into a staging register while the current period is being output,
 -- then SEL latches all axes at once into the increment buffers. It also
 -- writes the divider buffer (feed override) and the control register, and
@@ -9,7 +9,7 @@
 -- A simple synchronous bus: a write is bus_we = '1' for one cycle with
 -- bus_addr / bus_wdata; a read is bus_re = '1' for one cycle and bus_rdata
 -- holds the value in the next cycle. Every output is a register, so the
--- decoder may sit in another chip than the axes (the seed splits them):
+-- decoder may sit in another chip than the axes (the paper splits them):
 --
 --   write in cycle k   -> staged values, div_value, run, mode from cycle k+1
 --                      -> sel, div_wr, clear: one-cycle strobes in cycle k+1

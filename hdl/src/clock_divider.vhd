@@ -1,5 +1,5 @@
--- Clock divider with a divider buffer (seed 001 §3.1 "时钟分频单元" and §5,
--- DESIGN §5.5): makes the DDA tick, a one-cycle clock enable every D system
+-- Clock divider with a divider buffer (Chi, Wu and Cui 2020 §3.1 "时钟分频单元" and §5,
+-- docs/design.md §5.5): makes the DDA tick, a one-cycle clock enable every D system
 -- clocks. Feed override K is a new D = round(D_100% / K) written into the
 -- divider buffer at any time; the divider takes it only on `reload`, which the
 -- period sequencer raises at a period boundary. So a period runs at one tick

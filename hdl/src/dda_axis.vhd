@@ -1,4 +1,4 @@
--- One axis of the DDA fine interpolator (DESIGN §5.4, seed 001 §3.1 Fig. 5),
+-- One axis of the DDA fine interpolator (docs/design.md §5.4, Chi, Wu and Cui (2020) §3.1 Fig. 5),
 -- bit-exact with rt::Dda (rt/dda.h).
 --
 -- An accumulator of capacity N is preset to N/2 (rounded down) at reset and

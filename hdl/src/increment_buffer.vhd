@@ -1,4 +1,4 @@
--- Single-stage increment buffer of one axis (seed 001 §3.1, Fig. 6:
+-- Single-stage increment buffer of one axis (Chi, Wu and Cui 2020 §3.1, Fig. 6:
 -- "插补缓存单元" with the data-valid flag EN).
 --
 -- The software writes the next period's increment while the current one is

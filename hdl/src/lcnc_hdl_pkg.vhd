@@ -1,11 +1,11 @@
--- Shared definitions of the micro-step interpolator (DESIGN §9, seed 001
+-- Shared definitions of the micro-step interpolator (docs/design.md §9, Chi, Wu and Cui (2020)
 -- §3.1): the bus register map and the elaboration-time generic checks.
 --
 -- Register map (word addresses on the bus, A = number of axes):
 --
 --   0 .. A-1  AXIS(i)  W   stage axis i's increment for the next period:
 --                          bits mag_width-1..0 magnitude n, bit bus_width-1
---                          direction (1 = negative), as the seed's PulDat + d7
+--                          direction (1 = negative), as the paper's PulDat + d7
 --   A         SEL      W   any write: latch all staged increments into the
 --                          single-stage buffer (sets EN; seed "SEL")
 --   A+1       DIV      RW  divider buffer: system clocks per DDA tick, taken

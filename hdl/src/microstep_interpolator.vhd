@@ -1,4 +1,4 @@
--- The micro-step hardware interpolator (DESIGN §9, seed 001 §3.1, Fig. 4):
+-- The micro-step hardware interpolator (docs/design.md §9, Chi, Wu and Cui (2020) §3.1, Fig. 4):
 -- bus decoder, clock divider with a divider buffer, period sequencer (Com),
 -- and per axis a single-stage increment buffer, a DDA and a pulse output.
 --
@@ -11,7 +11,7 @@
 -- Every period is N DDA ticks; the tick is a clock enable every D system
 -- clocks, so the period is N·D/f_clk (seed: N = 30, D = 125 at 50 MHz:
 -- 400 kHz, 75 µs). Feed override K writes D = round(D_100% / K) into the
--- divider buffer; it takes effect at the next period boundary (DESIGN §5.5).
+-- divider buffer; it takes effect at the next period boundary (docs/design.md §5.5).
 --
 -- Cycle timing, a period starting in cycle c0 with divider D:
 --   Com = '0' in cycles c0 .. c0 + D - 1 (one tick of N: duty (N-1)/N)

@@ -1,8 +1,8 @@
 -- Pulse output stage of one axis: turns the DDA's one-cycle pulse events into
 -- what the drive takes, selectable at run time:
 --
---   step_dir_mode = '0': positive/negative pulse pairs, the seed's PUL / SIG
---                        (seed 001 Fig. 7): pul_step pulses for a positive
+--   step_dir_mode = '0': positive/negative pulse pairs, the paper's PUL / SIG
+--                        (Chi, Wu and Cui 2020 Fig. 7): pul_step pulses for a positive
 --                        step, sig_dir for a negative one.
 --   step_dir_mode = '1': STEP on pul_step, DIR on sig_dir ('1' = negative),
 --                        which most drives take.

@@ -1,5 +1,5 @@
 -- Self-checking testbench of microstep_interpolator, the whole interpolator
--- on its bus, as the PC's driver uses it (seed 001 §3.1, Fig. 6-7).
+-- on its bus, as the PC's driver uses it (Chi, Wu and Cui 2020 §3.1, Fig. 6-7).
 --
 -- Stimulus: a software model. After reset it writes the first period's
 -- increments, SEL and run; then on every Com fall (the interrupt) it waits
@@ -41,7 +41,7 @@ use work.sim_support_pkg.all;
 
 entity tb_microstep_interpolator is
   generic (
-    -- the design (defaults: the seed preset, 50 MHz / 125 = 400 kHz, N = 30: 75 µs)
+    -- the design (defaults: the paper's preset, 50 MHz / 125 = 400 kHz, N = 30: 75 µs)
     axes          : positive := 4;
     mag_width     : positive := 4;
     capacity      : positive := 30;

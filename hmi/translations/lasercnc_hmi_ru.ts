@@ -226,7 +226,7 @@
         <translation>синхронный</translation>
     </message>
     <message>
-        <source>seed 004</source>
+        <source>published algorithm</source>
         <translation>исходный алгоритм</translation>
     </message>
     <message>
@@ -877,7 +877,7 @@
         <translation>Разложено.</translation>
     </message>
     <message numerus="yes">
-        <source>The seed&apos;s algorithm breaks %n limit(s) (see the table&apos;s tooltips); the synchronous mode guarantees them.</source>
+        <source>The published algorithm breaks %n limit(s) (see the table&apos;s tooltips); the synchronous mode guarantees them.</source>
         <translation>
             <numerusform>Исходный алгоритм нарушает %n ограничение (см. подсказки таблицы); синхронный режим их гарантирует.</numerusform>
             <numerusform>Исходный алгоритм нарушает %n ограничения (см. подсказки таблицы); синхронный режим их гарантирует.</numerusform>

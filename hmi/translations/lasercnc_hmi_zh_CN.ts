@@ -226,7 +226,7 @@
         <translation>同步</translation>
     </message>
     <message>
-        <source>seed 004</source>
+        <source>published algorithm</source>
         <translation>原始算法</translation>
     </message>
     <message>
@@ -877,7 +877,7 @@
         <translation>分解完成。</translation>
     </message>
     <message numerus="yes">
-        <source>The seed&apos;s algorithm breaks %n limit(s) (see the table&apos;s tooltips); the synchronous mode guarantees them.</source>
+        <source>The published algorithm breaks %n limit(s) (see the table&apos;s tooltips); the synchronous mode guarantees them.</source>
         <translation>
             <numerusform>原始算法超出 %n 项限值（见表格提示）；同步模式可保证限值。</numerusform>
         </translation>

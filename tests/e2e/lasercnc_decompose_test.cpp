@@ -25,7 +25,7 @@ TEST(LasercncDecompose, SamplePartWritesReportTableAndPictures) {
   EXPECT_NE(r.out.find("7 contours"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("6.00 m/min"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("|S1 + S2 - S|"), std::string::npos) << r.out;
-  // the table: the seed's columns, one row per point of every contour
+  // the table: the paper's columns, one row per point of every contour
   const std::string table = e2e::slurp(csv);
   std::istringstream lines(table);
   std::string header;

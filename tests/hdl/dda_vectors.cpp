@@ -1,4 +1,4 @@
-// Co-verification of hdl/ with the C++ DDA (issue 5; DESIGN §5.4, §9).
+// Co-verification of hdl/ with the C++ DDA (issue 5; docs/design.md §5.4, §9).
 //
 //   dda_vectors expect VECTORS.inc EXPECTED     the pulse trains rt::Dda makes
 //   dda_vectors compare EXPECTED ACTUAL         identical, or exit 1 naming the differences
@@ -215,7 +215,7 @@ void common_segments(VectorWriter& w, int d100, int d_min, int d_max, int random
     if (a > 1) s[1] = -(m * (ramp - k) / ramp);
     if (a > 2) s[2] = m / 2;
     if (a > 3) s[3] = 1;
-    // K ramps linearly from 100 % to the override that reaches d_min (DESIGN §5.5)
+    // K ramps linearly from 100 % to the override that reaches d_min (docs/design.md §5.5)
     const double k_max = static_cast<double>(d100) / d_min;
     w.period(divider_for(d100, 1.0 + (k_max - 1.0) * k / ramp), s);
   }
@@ -257,10 +257,10 @@ int generate(const std::string& kind, const std::string& out_path) {
   };
   // d_min is the interpolator's min_divider (pulse_width + dir_setup +
   // dir_hold, at least pulse_width + 1) so that no divider here is clamped;
-  // the seed's software timing (15 us response, 5 us of port writes) where
+  // the paper's software timing (15 us response, 5 us of port writes) where
   // the shortest period leaves room for it.
   const Preset presets[] = {
-      {"seed", "the seed's preset: 4 axes, 4 bits, N = 30, 400 kHz at 50 MHz (D = 125), 75 us",
+      {"seed", "the paper's preset: 4 axes, 4 bits, N = 30, 400 kHz at 50 MHz (D = 125), 75 us",
        4, 4, 30, 125, 80, 250, 40, 20, 20, "response_ns=15000 port_ns=5000", 150, 1},
       {"fast", "the fast preset: 6 axes, 8 bits, N = 255, D >= 9 at 50 MHz: one pulse per tick at n = 255",
        6, 8, 255, 12, 9, 30, 4, 3, 2, "step_dir=true response_ns=15000 port_ns=5000", 60, 2},

@@ -4,7 +4,7 @@
 // StepQuantizer, owed steps paid after the last sample — on a machine config,
 // written as a vector file (tests/vectors/README.md) plus the expected
 // signed pulse totals per axis: the commanded position in steps minus the
-// start (DESIGN §4: Σ pulses = commanded steps).
+// start (docs/design.md §4: Σ pulses = commanded steps).
 //
 //   job_increments MACHINE.toml PROGRAM.ngc OUT.inc OUT.totals [KEY=VALUE …]
 //

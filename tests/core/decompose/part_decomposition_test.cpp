@@ -58,7 +58,7 @@ TEST(PartDecomposition, ASyncSpeedBeyondBothGroupsTogetherIsRefusedBeforeAnyWork
   EXPECT_EQ(s.error().code, ErrorCode::DecomposeInfeasible);
   EXPECT_NE(s.error().message.find("reach together"), std::string::npos) << s.error().message;
   EXPECT_NE(s.error().message.find("340.00 m/min"), std::string::npos) << s.error().message;
-  // the seed's mode keeps no limit (it reports them): any positive speed
+  // the paper's mode keeps no limit (it reports them): any positive speed
   o.mode = Mode::Seed;
   EXPECT_TRUE(check_options(o).ok());
 }

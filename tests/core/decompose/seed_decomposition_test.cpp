@@ -1,4 +1,4 @@
-// The seed's decomposition (seed 004 eq. 1–13) and the seed's test case.
+// The paper's decomposition (Kondratenko et al. 2015 eq. 1–13) and the paper's test case.
 #include "decompose/seed_decomposition.h"
 
 #include <gtest/gtest.h>
@@ -90,7 +90,7 @@ TEST(SeedDecomposition, SeedCaseSixMetresPerMinuteStaysUnderOneG) {
 }
 
 TEST(SeedDecomposition, ReportsTheLimitsItBreaks) {
-  // Sharp corners at 6 m/min: the seed's S1 turns them on a ~0.57 mm radius
+  // Sharp corners at 6 m/min: the paper's S1 turns them on a ~0.57 mm radius
   // (1° per 0.01 mm), far above 0.5 g — reported, not hidden.
   Result<PartResult> r = run(test::dxf_data("line_square.dxf"), seed_options(100.0));
   ASSERT_TRUE(r.ok());

@@ -1,6 +1,6 @@
 // The time-synchronous decomposition: S1 + S2 = S at every instant, the
 // limits and the field never exceeded, infeasible speeds reported with the
-// highest feasible one, and the seed's case.
+// highest feasible one, and the paper's case.
 #include "decompose/sync_decomposition.h"
 
 #include <gtest/gtest.h>
@@ -138,7 +138,7 @@ TEST(SyncDecomposition, ContourFasterThanTheMainAxesIsInfeasible) {
   EXPECT_MENTIONS(r.error(), "exceeds the main-axis speed limit");
 }
 
-// The seed's case in the synchronous mode: 6 m/min, effective acceleration
+// The paper's case in the synchronous mode: 6 m/min, effective acceleration
 // ≤ 1 g on the sample part, main axes within 0.5 g and far below a
 // main-axes-only machine on the same part at the same speed.
 TEST(SyncDecomposition, SeedCaseSixMetresPerMinute) {
