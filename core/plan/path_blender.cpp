@@ -41,14 +41,8 @@ Vec3 rotary_rate(const Segment& s, double length) {
 }  // namespace
 
 PathBlender::PathBlender(const MachineConfig& machine, SegmentSource source,
-                         double filter_error_mm)
-    : merger_(std::move(source)), filter_error_mm_(filter_error_mm) {
-  double sum = 0.0;
-  for (int i = 0; i < 3; ++i) {
-    const AxisConfig& ax = machine.axes[i];
-    if (ax.present) sum += std::pow(0.5 / ax.steps_per_unit, 2);
-  }
-  margin_mm_ = std::sqrt(sum);
+                         const ToleranceBudget& budget)
+    : merger_(std::move(source)), budget_(budget) {
   if (machine.tcp.enabled) tip_mm_per_deg_ = tip_lever_mm(machine.kinematics) * std::numbers::pi / 180.0;
 }
 
@@ -82,9 +76,8 @@ SourceStatus PathBlender::next(const IndexedSegment*& out) {
     const bool cur_blendable = blendable(cur.seg);
     if (have_pending_ && cur_blendable) {
       const Segment& a = pending.seg;
-      double tol = std::min(a.blend_tolerance_mm, cur.seg.blend_tolerance_mm) -
-                   std::max(merge_tolerance(a), merge_tolerance(cur.seg)) - margin_mm_ -
-                   filter_error_mm_;
+      double tol = budget_.corner_mm(std::min(a.blend_tolerance_mm, cur.seg.blend_tolerance_mm),
+                                     std::max(merge_tolerance(a), merge_tolerance(cur.seg)));
       const double len_a = pending_length_;
       const double len_b = path_length(cur.seg);
       // Under tool-centre-point control the rotary axes run linearly across
