@@ -89,14 +89,15 @@ SourceStatus PathBlender::next(const IndexedSegment*& out) {
       if (tip_mm_per_deg_ > 0.0) {
         const double jump = (rotary_rate(cur.seg, len_b) - rotary_rate(a, len_a)).norm();
         if (jump > 0.0) {
-          tol *= 0.5;
+          tol *= plan::kTcpXyzShare;
           trim_cap = tol / (0.5 * tip_mm_per_deg_ * jump);
         }
       }
       // A corner takes at most half of a line and 45 % of an arc (an arc
       // trimmed to nothing would read as a full circle).
-      const double share_a = a.kind == MotionKind::Arc ? 0.45 : 0.5;
-      const double share_b = cur.seg.kind == MotionKind::Arc ? 0.45 : 0.5;
+      const double share_a = a.kind == MotionKind::Arc ? plan::kCornerArcShare : plan::kCornerLineShare;
+      const double share_b =
+          cur.seg.kind == MotionKind::Arc ? plan::kCornerArcShare : plan::kCornerLineShare;
       const double max_a = std::min({pending_full_length_ * share_a, len_a, trim_cap});
       const double max_b = std::min(len_b * share_b, trim_cap);
       // A line–line blend goes straight into arc_, its geometry as built
