@@ -25,6 +25,7 @@
 #include "app/run_job.h"
 #include "drivers/modbus/endpoint_spec.h"
 #include "gcode/program_reader.h"
+#include "machine/config_keys.h"
 #include "plan/program_source.h"
 
 namespace {
@@ -49,6 +50,7 @@ constexpr const char* kUsage =
     "                       (lasercnc decompose --help for its options)\n"
     "  lasercnc cut PART.dxf -o PROGRAM.ngc [--svg FILE] [--process TABLE.csv] ...\n"
     "                       (lasercnc cut --help for its options)\n"
+    "  lasercnc config --reference\n"
     "  lasercnc --help | --version\n"
     "\n"
     "  run     plans PROGRAM, runs it on the simulated machine with the real RT thread\n"
@@ -72,8 +74,15 @@ constexpr const char* kUsage =
     "  decompose  splits each contour of a DXF part into main- and auxiliary-axis paths\n"
     "  cut     a laser cutting program from a DXF part: holes first, kerf offset,\n"
     "          lead-ins, power and feed per layer\n"
+    "  config  --reference: every key of the machine config (TOML) with its unit,\n"
+    "          allowed range, default and meaning, as Markdown (docs/machine_config.md)\n"
     "  --vmax/--amax   max velocity (mm/s) / acceleration (mm/s^2) of every linear axis\n"
-    "  --tolerance     path tolerance (mm)\n"
+    "  --tolerance     E mm: the P of every G64 without P for this run (the machine's\n"
+    "                  path_tolerance_mm): how far a blended corner may leave the path,\n"
+    "                  and what the path check allows there. A program only blends in\n"
+    "                  G64: one that never says G64 runs exact path (G61) unless the\n"
+    "                  machine's startup_code says G64 (the default machine's does);\n"
+    "                  a G64 P<n> in the program keeps its own P\n"
     "  --feed-override feed override for the whole run, %: feeds at PCT/100 of F, never\n"
     "                  past an axis limit (below 100 also the rapids slower);\n"
     "                  1 <= PCT <= 100 x machine.max_feed_override (150 on the default\n"
@@ -121,6 +130,12 @@ int main(int argc, char** argv) {
   if (cmd == "decompose") return lcnc::app::decompose_main(argc - 1, argv + 1);
   if (cmd == "drill") return lcnc::app::drill_main(argc - 1, argv + 1);
   if (cmd == "cut") return lcnc::app::cut_main(argc - 1, argv + 1);
+  if (cmd == "config") {
+    if (argc != 3 || std::string_view(argv[2]) != "--reference")
+      return usage_error("config takes --reference");
+    std::fputs(lcnc::config_reference_markdown().c_str(), stdout);
+    return 0;
+  }
   if (cmd == "status" || cmd == "send") {
     lcnc::app::ClientOptions co;
     std::vector<std::string> args;

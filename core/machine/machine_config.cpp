@@ -4,6 +4,8 @@
 // leave a default silently in force.
 #include "machine/machine_config.h"
 
+#include "machine/config_keys.h"
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -12,6 +14,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <span>
 #include <sstream>
 #include <string_view>
 
@@ -61,6 +64,10 @@ struct Loader {
   // Reject keys of `table` not listed in `allowed`.
   bool only_keys(const toml::table& table, std::string_view prefix,
                  std::initializer_list<std::string_view> allowed) {
+    return only_keys_in(table, prefix, std::span(allowed.begin(), allowed.size()));
+  }
+  bool only_keys_in(const toml::table& table, std::string_view prefix,
+                    std::span<const std::string_view> allowed) {
     for (const auto& [key, node] : table) {
       bool known = false;
       for (auto a : allowed) known = known || key.str() == a;
@@ -171,6 +178,93 @@ struct Loader {
     return true;
   }
 
+  // Reject keys of `table` that are not rows of `name` in the key table.
+  template <class C>
+  bool only_rows(const toml::table& table, std::string_view prefix,
+                 std::span<const ConfigKey<C>> keys, std::string_view name) {
+    std::vector<std::string_view> allowed;
+    for (const ConfigKey<C>& k : keys)
+      if (k.table == name) allowed.push_back(k.name);
+    return only_keys_in(table, prefix, allowed);
+  }
+
+  // Reads the rows of `name` that have a setter from `t` into `c`: the type
+  // is checked here, the range by validate(). A number the member cannot
+  // hold (a negative period) is reported with the row's range.
+  template <class C>
+  bool read_rows(const toml::table& t, std::string_view prefix,
+                 std::span<const ConfigKey<C>> keys, std::string_view name, C& c,
+                 bool rotary = false) {
+    for (const ConfigKey<C>& k : keys) {
+      if (k.table != name || k.set == nullptr) continue;
+      const toml::node* n = t.get(k.name);
+      const std::string path = std::string(prefix) + std::string(k.name);
+      if (n == nullptr) {
+        if (!k.required) continue;
+        return fail(ErrorCode::ConfigMissingKey, t.source(), "missing key '" + path + "'");
+      }
+      KeyValue v;
+      switch (k.type) {
+        case KeyType::Number:
+        case KeyType::Integer: {
+          double d = 0.0;
+          if (!number(t, prefix, k.name, d, false)) return false;
+          if (k.type == KeyType::Integer && !(d == std::floor(d) && d >= 0.0 && d <= 4294967295.0))
+            return fail(ErrorCode::ConfigBadValue, n->source(),
+                        "'" + path + "' = " + fmt_value(d) + " must be a whole number; allowed " +
+                            allowed_text(k, rotary));
+          v = d;
+          break;
+        }
+        case KeyType::Boolean: {
+          bool b = false;
+          if (!boolean(t, prefix, k.name, b)) return false;
+          v = b;
+          break;
+        }
+        case KeyType::String: {
+          std::string str;
+          if (!string(t, prefix, k.name, str)) return false;
+          v = std::move(str);
+          break;
+        }
+        case KeyType::Strings: {
+          std::vector<std::string> list;
+          if (!strings(t, prefix, k.name, list)) return false;
+          v = std::move(list);
+          break;
+        }
+        case KeyType::Numbers:
+        case KeyType::Table:
+          continue;
+      }
+      if (std::string why = k.set(c, v); !why.empty())
+        return fail(ErrorCode::ConfigBadValue, n->source(), "'" + path + "' " + why);
+      if (k.get != nullptr && std::holds_alternative<double>(v)) {
+        const double d = std::get<double>(v);
+        if (!(k.get(c) == d) && !k.range.contains(d))
+          return fail(ErrorCode::ConfigBadValue, n->source(),
+                      path + " = " + fmt_value(d) + "; allowed " + allowed_text(k, rotary));
+      }
+    }
+    return true;
+  }
+
+  static std::string fmt_value(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+  }
+
+  // Runs load on the table t[key] when there is one: false when t[key] is
+  // no table or load fails.
+  template <class F>
+  bool section(const toml::table& t, std::string_view key, F&& load) {
+    const toml::table* s = subtable(t, key);
+    if (s == nullptr) return !failed;
+    return load(*s) && !failed;
+  }
+
   const toml::table* subtable(const toml::table& t, std::string_view key,
                               std::string_view prefix = {}) {
     const toml::node* n = t.get(key);
@@ -184,11 +278,7 @@ struct Loader {
   }
 };
 
-std::string fmt(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
+std::string fmt(double v) { return Loader::fmt_value(v); }
 
 // [axes.X.pitch_compensation]: start, interval and values, all required.
 bool load_pitch_table(Loader& L, const toml::table& axis_table, const std::string& axis_prefix,
@@ -196,7 +286,7 @@ bool load_pitch_table(Loader& L, const toml::table& axis_table, const std::strin
   const toml::table* t = L.subtable(axis_table, "pitch_compensation", axis_prefix);
   if (t == nullptr) return !L.failed;
   const std::string p = axis_prefix + "pitch_compensation.";
-  if (!(L.only_keys(*t, p, {"start", "interval", "values"}) &&
+  if (!(L.only_rows(*t, p, axis_keys(), "axes.<L>.pitch_compensation") &&
         L.number(*t, p, "start", table.start, true) &&
         L.number(*t, p, "interval", table.interval, true) &&
         L.numbers(*t, p, "values", table.values)))
@@ -213,40 +303,41 @@ bool load_pitch_table(Loader& L, const toml::table& axis_table, const std::strin
 // Homing and pitch-compensation keys of one axis; the axis' own ranges
 // (min < max, max_velocity > 0) are already checked.
 Status validate_home_and_pitch(const MachineConfig& m, const AxisConfig& a,
-                               const std::string& file) {
-  auto bad = [&](std::string msg) {
+                               const std::string& file, std::string& key) {
+  const std::string p = std::string("axes.") + letter(a.axis) + ".";
+  auto bad = [&](std::string_view k, std::string msg) {
+    key = p + std::string(k);
     return Status(make_error(ErrorCode::ConfigBadValue, std::move(msg), file));
   };
-  const std::string p = std::string("axes.") + letter(a.axis) + ".";
   const std::string unit = is_rotary(a.axis) ? "deg" : "mm";
   const double home = a.home_position_or_default();
   if (!(std::isfinite(home) && home >= a.min && home <= a.max))
-    return bad(p + "home_position = " + fmt(home) + "; allowed min … max = " + fmt(a.min) +
+    return bad("home_position", p + "home_position = " + fmt(home) + "; allowed min … max = " + fmt(a.min) +
                " … " + fmt(a.max) + " " + unit);
   if (!(std::isfinite(a.following_error) && a.following_error >= 0.0 && a.following_error <= a.max - a.min))
-    return bad(p + "following_error = " + fmt(a.following_error) + "; allowed 0 (not checked) … max − min = " +
+    return bad("following_error", p + "following_error = " + fmt(a.following_error) + "; allowed 0 (not checked) … max − min = " +
                fmt(a.max - a.min) + " " + unit);
   const double search = a.home_search_velocity_or_default();
   if (!(std::isfinite(search) && search != 0.0 && std::abs(search) <= a.max_velocity))
-    return bad(p + "home_search_velocity = " + fmt(search) + "; allowed " +
+    return bad("home_search_velocity", p + "home_search_velocity = " + fmt(search) + "; allowed " +
                fmt(-a.max_velocity) + " … " + fmt(a.max_velocity) + " " + unit +
                "/s (±max_velocity), not 0: the sign is the direction toward the home switch");
   const double latch = a.home_latch_velocity_or_default();
   if (!(std::isfinite(latch) && latch > 0.0 && latch <= std::abs(search)))
-    return bad(p + "home_latch_velocity = " + fmt(latch) + "; allowed > 0 … " +
+    return bad("home_latch_velocity", p + "home_latch_velocity = " + fmt(latch) + "; allowed > 0 … " +
                fmt(std::abs(search)) + " " + unit + "/s (|home_search_velocity|)");
 
   const PitchTable& t = a.pitch_compensation;
   if (t.empty()) return {};
   const std::string pp = p + "pitch_compensation.";
   if (t.values.size() < 2)
-    return bad(pp + "values has " + std::to_string(t.values.size()) +
+    return bad("pitch_compensation.values", pp + "values has " + std::to_string(t.values.size()) +
                " value(s); allowed 2 or more (one per interval end)");
   if (!(std::isfinite(t.interval) && t.interval > 0.0))
-    return bad(pp + "interval = " + fmt(t.interval) + "; allowed > 0 " + unit);
+    return bad("pitch_compensation.interval", pp + "interval = " + fmt(t.interval) + "; allowed > 0 " + unit);
   for (std::size_t k = 0; k < t.values.size(); ++k) {
     if (!(std::isfinite(t.values[k]) && std::abs(t.values[k]) <= kMaxPitchCorrection))
-      return bad(pp + "values[" + std::to_string(k) + "] = " + fmt(t.values[k]) + "; allowed " +
+      return bad("pitch_compensation.values", pp + "values[" + std::to_string(k) + "] = " + fmt(t.values[k]) + "; allowed " +
                  fmt(-kMaxPitchCorrection) + " … " + fmt(kMaxPitchCorrection) + " " + unit);
   }
   auto slack = [](double limit) {
@@ -254,7 +345,7 @@ Status validate_home_and_pitch(const MachineConfig& m, const AxisConfig& a,
   };
   if (!(std::isfinite(t.start) && t.start >= a.min - slack(a.min) &&
         t.end() <= a.max + slack(a.max)))
-    return bad(pp + "start … start + (n−1)·interval = " + fmt(t.start) + " … " + fmt(t.end()) +
+    return bad("pitch_compensation.start", pp + "start … start + (n−1)·interval = " + fmt(t.start) + " … " + fmt(t.end()) +
                " " + unit + "; the table must lie within min … max = " + fmt(a.min) + " … " +
                fmt(a.max) + " " + unit);
   // The RT kernel outputs commanded + correction(commanded): at max_velocity
@@ -264,7 +355,7 @@ Status validate_home_and_pitch(const MachineConfig& m, const AxisConfig& a,
   if (slope > 0.0) {
     const double pulses = a.max_velocity * a.steps_per_unit * m.period_s() * (1.0 + slope) + 1.0;
     if (pulses > m.dda.max_pulses())
-      return bad(pp + "values: slope " + fmt(slope) + " at max_velocity = " +
+      return bad("pitch_compensation.values", pp + "values: slope " + fmt(slope) + " at max_velocity = " +
                  fmt(a.max_velocity) + " " + unit + "/s needs " + fmt(pulses) +
                  " pulses per period (with 1 for rounding); the DDA preset gives at most " +
                  std::to_string(m.dda.max_pulses()) +
@@ -276,10 +367,7 @@ Status validate_home_and_pitch(const MachineConfig& m, const AxisConfig& a,
 // [kinematics]: the variant and the offsets of kinematics/five_axis_geometry.h.
 bool load_kinematics(Loader& L, const toml::table& t, FiveAxisGeometry& g, TcpConfig& tcp) {
   constexpr std::string_view kPre = "kinematics.";
-  if (!L.only_keys(t, kPre, {"variant", "head_c_to_a_mm", "head_pivot_length_mm", "table_a_pivot_mm",
-                             "table_c_offset_mm", "tcp", "orientation", "orientation_tolerance_deg",
-                             "tip_tolerance_mm"}))
-    return false;
+  if (!L.only_rows(t, kPre, machine_keys(), "kinematics")) return false;
   if (!L.boolean(t, kPre, "tcp", tcp.enabled)) return false;
   std::string method;
   if (!L.string(t, kPre, "orientation", method)) return false;
@@ -375,31 +463,36 @@ bool load_tools(Loader& L, const toml::table& t, std::vector<ToolConfig>& tools)
   return true;
 }
 
+// [work_offsets]: G54 … G59.3 = [X, Y, Z, A, B, C].
+bool load_work_offsets(Loader& L, const toml::table& t,
+                       std::array<Pose, kWorkOffsetCount>& offsets) {
+  if (!L.only_keys(t, "work_offsets.",
+                   {"G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3"}))
+    return false;
+  for (int i = 0; i < kWorkOffsetCount; ++i) {
+    const std::string key = kWorkOffsetNames[i];
+    const toml::node* n = t.get(key);
+    if (n == nullptr) continue;
+    const toml::array* arr = n->as_array();
+    bool okay = arr != nullptr && arr->size() == kAxisCount;
+    for (int k = 0; okay && k < kAxisCount; ++k) {
+      auto v = arr->get(static_cast<std::size_t>(k))->value<double>();
+      okay = v.has_value();
+      if (okay) offsets[i][k] = *v;
+    }
+    if (!okay)
+      return L.fail(ErrorCode::ConfigBadValue, n->source(),
+                    "work_offsets." + key + " must be an array of 6 numbers [X, Y, Z, A, B, C]");
+  }
+  return true;
+}
+
 bool load_axis(Loader& L, const toml::table& t, Axis axis, AxisConfig& a) {
   const std::string p = std::string("axes.") + letter(axis) + ".";
-  if (!L.only_keys(t, p, {"type", "min", "max", "max_velocity", "max_acceleration",
-                          "steps_per_unit", "wrap", "home_position", "home_search_velocity",
-                          "home_latch_velocity", "pitch_compensation", "following_error"}))
-    return false;
   a.present = true;
   a.axis = axis;
-  std::string type = is_rotary(axis) ? "rotary" : "linear";
-  const std::string expected_type = type;
-  if (!L.string(t, p, "type", type)) return false;
-  if (type != expected_type) {
-    return L.fail(ErrorCode::ConfigBadValue, t.get("type")->source(),
-                  "'" + p + "type' is \"" + type + "\"; axis " + letter(axis) + " must be \"" +
-                      expected_type + "\"");
-  }
-  return L.number(t, p, "min", a.min, true) && L.number(t, p, "max", a.max, true) &&
-         L.number(t, p, "max_velocity", a.max_velocity, true) &&
-         L.number(t, p, "max_acceleration", a.max_acceleration, true) &&
-         L.number(t, p, "steps_per_unit", a.steps_per_unit, false) &&
-         L.boolean(t, p, "wrap", a.wrap) &&
-         L.number(t, p, "following_error", a.following_error, false) &&
-         L.optional_number(t, p, "home_position", a.home_position) &&
-         L.optional_number(t, p, "home_search_velocity", a.home_search_velocity) &&
-         L.optional_number(t, p, "home_latch_velocity", a.home_latch_velocity) &&
+  return L.only_rows(t, p, axis_keys(), "axes.<L>") &&
+         L.read_rows(t, p, axis_keys(), "axes.<L>", a, is_rotary(axis)) &&
          load_pitch_table(L, t, p, a.pitch_compensation);
 }
 
@@ -441,70 +534,70 @@ std::string startup_code_problem(const std::string& code) {
   return {};
 }
 
-}  // namespace
-
-Status validate(const MachineConfig& m, const std::string& file) {
-  auto bad = [&](std::string msg) {
+// The range of each row of the key table, then what depends on more than
+// one key. `key` gets the path of the key at fault ("axes.X.max_velocity"),
+// for the parser to say where it stands in the file.
+Status check(const MachineConfig& m, const std::string& file, std::string& key) {
+  auto bad = [&](std::string k, std::string msg) {
+    key = std::move(k);
     return Status(make_error(ErrorCode::ConfigBadValue, std::move(msg), file));
   };
-  if (m.period_ns < 10'000 || m.period_ns > 10'000'000)
-    return bad("machine.period_us = " + fmt(m.period_ns / 1000.0) + "; allowed 10 … 10000 µs");
-  if (!(m.path_tolerance_mm > 0.0 && m.path_tolerance_mm <= 10.0))
-    return bad("machine.path_tolerance_mm = " + fmt(m.path_tolerance_mm) +
-               "; allowed > 0 … 10 mm");
+  for (const MachineKey& k : machine_keys()) {
+    if (k.get == nullptr) continue;
+    const std::string path = std::string(k.table) + "." + std::string(k.name);
+    if (const double v = k.get(m); !k.range.contains(v))
+      return bad(path, path + " = " + fmt(v) + "; allowed " + allowed_text(k));
+  }
   if (std::string why = startup_code_problem(m.startup_code); !why.empty())
-    return bad("machine.startup_code = \"" + m.startup_code + "\": " + why);
-  if (!(m.max_feed_override >= 1.0 && m.max_feed_override <= 2.0))
-    return bad("machine.max_feed_override = " + fmt(m.max_feed_override) + "; allowed 1.0 … 2.0");
-  if (!(m.max_jerk == 0.0 || (m.max_jerk >= kMinMaxJerk && m.max_jerk <= kMaxMaxJerk)))
-    return bad("machine.max_jerk = " + fmt(m.max_jerk) + "; allowed " + fmt(kMinMaxJerk) +
-               " … " + fmt(kMaxMaxJerk) + " mm/s³, or 0 for no jerk limit");
-  if (m.dda.magnitude_bits < 1 || m.dda.magnitude_bits > 16)
-    return bad("dda.magnitude_bits = " + std::to_string(m.dda.magnitude_bits) +
-               "; allowed 1 … 16");
+    return bad("machine.startup_code", "machine.startup_code = \"" + m.startup_code + "\": " + why);
   if (m.dda.capacity < m.dda.max_pulses() || m.dda.capacity > 1'000'000)
-    return bad("dda.capacity = " + std::to_string(m.dda.capacity) + "; allowed " +
-               std::to_string(m.dda.max_pulses()) +
-               " (one pulse per tick at the largest magnitude) … 1000000");
+    return bad("dda.capacity", "dda.capacity = " + std::to_string(m.dda.capacity) + "; allowed " +
+                                   std::to_string(m.dda.max_pulses()) +
+                                   " (one pulse per tick at the largest magnitude) … 1000000");
   if (m.dda_clock_hz() > 100e6)
-    return bad("dda clock = capacity / period = " + fmt(m.dda_clock_hz() / 1e6) +
-               " MHz; allowed up to 100 MHz");
-  if (!(m.laser.s_max > 0.0 && m.laser.s_max <= 1e6))
-    return bad("laser.s_max = " + fmt(m.laser.s_max) + "; allowed > 0 … 1000000");
+    return bad("dda.capacity", "dda clock = capacity / period = " + fmt(m.dda_clock_hz() / 1e6) +
+                                   " MHz; allowed up to 100 MHz");
   bool any = false;
   for (const AxisConfig& a : m.axes) {
     if (!a.present) continue;
     any = true;
     const std::string p = std::string("axes.") + letter(a.axis) + ".";
-    const char* unit = is_rotary(a.axis) ? "deg" : "mm";
+    const bool rotary = is_rotary(a.axis);
+    const char* unit = rotary ? "deg" : "mm";
+    for (const AxisKey& k : axis_keys()) {
+      if (k.get == nullptr) continue;
+      const std::string path = p + std::string(k.name);
+      if (const double v = k.get(a); !k.range.contains(v))
+        return bad(path, path + " = " + fmt(v) + "; allowed " + allowed_text(k, rotary));
+    }
     if (!(std::isfinite(a.min) && std::isfinite(a.max) && a.min < a.max))
-      return bad(p + "min = " + fmt(a.min) + ", max = " + fmt(a.max) + "; need min < max");
-    if (!(a.steps_per_unit > 0.0 && a.steps_per_unit <= 1e6))
-      return bad(p + "steps_per_unit = " + fmt(a.steps_per_unit) + "; allowed > 0 … 1000000");
+      return bad(p + "max", p + "min = " + fmt(a.min) + ", max = " + fmt(a.max) + "; need min < max");
     const double span_steps = std::max(std::abs(a.min), std::abs(a.max)) * a.steps_per_unit;
     if (span_steps > 2.0e9)
-      return bad(p + "travel of " + fmt(a.max - a.min) + " " + unit + " at " +
-                 fmt(a.steps_per_unit) + " steps/" + unit + " overflows 32-bit step counters");
-    if (!(a.max_velocity > 0.0 && a.max_velocity <= 1e5))
-      return bad(p + "max_velocity = " + fmt(a.max_velocity) + "; allowed > 0 … 100000 " + unit +
-                 "/s");
-    if (!(a.max_acceleration > 0.0 && a.max_acceleration <= 1e7))
-      return bad(p + "max_acceleration = " + fmt(a.max_acceleration) + "; allowed > 0 … 1e7 " +
-                 unit + "/s²");
-    if (a.wrap && !is_rotary(a.axis))
-      return bad(p + "wrap = true; only rotary axes (A B C) can wrap");
+      return bad(p + "steps_per_unit", p + "travel of " + fmt(a.max - a.min) + " " + unit + " at " +
+                                           fmt(a.steps_per_unit) + " steps/" + unit +
+                                           " overflows 32-bit step counters");
+    if (a.wrap && !rotary) return bad(p + "wrap", p + "wrap = true; only rotary axes (A B C) can wrap");
     if (a.wrap && std::abs((a.max - a.min) - 360.0) > 1e-9)
-      return bad(p + "wrap = true needs max − min = 360 deg; found " + fmt(a.max - a.min));
+      return bad(p + "wrap", p + "wrap = true needs max − min = 360 deg; found " + fmt(a.max - a.min));
     const double pulses = a.max_velocity * a.steps_per_unit * m.period_s();
     if (pulses > m.dda.max_pulses())
-      return bad(p + "max_velocity = " + fmt(a.max_velocity) + " " + unit + "/s needs " +
-                 fmt(pulses) + " pulses per " + fmt(m.period_ns / 1000.0) +
-                 " µs period; the DDA preset gives at most " + std::to_string(m.dda.max_pulses()) +
-                 " (raise dda.magnitude_bits or lower max_velocity)");
-    if (Status s = validate_home_and_pitch(m, a, file); !s) return s;
+      return bad(p + "max_velocity",
+                 p + "max_velocity = " + fmt(a.max_velocity) + " " + unit + "/s needs " +
+                     fmt(pulses) + " pulses per " + fmt(m.period_ns / 1000.0) +
+                     " µs period; the DDA preset gives at most " + std::to_string(m.dda.max_pulses()) +
+                     " (raise dda.magnitude_bits or lower max_velocity)");
+    if (Status s = validate_home_and_pitch(m, a, file, key); !s) return s;
   }
-  if (!any) return bad("no axes configured; expected at least one [axes.X] … [axes.C] table");
+  if (!any) return bad("axes", "no axes configured; expected at least one [axes.X] … [axes.C] table");
   return {};
+}
+
+}  // namespace
+
+Status validate(const MachineConfig& m, const std::string& file) {
+  std::string key;
+  return check(m, file, key);
 }
 
 Result<MachineConfig> parse_machine_config(std::string_view text, const std::string& name) {
@@ -522,128 +615,60 @@ Result<MachineConfig> parse_machine_config(std::string_view text, const std::str
   if (!L.only_keys(root, "", {"machine", "dda", "laser", "axes", "kinematics", "work_offsets", "tools"}))
     return L.err;
 
-  if (const toml::table* t = L.subtable(root, "machine")) {
-    double period_us = m.period_ns / 1000.0;
-    std::optional<double> max_jerk;
-    if (!L.only_keys(*t, "machine.",
-                     {"name", "period_us", "path_tolerance_mm", "max_feed_override", "max_jerk",
-                      "startup_code", "allow_unhomed", "block_delete", "subroutine_path",
-                      "parameter_file", "optional_stop", "dialect"}) ||
-        !L.boolean(*t, "machine.", "optional_stop", m.optional_stop) ||
-        !L.string(*t, "machine.", "parameter_file", m.parameter_file) ||
-        !L.boolean(*t, "machine.", "allow_unhomed", m.allow_unhomed) ||
-        !L.strings(*t, "machine.", "subroutine_path", m.subroutine_path) ||
-        !L.boolean(*t, "machine.", "block_delete", m.block_delete) ||
-        !L.string(*t, "machine.", "startup_code", m.startup_code) ||
-        !L.number(*t, "machine.", "max_feed_override", m.max_feed_override, false) ||
-        !L.optional_number(*t, "machine.", "max_jerk", max_jerk) ||
-        !L.string(*t, "machine.", "name", m.name) ||
-        !L.number(*t, "machine.", "period_us", period_us, false) ||
-        !L.number(*t, "machine.", "path_tolerance_mm", m.path_tolerance_mm, false))
-      return L.err;
-    if (!(period_us >= 10.0 && period_us <= 10000.0))
-      return make_error(ErrorCode::ConfigBadValue,
-                        "machine.period_us = " + fmt(period_us) + "; allowed 10 … 10000 µs", name,
-                        t->get("period_us")->source().begin.line,
-                        t->get("period_us")->source().begin.column);
-    m.period_ns = static_cast<std::uint32_t>(std::llround(period_us * 1000.0));
-    const std::filesystem::path config_dir = std::filesystem::path(name).parent_path();
-    for (std::string& dir : m.subroutine_path) {
-      if (std::filesystem::path(dir).is_relative() && !config_dir.empty()) {
-        dir = (config_dir / dir).lexically_normal().string();
+  // [machine], [dda], [laser], in this order: dialect = "grbl" sets the
+  // s_max a [laser] s_max overrides. Then the axes and the tables with
+  // loaders of their own; the first error ends the reading.
+  bool ok = true;
+  for (const std::string_view table : {"machine", "dda", "laser"}) {
+    const std::string prefix = std::string(table) + ".";
+    ok = ok && L.section(root, table, [&](const toml::table& t) {
+           return L.only_rows(t, prefix, machine_keys(), table) &&
+                  L.read_rows(t, prefix, machine_keys(), table, m);
+         });
+  }
+  ok = ok && L.section(root, "axes", [&](const toml::table& t) {
+         if (!L.only_keys(t, "axes.", {"X", "Y", "Z", "A", "B", "C"})) return false;
+         for (Axis a : kAllAxes) {
+           if (!L.section(t, std::string(1, letter(a)),
+                          [&](const toml::table& at) { return load_axis(L, at, a, m.axis(a)); }))
+             return false;
+         }
+         return true;
+       });
+  ok = ok && L.section(root, "kinematics", [&](const toml::table& t) {
+         return load_kinematics(L, t, m.kinematics, m.tcp);
+       });
+  ok = ok && L.section(root, "work_offsets", [&](const toml::table& t) {
+         return load_work_offsets(L, t, m.work_offsets);
+       });
+  ok = ok && L.section(root, "tools", [&](const toml::table& t) { return load_tools(L, t, m.tools); });
+  if (!ok) return L.err;
+  const std::filesystem::path config_dir = std::filesystem::path(name).parent_path();
+  for (std::string& dir : m.subroutine_path) {
+    if (std::filesystem::path(dir).is_relative() && !config_dir.empty()) {
+      dir = (config_dir / dir).lexically_normal().string();
+    }
+  }
+  if (!m.parameter_file.empty() && std::filesystem::path(m.parameter_file).is_relative() &&
+      !config_dir.empty()) {
+    m.parameter_file = (config_dir / m.parameter_file).lexically_normal().string();
+  }
+  std::string key;
+  if (Status s = check(m, name, key); !s) {
+    // Where the key at fault stands in the file; a default's nearest
+    // enclosing table when it is not written.
+    Diagnostic d = s.error();
+    for (std::string path = key; !path.empty();) {
+      if (const toml::node* n = root.at_path(path).node(); n != nullptr) {
+        d.line = n->source().begin.line;
+        d.col = n->source().begin.column;
+        break;
       }
+      const auto dot = path.rfind('.');
+      path = dot == std::string::npos ? std::string() : path.substr(0, dot);
     }
-    if (!m.parameter_file.empty() && std::filesystem::path(m.parameter_file).is_relative() &&
-        !config_dir.empty()) {
-      m.parameter_file = (config_dir / m.parameter_file).lexically_normal().string();
-    }
-    // Given means on: 0 is for a config built in code (no key, no limit).
-    if (max_jerk && !(*max_jerk >= kMinMaxJerk && *max_jerk <= kMaxMaxJerk))
-      return make_error(ErrorCode::ConfigBadValue,
-                        "machine.max_jerk = " + fmt(*max_jerk) + "; allowed " + fmt(kMinMaxJerk) +
-                            " … " + fmt(kMaxMaxJerk) + " mm/s³ (leave the key out for no jerk limit)",
-                        name, t->get("max_jerk")->source().begin.line,
-                        t->get("max_jerk")->source().begin.column);
-    if (max_jerk) m.max_jerk = *max_jerk;
-    std::string dialect = "rs274ngc";
-    if (!L.string(*t, "machine.", "dialect", dialect)) return L.err;
-    if (dialect == "grbl") {
-      m.dialect = MachineConfig::Dialect::Grbl;
-      m.laser.s_max = 1000.0;  // grbl's $30 default, unless [laser] s_max (read after) says
-    } else if (dialect != "rs274ngc") {
-      return make_error(ErrorCode::ConfigBadValue,
-                        "machine.dialect = \"" + dialect + "\"; allowed \"rs274ngc\" (LinuxCNC's, "
-                        "the default) or \"grbl\"",
-                        name, t->get("dialect")->source().begin.line,
-                        t->get("dialect")->source().begin.column);
-    }
+    return d;
   }
-  if (L.failed) return L.err;
-  if (const toml::table* t = L.subtable(root, "dda")) {
-    double bits = m.dda.magnitude_bits, cap = m.dda.capacity;
-    if (!L.only_keys(*t, "dda.", {"magnitude_bits", "capacity"}) ||
-        !L.number(*t, "dda.", "magnitude_bits", bits, false) ||
-        !L.number(*t, "dda.", "capacity", cap, false))
-      return L.err;
-    if (bits != std::floor(bits) || bits < 1 || bits > 16)
-      return make_error(ErrorCode::ConfigBadValue,
-                        "dda.magnitude_bits = " + fmt(bits) + "; allowed integers 1 … 16", name,
-                        t->source().begin.line);
-    if (cap != std::floor(cap) || cap < 1 || cap > 1e6)
-      return make_error(ErrorCode::ConfigBadValue,
-                        "dda.capacity = " + fmt(cap) + "; allowed integers 1 … 1000000", name,
-                        t->source().begin.line);
-    m.dda.magnitude_bits = static_cast<std::uint32_t>(bits);
-    m.dda.capacity = static_cast<std::uint32_t>(cap);
-  }
-  if (L.failed) return L.err;
-  if (const toml::table* t = L.subtable(root, "laser")) {
-    if (!L.only_keys(*t, "laser.", {"s_max"}) || !L.number(*t, "laser.", "s_max", m.laser.s_max, false))
-      return L.err;
-  }
-  if (L.failed) return L.err;
-  if (const toml::table* t = L.subtable(root, "axes")) {
-    if (!L.only_keys(*t, "axes.", {"X", "Y", "Z", "A", "B", "C"})) return L.err;
-    for (Axis a : kAllAxes) {
-      const std::string key(1, letter(a));
-      if (const toml::table* at = L.subtable(*t, key)) {
-        if (!load_axis(L, *at, a, m.axis(a))) return L.err;
-      }
-      if (L.failed) return L.err;
-    }
-  }
-  if (L.failed) return L.err;
-  if (const toml::table* t = L.subtable(root, "kinematics")) {
-    if (!load_kinematics(L, *t, m.kinematics, m.tcp)) return L.err;
-  }
-  if (L.failed) return L.err;
-  if (const toml::table* t = L.subtable(root, "work_offsets")) {
-    if (!L.only_keys(*t, "work_offsets.",
-                     {"G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3"}))
-      return L.err;
-    for (int i = 0; i < kWorkOffsetCount; ++i) {
-      const std::string key = kWorkOffsetNames[i];
-      const toml::node* n = t->get(key);
-      if (n == nullptr) continue;
-      const toml::array* arr = n->as_array();
-      bool okay = arr != nullptr && arr->size() == kAxisCount;
-      for (int k = 0; okay && k < kAxisCount; ++k) {
-        auto v = arr->get(static_cast<std::size_t>(k))->value<double>();
-        okay = v.has_value();
-        if (okay) m.work_offsets[i][k] = *v;
-      }
-      if (!okay)
-        return make_error(ErrorCode::ConfigBadValue,
-                          "work_offsets." + key + " must be an array of 6 numbers [X, Y, Z, A, B, C]",
-                          name, n->source().begin.line, n->source().begin.column);
-    }
-  }
-  if (L.failed) return L.err;
-  if (const toml::table* t = L.subtable(root, "tools")) {
-    if (!load_tools(L, *t, m.tools)) return L.err;
-  }
-  if (L.failed) return L.err;
-  if (Status s = validate(m, name); !s) return s.error();
   return m;
 }
 

@@ -100,7 +100,7 @@ bool curve_of(const Segment& s, const PlaneAxes& pa, Curve& out) {
   const Pose d = s.end - s.start;
   if (d.tail<3>().norm() > 0.0) return false;  // rotary motion: not here
   if (s.kind == MotionKind::Linear) {
-    if (std::abs(d[pa.normal]) > 1e-12) return false;  // leaves the plane
+    if (std::abs(d[pa.normal]) > plan::kInPlaneMm) return false;  // leaves the plane
     out.line = true;
     out.d = V2(d[pa.first], d[pa.second]);
     out.length = out.d.norm();
@@ -110,7 +110,7 @@ bool curve_of(const Segment& s, const PlaneAxes& pa, Curve& out) {
   }
   if (s.kind != MotionKind::Arc || s.plane == Plane::Free || plane_axes(s.plane).normal != pa.normal)
     return false;
-  if (std::abs(d[pa.normal]) > 1e-12) return false;  // helix
+  if (std::abs(d[pa.normal]) > plan::kInPlaneMm) return false;  // helix
   out.line = false;
   out.c = V2(s.center[pa.first], s.center[pa.second]);
   out.radius = (V2(s.start[pa.first], s.start[pa.second]) - out.c).norm();
@@ -134,7 +134,7 @@ ArcTransition fillet_transition(const Segment& a, const Segment& b, double toler
   const PlaneAxes pa = plane_axes(arc.plane);
   Curve A, B;
   if (!curve_of(a, pa, A) || !curve_of(b, pa, B)) return t;
-  if (std::abs(a.end[pa.normal] - b.start[pa.normal]) > 1e-12) return t;
+  if (std::abs(a.end[pa.normal] - b.start[pa.normal]) > plan::kInPlaneMm) return t;
   const V2 p(b.start[pa.first], b.start[pa.second]);
   const V2 ta = A.tangent(p), tb = B.tangent(p);
   const double turn = std::atan2(cross(ta, tb), ta.dot(tb));
@@ -155,7 +155,7 @@ ArcTransition fillet_transition(const Segment& a, const Segment& b, double toler
   const double r_est = std::min({l_c, max_trim_a, max_trim_b}) / std::tan(half);
   double lo = 0.0, hi = 4.0 * r_est;
   std::optional<Fillet> best;
-  for (double r = r_est; r > r_est * 1e-6; r *= 0.25) {
+  for (double r = r_est; r > r_est * plan::kFilletSearchFloor; r *= 0.25) {
     if ((best = feasible(r))) {
       lo = r;
       break;
@@ -163,8 +163,8 @@ ArcTransition fillet_transition(const Segment& a, const Segment& b, double toler
     hi = r;
   }
   if (!best) return t;
-  // to 1e-9 of the radius: the speed it allows, sqrt(a·r), within 5e-10 of the best
-  for (int it = 0; it < 60 && hi - lo > 1e-9 * hi; ++it) {
+  // to kFilletRadiusRel of the radius
+  for (int it = 0; it < plan::kFilletBisectionSteps && hi - lo > plan::kFilletRadiusRel * hi; ++it) {
     const double mid = 0.5 * (lo + hi);
     if (auto f = feasible(mid)) {
       lo = mid;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "plan/tolerance_budget.h"
 #include "plan/tolerances.h"
 
 namespace lcnc {
@@ -23,7 +24,7 @@ JerkLimit jerk_limit(const MachineConfig& m) {
   if (a_top <= 0.0) return lim;
   const double norm_ratio = std::sqrt(a_sqr) / a_top;           // |a| / a_top
   const double swing = 2.0 + plan::kJunctionJumpShare;  // Δa_in / a, eq. (1)
-  const double budget = plan::kJerkFilterShare * m.path_tolerance_mm;
+  const double budget = jerk_filter_budget_mm(m);
   // e_f of a window of `taps` when the largest axis acceleration is `a`, eq. (2)
   auto error = [&](double taps, double a) {
     return norm_ratio * a * period * period * (taps * taps - 1.0) / 24.0;

@@ -23,7 +23,7 @@ namespace {
 void fit_profile(const SegmentLimits& lim, double v_max, double L, double v0, double v1,
                  Trapezoid& out) {
   auto fits = [&](double vc, const Accel& a) {
-    return (vc * vc - v0 * v0) / a.accel + (vc * vc - v1 * v1) / a.decel <= 2.0 * L * (1.0 + 1e-12);
+    return (vc * vc - v0 * v0) / a.accel + (vc * vc - v1 * v1) / a.decel <= 2.0 * L * (1.0 + plan::kProfileFitRel);
   };
   auto peak = [&](const Accel& a) {
     return std::sqrt(Trapezoid::peak_sqr(L, a.accel, a.decel, v0, v1));

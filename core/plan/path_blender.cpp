@@ -41,14 +41,8 @@ Vec3 rotary_rate(const Segment& s, double length) {
 }  // namespace
 
 PathBlender::PathBlender(const MachineConfig& machine, SegmentSource source,
-                         double filter_error_mm)
-    : merger_(std::move(source)), filter_error_mm_(filter_error_mm) {
-  double sum = 0.0;
-  for (int i = 0; i < 3; ++i) {
-    const AxisConfig& ax = machine.axes[i];
-    if (ax.present) sum += std::pow(0.5 / ax.steps_per_unit, 2);
-  }
-  margin_mm_ = std::sqrt(sum);
+                         const ToleranceBudget& budget)
+    : merger_(std::move(source)), budget_(budget) {
   if (machine.tcp.enabled) tip_mm_per_deg_ = tip_lever_mm(machine.kinematics) * std::numbers::pi / 180.0;
 }
 
@@ -82,9 +76,8 @@ SourceStatus PathBlender::next(const IndexedSegment*& out) {
     const bool cur_blendable = blendable(cur.seg);
     if (have_pending_ && cur_blendable) {
       const Segment& a = pending.seg;
-      double tol = std::min(a.blend_tolerance_mm, cur.seg.blend_tolerance_mm) -
-                   std::max(merge_tolerance(a), merge_tolerance(cur.seg)) - margin_mm_ -
-                   filter_error_mm_;
+      double tol = budget_.corner_mm(std::min(a.blend_tolerance_mm, cur.seg.blend_tolerance_mm),
+                                     std::max(merge_tolerance(a), merge_tolerance(cur.seg)));
       const double len_a = pending_length_;
       const double len_b = path_length(cur.seg);
       // Under tool-centre-point control the rotary axes run linearly across
@@ -96,14 +89,15 @@ SourceStatus PathBlender::next(const IndexedSegment*& out) {
       if (tip_mm_per_deg_ > 0.0) {
         const double jump = (rotary_rate(cur.seg, len_b) - rotary_rate(a, len_a)).norm();
         if (jump > 0.0) {
-          tol *= 0.5;
+          tol *= plan::kTcpXyzShare;
           trim_cap = tol / (0.5 * tip_mm_per_deg_ * jump);
         }
       }
       // A corner takes at most half of a line and 45 % of an arc (an arc
       // trimmed to nothing would read as a full circle).
-      const double share_a = a.kind == MotionKind::Arc ? 0.45 : 0.5;
-      const double share_b = cur.seg.kind == MotionKind::Arc ? 0.45 : 0.5;
+      const double share_a = a.kind == MotionKind::Arc ? plan::kCornerArcShare : plan::kCornerLineShare;
+      const double share_b =
+          cur.seg.kind == MotionKind::Arc ? plan::kCornerArcShare : plan::kCornerLineShare;
       const double max_a = std::min({pending_full_length_ * share_a, len_a, trim_cap});
       const double max_b = std::min(len_b * share_b, trim_cap);
       // A line–line blend goes straight into arc_, its geometry as built

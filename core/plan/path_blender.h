@@ -3,10 +3,9 @@
 //
 // Program lines first pass the naive-CAM merger (G64 Q, plan/line_merger.h).
 // Corners between two feed lines (G1) that are both in G64 get a tangent arc
-// within the tolerance E = min(P of the two blocks) − q (the merger's share)
-// − e_f (the jerk filter's deviation, plan/jerk_filter.h; 0 without a jerk
-// limit) − the quantization margin (half a step on each linear axis, so that
-// after rounding to steps the executed path still stays within P). Each
+// within the tolerance E of plan/tolerance_budget.h: min(P of the two
+// blocks) less the merger's share, the quantization margin and the jerk
+// filter's deviation, so that the executed path stays within P. Each
 // corner may use at most half of each neighbouring line (seed 000:
 // l_s = min(S(i)/2, S(i+1)/2)). Rotary axes moving along do not switch
 // blending off. Corners with an arc on one or both sides get a fillet in the
@@ -25,27 +24,28 @@
 #include "plan/arc_transition.h"
 #include "plan/line_merger.h"
 #include "plan/planned_segment.h"
+#include "plan/tolerance_budget.h"
 
 namespace lcnc {
 
 
 class PathBlender {
  public:
-  // filter_error_mm: e_f, kept out of every blend's tolerance.
-  PathBlender(const MachineConfig& machine, SegmentSource source, double filter_error_mm = 0.0);
+  // budget: what of each corner's P the blend arc may not take.
+  PathBlender(const MachineConfig& machine, SegmentSource source, const ToleranceBudget& budget);
+  // The machine's budget without a jerk filter (e_f = 0).
+  PathBlender(const MachineConfig& machine, SegmentSource source)
+      : PathBlender(machine, std::move(source), tolerance_budget(machine, 0.0)) {}
   // The next segment, valid until next() is called again.
   [[nodiscard]] SourceStatus next(const IndexedSegment*& out);
 
-  // Half a step on every linear axis, as a distance (mm).
-  [[nodiscard]] double quantization_margin_mm() const noexcept { return margin_mm_; }
 
  private:
   // Queues s to hand out, its geometry computed unless it has it already.
   void emit(IndexedSegment& s, bool with_geometry = false);
 
   LineMerger merger_;
-  double margin_mm_ = 0.0;
-  double filter_error_mm_ = 0.0;
+  ToleranceBudget budget_;
   double tip_mm_per_deg_ = 0.0;  // under TCP: how far a degree of A or C moves the tip at most
   bool have_pending_ = false;
   // The pending line, whose end may still be blended, and the one read after

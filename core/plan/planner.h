@@ -7,7 +7,8 @@
 // With a jerk limit (machine.max_jerk, plan/jerk_filter.h) the look-ahead
 // plans at the accelerations the filter leaves, a hold is inserted at every
 // stop before coarse interpolation (StopHolds), and the samples pass a moving
-// average (JerkFilter); the blends keep the filter's deviation out of P.
+// average (JerkFilter); the blends keep the filter's deviation out of P
+// (ToleranceBudget, plan/tolerance_budget.h).
 // Without it every stage runs as before: the output is bit-identical.
 //
 // Pull-driven and streaming: memory stays bounded whatever the program's
@@ -19,6 +20,7 @@
 #include "plan/jerk_filter.h"
 #include "plan/lookahead.h"
 #include "plan/path_blender.h"
+#include "plan/tolerance_budget.h"
 
 namespace lcnc {
 
@@ -45,11 +47,14 @@ class Planner {
   [[nodiscard]] double feed_scale() const noexcept { return lookahead_.feed_scale(); }
   // The jerk filter in force (taps 1: none).
   [[nodiscard]] const JerkLimit& jerk_limit() const noexcept { return jerk_; }
+  // What of a corner's P the blends leave to rounding and the jerk filter.
+  [[nodiscard]] const ToleranceBudget& tolerance_budget() const noexcept { return budget_; }
   // Observes every planned segment as it leaves the look-ahead (tests, benchmarks).
   void on_planned(std::function<void(const PlannedSegment&)> f) { on_planned_ = std::move(f); }
 
  private:
   JerkLimit jerk_;
+  ToleranceBudget budget_;  // computed once here, from the machine and jerk_
   MachineConfig planned_;  // the machine as the look-ahead plans it (planned_machine())
   PathBlender blender_;
   Lookahead lookahead_;

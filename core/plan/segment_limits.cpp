@@ -19,7 +19,7 @@ constexpr double kPi = 3.14159265358979323846;
 // does. For sweep < π (every blend) that is decided without atan2 and
 // without branching on the data (lines and arcs alternate, the signs are
 // anyone's): α ∈ [0, sweep] ⇔ b ≥ 0 and a·sin(sweep) − b·cos(sweep) ≥ 0.
-// Within 1e-9·(|a| + |b|) of either boundary it counts as inside — the
+// Within kSweepExtremumRel·(|a| + |b|) of either boundary it counts as inside — the
 // extremum is then that close to an end, so the range widens by a relative
 // 1e-18 at most, to the safe side.
 void sinusoid_range(double a, double b, double amp, const SegmentGeometry& geo, double& lo,
@@ -29,7 +29,7 @@ void sinusoid_range(double a, double b, double amp, const SegmentGeometry& geo, 
   lo = std::min(a, end);
   hi = std::max(a, end);
   if (geo.sweep_rad() < kPi) {
-    const double tol = 1e-9 * (std::abs(a) + std::abs(b));
+    const double tol = plan::kSweepExtremumRel * (std::abs(a) + std::abs(b));
     const double cross = a * sn - b * cs;
     hi = (b >= -tol && cross >= -tol) ? amp : hi;
     lo = (b <= tol && cross <= tol) ? -amp : lo;
@@ -69,13 +69,13 @@ void box_lines(const ArcAxis& x, double rho, double c, ArcAxisBound& b) {
   b.p_up = b.p_down = {kInf, kInf};
   b.q_up = b.q_down = {0.0, 0.0};
   const double q_hi = x.n_hi * c, q_lo = -x.n_lo * c;
-  if (x.t_hi > 1e-15) {  // speeding up: its first line; slowing down: its second
+  if (x.t_hi > plan::kNegligibleAxisShare) {  // speeding up: its first line; slowing down: its second
     const double per = 1.0 / (rho * x.t_hi);
     b.p_up[0] = b.p_down[1] = x.a_axis * per;
     b.q_up[0] = q_hi * per;
     b.q_down[1] = q_lo * per;
   }
-  if (x.t_lo < -1e-15) {  // speeding up: its second line; slowing down: its first
+  if (x.t_lo < -plan::kNegligibleAxisShare) {  // speeding up: its second line; slowing down: its first
     const double per = 1.0 / (rho * -x.t_lo);
     b.p_up[1] = b.p_down[0] = x.a_axis * per;
     b.q_up[1] = q_lo * per;
@@ -194,7 +194,7 @@ void segment_limits(const SegmentGeometry& geo, const MachineConfig& machine, Se
   double v_k = 0.0, a_k = 0.0;
   for (int i = 0; i < kAxisCount; ++i) {
     const double k = std::abs(lin[i]);
-    if (k <= 1e-15) continue;
+    if (k <= plan::kNegligibleAxisShare) continue;
     const AxisConfig& ax = machine.axes[i];
     if (!ax.present) return;  // the reader rejects such moves first
     if (v_axis == nullptr || k * v_axis->max_velocity > v_k * ax.max_velocity) {
@@ -219,7 +219,7 @@ void segment_limits(const SegmentGeometry& geo, const MachineConfig& machine, Se
     for (int i = 0; i < 3; ++i) {
       const double ui = geo.u()[i], wi = geo.w()[i];
       const double g = std::sqrt(ui * ui + wi * wi);  // ≤ 1
-      if (g <= 1e-15) continue;
+      if (g <= plan::kNegligibleAxisShare) continue;
       const AxisConfig& ax = machine.axes[i];
       ArcAxis& x = arc_axes[arc_axis_count++];
       x.a_axis = derate.a * ax.max_acceleration;
@@ -232,7 +232,7 @@ void segment_limits(const SegmentGeometry& geo, const MachineConfig& machine, Se
       const double t_abs = std::max(std::abs(x.t_lo), std::abs(x.t_hi));
       const double n_abs = std::max(std::abs(x.n_lo), std::abs(x.n_hi));
       v_max = std::min(v_max, derate.v * ax.max_velocity / (rho * t_abs + std::abs(lin[i])));
-      if (n_abs > 1e-15) a_n_max = std::min(a_n_max, x.a_axis / n_abs);
+      if (n_abs > plan::kNegligibleAxisShare) a_n_max = std::min(a_n_max, x.a_axis / n_abs);
     }
     // centripetal limit: (ρ·v)²/r · N_i ≤ share · amax_i
     if (std::isfinite(a_n_max))

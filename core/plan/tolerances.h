@@ -38,4 +38,40 @@ inline constexpr double kJerkFilterShare = 0.5;
 // Velocities below this (mm/s) count as standing still.
 inline constexpr double kMinVelocity = 1e-9;
 
+// --- segment limits (segment_limits.cpp) ------------------------------------
+// An axis' share of a unit direction (its travel per unit of path, or its
+// component of an arc's tangent or normal) at or below this is no motion of
+// that axis: it sets no limit (a division by it would overflow the limit).
+inline constexpr double kNegligibleAxisShare = 1e-15;
+// Slack, relative to the sinusoid's coefficients |a| + |b|, on the sign tests
+// that decide whether an arc's sweep passes an axis' extremum: rounding in
+// the arc's start direction must not hide the peak at its very end.
+inline constexpr double kSweepExtremumRel = 1e-9;
+
+// --- corner fillets (fillet_transition.cpp) ---------------------------------
+// A line or arc whose ends differ by at most this (mm) along the plane's
+// normal lies in the plane (rounding of G18/G19 positions, not a helix).
+inline constexpr double kInPlaneMm = 1e-12;
+// The fillet radius search steps down from the line–line estimate by 4×
+// until it fits; below this fraction of the estimate it gives up (no blend).
+inline constexpr double kFilletSearchFloor = 1e-6;
+// The bisection then stops at this relative width of the radius bracket
+// (the speed it allows, sqrt(a·r), within 5e-10 of the best), or after
+// kFilletBisectionSteps halvings.
+inline constexpr double kFilletRadiusRel = 1e-9;
+inline constexpr int kFilletBisectionSteps = 60;
+
+// --- corner shares and look-ahead (path_blender.cpp, lookahead.cpp) ---------
+// A corner takes at most this share of a line and of an arc on each side
+// (an arc trimmed to nothing would read as a full circle).
+inline constexpr double kCornerLineShare = 0.5;
+inline constexpr double kCornerArcShare = 0.45;
+// Under tool-centre-point control, the share of a corner's tolerance that
+// goes to X Y Z when rotary axes move across it (the rest to the rotary
+// axes' tip motion).
+inline constexpr double kTcpXyzShare = 0.5;
+// A speed profile fits a segment's length L when it needs at most
+// L·(1 + this): the rounding of v² sums must not reject the exact fit.
+inline constexpr double kProfileFitRel = 1e-12;
+
 }  // namespace lcnc::plan

@@ -45,8 +45,15 @@ TEST(MaxJerkKey, IsReadInMmPerCubicSecond) {
   EXPECT_TRUE(jerk_limit(*m).enabled());
 }
 
-TEST(MaxJerkKey, ZeroOrNegativeIsAnErrorWithItsPlace) {
-  for (const char* v : {"0", "-5", "0.5", "2e10"}) {
+// 0 is "none", as in a config built in code: the key has one range.
+TEST(MaxJerkKey, ZeroMeansNoJerkLimit) {
+  auto m = parse_with("max_jerk = 0");
+  ASSERT_TRUE(m) << m.error().to_string();
+  EXPECT_FALSE(jerk_limit(*m).enabled());
+}
+
+TEST(MaxJerkKey, NegativeOrOutOfRangeIsAnErrorWithItsPlace) {
+  for (const char* v : {"-5", "0.5", "2e10"}) {
     auto m = parse_with(std::string("max_jerk = ") + v);
     ASSERT_FALSE(m) << v;
     EXPECT_EQ(m.error().code, ErrorCode::ConfigBadValue);
