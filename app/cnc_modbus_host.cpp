@@ -7,32 +7,8 @@
 
 namespace lcnc::app {
 
-HoleProcessParams to_process_params(const drivers::HoleParameters& p) {
-  HoleProcessParams h;
-  h.hole_number = p.hole_number;
-  h.position = Pose::Zero();
-  h.position[0] = p.x_mm;
-  h.position[1] = p.y_mm;
-  h.position[2] = p.z_mm;
-  h.position[3] = p.a_deg;
-  h.position[5] = p.c_deg;
-  h.feed_mm_min = p.feed_mm_min;
-  h.layer_feed_mm = p.layer_feed_mm;
-  h.layer_count = p.layer_count;
-  h.total_depth_mm = p.total_depth_mm;
-  h.power_pct = p.laser_power_pct;
-  h.head.start_radius_mm = p.scan_start_radius_mm;
-  h.head.end_radius_mm = p.scan_end_radius_mm;
-  h.head.radius_turns = p.scan_radius_turns;
-  h.head.scan_speed_mm_s = p.scan_speed_mm_s;
-  h.head.wedge_speed_rpm = p.wedge_speed_rpm;
-  h.head.beam_offset_mm = p.beam_offset_mm;
-  h.process = static_cast<HoleProcessId>(p.process_id);
-  return h;
-}
-
 Status check_hole_block(const drivers::HoleParameters& p) {
-  HoleProcessParams h = to_process_params(p);
+  HoleProcessParams h = p;
   // The polygon of a free shape is a process-database matter: check the
   // rest of the block as the circle scan's (same fields, same ranges).
   if (h.process == HoleProcessId::FreeShape) h.process = HoleProcessId::Circle;

@@ -46,11 +46,9 @@ struct Ack {
 // A Modbus command as the daemon executes it: the shm command it stands for.
 using CommandExecutor = std::function<Ack(const shm::Command&)>;
 
-// The hole parameter block (DESIGN §6 fields 1–18) as the hole processes
-// take it. A free shape's polygon is not part of the block (it stays empty).
-[[nodiscard]] HoleProcessParams to_process_params(const drivers::HoleParameters& p);
-// Checks the block as the hole generator would; a free shape is checked
-// without its polygon.
+// Checks the hole parameter block (DESIGN §6 fields 1–18, a hole process
+// record without a free shape's polygon) as the hole generator would; a
+// free shape is checked without its polygon.
 [[nodiscard]] Status check_hole_block(const drivers::HoleParameters& p);
 // The kernel's status as the register map publishes it.
 [[nodiscard]] drivers::CncStatusSnapshot to_snapshot(const shm::Status& st, std::uint32_t axes_mask);

@@ -3,66 +3,39 @@
 #include <QCoreApplication>
 
 #include <array>
+#include <string_view>
+
+#include "holes/hole_fields.h"
 
 namespace lcnc::hmi {
 namespace {
 
-struct ColumnInfo {
-  const char* title;  // operator text, translated (tr)
-  const char* unit;
-};
-
-// The header: field name and unit (DESIGN §6).
-constexpr std::array<ColumnInfo, HoleTableModel::kColumnCount> kColumns = {{
-    {QT_TRANSLATE_NOOP("HoleTableModel", "Hole"), ""},
-    {QT_TRANSLATE_NOOP("HoleTableModel", "X"), "mm"},
-    {QT_TRANSLATE_NOOP("HoleTableModel", "Y"), "mm"},
-    {QT_TRANSLATE_NOOP("HoleTableModel", "Z"), "mm"},
-    {QT_TRANSLATE_NOOP("HoleTableModel", "A"), "deg"},
-    {QT_TRANSLATE_NOOP("HoleTableModel", "C"), "deg"},
-    {QT_TRANSLATE_NOOP("HoleTableModel", "Feed"), "mm/min"},
-    {QT_TRANSLATE_NOOP("HoleTableModel", "Layer feed"), "mm"},
-    {QT_TRANSLATE_NOOP("HoleTableModel", "Layers"), ""},
-    {QT_TRANSLATE_NOOP("HoleTableModel", "Depth"), "mm"},
-    {QT_TRANSLATE_NOOP("HoleTableModel", "Power"), "%"},
-    {QT_TRANSLATE_NOOP("HoleTableModel", "Start radius"), "mm"},
-    {QT_TRANSLATE_NOOP("HoleTableModel", "End radius"), "mm"},
-    {QT_TRANSLATE_NOOP("HoleTableModel", "Radius turns"), ""},
-    {QT_TRANSLATE_NOOP("HoleTableModel", "Scan speed"), "mm/s"},
-    {QT_TRANSLATE_NOOP("HoleTableModel", "Wedge speed"), "rpm"},
-    {QT_TRANSLATE_NOOP("HoleTableModel", "Beam offset"), "mm"},
-    {QT_TRANSLATE_NOOP("HoleTableModel", "Process"), ""},
-    {QT_TRANSLATE_NOOP("HoleTableModel", "Focus offset"), "mm"},
+// The header's titles (operator text, translated with tr); the fields'
+// units are the field table's (holes/hole_fields.h), the focus offset's mm.
+constexpr std::array<const char*, HoleTableModel::kColumnCount> kTitles = {{
+    QT_TRANSLATE_NOOP("HoleTableModel", "Hole"),
+    QT_TRANSLATE_NOOP("HoleTableModel", "X"),
+    QT_TRANSLATE_NOOP("HoleTableModel", "Y"),
+    QT_TRANSLATE_NOOP("HoleTableModel", "Z"),
+    QT_TRANSLATE_NOOP("HoleTableModel", "A"),
+    QT_TRANSLATE_NOOP("HoleTableModel", "C"),
+    QT_TRANSLATE_NOOP("HoleTableModel", "Feed"),
+    QT_TRANSLATE_NOOP("HoleTableModel", "Layer feed"),
+    QT_TRANSLATE_NOOP("HoleTableModel", "Layers"),
+    QT_TRANSLATE_NOOP("HoleTableModel", "Depth"),
+    QT_TRANSLATE_NOOP("HoleTableModel", "Power"),
+    QT_TRANSLATE_NOOP("HoleTableModel", "Start radius"),
+    QT_TRANSLATE_NOOP("HoleTableModel", "End radius"),
+    QT_TRANSLATE_NOOP("HoleTableModel", "Radius turns"),
+    QT_TRANSLATE_NOOP("HoleTableModel", "Scan speed"),
+    QT_TRANSLATE_NOOP("HoleTableModel", "Wedge speed"),
+    QT_TRANSLATE_NOOP("HoleTableModel", "Beam offset"),
+    QT_TRANSLATE_NOOP("HoleTableModel", "Process"),
+    QT_TRANSLATE_NOOP("HoleTableModel", "Focus offset"),
 }};
-
-double* number_of(HoleRecord& r, int column) {
-  HoleProcessParams& p = r.params;
-  switch (column) {
-    case HoleTableModel::kX: return &p.position[0];
-    case HoleTableModel::kY: return &p.position[1];
-    case HoleTableModel::kZ: return &p.position[2];
-    case HoleTableModel::kA: return &p.position[3];
-    case HoleTableModel::kC: return &p.position[5];
-    case HoleTableModel::kFeed: return &p.feed_mm_min;
-    case HoleTableModel::kLayerFeed: return &p.layer_feed_mm;
-    case HoleTableModel::kDepth: return &p.total_depth_mm;
-    case HoleTableModel::kPower: return &p.power_pct;
-    case HoleTableModel::kStartRadius: return &p.head.start_radius_mm;
-    case HoleTableModel::kEndRadius: return &p.head.end_radius_mm;
-    case HoleTableModel::kScanSpeed: return &p.head.scan_speed_mm_s;
-    case HoleTableModel::kWedgeSpeed: return &p.head.wedge_speed_rpm;
-    case HoleTableModel::kBeamOffset: return &p.head.beam_offset_mm;
-    default: return nullptr;
-  }
-}
-
-std::uint32_t* count_of(HoleRecord& r, int column) {
-  switch (column) {
-    case HoleTableModel::kLayers: return &r.params.layer_count;
-    case HoleTableModel::kTurns: return &r.params.head.radius_turns;
-    default: return nullptr;
-  }
-}
+constexpr const char* kFocusUnit = "mm";
+static_assert(HoleTableModel::kFocus == static_cast<int>(kHoleFields.size()),
+              "the columns before the focus offset are the hole record's fields, in order");
 
 }  // namespace
 
@@ -95,19 +68,22 @@ QVariant HoleTableModel::data(const QModelIndex& index, int role) const {
                                 : QVariant(tr(process_name(r.params.process)));
   }
   if (c == kFocus) return r.focus_offset_mm ? QVariant(*r.focus_offset_mm) : QVariant();
-  if (std::uint32_t* n = count_of(r, c)) return *n;
-  if (double* x = number_of(r, c)) return *x;
-  return {};
+  const HoleField& f = kHoleFields[static_cast<std::size_t>(c)];
+  if (f.type == HoleFieldType::Count) return static_cast<uint>(f.get(r.params));
+  return f.get(r.params);
 }
 
 QVariant HoleTableModel::headerData(int section, Qt::Orientation orientation, int role) const {
   if (role != Qt::DisplayRole || orientation != Qt::Horizontal || section < 0 || section >= kColumnCount)
     return QAbstractTableModel::headerData(section, orientation, role);
-  const ColumnInfo& c = kColumns[static_cast<std::size_t>(section)];
   // the titles' context is the one QT_TRANSLATE_NOOP names above (tr()'s
   // would be lcnc::hmi::HoleTableModel, where they are not)
-  const QString title = QCoreApplication::translate("HoleTableModel", c.title);
-  return *c.unit ? title + " (" + QString::fromUtf8(c.unit) + ")" : title;
+  const QString title =
+      QCoreApplication::translate("HoleTableModel", kTitles[static_cast<std::size_t>(section)]);
+  const std::string_view unit =
+      section == kFocus ? kFocusUnit : kHoleFields[static_cast<std::size_t>(section)].unit;
+  return unit.empty() ? title
+                      : title + " (" + QString::fromUtf8(unit.data(), static_cast<int>(unit.size())) + ")";
 }
 
 Qt::ItemFlags HoleTableModel::flags(const QModelIndex& index) const {
@@ -131,22 +107,22 @@ bool HoleTableModel::setData(const QModelIndex& index, const QVariant& value, in
       return false;
     }
     r.params.process = static_cast<HoleProcessId>(id);
-  } else if (std::uint32_t* n = count_of(r, c)) {
+  } else if (c == kHole || c == kFocus || c < 0 || c >= kColumnCount) {  // the key; measured
+    return false;
+  } else if (const HoleField& f = kHoleFields[static_cast<std::size_t>(c)]; f.type == HoleFieldType::Count) {
     const uint v = value.toUInt(&ok);
     if (!ok) {
       emit refused(tr("hole %1: %2 must be a whole number").arg(r.params.hole_number).arg(headerData(c, Qt::Horizontal).toString()));
       return false;
     }
-    *n = v;
-  } else if (double* x = number_of(r, c)) {
+    f.set(r.params, v);
+  } else {
     const double v = value.toDouble(&ok);
     if (!ok) {
       emit refused(tr("hole %1: %2 must be a number").arg(r.params.hole_number).arg(headerData(c, Qt::Horizontal).toString()));
       return false;
     }
-    *x = v;
-  } else {
-    return false;
+    f.set(r.params, v);
   }
   const Status s = db_.put(r);
   if (!s) {

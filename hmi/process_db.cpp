@@ -11,43 +11,54 @@
 #include <QVariant>
 
 #include "hmi/replace_file.h"
+#include "holes/hole_fields.h"
 #include "holes/hole_table.h"
 
 namespace lcnc::hmi {
 namespace {
 
-// Schema version 1. The CHECKs repeat DESIGN §6's ranges (and what the
-// hole processes need) so that no path, not even raw SQL, stores a value
-// out of range; validate() gives the operator the message first.
-constexpr const char* kSchema = R"(
-CREATE TABLE IF NOT EXISTS holes (
-  hole            INTEGER PRIMARY KEY CHECK (hole BETWEEN 1 AND 10000),
-  x_mm            REAL NOT NULL CHECK (x_mm BETWEEN 0 AND 1000),
-  y_mm            REAL NOT NULL CHECK (y_mm BETWEEN 0 AND 450),
-  z_mm            REAL NOT NULL CHECK (z_mm BETWEEN 0 AND 500),
-  a_deg           REAL NOT NULL CHECK (a_deg BETWEEN -95 AND 95),
-  c_deg           REAL NOT NULL CHECK (c_deg >= 0 AND c_deg <= 359.999),
-  feed_mm_min     REAL NOT NULL CHECK (feed_mm_min > 0 AND feed_mm_min <= 2000),
-  layer_feed_mm   REAL NOT NULL CHECK (layer_feed_mm > 0 AND layer_feed_mm <= 1),
-  layer_count     INTEGER NOT NULL CHECK (layer_count BETWEEN 1 AND 10000),
-  total_depth_mm  REAL NOT NULL CHECK (abs(total_depth_mm - layer_count * layer_feed_mm) <= 0.001),
-  power_pct       REAL NOT NULL CHECK (power_pct BETWEEN 0 AND 100),
-  start_radius_mm REAL NOT NULL CHECK (start_radius_mm BETWEEN 0 AND 50),
-  end_radius_mm   REAL NOT NULL CHECK (end_radius_mm BETWEEN 0 AND 50),
-  radius_turns    INTEGER NOT NULL CHECK (radius_turns BETWEEN 1 AND 1000),
-  scan_speed_mm_s REAL NOT NULL CHECK (scan_speed_mm_s >= 0),
-  wedge_speed_rpm REAL NOT NULL CHECK (wedge_speed_rpm >= 0),
-  beam_offset_mm  REAL NOT NULL,
-  process         INTEGER NOT NULL CHECK (process IN (0, 1, 2)),
-  shape           TEXT NOT NULL DEFAULT '',
-  focus_offset_mm REAL CHECK (focus_offset_mm IS NULL OR abs(focus_offset_mm) <= 50)
-))";
+// Schema version 1: one column per field of the hole record, named,
+// typed and range-checked from its table (holes/hole_fields.h), then the
+// free shape and the measured focus offset. The CHECKs hold the ranges so
+// that no path, not even raw SQL, stores a value out of range; validate()
+// gives the operator the message first. A database made before a range was
+// added here keeps its table as it was made (CREATE … IF NOT EXISTS) and
+// loads unchanged; the write paths check every row with validate() anyway.
+std::string column_definition(const HoleField& f) {
+  const std::string c(f.column);
+  std::string range = f.lo_open ? c + " > " + shortest_number_text(f.lo) + " AND " + c +
+                                      " <= " + shortest_number_text(f.hi)
+                                : c + " BETWEEN " + shortest_number_text(f.lo) + " AND " +
+                                      shortest_number_text(f.hi);
+  if (f.scan_radius)  // a free shape does not use the scan radii
+    range = "process = " + std::to_string(static_cast<int>(HoleProcessId::FreeShape)) + " OR (" +
+            range + ")";
+  std::string def = c + (f.type == HoleFieldType::Real ? " REAL" : " INTEGER") +
+                    (&f == &kHoleFields.front() ? " PRIMARY KEY" : " NOT NULL") + " CHECK (" + range + ")";
+  if (f.column == "total_depth_mm")
+    def += " CHECK (abs(total_depth_mm - layer_count * layer_feed_mm) <= " +
+           shortest_number_text(kDepthTolerance) + ")";
+  return def;
+}
+
+std::string schema() {
+  std::string s = "CREATE TABLE IF NOT EXISTS holes (\n";
+  for (const HoleField& f : kHoleFields) s += "  " + column_definition(f) + ",\n";
+  s += "  shape TEXT NOT NULL DEFAULT '',\n";
+  s += "  focus_offset_mm REAL CHECK (focus_offset_mm IS NULL OR abs(focus_offset_mm) <= " +
+       shortest_number_text(kMaxFocusOffsetMm) + ")\n)";
+  return s;
+}
 constexpr int kSchemaVersion = 1;
 
-constexpr const char* kColumns =
-    "hole, x_mm, y_mm, z_mm, a_deg, c_deg, feed_mm_min, layer_feed_mm, layer_count, total_depth_mm, "
-    "power_pct, start_radius_mm, end_radius_mm, radius_turns, scan_speed_mm_s, wedge_speed_rpm, "
-    "beam_offset_mm, process, shape, focus_offset_mm";
+// The columns in the order record_of() and insert() use them.
+QString columns() {
+  QString c;
+  for (const HoleField& f : kHoleFields) c += QString::fromUtf8(f.column.data(), static_cast<int>(f.column.size())) + ", ";
+  return c + "shape, focus_offset_mm";
+}
+constexpr int kShapeColumn = static_cast<int>(kHoleFields.size());
+constexpr int kFocusColumn = kShapeColumn + 1;
 
 std::atomic<int> g_connections{0};
 
@@ -82,27 +93,10 @@ std::vector<PolarVertex> parse_shape(const std::string& s) {
 HoleRecord record_of(const QSqlQuery& q) {
   HoleRecord r;
   HoleProcessParams& p = r.params;
-  p.hole_number = q.value(0).toUInt();
-  p.position = Pose::Zero();
-  p.position[0] = q.value(1).toDouble();
-  p.position[1] = q.value(2).toDouble();
-  p.position[2] = q.value(3).toDouble();
-  p.position[3] = q.value(4).toDouble();
-  p.position[5] = q.value(5).toDouble();
-  p.feed_mm_min = q.value(6).toDouble();
-  p.layer_feed_mm = q.value(7).toDouble();
-  p.layer_count = q.value(8).toUInt();
-  p.total_depth_mm = q.value(9).toDouble();
-  p.power_pct = q.value(10).toDouble();
-  p.head.start_radius_mm = q.value(11).toDouble();
-  p.head.end_radius_mm = q.value(12).toDouble();
-  p.head.radius_turns = q.value(13).toUInt();
-  p.head.scan_speed_mm_s = q.value(14).toDouble();
-  p.head.wedge_speed_rpm = q.value(15).toDouble();
-  p.head.beam_offset_mm = q.value(16).toDouble();
-  p.process = static_cast<HoleProcessId>(q.value(17).toInt());
-  p.shape = parse_shape(q.value(18).toString().toStdString());
-  if (!q.value(19).isNull()) r.focus_offset_mm = q.value(19).toDouble();
+  for (std::size_t i = 0; i < kHoleFields.size(); ++i)
+    kHoleFields[i].set(p, q.value(static_cast<int>(i)).toDouble());
+  p.shape = parse_shape(q.value(kShapeColumn).toString().toStdString());
+  if (!q.value(kFocusColumn).isNull()) r.focus_offset_mm = q.value(kFocusColumn).toDouble();
   return r;
 }
 
@@ -127,22 +121,13 @@ Status in_transaction(QSqlDatabase& db, const std::string& path, F body) {
 Status insert(QSqlDatabase& db, const HoleRecord& r, const std::string& path) {
   const HoleProcessParams& p = r.params;
   QSqlQuery q(db);
-  q.prepare(QString("INSERT OR REPLACE INTO holes (%1) VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)")
-                .arg(kColumns));
-  q.addBindValue(p.hole_number);
-  for (int i : {0, 1, 2, 3, 5}) q.addBindValue(p.position[i]);
-  q.addBindValue(p.feed_mm_min);
-  q.addBindValue(p.layer_feed_mm);
-  q.addBindValue(p.layer_count);
-  q.addBindValue(p.total_depth_mm);
-  q.addBindValue(p.power_pct);
-  q.addBindValue(p.head.start_radius_mm);
-  q.addBindValue(p.head.end_radius_mm);
-  q.addBindValue(p.head.radius_turns);
-  q.addBindValue(p.head.scan_speed_mm_s);
-  q.addBindValue(p.head.wedge_speed_rpm);
-  q.addBindValue(p.head.beam_offset_mm);
-  q.addBindValue(static_cast<int>(p.process));
+  QString marks;
+  for (int i = 0; i < kFocusColumn; ++i) marks += "?,";
+  q.prepare(QString("INSERT OR REPLACE INTO holes (%1) VALUES (%2?)").arg(columns(), marks));
+  for (const HoleField& f : kHoleFields) {
+    const double v = f.get(p);
+    q.addBindValue(f.type == HoleFieldType::Real ? QVariant(v) : QVariant(static_cast<qlonglong>(v)));
+  }
   q.addBindValue(QString::fromStdString(shape_text(p.shape)));
   q.addBindValue(r.focus_offset_mm ? QVariant(*r.focus_offset_mm) : QVariant(QVariant::Double));
   if (!q.exec())
@@ -199,7 +184,7 @@ Result<std::unique_ptr<ProcessDatabase>> ProcessDatabase::open(const std::string
   if (Status s = in_transaction(db, path,
                                 [&]() -> Status {
                                   QSqlQuery t(db);
-                                  if (!t.exec(kSchema)) return sql_error("create the holes table", t.lastError(), path);
+                                  if (!t.exec(QString::fromStdString(schema()))) return sql_error("create the holes table", t.lastError(), path);
                                   if (!t.exec(QString("PRAGMA user_version = %1").arg(kSchemaVersion)))
                                     return sql_error("set the schema version", t.lastError(), path);
                                   return {};
@@ -212,7 +197,7 @@ Result<std::unique_ptr<ProcessDatabase>> ProcessDatabase::open(const std::string
 Result<std::vector<HoleRecord>> ProcessDatabase::holes() const {
   QSqlDatabase db = QSqlDatabase::database(QString::fromStdString(connection_));
   QSqlQuery q(db);
-  if (!q.exec(QString("SELECT %1 FROM holes ORDER BY hole").arg(kColumns)))
+  if (!q.exec(QString("SELECT %1 FROM holes ORDER BY hole").arg(columns())))
     return sql_error("read the holes", q.lastError(), path_);
   std::vector<HoleRecord> out;
   while (q.next()) out.push_back(record_of(q));
@@ -222,7 +207,7 @@ Result<std::vector<HoleRecord>> ProcessDatabase::holes() const {
 Result<std::optional<HoleRecord>> ProcessDatabase::hole(std::uint32_t number) const {
   QSqlDatabase db = QSqlDatabase::database(QString::fromStdString(connection_));
   QSqlQuery q(db);
-  q.prepare(QString("SELECT %1 FROM holes WHERE hole = ?").arg(kColumns));
+  q.prepare(QString("SELECT %1 FROM holes WHERE hole = ?").arg(columns()));
   q.addBindValue(number);
   if (!q.exec()) return sql_error("read hole " + std::to_string(number), q.lastError(), path_);
   if (!q.next()) return std::optional<HoleRecord>();

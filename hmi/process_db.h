@@ -5,8 +5,9 @@
 //
 // Safety. Every write path — an edit, an import, a measurement — goes
 // through validate() of the hole processes (hole_processes.h) before SQL
-// sees it, and the table's CHECK constraints repeat the ranges of DESIGN §6,
-// so not even a raw SQL edit stores a value out of range. Each call is one
+// sees it, and the table's columns and CHECK constraints are made from the
+// hole record's field table (holes/hole_fields.h), so not even a raw SQL
+// edit stores a value out of range. Each call is one
 // transaction: it is applied whole or not at all. The journal is WAL with
 // synchronous = FULL, so a committed row survives the process being killed
 // (SIGKILL) or the machine losing power; an import that fails on any line

@@ -1,6 +1,8 @@
 // Hole-process generators; the geometry is described in hole_processes.h.
 #include "holes/hole_processes.h"
 
+#include "holes/hole_fields.h"
+
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -86,73 +88,26 @@ Status validate(const HoleProcessParams& p) {
   auto bad = [&](std::string msg) {
     return Status(make_error(ErrorCode::GcodeBadValue, hole + std::move(msg)));
   };
-  // One range check: `lo_open` excludes the lower end.
-  auto in = [](double v, double lo, double hi, bool lo_open = false) {
-    return std::isfinite(v) && (lo_open ? v > lo : v >= lo) && v <= hi;
-  };
-  if (p.hole_number < 1 || p.hole_number > kMaxHoleNumber)
-    return bad("field 1 hole number = " + std::to_string(p.hole_number) + "; allowed 1 … " +
-               std::to_string(kMaxHoleNumber));
-  static constexpr struct {
-    int field;
-    const char* name;
-    double lo, hi;
-    const char* unit;
-  } kPos[] = {{2, "X", 0.0, 1000.0, "mm"}, {3, "Y", 0.0, 450.0, "mm"}, {4, "Z", 0.0, 500.0, "mm"},
-              {5, "A", -95.0, 95.0, "deg"}, {6, "C", 0.0, 359.999, "deg"}};
-  static constexpr Axis kPosAxes[] = {Axis::X, Axis::Y, Axis::Z, Axis::A, Axis::C};
-  for (int i = 0; i < 5; ++i) {
-    const double v = p.position[index(kPosAxes[i])];
-    if (!in(v, kPos[i].lo, kPos[i].hi))
-      return bad("field " + std::to_string(kPos[i].field) + " " + kPos[i].name + " = " + fmt(v) +
-                 " " + kPos[i].unit + "; allowed " + fmt(kPos[i].lo) + " … " + fmt(kPos[i].hi) +
-                 " " + kPos[i].unit);
+  // Each field alone, in field order (hole_fields.h); a free shape does not
+  // use the scan radii of fields 12–13.
+  for (const HoleField& f : kHoleFields) {
+    if (f.scan_radius && p.process == HoleProcessId::FreeShape) continue;
+    const double v = f.get(p);
+    if (!hole_field_in_range(f, v)) return bad(hole_field_range_message(f, v));
   }
-  if (!in(p.feed_mm_min, 0.0, kMaxHoleFeedMmMin, true))
-    return bad("field 7 feed rate = " + fmt(p.feed_mm_min) + " mm/min; allowed > 0 … " +
-               fmt(kMaxHoleFeedMmMin) + " mm/min (a hole needs a feed)");
-  if (!in(p.layer_feed_mm, 0.0, kMaxLayerFeedMm, true))
-    return bad("field 8 single-layer feed = " + fmt(p.layer_feed_mm) + " mm; allowed > 0 … " +
-               fmt(kMaxLayerFeedMm) + " mm");
-  if (p.layer_count < 1 || p.layer_count > kMaxLayerCount)
-    return bad("field 9 layer count = " + std::to_string(p.layer_count) + "; allowed 1 … " +
-               std::to_string(kMaxLayerCount));
+  // Then what the fields must satisfy together.
   const double depth = p.layer_count * p.layer_feed_mm;
-  if (!(std::isfinite(p.total_depth_mm) && std::abs(p.total_depth_mm - depth) <= kDepthTolerance))
+  if (!(std::abs(p.total_depth_mm - depth) <= kDepthTolerance))
     return bad("field 10 total depth = " + fmt(p.total_depth_mm) +
                " mm; must equal layer count × single-layer feed = " +
                std::to_string(p.layer_count) + " × " + fmt(p.layer_feed_mm) + " = " + fmt(depth) +
                " mm (within " + fmt(kDepthTolerance) + " mm)");
-  if (!in(p.power_pct, 0.0, 100.0))
-    return bad("field 11 laser power = " + fmt(p.power_pct) + " %; allowed 0 … 100 %");
   const ScanHeadParams& h = p.head;
-  if (p.process != HoleProcessId::FreeShape) {
-    if (!in(h.start_radius_mm, 0.0, kMaxScanRadiusMm, true))
-      return bad("field 12 start radius = " + fmt(h.start_radius_mm) + " mm; allowed > 0 … " +
-                 fmt(kMaxScanRadiusMm) + " mm");
-    if (!in(h.end_radius_mm, 0.0, kMaxScanRadiusMm, true))
-      return bad("field 13 end radius = " + fmt(h.end_radius_mm) + " mm; allowed > 0 … " +
-                 fmt(kMaxScanRadiusMm) + " mm");
-  }
-  if (h.radius_turns < 1 || h.radius_turns > kMaxRadiusTurns)
-    return bad("field 14 radius turns = " + std::to_string(h.radius_turns) + "; allowed 1 … " +
-               std::to_string(kMaxRadiusTurns));
   if (p.process == HoleProcessId::Circle && h.radius_turns == 1 &&
       h.end_radius_mm != h.start_radius_mm)
     return bad("field 14 radius turns = 1 with start radius " + fmt(h.start_radius_mm) +
                " mm ≠ end radius " + fmt(h.end_radius_mm) +
                " mm; a circle scan from one radius to another needs 2 or more turns");
-  if (!in(h.scan_speed_mm_s, 0.0, 1e5))
-    return bad("field 15 scan speed = " + fmt(h.scan_speed_mm_s) + " mm/s; allowed 0 … 100000");
-  if (!in(h.wedge_speed_rpm, 0.0, 1e5))
-    return bad("field 16 wedge speed = " + fmt(h.wedge_speed_rpm) + " rpm; allowed 0 … 100000");
-  if (!in(h.beam_offset_mm, -kMaxScanRadiusMm, kMaxScanRadiusMm))
-    return bad("field 17 beam offset = " + fmt(h.beam_offset_mm) + " mm; allowed " +
-               fmt(-kMaxScanRadiusMm) + " … " + fmt(kMaxScanRadiusMm) + " mm");
-  if (p.process != HoleProcessId::Helix && p.process != HoleProcessId::Circle &&
-      p.process != HoleProcessId::FreeShape)
-    return bad("field 18 process id = " + std::to_string(static_cast<int>(p.process)) +
-               "; allowed 0 helix, 1 circle, 2 free shape");
   if (p.process == HoleProcessId::FreeShape) {
     const std::size_t n = p.shape.size();
     if (n < 3 || n > kMaxShapeVertices)
@@ -161,9 +116,9 @@ Status validate(const HoleProcessParams& p) {
     for (std::size_t i = 0; i < n; ++i) {
       const PolarVertex& v = p.shape[i];
       const std::string at = "free shape vertex " + std::to_string(i + 1) + ": ";
-      if (!in(v.radius_mm, 0.0, kMaxScanRadiusMm, true))
+      if (!(std::isfinite(v.radius_mm) && v.radius_mm > 0.0 && v.radius_mm <= kMaxShapeRadiusMm))
         return bad(at + "radius = " + fmt(v.radius_mm) + " mm; allowed > 0 … " +
-                   fmt(kMaxScanRadiusMm) + " mm");
+                   fmt(kMaxShapeRadiusMm) + " mm");
       if (!(std::isfinite(v.angle_deg) && v.angle_deg >= 0.0 && v.angle_deg < 360.0))
         return bad(at + "angle = " + fmt(v.angle_deg) + "°; allowed 0 … <360°");
       const double next = i + 1 < n ? p.shape[i + 1].angle_deg : p.shape[0].angle_deg + 360.0;

@@ -90,8 +90,20 @@ inline constexpr std::uint32_t kMaxHoleNumber = 10000;
 inline constexpr double kMaxHoleFeedMmMin = 2000.0;
 inline constexpr double kMaxLayerFeedMm = 1.0;
 inline constexpr std::uint32_t kMaxLayerCount = 10000;
-inline constexpr double kMaxScanRadiusMm = 50.0;
+// Fields 12–17 are the scanning head's parameter block, written to the head
+// as a whole before the hole, so their ranges are the head's: a value the
+// head refuses is a hole that cannot be made (see holes/hole_fields.h).
+inline constexpr double kMaxTotalDepthMm = 500.0;  // the Z travel
+inline constexpr double kMaxScanRadiusMm = 5.0;
 inline constexpr std::uint32_t kMaxRadiusTurns = 1000;
+inline constexpr double kMaxScanSpeedMmS = 5000.0;
+inline constexpr double kMaxWedgeSpeedRpm = 30000.0;
+// The beam offset moves the four beams sideways in the head's exit optics by
+// a fraction of the scan radius: ±2 mm, as the head takes it (its register,
+// i16 at 1 µm, could not carry more than ±32.767 mm in any case).
+inline constexpr double kMaxBeamOffsetMm = 2.0;
+// A free shape's vertices, polar about the hole centre (traced by the axes).
+inline constexpr double kMaxShapeRadiusMm = 50.0;
 inline constexpr std::size_t kMaxShapeVertices = 1000;
 // total_depth must equal layer_count · layer_feed within this (mm).
 inline constexpr double kDepthTolerance = 0.001;
@@ -115,9 +127,9 @@ struct HoleProgram {
   Eigen::Isometry3d frame = Eigen::Isometry3d::Identity();  // hole frame → workpiece
 };
 
-// Checks every field against its range and the geometry's needs; the error
-// (GcodeBadValue) names the hole, the field number and name, the value and
-// the allowed range.
+// Checks every field against its range (holes/hole_fields.h) and the
+// geometry's needs; the error (GcodeBadValue) names the hole, the field
+// number and name, the value and the allowed range.
 [[nodiscard]] Status validate(const HoleProcessParams& params);
 
 // hole_frame above.

@@ -1,9 +1,10 @@
 #include "holes/hole_table.h"
 
+#include "holes/hole_fields.h"
+
 #include <array>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -11,14 +12,13 @@
 namespace lcnc {
 namespace {
 
-enum Column : int {
-  kHole, kX, kY, kZ, kA, kC, kFeed, kLayerFeed, kLayers, kDepth, kPower, kStartR, kEndR, kTurns,
-  kScanSpeed, kWedge, kOffset, kProcess, kShape, kColumnCount
-};
-constexpr std::array<const char*, kColumnCount> kNames = {
-    "hole", "x_mm", "y_mm", "z_mm", "a_deg", "c_deg", "feed_mm_min", "layer_feed_mm", "layer_count",
-    "total_depth_mm", "power_pct", "start_radius_mm", "end_radius_mm", "radius_turns",
-    "scan_speed_mm_s", "wedge_speed_rpm", "beam_offset_mm", "process", "shape"};
+// The columns: the record's fields in table order (hole_fields.h), then the
+// free shape's polygon.
+constexpr std::size_t kShape = kHoleFields.size();
+constexpr std::size_t kColumnCount = kShape + 1;
+constexpr std::string_view kShapeName = "shape";
+
+std::string_view column_name(std::size_t k) { return k == kShape ? kShapeName : kHoleFields[k].column; }
 
 struct Cell {
   std::string_view text;
@@ -58,18 +58,6 @@ bool parse_uint(std::string_view t, std::uint32_t& out) {
   return r.ec == std::errc() && r.ptr == t.data() + t.size();
 }
 
-std::string num(double v) {
-  char b[40];
-  std::snprintf(b, sizeof b, "%.17g", v);
-  // the shortest that reads back exactly, for people
-  for (int prec = 1; prec < 17; ++prec) {
-    char t[40];
-    std::snprintf(t, sizeof t, "%.*g", prec, v);
-    if (std::strtod(t, nullptr) == v) return t;
-  }
-  return b;
-}
-
 }  // namespace
 
 Result<std::vector<HoleProcessParams>> parse_hole_table(std::string_view text, const std::string& file,
@@ -96,65 +84,59 @@ Result<std::vector<HoleProcessParams>> parse_hole_table(std::string_view text, c
     };
     if (!have_header) {
       for (std::size_t i = 0; i < cells.size(); ++i) {
-        int found = -1;
-        for (int k = 0; k < kColumnCount; ++k)
-          if (cells[i].text == kNames[k]) found = k;
-        if (found < 0)
+        std::size_t found = kColumnCount;
+        for (std::size_t k = 0; k < kColumnCount; ++k)
+          if (cells[i].text == column_name(k)) found = k;
+        if (found == kColumnCount)
           return err(ErrorCode::HoleTableSyntax, cells[i].col,
                      "unknown column '" + std::string(cells[i].text) + "'; expected the fields of DESIGN §6: hole, x_mm, …, process, shape");
         if (where[found] >= 0)
-          return err(ErrorCode::HoleTableSyntax, cells[i].col, "column '" + std::string(kNames[found]) + "' twice");
+          return err(ErrorCode::HoleTableSyntax, cells[i].col, "column '" + std::string(column_name(found)) + "' twice");
         where[found] = static_cast<int>(i);
       }
-      for (int k = 0; k < kColumnCount; ++k)
+      for (std::size_t k = 0; k < kColumnCount; ++k)
         if (where[k] < 0 && k != kShape)
-          return err(ErrorCode::HoleTableSyntax, 1, std::string("the header lacks column '") + kNames[k] + "'");
+          return err(ErrorCode::HoleTableSyntax, 1,
+                     "the header lacks column '" + std::string(column_name(k)) + "'");
       have_header = true;
       continue;
     }
     std::size_t expected = 0;
-    for (int k = 0; k < kColumnCount; ++k)
+    for (std::size_t k = 0; k < kColumnCount; ++k)
       if (where[k] >= 0) ++expected;
     if (cells.size() != expected)
       return err(ErrorCode::HoleTableSyntax, cells.back().col,
                  std::to_string(cells.size()) + " fields; expected " + std::to_string(expected) + " as the header");
-    const auto cell = [&](Column c) { return cells[static_cast<std::size_t>(where[c])]; };
+    const auto cell = [&](std::size_t k) { return cells[static_cast<std::size_t>(where[k])]; };
     HoleProcessParams p;
-    const auto number = [&](Column c, double& out) -> Status {
-      const Cell x = cell(c);
-      if (!parse_double(x.text, out))
-        return err(ErrorCode::HoleTableSyntax, x.col,
-                   std::string(kNames[c]) + ": found '" + std::string(x.text) + "'; expected a number");
-      return {};
-    };
-    const auto count = [&](Column c, std::uint32_t& out) -> Status {
-      const Cell x = cell(c);
-      if (!parse_uint(x.text, out))
-        return err(ErrorCode::HoleTableSyntax, x.col,
-                   std::string(kNames[c]) + ": found '" + std::string(x.text) + "'; expected a whole number ≥ 0");
-      return {};
-    };
-    double a = 0, c = 0;
-    const std::pair<Column, double*> numbers_of[] = {
-        {kX, &p.position[0]}, {kY, &p.position[1]}, {kZ, &p.position[2]}, {kA, &a}, {kC, &c},
-        {kFeed, &p.feed_mm_min}, {kLayerFeed, &p.layer_feed_mm}, {kDepth, &p.total_depth_mm},
-        {kPower, &p.power_pct}, {kStartR, &p.head.start_radius_mm}, {kEndR, &p.head.end_radius_mm},
-        {kScanSpeed, &p.head.scan_speed_mm_s}, {kWedge, &p.head.wedge_speed_rpm},
-        {kOffset, &p.head.beam_offset_mm}};
-    if (Status s = count(kHole, p.hole_number); !s) return s.error();
-    for (const auto& [col, out] : numbers_of)
-      if (Status s = number(col, *out); !s) return s.error();
-    p.position[3] = a;
-    p.position[5] = c;
-    if (Status s = count(kLayers, p.layer_count); !s) return s.error();
-    if (Status s = count(kTurns, p.head.radius_turns); !s) return s.error();
-    const Cell proc = cell(kProcess);
-    if (proc.text == "0" || proc.text == "helix") p.process = HoleProcessId::Helix;
-    else if (proc.text == "1" || proc.text == "circle") p.process = HoleProcessId::Circle;
-    else if (proc.text == "2" || proc.text == "free_shape") p.process = HoleProcessId::FreeShape;
-    else
-      return err(ErrorCode::HoleTableSyntax, proc.col,
-                 "process: found '" + std::string(proc.text) + "'; expected 0/helix, 1/circle or 2/free_shape");
+    for (std::size_t k = 0; k < kHoleFields.size(); ++k) {
+      const HoleField& f = kHoleFields[k];
+      const Cell x = cell(k);
+      const std::string found = std::string(f.column) + ": found '" + std::string(x.text) + "'; expected ";
+      double v = 0.0;
+      std::uint32_t n = 0;
+      switch (f.type) {
+        case HoleFieldType::Real:
+          if (!parse_double(x.text, v)) return err(ErrorCode::HoleTableSyntax, x.col, found + "a number");
+          break;
+        case HoleFieldType::Count:
+          if (!parse_uint(x.text, n))
+            return err(ErrorCode::HoleTableSyntax, x.col, found + "a whole number ≥ 0");
+          v = n;
+          break;
+        case HoleFieldType::Process:
+          if (x.text == "0" || x.text == "helix") v = 0;
+          else if (x.text == "1" || x.text == "circle") v = 1;
+          else if (x.text == "2" || x.text == "free_shape") v = 2;
+          else
+            return err(ErrorCode::HoleTableSyntax, x.col,
+                       found + "0/helix, 1/circle or 2/free_shape");
+          break;
+      }
+      f.set(p, v);
+    }
+    const Cell proc = cell(hole_field_by_column("process").value());
+    const Cell hole = cell(0);
     if (where[kShape] >= 0) {
       const Cell sh = cell(kShape);
       std::string_view rest = sh.text;
@@ -177,9 +159,9 @@ Result<std::vector<HoleProcessParams>> parse_hole_table(std::string_view text, c
     if (p.process == HoleProcessId::FreeShape && where[kShape] < 0)
       return err(ErrorCode::HoleTableSyntax, proc.col, "a free shape needs the shape column");
     if (Status s = validate(p); !s)
-      return err(ErrorCode::HoleTableBadValue, cell(kHole).col, s.error().message);
+      return err(ErrorCode::HoleTableBadValue, hole.col, s.error().message);
     if (!numbers.insert(p.hole_number).second)
-      return err(ErrorCode::HoleTableDuplicate, cell(kHole).col,
+      return err(ErrorCode::HoleTableDuplicate, hole.col,
                  "hole " + std::to_string(p.hole_number) + " is listed twice");
     rows.push_back(std::move(p));
     if (row_lines) row_lines->push_back(line_no);
@@ -200,24 +182,16 @@ Result<std::vector<HoleProcessParams>> read_hole_table(const std::string& path,
 
 std::string write_hole_table(const std::vector<HoleProcessParams>& rows) {
   std::string out;
-  for (int k = 0; k < kColumnCount; ++k) {
+  for (std::size_t k = 0; k < kColumnCount; ++k) {
     if (k > 0) out += ',';
-    out += kNames[k];
+    out += column_name(k);
   }
   out += '\n';
   for (const HoleProcessParams& p : rows) {
-    const double fields[] = {p.position[0], p.position[1], p.position[2], p.position[3], p.position[5],
-                             p.feed_mm_min, p.layer_feed_mm};
-    out += std::to_string(p.hole_number);
-    for (double f : fields) out += ',' + num(f);
-    out += ',' + std::to_string(p.layer_count) + ',' + num(p.total_depth_mm) + ',' + num(p.power_pct) +
-           ',' + num(p.head.start_radius_mm) + ',' + num(p.head.end_radius_mm) + ',' +
-           std::to_string(p.head.radius_turns) + ',' + num(p.head.scan_speed_mm_s) + ',' +
-           num(p.head.wedge_speed_rpm) + ',' + num(p.head.beam_offset_mm) + ',' +
-           std::to_string(static_cast<int>(p.process)) + ',';
+    for (const HoleField& f : kHoleFields) out += hole_field_text(f, f.get(p)) + ',';
     for (std::size_t i = 0; i < p.shape.size(); ++i) {
       if (i > 0) out += ';';
-      out += num(p.shape[i].radius_mm) + '@' + num(p.shape[i].angle_deg);
+      out += shortest_number_text(p.shape[i].radius_mm) + '@' + shortest_number_text(p.shape[i].angle_deg);
     }
     out += '\n';
   }

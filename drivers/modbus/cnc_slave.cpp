@@ -1,5 +1,7 @@
 #include "drivers/modbus/cnc_slave.h"
 
+#include "holes/hole_fields.h"
+
 #include <string_view>
 #include <vector>
 
@@ -7,36 +9,9 @@ namespace lcnc::drivers {
 
 namespace {
 
-// The hole parameter block: register name ↔ field (one of the two members).
-struct Field {
-  std::string_view name;
-  double HoleParameters::*real;
-  std::uint16_t HoleParameters::*count;
-};
-constexpr Field kFields[] = {
-    {"hole_number", nullptr, &HoleParameters::hole_number},
-    {"hole_x_mm", &HoleParameters::x_mm, nullptr},
-    {"hole_y_mm", &HoleParameters::y_mm, nullptr},
-    {"hole_z_mm", &HoleParameters::z_mm, nullptr},
-    {"hole_a_deg", &HoleParameters::a_deg, nullptr},
-    {"hole_c_deg", &HoleParameters::c_deg, nullptr},
-    {"feed_mm_min", &HoleParameters::feed_mm_min, nullptr},
-    {"layer_feed_mm", &HoleParameters::layer_feed_mm, nullptr},
-    {"layer_count", nullptr, &HoleParameters::layer_count},
-    {"total_depth_mm", &HoleParameters::total_depth_mm, nullptr},
-    {"laser_power_pct", &HoleParameters::laser_power_pct, nullptr},
-    {"scan_start_radius_mm", &HoleParameters::scan_start_radius_mm, nullptr},
-    {"scan_end_radius_mm", &HoleParameters::scan_end_radius_mm, nullptr},
-    {"scan_radius_turns", nullptr, &HoleParameters::scan_radius_turns},
-    {"scan_speed_mm_s", &HoleParameters::scan_speed_mm_s, nullptr},
-    {"wedge_speed_rpm", &HoleParameters::wedge_speed_rpm, nullptr},
-    {"beam_offset_mm", &HoleParameters::beam_offset_mm, nullptr},
-    {"process_id", nullptr, &HoleParameters::process_id},
-};
-
-void assign(HoleParameters& p, const Field& f, double v) {
-  if (f.real != nullptr) p.*f.real = v;
-  else p.*f.count = static_cast<std::uint16_t>(v);
+// The hole parameter block: the record's fields by register name.
+void load_block(HoleParameters& p, const RegisterBank& b) {
+  for (const HoleField& f : kHoleFields) f.set(p, b.value(b.def(f.register_name)));
 }
 
 struct CommandCoil {
@@ -66,8 +41,8 @@ Result<std::unique_ptr<CncSlave>> CncSlave::create(DeviceMap map, SlaveConfig co
                                                            std::string(n) + "': " + r.error().message);
     return {};
   };
-  for (const Field& f : kFields)
-    if (Status s = need(f.name); !s) return s.error();
+  for (const HoleField& f : kHoleFields)
+    if (Status s = need(f.register_name); !s) return s.error();
   for (const CommandCoil& c : kCommands)
     if (Status s = need(c.name); !s) return s.error();
   for (std::string_view n : kStatusRegisters)
@@ -97,13 +72,12 @@ ModbusException CncSlave::on_write(std::span<const RegisterWrite> writes, Regist
   // Parameters first: the whole block with the new values merged in.
   bool block_touched = false;
   HoleParameters p;
-  for (const Field& f : kFields) assign(p, f, b.value(b.def(f.name)));
+  load_block(p, b);
   for (const RegisterWrite& w : writes)
-    for (const Field& f : kFields)
-      if (w.reg->name == f.name) {
-        assign(p, f, w.value);
-        block_touched = true;
-      }
+    if (const auto k = hole_field_by_register(w.reg->name)) {
+      kHoleFields[*k].set(p, w.value);
+      block_touched = true;
+    }
   if (block_touched && parameters_handler_ && !parameters_handler_(p).ok())
     return ModbusException::DeviceFailure;
   if (!command_handler_) return ModbusException::None;
@@ -171,9 +145,7 @@ std::optional<Status> CncSlave::try_publish(const CncStatusSnapshot& s) {
 
 HoleParameters CncSlave::parameters() const {
   HoleParameters p;
-  slave_->with_bank([&](RegisterBank& b) {
-    for (const Field& f : kFields) assign(p, f, b.value(b.def(f.name)));
-  });
+  slave_->with_bank([&](RegisterBank& b) { load_block(p, b); });
   return p;
 }
 

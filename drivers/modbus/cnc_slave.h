@@ -13,8 +13,8 @@
 //     handler that refuses gets the master exception 04 and the coil stays
 //     0; an accepted command's coil reads 1 until the next tick (10 ms)
 //     clears it — "taken";
-//   * the hole parameter block (holding 0–24, DESIGN §6 fields 1–18) —
-//     ranges are checked by the map (exception 03, nothing stored); a valid
+//   * the hole parameter block (holding 0–24, DESIGN §6 fields 1–18; the
+//     registers named by holes/hole_fields.h) — ranges are checked by the map (exception 03, nothing stored); a valid
 //     write, whole or partial, is handed to the parameter handler as the
 //     complete block with the new values merged in; a refusal is
 //     exception 04 and nothing is stored.
@@ -28,6 +28,7 @@
 
 #include "common/result.h"
 #include "drivers/modbus/modbus_slave.h"
+#include "holes/hole_processes.h"
 
 namespace lcnc::drivers {
 
@@ -45,20 +46,10 @@ struct CncStatusSnapshot {
 
 enum class CncCommand : std::uint8_t { Start, Hold, Resume, Stop, Reset, SetOverride };
 
-// DESIGN §6 fields 1–18 (the process database row of one hole).
-struct HoleParameters {
-  std::uint16_t hole_number = 1;
-  double x_mm = 0, y_mm = 0, z_mm = 0, a_deg = 0, c_deg = 0;
-  double feed_mm_min = 0;
-  double layer_feed_mm = 0;
-  std::uint16_t layer_count = 0;
-  double total_depth_mm = 0;
-  double laser_power_pct = 0;
-  double scan_start_radius_mm = 0, scan_end_radius_mm = 0;
-  std::uint16_t scan_radius_turns = 1;
-  double scan_speed_mm_s = 0, wedge_speed_rpm = 0, beam_offset_mm = 0;
-  std::uint16_t process_id = 0;  // 0 helix, 1 circle, 2 free shape
-};
+// DESIGN §6 fields 1–18 (the process database row of one hole): the
+// parameter block's registers are the fields' register names of
+// holes/hole_fields.h. A block from Modbus has no free-shape polygon.
+using HoleParameters = HoleProcessParams;
 
 // `value` is the override in % for SetOverride, else 0. Return a failed
 // Status to refuse (the master gets exception 04).

@@ -103,19 +103,19 @@ TEST_F(CncSlaveTest, ParameterBlockIsHandedOverWhole) {
     std::lock_guard lock(mutex_);
     ASSERT_EQ(blocks_.size(), 2u);
     const HoleParameters& p = blocks_.back();
-    EXPECT_EQ(p.hole_number, 12);  // merged with what was stored
-    EXPECT_EQ(p.y_mm, 200.0);
-    EXPECT_EQ(p.laser_power_pct, 55.5);
-    EXPECT_EQ(p.scan_radius_turns, 1);
+    EXPECT_EQ(p.hole_number, 12u);  // merged with what was stored
+    EXPECT_EQ(p.position[1], 200.0);
+    EXPECT_EQ(p.power_pct, 55.5);
+    EXPECT_EQ(p.head.radius_turns, 1u);
   }
   // The owner refuses: exception 04, nothing stored.
   const Status s = master_->write_block({{"hole_number", 9999}, {"hole_x_mm", 1}}).get();
   ASSERT_FALSE(s.ok());
   EXPECT_NE(s.error().message.find("exception 04"), std::string::npos);
   const HoleParameters now = cnc_->parameters();
-  EXPECT_EQ(now.hole_number, 12);
-  EXPECT_EQ(now.x_mm, 100.0);
-  EXPECT_EQ(now.laser_power_pct, 55.5);
+  EXPECT_EQ(now.hole_number, 12u);
+  EXPECT_EQ(now.position[0], 100.0);
+  EXPECT_EQ(now.power_pct, 55.5);
 }
 
 TEST(CncSlave, NeedsTheCncMap) {

@@ -5,7 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <set>
+
 #include "drivers/modbus/register_bank.h"
+#include "holes/hole_fields.h"
 
 namespace lcnc::drivers {
 namespace {
@@ -169,6 +173,68 @@ TEST(RegisterMap, UnknownDeviceAndRegisterListWhatExists) {
   EXPECT_NE(r.error().message.find("no register 'power'; it has: enable, alarm_reset"),
             std::string::npos)
       << r.error().message;
+}
+
+// The hole record's registers against its field table (holes/hole_fields.h):
+// a register documented "field N" is field N, with the table's unit and
+// range, a scale that carries it, and nothing missing on either side.
+int field_of(const RegisterDef& r) {
+  if (r.doc.rfind("field ", 0) != 0) return 0;
+  return std::atoi(r.doc.c_str() + 6);
+}
+
+void expect_agrees(std::string_view device, const RegisterDef& r, const HoleField& f) {
+  SCOPED_TRACE(std::string(device) + "." + r.name + " ~ field " + std::to_string(f.number) + " " +
+               std::string(f.column));
+  EXPECT_EQ(r.table, Table::Holding);
+  EXPECT_TRUE(r.writable());
+  EXPECT_EQ(r.unit, f.unit);
+  EXPECT_EQ(r.min, f.lo);
+  EXPECT_EQ(r.max, f.hi);
+  if (f.type != HoleFieldType::Real) {
+    EXPECT_EQ(r.scale, 1.0);  // whole numbers on the wire
+    EXPECT_TRUE(r.type == ValueType::U16 || r.type == ValueType::U32);
+  }
+  if (f.lo < 0) {
+    EXPECT_TRUE(r.type == ValueType::I16 || r.type == ValueType::I32);
+  }
+  std::uint16_t raw[2];
+  EXPECT_TRUE(r.encode(f.lo, raw).ok()) << "the table's lower end does not fit the register";
+  EXPECT_TRUE(r.encode(f.hi, raw).ok()) << "the table's upper end does not fit the register";
+}
+
+TEST(RegisterMap, CncParameterBlockAgreesWithTheHoleFieldTable) {
+  auto m = load_register_map(default_register_map_path());
+  ASSERT_TRUE(m.ok()) << m.error().to_string();
+  const DeviceMap& cnc = *m->device("cnc");
+  for (const HoleField& f : kHoleFields) {
+    const RegisterDef* r = cnc.find(f.register_name);
+    ASSERT_NE(r, nullptr) << "the map lacks field " << f.number << " (" << f.register_name << ")";
+    EXPECT_EQ(field_of(*r), f.number) << r->name << ": doc '" << r->doc << "'";
+    expect_agrees("cnc", *r, f);
+  }
+  for (const RegisterDef& r : cnc.registers) {
+    if (field_of(r) == 0) continue;
+    const auto k = hole_field_by_register(r.name);
+    ASSERT_TRUE(k.has_value()) << "cnc." << r.name << " (" << r.doc << ") is no field of the table";
+    EXPECT_EQ(kHoleFields[*k].number, field_of(r)) << r.name;
+  }
+}
+
+TEST(RegisterMap, ScanHeadBlockAgreesWithTheHoleFieldTable) {
+  auto m = load_register_map(default_register_map_path());
+  ASSERT_TRUE(m.ok()) << m.error().to_string();
+  const DeviceMap& head = *m->device("scan_head");
+  std::set<int> fields;
+  for (const RegisterDef& r : head.registers) {
+    const int n = field_of(r);
+    if (n == 0) continue;
+    ASSERT_GE(n, 1);
+    ASSERT_LE(n, static_cast<int>(kHoleFields.size()));
+    EXPECT_TRUE(fields.insert(n).second) << "field " << n << " twice";
+    expect_agrees("scan_head", r, kHoleFields[static_cast<std::size_t>(n - 1)]);
+  }
+  EXPECT_EQ(fields, (std::set<int>{12, 13, 14, 15, 16, 17, 18}));  // the head's parameter block
 }
 
 }  // namespace

@@ -76,39 +76,31 @@ TEST(ModbusSnapshot, MapsTheKernelStatus) {
   EXPECT_EQ(s.fault_code, 402);
 }
 
+// The record's defaults (feed 600 mm/min, layer feed 0.1 mm, 3000 rpm, no
+// beam offset, helix) with a hole of its own.
 drivers::HoleParameters good_block() {
   drivers::HoleParameters p;
   p.hole_number = 3;
-  p.x_mm = 100;
-  p.y_mm = 50;
-  p.z_mm = 20;
-  p.feed_mm_min = 600;
-  p.layer_feed_mm = 0.1;
+  p.position << 100, 50, 20, 0, 0, 0;
   p.layer_count = 5;
   p.total_depth_mm = 0.5;
-  p.laser_power_pct = 60;
-  p.scan_start_radius_mm = 0.4;
-  p.scan_end_radius_mm = 0.4;
-  p.scan_radius_turns = 2;
-  p.scan_speed_mm_s = 100;
-  p.wedge_speed_rpm = 3000;
+  p.power_pct = 60;
+  p.head.start_radius_mm = p.head.end_radius_mm = 0.4;
+  p.head.radius_turns = 2;
+  p.head.scan_speed_mm_s = 100;
   return p;
 }
 
 TEST(HoleBlock, CheckedAsTheHoleProcessesNeedIt) {
   drivers::HoleParameters p = good_block();
   EXPECT_TRUE(check_hole_block(p).ok());
-  const HoleProcessParams h = to_process_params(p);
-  EXPECT_EQ(h.position[0], 100.0);
-  EXPECT_EQ(h.layer_count, 5u);
-  EXPECT_EQ(h.head.radius_turns, 2u);
   p.total_depth_mm = 0.6;
   const Status s = check_hole_block(p);
   ASSERT_FALSE(s.ok());
   EXPECT_NE(s.error().message.find("hole 3: field 10"), std::string::npos) << s.error().message;
   // a free shape's polygon comes from the process DB: the rest is checked
   p = good_block();
-  p.process_id = 2;
+  p.process = HoleProcessId::FreeShape;
   EXPECT_TRUE(check_hole_block(p).ok());
   p.layer_feed_mm = 0.0;
   EXPECT_FALSE(check_hole_block(p).ok());

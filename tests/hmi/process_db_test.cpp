@@ -21,8 +21,10 @@
 #include <thread>
 
 #include <QSqlDatabase>
+#include <QSqlError>
 #include <QSqlQuery>
 
+#include "holes/hole_fields.h"
 #include "holes/hole_table.h"
 
 namespace lcnc::hmi {
@@ -68,6 +70,21 @@ std::size_t count(const ProcessDatabase& db) {
   Result<std::vector<HoleRecord>> all = db.holes();
   EXPECT_TRUE(static_cast<bool>(all));
   return all ? all->size() : 0;
+}
+
+// Runs `body` with a query on a second, raw connection to the file at `p`
+// (what a SQL tool would do, past the ProcessDatabase).
+template <typename F>
+void with_raw_sql(const fs::path& p, F body) {
+  {
+    QSqlDatabase raw = QSqlDatabase::addDatabase("QSQLITE", "raw");
+    raw.setDatabaseName(QString::fromStdString(p.string()));
+    ASSERT_TRUE(raw.open());
+    QSqlQuery q(raw);
+    body(q);
+    raw.close();
+  }
+  QSqlDatabase::removeDatabase("raw");
 }
 
 TEST(ProcessDatabase, StoresAndReadsBackEveryField) {
@@ -138,11 +155,7 @@ TEST(ProcessDatabase, EveryWritePathRefusesOutOfRangeAndStoresNothing) {
 TEST(ProcessDatabase, TheSchemaRefusesOutOfRangeEvenFromRawSql) {
   const fs::path p = temp_db("c.db");
   auto db = open_db(p);
-  {
-    QSqlDatabase raw = QSqlDatabase::addDatabase("QSQLITE", "raw");
-    raw.setDatabaseName(QString::fromStdString(p.string()));
-    ASSERT_TRUE(raw.open());
-    QSqlQuery q(raw);
+  with_raw_sql(p, [](QSqlQuery& q) {
     EXPECT_FALSE(q.exec("INSERT INTO holes (hole, x_mm, y_mm, z_mm, a_deg, c_deg, feed_mm_min, "
                         "layer_feed_mm, layer_count, total_depth_mm, power_pct, start_radius_mm, "
                         "end_radius_mm, radius_turns, scan_speed_mm_s, wedge_speed_rpm, beam_offset_mm, "
@@ -153,10 +166,122 @@ TEST(ProcessDatabase, TheSchemaRefusesOutOfRangeEvenFromRawSql) {
                         "end_radius_mm, radius_turns, scan_speed_mm_s, wedge_speed_rpm, beam_offset_mm, "
                         "process) VALUES (5, 100, 50, 20, 0, 0, 600, 0.1, 10, 1.0, 130, 0.5, 0.5, 1, 200, "
                         "3000, 0, 0)"));  // power 130 %
-    raw.close();
-  }
-  QSqlDatabase::removeDatabase("raw");
+  });
   EXPECT_EQ(count(*db), 0u);
+}
+
+// Every field just past either end of its range (holes/hole_fields.h) is
+// refused by put() with a message naming the field, and the hole stored
+// before — every field and its focus offset — reads back unchanged.
+TEST(ProcessDatabase, RefusesEachFieldOutOfRangeNamingItAndLosesNothing) {
+  const fs::path p = temp_db("f.db");
+  auto db = open_db(p);
+  HoleRecord stored = row(1);
+  stored.params.head.beam_offset_mm = 1.5;
+  ASSERT_TRUE(db->put(stored).ok());
+  ASSERT_TRUE(db->set_focus_offset(1, 0.25).ok());
+  for (const HoleField& f : kHoleFields) {
+    for (const double v : {f.lo - 1, f.hi + 1}) {
+      if (f.type != HoleFieldType::Real && v < 0) continue;  // a count cannot hold it
+      HoleRecord bad = stored;
+      f.set(bad.params, v);
+      const Status s = db->put(bad);
+      ASSERT_FALSE(s.ok()) << f.column << " = " << v << " was stored";
+      EXPECT_EQ(s.error().code, ErrorCode::HoleTableBadValue);
+      const std::string want = "field " + std::to_string(f.number) + " " + std::string(f.label) + " = ";
+      EXPECT_NE(s.error().message.find(want), std::string::npos) << s.error().message;
+    }
+  }
+  HoleRecord beyond_head = stored;
+  beyond_head.params.head.beam_offset_mm = 10.0;  // within the old ±50 mm, beyond the head's ±2 mm
+  const Status s = db->put(beyond_head);
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.error().message.find("hole 1: field 17 beam offset = 10 mm; allowed -2 … 2 mm"),
+            std::string::npos)
+      << s.error().message;
+  auto again = open_db(p);  // what is committed, through a new connection
+  Result<std::vector<HoleRecord>> all = again->holes();
+  ASSERT_TRUE(static_cast<bool>(all));
+  ASSERT_EQ(all->size(), 1u);
+  for (const HoleField& f : kHoleFields)
+    EXPECT_EQ(f.get((*all)[0].params), f.get(stored.params)) << f.column;
+  EXPECT_EQ((*all)[0].focus_offset_mm, std::optional<double>(0.25));
+}
+
+// The schema's CHECKs come from the same table: a beam offset beyond the
+// head is refused even from raw SQL, and the ends of the range are taken.
+TEST(ProcessDatabase, TheSchemaTakesItsRangesFromTheFieldTable) {
+  const fs::path p = temp_db("g.db");
+  auto db = open_db(p);
+  with_raw_sql(p, [](QSqlQuery& q) {
+    const QString insert =
+        "INSERT INTO holes (hole, x_mm, y_mm, z_mm, a_deg, c_deg, feed_mm_min, layer_feed_mm, "
+        "layer_count, total_depth_mm, power_pct, start_radius_mm, end_radius_mm, radius_turns, "
+        "scan_speed_mm_s, wedge_speed_rpm, beam_offset_mm, process) VALUES (%1, 100, 50, 20, 0, 0, "
+        "600, 0.1, 10, 1.0, 80, 0.5, 0.5, 1, 200, 3000, %2, 0)";
+    EXPECT_FALSE(q.exec(insert.arg(5).arg(2.5)));
+    EXPECT_FALSE(q.exec(insert.arg(5).arg(-3)));
+    EXPECT_TRUE(q.exec(insert.arg(6).arg(-2))) << q.lastError().text().toStdString();
+  });
+  EXPECT_EQ(count(*db), 1u);
+}
+
+// A database made by the first release of schema 1 (its CHECKs written out
+// by hand, no range on the beam offset) opens, reads back every field and
+// takes new rows: the column names and order are unchanged.
+TEST(ProcessDatabase, ADatabaseOfTheFirstSchemaStillLoads) {
+  const fs::path p = temp_db("old.db");
+  with_raw_sql(p, [](QSqlQuery& q) {
+    ASSERT_TRUE(q.exec(R"(
+CREATE TABLE holes (
+  hole            INTEGER PRIMARY KEY CHECK (hole BETWEEN 1 AND 10000),
+  x_mm            REAL NOT NULL CHECK (x_mm BETWEEN 0 AND 1000),
+  y_mm            REAL NOT NULL CHECK (y_mm BETWEEN 0 AND 450),
+  z_mm            REAL NOT NULL CHECK (z_mm BETWEEN 0 AND 500),
+  a_deg           REAL NOT NULL CHECK (a_deg BETWEEN -95 AND 95),
+  c_deg           REAL NOT NULL CHECK (c_deg >= 0 AND c_deg <= 359.999),
+  feed_mm_min     REAL NOT NULL CHECK (feed_mm_min > 0 AND feed_mm_min <= 2000),
+  layer_feed_mm   REAL NOT NULL CHECK (layer_feed_mm > 0 AND layer_feed_mm <= 1),
+  layer_count     INTEGER NOT NULL CHECK (layer_count BETWEEN 1 AND 10000),
+  total_depth_mm  REAL NOT NULL CHECK (abs(total_depth_mm - layer_count * layer_feed_mm) <= 0.001),
+  power_pct       REAL NOT NULL CHECK (power_pct BETWEEN 0 AND 100),
+  start_radius_mm REAL NOT NULL CHECK (start_radius_mm BETWEEN 0 AND 50),
+  end_radius_mm   REAL NOT NULL CHECK (end_radius_mm BETWEEN 0 AND 50),
+  radius_turns    INTEGER NOT NULL CHECK (radius_turns BETWEEN 1 AND 1000),
+  scan_speed_mm_s REAL NOT NULL CHECK (scan_speed_mm_s >= 0),
+  wedge_speed_rpm REAL NOT NULL CHECK (wedge_speed_rpm >= 0),
+  beam_offset_mm  REAL NOT NULL,
+  process         INTEGER NOT NULL CHECK (process IN (0, 1, 2)),
+  shape           TEXT NOT NULL DEFAULT '',
+  focus_offset_mm REAL CHECK (focus_offset_mm IS NULL OR abs(focus_offset_mm) <= 50)
+))"))
+        << q.lastError().text().toStdString();
+    ASSERT_TRUE(q.exec("PRAGMA user_version = 1"));
+    ASSERT_TRUE(q.exec("INSERT INTO holes VALUES (4, 123.5, 50, 20, -10, 45, 600, 0.1, 10, 1.0, 80, "
+                       "0.5, 0.3, 1, 200, 3000, 0.125, 0, '', -0.5)"));
+    ASSERT_TRUE(q.exec("INSERT INTO holes VALUES (7, 100, 50, 20, 0, 0, 300, 0.1, 5, 0.5, 90, 0.5, 0.5, "
+                       "1, 100, 3000, 0, 2, '0.8@0;0.5@120;0.8@240', NULL)"));
+  });
+  auto db = open_db(p);
+  ASSERT_NE(db, nullptr);
+  Result<std::vector<HoleRecord>> all = db->holes();
+  ASSERT_TRUE(static_cast<bool>(all)) << all.error().to_string();
+  ASSERT_EQ(all->size(), 2u);
+  const HoleProcessParams& h = (*all)[0].params;
+  EXPECT_EQ(h.hole_number, 4u);
+  EXPECT_EQ(h.position[0], 123.5);
+  EXPECT_EQ(h.position[3], -10.0);
+  EXPECT_EQ(h.position[5], 45.0);
+  EXPECT_EQ(h.layer_count, 10u);
+  EXPECT_EQ(h.head.end_radius_mm, 0.3);
+  EXPECT_EQ(h.head.beam_offset_mm, 0.125);
+  EXPECT_EQ((*all)[0].focus_offset_mm, std::optional<double>(-0.5));
+  EXPECT_TRUE(validate(h).ok());
+  EXPECT_EQ((*all)[1].params.process, HoleProcessId::FreeShape);
+  EXPECT_EQ((*all)[1].params.shape.size(), 3u);
+  EXPECT_TRUE(db->put(row(9)).ok());
+  EXPECT_EQ(count(*db), 3u);
+  EXPECT_EQ(*db->integrity_check(), "ok");
 }
 
 TEST(ProcessDatabase, CsvImportIsAllOrNothingAndExportReadsBack) {
