@@ -1,5 +1,5 @@
-// lasercncd's Modbus slave for a PLC or an MES (issue "Peripherals", DESIGN
-// §8, seed 000 §4): the register map's "cnc" device (drivers/modbus/
+// lasercncd's Modbus slave for a PLC or an MES (docs/design.md §8,
+// Shao 2022 §4): the register map's "cnc" device (drivers/modbus/
 // cnc_slave.h) hosted by the daemon.
 //
 //   * status — the daemon's control thread calls publish() with the kernel's
@@ -46,7 +46,7 @@ struct Ack {
 // A Modbus command as the daemon executes it: the shm command it stands for.
 using CommandExecutor = std::function<Ack(const shm::Command&)>;
 
-// Checks the hole parameter block (DESIGN §6 fields 1–18, a hole process
+// Checks the hole parameter block (docs/design.md §6 fields 1–18, a hole process
 // record without a free shape's polygon) as the hole generator would; a
 // free shape is checked without its polygon.
 [[nodiscard]] Status check_hole_block(const drivers::HoleParameters& p);

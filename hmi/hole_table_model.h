@@ -1,5 +1,5 @@
 // The process database as a Qt table model (one row per hole, the columns
-// of DESIGN §6 fields 1–18 and the focus offset): what the process-database
+// of docs/design.md §6 fields 1–18 and the focus offset): what the process-database
 // screen's table shows and edits. Every edit goes through
 // ProcessDatabase::put, so it is validated and stored in one transaction; a
 // refused edit changes nothing and `refused` says why (hole, field, range).

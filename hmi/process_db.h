@@ -1,4 +1,4 @@
-// The process database (DESIGN §6, seed 000 Table 1): one row per hole with
+// The process database (docs/design.md §6, Shao (2022) Table 1): one row per hole with
 // fields 1–18 and the focus offset the focal-length workflow measures,
 // SQLite through QtSql. Widget-free: the HMI's screens and the tests use the
 // same object.

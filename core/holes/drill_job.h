@@ -1,5 +1,5 @@
 // A drilling job: the rows of a hole table turned into one motion program in
-// machine joints (DESIGN §6, seed 000 §4) that the planner runs like G-code.
+// machine joints (docs/design.md §6, Shao (2022) §4) that the planner runs like G-code.
 //
 // Per hole, in table order:
 //   travel   rapid from where the machine is to the clearance point, on the

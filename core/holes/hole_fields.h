@@ -39,7 +39,7 @@ enum class HoleFieldType : std::uint8_t {
 };
 
 struct HoleField {
-  int number;                      // 1 … 18 (DESIGN §6)
+  int number;                      // 1 … 18 (docs/design.md §6)
   std::string_view column;         // CSV header and SQL column
   std::string_view register_name;  // register of the "cnc" device's parameter block
   std::string_view label;          // in messages: "field 17 beam offset"

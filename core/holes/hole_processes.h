@@ -1,4 +1,4 @@
-// Hole processes of the process database (DESIGN §6, field 18; seed 000 §4,
+// Hole processes of the process database (docs/design.md §6, field 18; Shao (2022) §4,
 // Table 1): one process-DB row → the tool-tip motion that makes the hole,
 // plus the laser and four-beam scanning-head events at the moments they
 // apply.
@@ -71,7 +71,7 @@ struct PolarVertex {
   double angle_deg = 0.0;
 };
 
-// The fields of one process-DB row that the generator uses (DESIGN §6).
+// The fields of one process-DB row that the generator uses (docs/design.md §6).
 struct HoleProcessParams {
   std::uint32_t hole_number = 1;   // 1
   Pose position = Pose::Zero();    // 2–6: X Y Z (mm) and A, C (deg) of the hole centre
@@ -85,7 +85,7 @@ struct HoleProcessParams {
   std::vector<PolarVertex> shape;  // FreeShape only
 };
 
-// Ranges (DESIGN §6) and the ones the geometry needs.
+// Ranges (docs/design.md §6) and the ones the geometry needs.
 inline constexpr std::uint32_t kMaxHoleNumber = 10000;
 inline constexpr double kMaxHoleFeedMmMin = 2000.0;
 inline constexpr double kMaxLayerFeedMm = 1.0;

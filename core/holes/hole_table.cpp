@@ -89,7 +89,7 @@ Result<std::vector<HoleProcessParams>> parse_hole_table(std::string_view text, c
           if (cells[i].text == column_name(k)) found = k;
         if (found == kColumnCount)
           return err(ErrorCode::HoleTableSyntax, cells[i].col,
-                     "unknown column '" + std::string(cells[i].text) + "'; expected the fields of DESIGN §6: hole, x_mm, …, process, shape");
+                     "unknown column '" + std::string(cells[i].text) + "'; expected the fields of docs/design.md §6: hole, x_mm, …, process, shape");
         if (where[found] >= 0)
           return err(ErrorCode::HoleTableSyntax, cells[i].col, "column '" + std::string(column_name(found)) + "' twice");
         where[found] = static_cast<int>(i);
@@ -167,7 +167,7 @@ Result<std::vector<HoleProcessParams>> parse_hole_table(std::string_view text, c
     if (row_lines) row_lines->push_back(line_no);
   }
   if (!have_header)
-    return make_error(ErrorCode::HoleTableSyntax, "no header line; expected the fields of DESIGN §6", file, 1, 1);
+    return make_error(ErrorCode::HoleTableSyntax, "no header line; expected the fields of docs/design.md §6", file, 1, 1);
   return rows;
 }
 

@@ -1,4 +1,4 @@
-// The process database's rows as CSV (DESIGN §6): what `lasercnc drill`
+// The process database's rows as CSV (docs/design.md §6): what `lasercnc drill`
 // runs, and the import/export format of the HMI's process database.
 //
 //   hole,x_mm,y_mm,z_mm,a_deg,c_deg,feed_mm_min,layer_feed_mm,layer_count,

@@ -90,7 +90,7 @@ inline constexpr double kMaxPitchCorrection = 1.0;
 // start + (n−1)·interval, relative to max(1, |limit|).
 inline constexpr double kPitchTableEndTolerance = 1e-9;
 
-// DDA fine interpolation preset (DESIGN §5.4). The period is capacity ticks of
+// DDA fine interpolation preset (docs/design.md §5.4). The period is capacity ticks of
 // the DDA clock, so clock_hz = capacity / period.
 struct DdaConfig {
   std::uint32_t magnitude_bits = 4;  // pulses per period: 0 .. 2^bits - 1

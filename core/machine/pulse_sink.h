@@ -1,4 +1,4 @@
-// Where the DDA's pulses go (DESIGN §2): the simulated machine, the GHDL
+// Where the DDA's pulses go (docs/design.md §2): the simulated machine, the GHDL
 // co-simulation, or a hardware driver — and where the machine's switch inputs
 // come from. Called from the RT thread once per period, so implementations are
 // noexcept and must not allocate, lock or block.

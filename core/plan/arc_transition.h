@@ -1,4 +1,4 @@
-// Corner arc transition (DESIGN §5.1, seed 000 §3, seed 001 §3): the corner
+// Corner arc transition (docs/design.md §5.1, Shao (2022) §3, Chi, Wu and Cui (2020) §3): the corner
 // between two lines P(i−1)→P(i)→P(i+1) is replaced by a tangent arc whose
 // distance from the corner point P(i) is at most the tolerance E.
 //
@@ -49,7 +49,7 @@ bool arc_transition(const Segment& a, const Segment& b, double la, double lb, do
 
 namespace lcnc {
 
-// Corner arc transition where one or both neighbours are arcs (seed 000
+// Corner arc transition where one or both neighbours are arcs (Shao (2022)
 // eq. 15–21): a fillet circle tangent to both curves, in their common plane,
 // found as the crossing of the two curves offset by its radius r toward the
 // inside of the corner (a line offsets to a parallel line, a circle of

@@ -1,8 +1,8 @@
-// Coarse interpolation (DESIGN §5.3, seed 001 §3): the planned path sampled
+// Coarse interpolation (docs/design.md §5.3, Chi, Wu and Cui (2020) §3): the planned path sampled
 // once per RT period T on one global time line. Segments shorter than one
 // period's travel are consumed several per period, the time left over from
 // one segment carried into the next — so no segment costs a whole period and
-// no speed is capped by the period (seed 001).
+// no speed is capped by the period (Chi, Wu and Cui 2020).
 //
 //   sample k is the commanded pose at t = k·T, k = 1, 2, …; the last sample
 //   is exactly the program's end pose.

@@ -1,4 +1,4 @@
-// Optional jerk limit (S-curve acceleration, DESIGN §5.2 "jerk limiting as an
+// Optional jerk limit (S-curve acceleration, docs/design.md §5.2 "jerk limiting as an
 // option"): a moving average of the planner's period samples, switched on by
 // machine.max_jerk (J, mm/s³, linear axes).
 //

@@ -1,4 +1,4 @@
-// Look-ahead (DESIGN §5.2, seed 001 §3 "forward–backward"), streaming.
+// Look-ahead (docs/design.md §5.2, Chi, Wu and Cui (2020) §3 "forward–backward"), streaming.
 //
 // Per segment i: length L, top speed Vm (feed, per-axis and centripetal
 // limits: plan/segment_limits.h), tangential acceleration a, and a junction

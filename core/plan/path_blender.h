@@ -6,7 +6,7 @@
 // within the tolerance E of plan/tolerance_budget.h: min(P of the two
 // blocks) less the merger's share, the quantization margin and the jerk
 // filter's deviation, so that the executed path stays within P. Each
-// corner may use at most half of each neighbouring line (seed 000:
+// corner may use at most half of each neighbouring line (Shao 2022:
 // l_s = min(S(i)/2, S(i+1)/2)). Rotary axes moving along do not switch
 // blending off. Corners with an arc on one or both sides get a fillet in the
 // arc's plane (fillet_transition). Every other

@@ -1,4 +1,4 @@
-// One entry of the position buffer (DESIGN §5.3): what the RT thread executes
+// One entry of the position buffer (docs/design.md §5.3): what the RT thread executes
 // in one period. Integer micro-steps per axis (signed: sign = direction),
 // the laser power for the period and where it came from. Trivially copyable,
 // fixed size: it lives in the lock-free ring and, later, in shared memory.

@@ -1,4 +1,4 @@
-// The planner, stage by stage (DESIGN §2, §5.1–5.3):
+// The planner, stage by stage (docs/design.md §2, §5.1–5.3):
 //
 //   program segments ─► LineMerger (G64 Q) ─► PathBlender (corner arcs, G64 P)
 //     ─► Lookahead (forward/backward, streaming) ─► CoarseInterpolator (one

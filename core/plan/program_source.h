@@ -1,4 +1,4 @@
-// A G-code program as the planner reads it (DESIGN §2): the ProgramReader's
+// A G-code program as the planner reads it (docs/design.md §2): the ProgramReader's
 // segments, through the tool-centre-point expander when the machine config
 // has [kinematics] tcp = true (kinematics/tcp_program.h). `start` is always
 // in joints (where the machine stands); under TCP the program starts at the

@@ -1,5 +1,5 @@
 // Path-speed and path-acceleration limits of a segment from the per-axis
-// limits of the machine (DESIGN §5.2: "a segment's path limits follow from its
+// limits of the machine (docs/design.md §5.2: "a segment's path limits follow from its
 // direction").
 //
 // Line: axis i moves k_i = |Δ_i|/L per unit of path, so
@@ -21,7 +21,7 @@
 // The second is what makes a short blend arc, whose direction hardly turns,
 // as fast as the axes allow — and it differs for speeding up and slowing
 // down, where the centripetal part helps one and hinders the other. The
-// centripetal limit (DESIGN §5.1) takes a share of the budget:
+// centripetal limit (docs/design.md §5.1) takes a share of the budget:
 // a_n·max(|n_lo|, |n_hi|) ≤ kArcNormalShare·amax_i.
 // Normal (helix) and rotary axes move linearly with the path, as on a line.
 //

@@ -1,4 +1,4 @@
-// How a blended corner's tolerance is shared out (DESIGN §5.1).
+// How a blended corner's tolerance is shared out (docs/design.md §5.1).
 //
 // A corner between two G64 blocks may leave the programmed path by at most
 // P = min(P of the two blocks) (G64 P, or machine.path_tolerance_mm for a

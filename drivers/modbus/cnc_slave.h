@@ -1,5 +1,5 @@
 // The CNC's own Modbus slave (register map device "cnc"): what lasercncd
-// exposes to a PLC or an MES (DESIGN §8, seed 000 §4 fig. 15 — "reading CNC
+// exposes to a PLC or an MES (docs/design.md §8, Shao (2022) §4 fig. 15 — "reading CNC
 // system parameters and providing CNC system commands"). A thin, typed layer
 // over ModbusSlave, so the daemon deals in its own terms:
 //
@@ -13,7 +13,7 @@
 //     handler that refuses gets the master exception 04 and the coil stays
 //     0; an accepted command's coil reads 1 until the next tick (10 ms)
 //     clears it — "taken";
-//   * the hole parameter block (holding 0–24, DESIGN §6 fields 1–18; the
+//   * the hole parameter block (holding 0–24, docs/design.md §6 fields 1–18; the
 //     registers named by holes/hole_fields.h) — ranges are checked by the map (exception 03, nothing stored); a valid
 //     write, whole or partial, is handed to the parameter handler as the
 //     complete block with the new values merged in; a refusal is
@@ -46,7 +46,7 @@ struct CncStatusSnapshot {
 
 enum class CncCommand : std::uint8_t { Start, Hold, Resume, Stop, Reset, SetOverride };
 
-// DESIGN §6 fields 1–18 (the process database row of one hole): the
+// docs/design.md §6 fields 1–18 (the process database row of one hole): the
 // parameter block's registers are the fields' register names of
 // holes/hole_fields.h. A block from Modbus has no free-shape polygon.
 using HoleParameters = HoleProcessParams;

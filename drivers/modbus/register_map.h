@@ -1,5 +1,5 @@
 // The Modbus register map (share/modbus/register_map.toml): the single source
-// of truth for both sides (DESIGN §8). The master's typed accessors, the
+// of truth for both sides (docs/design.md §8). The master's typed accessors, the
 // CNC's slave and the virtual devices all look registers up here by name;
 // no address is written in code.
 //

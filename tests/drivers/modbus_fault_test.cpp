@@ -1,4 +1,4 @@
-// Faults on the Modbus link (DESIGN §8): corrupted bytes on the RTU line (a
+// Faults on the Modbus link (docs/design.md §8): corrupted bytes on the RTU line (a
 // PtyLink flips a bit in the next frame), a pulled cable, a device gone and
 // back, a device that accepts and never answers, exception answers. Each must
 // be reported with a clear message, recovered from automatically, and never

@@ -93,7 +93,7 @@ TEST_P(ModbusRoundTrip, Fc15WritesCoils) {
   EXPECT_EQ(slave().get("cmd_stop").value(), 0.0);
 }
 
-// The hole parameter block of DESIGN §6, written at once (seed 000: FC16).
+// The hole parameter block of docs/design.md §6, written at once (Shao 2022: FC16).
 TEST_P(ModbusRoundTrip, Fc16WritesTheHoleParameterBlock) {
   const std::vector<std::pair<std::string, double>> block = {
       {"hole_number", 17},        {"hole_x_mm", 512.25},       {"hole_y_mm", 100.5},

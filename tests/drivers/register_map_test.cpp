@@ -23,7 +23,7 @@ TEST(RegisterMap, ShippedMapLoadsWithEveryDevice) {
     ASSERT_NE(dev, nullptr) << d;
     EXPECT_FALSE(dev->registers.empty()) << d;
   }
-  // The CNC's hole parameter block (DESIGN §6 fields 1–18) is one contiguous
+  // The CNC's hole parameter block (docs/design.md §6 fields 1–18) is one contiguous
   // run of holding registers, so one FC16 writes it.
   const DeviceMap& cnc = *m->device("cnc");
   EXPECT_EQ(cnc.find("hole_number")->address, 0);
