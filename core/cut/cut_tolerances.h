@@ -1,5 +1,5 @@
 // Tolerances and fixed numbers of laser cutting from a DXF drawing
-// (lasercnc cut), in one place (STYLE §4). Lengths mm, angles radians.
+// (lasercnc cut), in one place. Lengths mm, angles radians.
 //
 // The cut path stays within kChordToleranceMm + kKerfArcToleranceMm
 // (+ half a unit of the last printed digit) of kerf/2 from the drawing:

@@ -1,5 +1,6 @@
 // Limits, defaults and tolerances of the main + auxiliary axes decomposition
-// (docs/design.md §5.7, Kondratenko et al. (2015) "technological limits"), in one place (STYLE §4).
+// (docs/design.md §5.7; the "technological limits" of Kondratenko et al.
+// 2015), in one place.
 // Units: mm, s, mm/s, mm/s².
 #pragma once
 

@@ -1,4 +1,4 @@
-// Tolerances and fixed limits of the DXF front end, in one place (STYLE §4).
+// Tolerances and fixed limits of the DXF front end, in one place.
 // Lengths are mm (after the drawing's units are applied), angles radians.
 #pragma once
 

@@ -1,5 +1,5 @@
-// Tolerances and fixed factors of the G-code front end, in one place
-// (STYLE §4). Lengths are mm (after G20/G21 conversion), angles radians.
+// Tolerances and fixed factors of the G-code front end, in one place.
+// Lengths are mm (after G20/G21 conversion), angles radians.
 #pragma once
 
 namespace lcnc::gcode {

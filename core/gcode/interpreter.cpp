@@ -8,7 +8,7 @@
 
 #include "gcode/arc_geometry.h"
 #include "gcode/gcode_tolerances.h"
-#include "plan/tolerances.h"
+#include "path/path_tolerances.h"
 
 namespace lcnc::gcode {
 namespace {
@@ -16,7 +16,7 @@ namespace {
 // Whether a move's feed is over its linear axes (RS274NGC: they move) or
 // its rotary ones. Linear travel the planner takes as none is none here too,
 // so the feed and the move's length (SegmentGeometry) measure the same.
-bool moves_linear(double linear_mm) { return linear_mm > plan::kMinSegmentLength; }
+bool moves_linear(double linear_mm) { return linear_mm > path::kMinSegmentLength; }
 
 constexpr char kCentreLetter[3] = {'I', 'J', 'K'};  // centre word of X, Y, Z
 constexpr std::size_t kQuoteMaxChars = 60;

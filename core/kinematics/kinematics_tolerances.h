@@ -1,5 +1,5 @@
 // Named tolerances of the 5-axis kinematics and orientation interpolation
-// (one header per module, STYLE §4). Angles in degrees unless the name says rad.
+// (one header per module). Angles in degrees unless the name says rad.
 #pragma once
 
 namespace lcnc::kin {

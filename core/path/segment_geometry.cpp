@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "plan/tolerances.h"
+#include "path/path_tolerances.h"
 
 namespace lcnc {
 
@@ -28,13 +28,13 @@ double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) noexcept
 namespace {
 
 // Linear axes if they move, else rotary (as RS274NGC measures feed). Linear
-// travel the planner takes as none (plan::kMinSegmentLength) is none here
+// travel the planner takes as none (path::kMinSegmentLength) is none here
 // too: otherwise a rotary swing with a nanometre of X Y Z would have the
 // nanometre as its length, be planned as no motion and skipped while its
 // rotary axes still count as moved — the next move would jump.
 double line_length(const Pose& d) {
   const double lin = d.head<3>().norm();
-  return lin > plan::kMinSegmentLength ? lin : d.tail<3>().norm();
+  return lin > path::kMinSegmentLength ? lin : d.tail<3>().norm();
 }
 
 // atan2(y, x); for x > 0 and |y| ≤ x/64 (every corner blend's sweep) by the
@@ -86,7 +86,7 @@ void SegmentGeometry::set(const Segment& seg) {
     const double rise = (b - a).dot(n);
     axis_n_ = Vec3::Zero();
     helix_h_ = 0.0;
-    if (std::abs(rise) > plan::kMinSegmentLength) {
+    if (std::abs(rise) > path::kMinSegmentLength) {
       axis_n_ = n;
       helix_h_ = rise;
       center_ += (a - center_).dot(n) * n;
@@ -101,7 +101,7 @@ void SegmentGeometry::set(const Segment& seg) {
     sweep_ = atan2_small(y, x);
     // End on the start (to rounding: a full circle mapped by a rotation comes
     // back a few 1e-17 rad either side): one full turn, as on the named planes.
-    if (sweep_ <= plan::kFullTurnAngle) sweep_ += two_pi;
+    if (sweep_ <= path::kFullTurnAngle) sweep_ += two_pi;
     sweep_ += two_pi * seg.extra_turns;
     set_sin_cos_sweep(y, x);
   } else {
@@ -121,7 +121,7 @@ void SegmentGeometry::set(const Segment& seg) {
     const double y = rb.dot(w_), x = rb.dot(u_);
     r_end = rb.norm();
     double sweep = atan2_small(y, x);     // (−π, π]
-    if (sweep <= plan::kFullTurnAngle) sweep += two_pi;  // end == start: one full turn
+    if (sweep <= path::kFullTurnAngle) sweep += two_pi;  // end == start: one full turn
     sweep_ = sweep + two_pi * seg.extra_turns;
     set_sin_cos_sweep(y, x);
   }

@@ -1,10 +1,14 @@
-// Named tolerances of the planner (one header per module, STYLE §4).
+// Named tolerances of the planner (one header per module).
 #pragma once
+
+#include "path/path_tolerances.h"
 
 namespace lcnc::plan {
 
-// Segments shorter than this (mm or deg) carry no motion of their own.
-inline constexpr double kMinSegmentLength = 1e-9;
+// Segments shorter than this (mm or deg) carry no motion of their own; an
+// arc's end this close after its start is a full turn (path/path_tolerances.h).
+using path::kFullTurnAngle;
+using path::kMinSegmentLength;
 
 // A corner fillet (fillet_transition) takes an arc as the circle of its start
 // radius; an arc whose end radius differs by more than this (a spiral) is
@@ -16,10 +20,6 @@ inline constexpr double kSpiralBlendMm = 1e-6;
 // speeding up and slowing down on the arc. Curvature-limited arcs run at
 // sqrt(0.995) ≈ 99.75 % of the speed that would use the whole budget.
 inline constexpr double kArcNormalShare = 0.995;
-// An arc whose end lies this close (rad) after its start ends where it
-// starts: a full turn (a rounding allowance — a circle mapped by a rotation
-// comes back a few 1e-17 rad off; blends turn by at least kMinBlendAngle).
-inline constexpr double kFullTurnAngle = 1e-12;
 // Corners turning less than this (rad) are tangent: no blend needed.
 inline constexpr double kMinBlendAngle = 1e-7;
 // Corners turning more than this (rad) reverse: no blend, the path stops.
