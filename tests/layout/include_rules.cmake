@@ -33,6 +33,8 @@ check(core "" "^(rt|drivers|hmi|app)/|${qt}|^(thread|mutex|modbus\\.h)$"
       "core/ is pure: no rt, drivers, hmi, app, Qt, threads or devices")
 check(core/path "" "^(gcode|plan|holes|cut|decompose|dxf|kinematics|measure)/"
       "core/path/ (segments, their geometry) sits below the readers and the planner")
+check(core/gcode "" "^(plan|holes|cut|decompose|kinematics|measure)/"
+      "core/gcode/ (the G-code reader) sits below the planner and the applications of core")
 check(rt "" "^(drivers|hmi|app)/|${qt}" "rt/ may use core alone")
 check(drivers "^drivers/hal/" "^(rt|hmi|app)/|${qt}" "drivers/ may use core and libmodbus alone")
 check(drivers/hal "" "^(hmi|app)/|${qt}" "the HAL component may use core and rt")
