@@ -21,6 +21,32 @@ inline int usage_error(std::string_view command, const std::string& msg, const c
   return 2;
 }
 
+// argv[i] of a command that takes one file and options with one value each
+// (cut, decompose): --help or -h prints the usage and ends the command (0);
+// a word not starting with '-', or "-", is the file (a second one is a usage
+// error); anything else is an option, whose value follows (i moves on to
+// it). The exit code when the command ends here, else nothing, with
+// `option` and `value` set — both empty for the file.
+inline std::optional<int> file_or_option(std::string_view command, const char* usage, int argc,
+                                         char** argv, int& i, std::string& file,
+                                         std::string_view& option, std::string_view& value) {
+  const std::string_view a = argv[i];
+  option = value = {};
+  if (a == "--help" || a == "-h") {
+    std::fputs(usage, stdout);
+    return 0;
+  }
+  if (a.empty() || a[0] != '-' || a == "-") {
+    if (!file.empty()) return usage_error(command, "more than one file: " + std::string(a), usage);
+    file = std::string(a);
+    return std::nullopt;
+  }
+  if (i + 1 >= argc) return usage_error(command, std::string(a) + " needs a value", usage);
+  option = a;
+  value = argv[++i];
+  return std::nullopt;
+}
+
 // "6m/min" → (6, "m/min"): a finite number, then its unit (maybe empty).
 inline std::optional<std::pair<double, std::string>> parse_quantity(std::string_view s) {
   const std::string str(s);

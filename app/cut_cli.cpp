@@ -82,18 +82,9 @@ int cut_main(int argc, char** argv) {
   cut::Process defaults;
   dxf::ReadOptions read_opt;
   for (int i = 1; i < argc; ++i) {
-    const std::string_view a = argv[i];
-    if (a == "--help" || a == "-h") {
-      std::fputs(kUsage, stdout);
-      return 0;
-    }
-    if (a.empty() || a[0] != '-' || a == "-") {
-      if (!part.empty()) return usage_error("more than one drawing: " + std::string(a));
-      part = std::string(a);
-      continue;
-    }
-    if (i + 1 >= argc) return usage_error(std::string(a) + " needs a value");
-    const std::string_view v = argv[++i];
+    std::string_view a, v;
+    if (const auto exit = file_or_option("lasercnc cut", kUsage, argc, argv, i, part, a, v)) return *exit;
+    if (a.empty()) continue;  // the drawing
     auto bad = [&](const char* expected) {
       return usage_error(std::string(a) + " " + std::string(v) + ": expected " + expected);
     };

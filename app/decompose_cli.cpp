@@ -173,26 +173,19 @@ int decompose_main(int argc, char** argv) {
   bool main_speed_given = false, main_accel_given = false, aux_speed_given = false,
        field_given = false;
   for (int i = 1; i < argc; ++i) {
-    const std::string_view a = argv[i];
-    if (a == "--help" || a == "-h") {
-      std::fputs(kUsage, stdout);
-      return 0;
-    }
-    if (a == "--run") {
+    const std::string_view flag = argv[i];  // the options without a value
+    if (flag == "--run") {
       run = true;
       continue;
     }
-    if (a == "--no-realtime") {
+    if (flag == "--no-realtime") {
       run_opt.realtime = false;
       continue;
     }
-    if (a.substr(0, 2) != "--") {
-      if (!part.empty()) return usage_error("more than one drawing: " + std::string(a));
-      part = std::string(a);
-      continue;
-    }
-    if (i + 1 >= argc) return usage_error(std::string(a) + " needs a value");
-    const std::string_view v = argv[++i];
+    std::string_view a, v;
+    if (const auto exit = file_or_option("lasercnc decompose", kUsage, argc, argv, i, part, a, v))
+      return *exit;
+    if (a.empty()) continue;  // the drawing
     auto bad = [&](const char* expected) {
       return usage_error(std::string(a) + " " + std::string(v) + ": expected " + expected);
     };
