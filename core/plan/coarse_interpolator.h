@@ -25,25 +25,13 @@
 
 namespace lcnc {
 
-struct PeriodSample {
-  double t_s = 0.0;           // end of the period
-  Pose pose = Pose::Zero();   // commanded pose at t_s (mm, deg)
-  double speed = 0.0;         // path speed at t_s
-  float power_pct = 0.0f;
-  float power_cap_pct = 0.0f;  // M4: the programmed power (see PeriodIncrement)
-  float k_plan = 1.0f;         // the feed override it is planned at (see PeriodIncrement)
-  std::uint32_t line = 0;
-  std::uint32_t segment = 0;
-  MotionKind kind = MotionKind::Dwell;
-  bool end_of_program = false;
-  bool pause = false;  // the first sample of a pause (Segment::pause)
-  std::uint16_t outputs = 0;  // the segment's (see PeriodIncrement)
-  std::array<float, kAnalogOutputs> analog{};
-  std::uint8_t feed_control = 0;  // the segment's (Segment::feed_control)
-  // M66: on the first sample of its segment only (see PeriodIncrement)
-  std::int8_t wait_input = -1;
-  std::uint8_t wait_mode = 0;
-  float wait_timeout_s = 0.0f;
+struct PeriodSample : EntrySignals {
+  PeriodSample() noexcept { kind = MotionKind::Dwell; }  // at rest until sampled
+  double t_s = 0.0;          // end of the period
+  Pose pose = Pose::Zero();  // commanded pose at t_s (mm, deg)
+  double speed = 0.0;        // path speed at t_s
+  // The signals: the segment's (pause and the M66 wait on its first sample
+  // only, as PeriodIncrement's).
 };
 
 class CoarseInterpolator {
@@ -165,6 +153,7 @@ inline std::int64_t StepQuantizer::to_steps(int axis, double pos) const noexcept
 
 inline PeriodIncrement StepQuantizer::emit(const PeriodSample& s) {
   PeriodIncrement inc;  // absent axes: 0
+  static_cast<EntrySignals&>(inc) = s;
   for (int k = 0; k < present_count_; ++k) {
     const int i = present_[k];
     const std::int64_t owed = target_[i] - emitted_[i];
@@ -172,20 +161,7 @@ inline PeriodIncrement StepQuantizer::emit(const PeriodSample& s) {
     inc.steps[i] = static_cast<std::int32_t>(step);
     emitted_[i] += step;
   }
-  inc.power_pct = s.power_pct;
-  inc.power_cap_pct = s.power_cap_pct;
-  inc.k_plan = s.k_plan;
-  inc.line = s.line;
-  inc.segment = s.segment;
-  inc.kind = s.kind;
   inc.end_of_program = s.end_of_program && !owed();
-  inc.pause = s.pause;
-  inc.outputs = s.outputs;
-  inc.analog = s.analog;
-  inc.feed_control = s.feed_control;
-  inc.wait_input = s.wait_input;
-  inc.wait_mode = s.wait_mode;
-  inc.wait_timeout_s = s.wait_timeout_s;
   return inc;
 }
 

@@ -26,9 +26,12 @@ struct RampRoom {
   float up = 0.0f;                                     // share of amax, 0 … 1
 };
 
-struct PeriodIncrement {
-  std::array<std::int32_t, kAxisCount> steps{};  // increment this period, per axis
-  float power_pct = 0.0f;                        // laser output for this period (at K = 1)
+// What a period's entry carries besides its steps: the laser, the outputs,
+// where in the program it is and what the RT does at it. The coarse
+// interpolator's samples carry the same, and hand it on whole
+// (StepQuantizer::emit).
+struct EntrySignals {
+  float power_pct = 0.0f;  // laser output for this period (at K = 1)
   // M4 (dynamic power): the programmed power S. The RT kernel scales the
   // output by the feed override K — power follows the actual speed — up to
   // this cap. 0 for M3 and laser off: their power does not follow speed.
@@ -37,11 +40,10 @@ struct PeriodIncrement {
   // within the axes' limits; rapids and dwells 1). The RT runs it at
   // K = min(1, override / k_plan): faster than planned it never goes.
   float k_plan = 1.0f;
-  RampRoom ramp;
-  std::uint32_t line = 0;                        // source line executing
-  std::uint32_t segment = 0;                     // segment index executing (0-based)
+  std::uint32_t line = 0;     // source line executing
+  std::uint32_t segment = 0;  // segment index executing (0-based)
   MotionKind kind = MotionKind::Linear;  // Dwell entries run at the nominal period whatever the override
-  bool end_of_program = false;                   // the last entry of the job
+  bool end_of_program = false;           // the last entry of the job
   // M0/M1/M60: after this entry (at rest, a dwell's) the RT holds the job
   // until the operator resumes it.
   bool pause = false;
@@ -60,6 +62,11 @@ struct PeriodIncrement {
   std::int8_t wait_input = -1;
   std::uint8_t wait_mode = 0;
   float wait_timeout_s = 0.0f;
+};
+
+struct PeriodIncrement : EntrySignals {
+  std::array<std::int32_t, kAxisCount> steps{};  // increment this period, per axis
+  RampRoom ramp;
 };
 static_assert(std::is_trivially_copyable_v<PeriodIncrement>);
 
