@@ -20,6 +20,7 @@
 #include "drivers/modbus/modbus_master.h"
 #include "drivers/modbus/register_map.h"
 #include "holes/drill_job.h"
+#include "holes/hole_fields.h"
 #include "holes/hole_table.h"
 
 namespace lcnc::app {
@@ -76,12 +77,7 @@ class HeadLink {
     const ScanHeadParams& p = step.head;
     master_->write_async("run", 0, [this, k](Status s) { note(k, s); });
     master_->write_block_async(
-        {{"start_radius_mm", p.start_radius_mm},
-         {"end_radius_mm", p.end_radius_mm},
-         {"radius_turns", static_cast<double>(p.radius_turns)},
-         {"scan_speed_mm_s", p.scan_speed_mm_s},
-         {"wedge_speed_rpm", p.wedge_speed_rpm},
-         {"beam_offset_mm", p.beam_offset_mm}},
+        scan_head_block(p),
         [this, k](Status s) {
           note(k, s);
           std::lock_guard lock(mutex_);

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 
+#include "holes/hole_fields.h"
 #include "hmi/page_support.h"
 #include "ui_adjust_page.h"
 
@@ -137,12 +138,14 @@ AdjustPage::AdjustPage(const AdjustEndpoints& at, QWidget* parent)
   });
   connect(ui_->writeHeadButton, &QPushButton::clicked, this, [this] {
     if (!head_) return;
-    head_->write_block({{"start_radius_mm", ui_->startRadiusSpin->value()},
-                        {"end_radius_mm", ui_->endRadiusSpin->value()},
-                        {"radius_turns", ui_->turnsSpin->value()},
-                        {"scan_speed_mm_s", ui_->scanSpeedSpin->value()},
-                        {"wedge_speed_rpm", ui_->wedgeSpin->value()},
-                        {"beam_offset_mm", ui_->beamOffsetSpin->value()}});
+    ScanHeadParams h;
+    h.start_radius_mm = ui_->startRadiusSpin->value();
+    h.end_radius_mm = ui_->endRadiusSpin->value();
+    h.radius_turns = static_cast<std::uint32_t>(ui_->turnsSpin->value());
+    h.scan_speed_mm_s = ui_->scanSpeedSpin->value();
+    h.wedge_speed_rpm = ui_->wedgeSpin->value();
+    h.beam_offset_mm = ui_->beamOffsetSpin->value();
+    (void)head_->write_block(scan_head_block(h));
   });
   connect(ui_->runHeadButton, &QPushButton::toggled, this, [this](bool on) {
     if (head_) head_->write("run", on ? 1 : 0);

@@ -58,4 +58,13 @@ std::string hole_field_range_message(const HoleField& f, double v) {
   return m;
 }
 
+std::vector<std::pair<std::string, double>> scan_head_block(const ScanHeadParams& head) {
+  HoleProcessParams p;
+  p.head = head;
+  std::vector<std::pair<std::string, double>> out;
+  for (const HoleField& f : kHoleFields)
+    if (f.number >= 12 && f.number <= 17) out.emplace_back(std::string(f.column), f.get(p));
+  return out;
+}
+
 }  // namespace lcnc

@@ -27,6 +27,8 @@
 #include <string>
 #include <string_view>
 #include <type_traits>
+#include <utility>
+#include <vector>
 
 #include "holes/hole_processes.h"
 
@@ -172,6 +174,11 @@ inline constexpr std::array<HoleField, 18> kHoleFields = {{
      hole_fields_detail::set<&HoleProcessParams::process>,
      "0 helix, 1 circle, 2 free shape"},
 }};
+
+// The scanning head's parameter block (fields 12–17) as the head's
+// registers take it: (register of the scan_head device, which is the field's
+// column name; value), in field order.
+[[nodiscard]] std::vector<std::pair<std::string, double>> scan_head_block(const ScanHeadParams& head);
 
 // The field of a CSV/SQL column or of a register name; nullopt when none.
 [[nodiscard]] std::optional<std::size_t> hole_field_by_column(std::string_view column) noexcept;

@@ -89,3 +89,26 @@ TEST(HoleFields, TheCsvHeaderIsTheTableThenTheShape) {
 
 }  // namespace
 }  // namespace lcnc
+
+namespace lcnc {
+namespace {
+
+// What `lasercnc drill` and the HMI's adjust screen write to the head: the
+// six registers of fields 12–17, named as the table's columns, in order.
+TEST(HoleFields, TheScanHeadBlockIsFields12To17InOrder) {
+  ScanHeadParams h;
+  h.start_radius_mm = 1.25;
+  h.end_radius_mm = 0.75;
+  h.radius_turns = 4;
+  h.scan_speed_mm_s = 120.0;
+  h.wedge_speed_rpm = 6000.0;
+  h.beam_offset_mm = -0.5;
+  const std::vector<std::pair<std::string, double>> block = scan_head_block(h);
+  const std::vector<std::pair<std::string, double>> expected{
+      {"start_radius_mm", 1.25}, {"end_radius_mm", 0.75},   {"radius_turns", 4.0},
+      {"scan_speed_mm_s", 120.0}, {"wedge_speed_rpm", 6000.0}, {"beam_offset_mm", -0.5}};
+  EXPECT_EQ(block, expected);
+}
+
+}  // namespace
+}  // namespace lcnc
