@@ -128,6 +128,7 @@ struct Daemon::Impl {
   std::unique_ptr<PlannerFeed> feed;
   std::unique_ptr<CncModbusHost> modbus;  // the PLC/MES slave, when asked for
   bool realtime = true;
+  rt::RtClock clock = rt::RtClock::Wall;
   std::vector<std::string> program_dirs;  // canonical; empty: anywhere
 
   // the job
@@ -813,7 +814,8 @@ Result<std::unique_ptr<Daemon>> Daemon::create(const DaemonOptions& options) {
   Impl& d = *impl;
   d.publish_work(*work);
   d.shm.block().job.store(d.job);
-  d.realtime = options.realtime;
+  d.realtime = options.realtime && !options.simulated_clock;
+  d.clock = options.simulated_clock ? rt::RtClock::SimulatedPaced : rt::RtClock::Wall;
   for (const std::string& dir : options.program_dirs) {
     std::error_code ec;
     const std::filesystem::path canon = std::filesystem::canonical(dir, ec);
@@ -874,6 +876,7 @@ int Daemon::run(const std::atomic<bool>& quit) {
   Impl& d = *impl_;
   rt::RtOptions o;
   o.try_realtime = d.realtime;
+  o.clock = d.clock;
   o.exit_at_end = false;
   o.start_running = false;
   if (d.rt_kernel) {

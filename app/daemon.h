@@ -23,7 +23,13 @@ namespace lcnc::app {
 struct DaemonOptions {
   std::string machine_file;  // empty: the default machine
   std::string shm_name;      // empty: shm::kDefaultName
-  bool realtime = true;      // try SCHED_FIFO + mlockall
+  bool realtime = true;      // try SCHED_FIFO + mlockall (wall clock only)
+  // The simulated machine on the simulated clock at the wall clock's pace
+  // (rt/rt_clock.h RtClock::SimulatedPaced): never ahead of wall time, the
+  // kernel waits for the planner instead of running dry, and a computer
+  // that cannot keep real time makes the machine slower, never different.
+  // Not with `hal` (HAL's thread keeps the time there).
+  bool simulated_clock = false;
   // The RT kernel runs in LinuxCNC's HAL (drivers/hal/, `loadrt lasercnc`),
   // on real drives: this process starts no RT thread and shares the
   // kernel's port, buffer, trace and log in the segment "<shm_name>.hal".

@@ -30,7 +30,7 @@ constexpr const char* kUsage =
     "                          [--units auto|mm|cm|m|inch]\n"
     "                          [--csv FILE] [--svg FILE] [--accel-svg FILE]\n"
     "                          [--run [--machine FILE] [--aux-machine FILE] [--origin X,Y]\n"
-    "                           [--run-svg FILE] [--no-realtime]]\n"
+    "                           [--run-svg FILE] [--fast | --no-realtime]]\n"
     "\n"
     "  Splits every contour of the drawing into a smooth main-axis path S1 (X, Y) and\n"
     "  an auxiliary path S2 = S - S1 (P, Q) whose sum is the contour S.\n"
@@ -58,6 +58,7 @@ constexpr const char* kUsage =
     "                period; the limits and field come from the groups' configs unless\n"
     "                given; --origin: where the part's 0,0 is on X, Y (default 0,0)\n"
     "  --run-svg     the run's axis curves X, Y, P, Q over time\n"
+    "  --fast        the run on the simulated clock, as `lasercnc run --fast`\n"
     "  Speeds take mm/s (default unit), mm/min, m/min, m/s; accelerations mm/s2\n"
     "  (default), m/s2, g.\n";
 
@@ -180,6 +181,10 @@ int decompose_main(int argc, char** argv) {
     }
     if (flag == "--no-realtime") {
       run_opt.realtime = false;
+      continue;
+    }
+    if (flag == "--fast") {
+      run_opt.clock = rt::RtClock::Simulated;
       continue;
     }
     std::string_view a, v;

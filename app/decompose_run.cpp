@@ -174,6 +174,7 @@ struct Group {
   }
   void feed() {
     while (pushed < entries.size() && buffer->try_push(entries[pushed])) ++pushed;
+    if (pushed == entries.size()) kernel->stream_end();
   }
   void drain() {
     rt::TraceRecord r;
@@ -316,10 +317,15 @@ Result<DecomposeRunReport> run_decomposition(const decompose::PartResult& part,
   gm.quantize(targets, true);
   ga.quantize(targets, false);
   const std::array<std::int64_t, 2> cm = gm.commanded(), ca = ga.commanded();
+  // The entries stream in from this thread: a kernel whose buffer runs low
+  // slows along the path on the wall clock, and waits on the simulated one.
+  gm.kernel->stream_begin();
+  ga.kernel->stream_begin();
   gm.feed();
   ga.feed();
   rt::RtOptions o;
-  o.try_realtime = options.realtime;
+  o.try_realtime = options.realtime && options.clock == rt::RtClock::Wall;
+  o.clock = options.clock;
   o.epoch_ns = now_ns() + 5'000'000;  // both start on the same period boundary
   gm.kernel->start(o);
   ga.kernel->start(o);

@@ -29,6 +29,7 @@
 #include "decompose/decompose_svg.h"
 #include "decompose/part_decomposition.h"
 #include "machine/machine_config.h"
+#include "rt/rt_clock.h"
 
 namespace lcnc::app {
 
@@ -71,7 +72,10 @@ struct DecomposeRunReport {
 };
 
 struct DecomposeRunOptions {
-  bool realtime = true;
+  bool realtime = true;  // try SCHED_FIFO + mlockall (wall clock only)
+  // The wall clock, or the simulated clock (`--fast`; rt/rt_kernel.h RtClock):
+  // each group's kernel then waits for its entries instead of running dry.
+  rt::RtClock clock = rt::RtClock::Wall;
   // Where the part's origin is on the main axes (mm, machine coordinates).
   double origin_x_mm = 0.0, origin_y_mm = 0.0;
 };

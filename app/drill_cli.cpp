@@ -29,9 +29,10 @@ namespace {
 constexpr const char* kUsage =
     "usage: lasercnc drill HOLES.csv [--machine FILE] [--devices] [--clearance MM] [--settle S]\n"
     "                      [--feed-override PCT] [--trace FILE.csv] [--json] [--[no-]progress]\n"
-    "                      [--no-realtime]\n"
+    "                      [--fast | --no-realtime]\n"
     "  HOLES.csv      the process database's rows, one hole a row (README: hole tables)\n"
     "  --devices      scanning head, laser source and power meter as simulated Modbus devices\n"
+    "  --fast         the simulated clock, as `lasercnc run --fast` (not with --devices)\n"
     "  --clearance    approach and retract height above each hole, mm along the tool axis (5)\n"
     "  --settle       dwell at the clearance point while the head takes its block, s (0.2)\n";
 
@@ -145,6 +146,8 @@ int drill_main(int argc, char** argv) {
       show_progress = a == "--progress";
     } else if (a == "--no-realtime") {
       opt.realtime = false;
+    } else if (a == "--fast") {
+      opt.clock = rt::RtClock::Simulated;
     } else if (!a.empty() && a[0] == '-') {
       return usage_error("unknown option '" + std::string(a) + "'");
     } else if (table.empty()) {
@@ -154,6 +157,9 @@ int drill_main(int argc, char** argv) {
     }
   }
   if (table.empty()) return usage_error("missing HOLES.csv");
+  if (opt.clock == rt::RtClock::Simulated && opt.devices)
+    return usage_error("--fast runs the machine on the simulated clock; the scanning head, laser "
+                       "source and power meter keep wall time: run --devices without --fast");
 
   // Everything is checked before anything moves: machine, table, the job's
   // travel.

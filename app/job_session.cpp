@@ -84,13 +84,17 @@ Status JobSession::link_laser(bool devices, const std::optional<drivers::Endpoin
   return laser_->enable();  // failed: the link's destructor switches emission off
 }
 
-void JobSession::start(const JobSource& source, double k, bool realtime) {
+void JobSession::start(const JobSource& source, double k, bool realtime, rt::RtClock clock,
+                       std::uint64_t pause_periods) {
   // The override first: one above 100 % is planned for from the first entry.
   kernel_->set_feed_override(k);
   source.start(*feed_);
   feed_->wait_prefilled();
   rt::RtOptions rt_options;
-  rt_options.try_realtime = realtime;
+  // a thread that never sleeps must not hold a core at SCHED_FIFO
+  rt_options.try_realtime = realtime && clock == rt::RtClock::Wall;
+  rt_options.clock = clock;
+  rt_options.program_pause_periods = pause_periods;
   kernel_->start(rt_options);
 }
 

@@ -102,8 +102,14 @@ class JobSession {
                                   const std::optional<drivers::Endpoint>& power_meter);
   // The planner thread on `source` at feed override `k` (set before the
   // RT thread starts, so the job begins at it with no ramp); the RT thread
-  // once half the buffer (or the whole job) is in.
-  void start(const JobSource& source, double k, bool realtime);
+  // once half the buffer (or the whole job) is in, on `clock`: the wall
+  // clock (SCHED_FIFO + mlockall tried where `realtime`) or the simulated
+  // clock (rt/rt_kernel.h RtClock; normal scheduling, as fast as the
+  // computer runs).
+  // `pause_periods`: RtOptions::program_pause_periods (0: a program pause
+  // waits for a resume).
+  void start(const JobSource& source, double k, bool realtime, rt::RtClock clock,
+             std::uint64_t pause_periods);
 
   [[nodiscard]] rt::RtKernel& kernel() noexcept { return *kernel_; }
   [[nodiscard]] const drivers::SimMachine& sim() const noexcept { return *sim_; }

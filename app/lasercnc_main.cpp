@@ -36,7 +36,7 @@ constexpr const char* kUsage =
     "usage:\n"
     "  lasercnc run PROGRAM [--machine FILE] [--vmax V] [--amax A] [--tolerance E]\n"
     "                       [--feed-override PCT] [--pause S] [--trace FILE.csv] [--json]\n"
-    "                       [--[no-]progress] [--no-realtime] [--input N]... [--adaptive-feed F]\n"
+    "                       [--[no-]progress] [--fast | --no-realtime] [--input N]... [--adaptive-feed F]\n"
     "                       [--devices | --laser ENDPOINT [--power-meter ENDPOINT]]\n"
     "  lasercnc check PROGRAM [--machine FILE] [--moves FILE]\n"
     "  lasercnc status [--json] [--shm NAME]\n"
@@ -88,7 +88,7 @@ constexpr const char* kUsage =
     "                  1 <= PCT <= 100 x machine.max_feed_override (150 on the default\n"
     "                  machine); default 100\n"
     "  --pause         an M0, M1 or M60 pauses the job; unattended, the run goes on after\n"
-    "                  S seconds (default 0). (lasercncd waits for `send resume`.)\n"
+    "                  S seconds of machine time (default 0). (lasercncd waits for `send resume`.)\n"
     "  --input         the simulated machine's digital input N (0-7) is high for the whole\n"
     "                  run (M66 P N L3 goes on at once; repeat for more inputs)\n"
     "  --adaptive-feed the simulated machine's adaptive-feed input, 0 to 1 (default 1):\n"
@@ -96,6 +96,10 @@ constexpr const char* kUsage =
     "  --trace         commanded position and laser power every RT period as CSV\n"
     "                  t,x,y,z,a,b,c,power (s of machine time, mm, deg, % of rated)\n"
     "  --progress      progress bar on stderr (default: only when stderr is a terminal)\n"
+    "  --fast          the simulated clock: each RT period runs as soon as the last is done\n"
+    "                  (the same planner, kernel, periods, steps and report; the cycle time\n"
+    "                  is machine time), so a job's cycle time is known in a fraction of it;\n"
+    "                  no latency is measured and no real-time scheduling asked for\n"
     "  --no-realtime   do not ask for SCHED_FIFO / mlockall\n"
     "  --devices       a simulated laser source and power meter over Modbus (loopback):\n"
     "                  enabled before motion, the setpoint follows the commanded power\n"
@@ -247,6 +251,8 @@ int main(int argc, char** argv) {
       (a == "--laser" ? opt.laser : opt.power_meter) = *ep;
     } else if (a == "--no-realtime") {
       opt.realtime = false;
+    } else if (a == "--fast") {
+      opt.clock = lcnc::rt::RtClock::Simulated;
     } else if (!a.empty() && a[0] == '-') {
       return usage_error("unknown option '" + std::string(a) + "'");
     } else if (opt.program.empty()) {
@@ -256,6 +262,9 @@ int main(int argc, char** argv) {
     }
   }
   if (opt.program.empty()) return usage_error("missing PROGRAM");
+  if (opt.clock == lcnc::rt::RtClock::Simulated && (opt.devices || opt.laser || opt.power_meter))
+    return usage_error("--fast runs the machine on the simulated clock; the laser source and power "
+                       "meter keep wall time: run --devices, --laser and --power-meter without --fast");
 
   if (cmd == "check") {
     auto machine = lcnc::app::load_machine(opt);

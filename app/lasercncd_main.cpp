@@ -19,11 +19,17 @@ std::atomic<bool> g_quit{false};
 extern "C" void on_signal(int) { g_quit.store(true); }
 
 constexpr const char* kUsage =
-    "usage: lasercncd [--machine FILE] [--shm NAME] [--no-realtime] [--hal] [--modbus ENDPOINT]\n"
+    "usage: lasercncd [--machine FILE] [--shm NAME] [--no-realtime | --simulated-clock] [--hal]\n"
+    "                 [--modbus ENDPOINT]\n"
     "                 [--programs DIR]... [--parameter-file FILE]\n"
     "  --machine      machine config (default: share/machines/default.toml)\n"
     "  --shm          shared-memory segment name (default /lasercnc)\n"
     "  --no-realtime  do not ask for SCHED_FIFO / mlockall\n"
+    "  --simulated-clock  the simulated machine on the simulated clock, held to the wall\n"
+    "                 clock's pace: never faster than real time, and where the computer\n"
+    "                 cannot keep up (a loaded desktop, a sanitizer build) the machine\n"
+    "                 runs slower instead of running its buffer dry. Jobs, commands and\n"
+    "                 reports as on the wall clock; no latency measured (not with --hal)\n"
     "  --hal          real drives through LinuxCNC's HAL: no RT thread here; the\n"
     "                 HAL component runs the kernel (loadrt lasercnc segment=NAME,\n"
     "                 addf lasercnc.update to a thread of the machine's period).\n"
@@ -68,6 +74,8 @@ int main(int argc, char** argv) {
       opt.hal = true;
     } else if (a == "--no-realtime") {
       opt.realtime = false;
+    } else if (a == "--simulated-clock") {
+      opt.simulated_clock = true;
     } else if (a == "--help" || a == "-h") {
       std::fputs(kUsage, stdout);
       return 0;
@@ -75,6 +83,11 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "lasercncd: bad argument '%s'\n%s", argv[i], kUsage);
       return 2;
     }
+  }
+  if (opt.hal && opt.simulated_clock) {
+    std::fprintf(stderr, "lasercncd: --simulated-clock is the simulated machine's; with --hal, "
+                         "HAL's thread keeps the time\n%s", kUsage);
+    return 2;
   }
   auto daemon = lcnc::app::Daemon::create(opt);
   if (!daemon) {

@@ -77,9 +77,16 @@ std::string format_report(const RunReport& r) {
   if (r.trace_drops > 0)  // the reader starved of the CPU; every entry still passed the guard
     s += "  warning          the RT trace lost records: those periods were held to the increment "
          "guard only, not measured\n";
-  s += printf_string("  RT latency       p50 %.0f us, p99 %.0f us, max %.1f us (%s)\n",
-                     r.latency_p50_us, r.latency_p99_us, r.latency_max_us, r.schedule.c_str());
-  if (!r.rt_warning.empty()) s += "  warning          " + r.rt_warning + "\n";
+  if (rt::is_simulated(r.clock)) {
+    s += printf_string("  clock            simulated: %.3f s of machine time run in %.3f s (x%.0f), "
+                       "RT latency not measured\n",
+                       r.cycle_time_s, r.wall_time_s,
+                       r.wall_time_s > 0.0 ? r.cycle_time_s / r.wall_time_s : 0.0);
+  } else {
+    s += printf_string("  RT latency       p50 %.0f us, p99 %.0f us, max %.1f us (%s)\n",
+                       r.latency_p50_us, r.latency_p99_us, r.latency_max_us, r.schedule.c_str());
+    if (!r.rt_warning.empty()) s += "  warning          " + r.rt_warning + "\n";
+  }
   for (const std::string& w : r.program_warnings) s += "  warning          " + w + "\n";
   if (r.program_pauses > 0)
     s += printf_string("  program pauses   %u (M0/M1/M60), each resumed after --pause\n", r.program_pauses);
@@ -147,6 +154,8 @@ std::string report_json(const RunReport& r) {
   j["bad_frames"] = r.bad_frames;
   j["latency_us"] = {{"p50", r.latency_p50_us}, {"p99", r.latency_p99_us}, {"max", r.latency_max_us}};
   j["schedule"] = r.schedule;
+  j["clock"] = rt::is_simulated(r.clock) ? "simulated" : "wall";
+  j["wall_time_s"] = r.wall_time_s;
   j["rt_warning"] = r.rt_warning;
   j["program_warnings"] = r.program_warnings;
   j["program_pauses"] = r.program_pauses;

@@ -261,7 +261,12 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
 
   // Planner thread: plan, coarse-interpolate, quantize, keep the buffer
   // full; the RT thread starts once half the buffer (or the whole job) is in.
-  session.start(source, *k_start, options.realtime);
+  // M0/M1/M60: unattended, each pause ends after options.pause_s of machine
+  // time, counted by the kernel (at least one period)
+  const auto pause_periods = static_cast<std::uint64_t>(
+      std::max(1.0, std::round(options.pause_s / machine.period_s())));
+  session.start(source, *k_start, options.realtime, options.clock, pause_periods);
+  const auto started = std::chrono::steady_clock::now();
 
   // Drain the trace while the job runs: CSV, the job's check, progress.
   Result<std::unique_ptr<PathCheck>> path_check = source.path_check(machine);
@@ -272,8 +277,6 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   auto last_progress = std::chrono::steady_clock::now();
   rt::TraceRecord rec;
   bool stop_sent = false;
-  std::uint32_t pauses_resumed = 0;  // program pauses (M0 …) resumed so far
-  std::chrono::steady_clock::time_point pause_since{};
   std::string laser_fault;  // why the laser source failed during the job
   float power_now = 0.0f;  // the commanded laser power of the latest period, %
   for (;;) {
@@ -311,17 +314,6 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
         progress(std::min(1.0, kernel.current_segment() / total_segments));
       }
     }
-    // M0/M1/M60: unattended, each pause is resumed after options.pause_s
-    // (once: a pause begun after the resume is counted anew)
-    if (kernel.program_paused() && kernel.program_pauses() > pauses_resumed) {
-      const auto now = std::chrono::steady_clock::now();
-      if (pause_since == std::chrono::steady_clock::time_point{}) pause_since = now;
-      if (std::chrono::duration<double>(now - pause_since).count() >= options.pause_s &&
-          kernel.command({rt::RtCommandType::Resume, 0, 0.0})) {
-        pauses_resumed = kernel.program_pauses();
-        pause_since = {};
-      }
-    }
     // short of a soft limit: stop along the path with what is queued
     if (feed.stopped_short() && !stop_sent) stop_sent = kernel.command({rt::RtCommandType::Stop, 0, 0.0});
     // a fault (an e-stop, a limit) or a stop ends the job: the planner stops pushing
@@ -332,6 +324,7 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
     if (!got) std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
   kernel.join();
+  const double wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   drain_rt_log(session.rt_log(), machine);
   feed.abort();
   if (laser) report.peripherals = laser->finish();
@@ -340,6 +333,9 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   if (planned.failed) return planned.error;
 
   fill_run_figures(report, kernel, session.sim(), planned, machine, start_steps);
+  report.clock = options.clock;
+  report.wall_time_s = wall_time_s;
+  if (rt::is_simulated(options.clock)) report.rt_warning.clear();  // nothing was asked for
   report.program_pauses = kernel.program_pauses();
   for (const Diagnostic& w : planned.warnings) report.program_warnings.push_back(w.to_string());
   if (!laser_fault.empty() && report.fault.empty()) report.fault = "laser source: " + laser_fault;

@@ -29,12 +29,17 @@ struct RunOptions {
   std::optional<double> amax;           // every linear axis, mm/s²
   std::optional<double> tolerance_mm;   // path tolerance
   std::string trace_file;               // CSV t,x,y,z,a,b,c,power per RT period; empty: none
-  bool realtime = true;                 // try SCHED_FIFO + mlockall
+  bool realtime = true;                 // try SCHED_FIFO + mlockall (wall clock only)
+  // The wall clock (the machine's real time) or the simulated clock (`run
+  // --fast`: the same job, periods and report, as fast as the computer runs;
+  // rt/rt_kernel.h RtClock).
+  rt::RtClock clock = rt::RtClock::Wall;
   // Feed override for the whole run, % (README, rt/feed_override.h): 1 ≤ pct
   // ≤ 100·machine.max_feed_override, else a Usage error. Set before the RT
   // thread starts, so the run begins at it with no ramp.
   double feed_override_pct = 100.0;
-  // M0/M1/M60 pause the job; unattended, the run resumes after this long (s).
+  // M0/M1/M60 pause the job; unattended, the run resumes after this long (s
+  // of machine time).
   double pause_s = 0.0;
   // The simulated machine's inputs for the whole run: digital inputs high
   // (bit n: input n, for M66) and the adaptive-feed factor (M52), 0 … 1.
@@ -97,6 +102,8 @@ struct RunReport {
   std::uint64_t starvations = 0;    // decelerations for a low buffer (planner behind)
   std::string fault;       // what stopped the job early (soft/hard limit, e-stop); empty if none
   std::string schedule;    // "SCHED_FIFO" or "normal"
+  rt::RtClock clock = rt::RtClock::Wall;  // what the periods followed
+  double wall_time_s = 0.0;  // how long the run took on the computer (from the RT thread's start)
   std::string rt_warning;  // why real-time scheduling was not had
   std::uint32_t program_pauses = 0;  // M0/M1/M60 held, each resumed after RunOptions::pause_s
   std::vector<std::string> program_warnings;  // the reader's (lines after the end, the parameter file)

@@ -110,19 +110,26 @@ void RtKernel::run(const RtOptions& options) noexcept {
   // The first period starts one nominal period from now (or at the epoch
   // given); after that each deadline is t0 + machine time so far, rounded
   // once (no drift).
-  const std::int64_t t0 = options.epoch_ns > 0 ? options.epoch_ns : to_ns(now) + period_ns_;
+  std::int64_t t0 = options.epoch_ns > 0 ? options.epoch_ns : to_ns(now) + period_ns_;
   publish_status(true);
+  const bool simulated = is_simulated(options.clock);
+  const bool paced = options.clock != RtClock::Simulated;  // sleeps to its deadlines
   while (!port_.shutdown_requested.load(std::memory_order_relaxed)) {
     // 1. sleep to the absolute deadline
-    const std::int64_t deadline = t0 + std::llround(machine_ns_);
-    const timespec until = to_timespec(deadline);
-    if (options.virtual_time) wait_for_producer();
+    if (simulated) wait_simulated();
+    std::int64_t deadline = t0 + std::llround(machine_ns_);
     // a period already due (catching up after a stall) starts at once: on a
     // VM the sleep call alone can cost ~20 µs, which a 25 µs period cannot
     // afford while it catches up
     clock_gettime(CLOCK_MONOTONIC, &now);
-    const bool slept = !options.virtual_time && to_ns(now) < deadline;
+    if (options.clock == RtClock::SimulatedPaced && to_ns(now) > deadline) {
+      // late: the later deadlines move by as much (no catching up)
+      t0 += to_ns(now) - deadline;
+      deadline = to_ns(now);
+    }
+    const bool slept = paced && to_ns(now) < deadline;
     if (slept) {
+      const timespec until = to_timespec(deadline);
       while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &until, nullptr) == EINTR) {
       }
       clock_gettime(CLOCK_MONOTONIC, &now);
@@ -130,12 +137,15 @@ void RtKernel::run(const RtOptions& options) noexcept {
     // 2. wake-up latency: how late the scheduler woke the thread after its
     // deadline (as cyclictest measures it). A period that was already due
     // — the machine catching up after a stall — is no wake-up: it is counted
-    // apart, and the stall once, in the wake-up that ended it.
-    const std::int64_t late = options.virtual_time ? 0 : to_ns(now) - deadline;
-    if (slept) {
-      latency_.add(late);
-    } else if (!options.virtual_time) {
-      port_.catch_up.fetch_add(1, std::memory_order_relaxed);
+    // apart, and the stall once, in the wake-up that ended it. The simulated
+    // clock measures none (-1: not measured).
+    const std::int64_t late = simulated ? -1 : to_ns(now) - deadline;
+    if (!simulated) {
+      if (slept) {
+        latency_.add(late);
+      } else {
+        port_.catch_up.fetch_add(1, std::memory_order_relaxed);
+      }
     }
     if (!period(to_ns(now), late)) break;
   }
@@ -242,11 +252,17 @@ std::size_t RtKernel::refill_level() const noexcept {
   return std::min(kPositionBufferCapacity - 1, 2 * braking_reserve(1.0));
 }
 
-void RtKernel::wait_for_producer() const noexcept {
+void RtKernel::wait_simulated() const noexcept {
   const std::size_t enough = refill_level();
-  while (!port_.shutdown_requested.load(std::memory_order_relaxed) &&
-         port_.streaming.load(std::memory_order_acquire) && buffer_.size() < enough)
-    sched_yield();
+  // Room a period may need: one trace record; a few log records (a state
+  // change, an underrun, a fault) — kLogRoom is far more than one period logs.
+  constexpr std::size_t kLogRoom = 16;
+  const auto behind = [&] {
+    if (port_.streaming.load(std::memory_order_acquire) && buffer_.size() < enough) return true;
+    if (trace_ != nullptr && trace_->size() >= TraceRing::kCapacity) return true;
+    return log_ != nullptr && log_->size() + kLogRoom > RtLogRing::kCapacity;
+  };
+  while (!port_.shutdown_requested.load(std::memory_order_relaxed) && behind()) sched_yield();
 }
 
 void RtKernel::log(RtLogCode code, std::int64_t value, int axis, std::uint32_t line) noexcept {
@@ -371,6 +387,11 @@ void RtKernel::take_inputs() noexcept {
     enter_estop(ErrorCode::RtFollowingError, inputs_.following_error_axis, line_);
   } else if (waiting_) {
     check_wait();
+  } else if (program_pause_ && pause_left_ > 0 && --pause_left_ == 0 &&
+             state_now_ == MachineState::FeedHold) {
+    // an unattended pause's time is up: as a resume
+    hold_ = false;
+    set_state(MachineState::Running);
   }
 }
 
@@ -466,6 +487,7 @@ void RtKernel::path_motion(Motion& m) noexcept {
     // a resume
     if (m.inc.pause && !stopping_) {
       hold_ = program_pause_ = true;
+      pause_left_ = options_.program_pause_periods;
       port_.program_pause.store(true, std::memory_order_relaxed);
       port_.program_pauses.fetch_add(1, std::memory_order_relaxed);
       k_ = 0.0;

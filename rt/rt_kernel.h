@@ -55,6 +55,7 @@
 #include "rt/kernel_control.h"
 #include "rt/kernel_port.h"
 #include "rt/axis_mover.h"
+#include "rt/rt_clock.h"
 #include "rt/latency_histogram.h"
 #include "rt/pitch_compensation.h"
 #include "rt/rt_log.h"
@@ -87,6 +88,7 @@ using TraceRing = SpscRing<TraceRecord, kTraceRingCapacity>;
 enum class RtSchedule : std::uint8_t { Fifo, Normal };
 
 
+
 struct RtOptions {
   bool try_realtime = true;  // SCHED_FIFO + mlockall when permitted
   int fifo_priority = 80;
@@ -107,13 +109,13 @@ struct RtOptions {
   // 0: one period after the thread starts. Kernels given the same epoch and
   // period share their period boundaries — two axis groups on one time base.
   std::int64_t epoch_ns = 0;
-  // Virtual time (soak runs and simulations faster than real time): no
-  // sleep, no wall clock. Each period runs as soon as the producer has kept
-  // the buffer above twice its braking reserve (or has ended its stream),
-  // i.e. a planner that is never late; machine time still advances by T/K
-  // per period. Waiting for the producer yields the CPU: this is not the
-  // real-time path, and the latency histogram stays empty.
-  bool virtual_time = false;
+  // What the periods follow (RtClock).
+  RtClock clock = RtClock::Wall;
+  // Unattended runs (`lasercnc run --pause S`): a program pause (M0, M1,
+  // M60) ends by itself after this many periods, counted by the kernel so
+  // it lasts the same machine time on either clock. 0: it waits for a
+  // resume command (the operator's).
+  std::uint64_t program_pause_periods = 0;
 };
 
 // The kernel's own port, a base so that it is built before KernelControl
@@ -189,8 +191,10 @@ class RtKernel : private OwnKernelPort, public KernelControl {
   // The fill at which a starving kernel runs on: twice the braking reserve
   // at K = 1 (or the whole buffer).
   [[nodiscard]] std::size_t refill_level() const noexcept;
-  // Virtual time: until the producer has filled the buffer to refill_level().
-  void wait_for_producer() const noexcept;
+  // The simulated clock: until the producer has filled the buffer to
+  // refill_level() (or ended its stream) and the trace and log rings have
+  // room for a period's records.
+  void wait_simulated() const noexcept;
   void take_commands() noexcept;
   // One command of the control thread's, `s` the state the period began
   // in; false: refused.
@@ -232,6 +236,7 @@ class RtKernel : private OwnKernelPort, public KernelControl {
   MachineState state_now_ = MachineState::Idle;
   bool hold_ = false;         // operator's feed hold (or the program's pause)
   bool program_pause_ = false;  // held by M0/M1/M60 until a resume
+  std::uint64_t pause_left_ = 0;  // periods an unattended program pause still holds; 0: until a resume
   // M66: held until input wait_input_ does as wait_mode_ asks (1 rise,
   // 2 fall, 3 high, 4 low), for at most wait_left_ more periods
   bool waiting_ = false;

@@ -130,12 +130,15 @@ inline pid_t spawn(std::vector<std::string> args, const fs::path& out, const fs:
 }
 
 // A lasercncd child process on its own segment (LASERCNCD_EXE), its stderr
-// in a log file of the test's folder; `extra` are further arguments.
+// in a log file of the test's folder; `extra` are further arguments. It runs
+// on the simulated clock at the wall clock's pace (--simulated-clock): jobs
+// take their real time, commands come in the test's time, and a loaded
+// computer slows the machine instead of running its buffer dry.
 class Daemon {
  public:
   explicit Daemon(std::string shm, std::vector<std::string> extra = {})
       : shm_(std::move(shm)), log_(temp_dir() / ("daemon_" + std::to_string(++count_) + ".log")) {
-    std::vector<std::string> args = {LASERCNCD_EXE, "--shm", shm_, "--no-realtime"};
+    std::vector<std::string> args = {LASERCNCD_EXE, "--shm", shm_, "--simulated-clock"};
     args.insert(args.end(), extra.begin(), extra.end());
     // the work offsets in the test's own file, never the user's (unless the test names one)
     if (std::find(extra.begin(), extra.end(), "--parameter-file") == extra.end()) {

@@ -89,12 +89,12 @@ struct Job {
     kernel = std::make_unique<rt::RtKernel>(m, *buffer, *sim, trace, start);
     feed = std::make_unique<PlannerFeed>(m, *buffer, *kernel);
   }
-  void run(const fs::path& program, bool virtual_time = false) {
+  void run(const fs::path& program, rt::RtClock clock = rt::RtClock::Wall) {
     feed->start(program.string(), ReaderOptions{});
     feed->wait_prefilled();
     rt::RtOptions o;
     o.try_realtime = false;
-    o.virtual_time = virtual_time;
+    o.clock = clock;
     kernel->start(o);
   }
 };
@@ -399,7 +399,7 @@ TEST(JobPipeline, OverrideRaisedTo150AndLoweredTo40MidJobKeepsEveryLimitAndStep)
   EXPECT_NEAR(hi_back, 200.0, 2.0);
 }
 
-// The soak: random jobs one after another in virtual time (the kernel runs
+// The soak: random jobs one after another on the simulated clock (the kernel runs
 // each period as soon as the planner has the buffer filled: a planner never
 // late) until LCNC_SOAK_PERIODS periods have run (CI: 2,000,000;
 // RELIABILITY.md: 100,000,000), under random feed-override changes (0 … 150 %),
@@ -416,11 +416,11 @@ TEST(JobPipeline, SoakOfRandomJobsUnderOverrideHoldsAndResumesLosesNoStep) {
     const fs::path prog = write("soak.ngc", random_program(seed, 400));
     if (!check_program(prog.string(), machine())) continue;  // an arc beyond the travel
     Job job;
-    job.run(prog, true);
+    job.run(prog, rt::RtClock::Simulated);
     bool holding = false;
     while (!job.kernel->finished()) {
       // a plan the guard refused stops short and waits for a stop: in
-      // virtual time the kernel waits for the planner, so end it and fail
+      // the simulated clock the kernel waits for the planner, so end it and fail
       if (job.feed->stopped_short()) {
         job.kernel->command({rt::RtCommandType::Stop, 0, 0.0});
         job.feed->abort();

@@ -160,7 +160,7 @@ TEST(LasercncCut, SamplePlateHolesFirstKerfOffsetLeadInsAndItRuns) {
               "(tolerance %.4f)\n", points, worst, tol);
 
   // the machine runs it
-  const e2e::CmdResult run = lasercnc("run " + ngc.string() + " --no-progress --no-realtime");
+  const e2e::CmdResult run = lasercnc("run " + ngc.string() + " --no-progress --fast");
   EXPECT_EQ(run.exit_code, 0) << run.out << run.err;
 }
 

@@ -65,7 +65,7 @@ TEST(LasercncDrill, RunsTheHolesInOrderAndWritesEachHeadBlockAtItsHole) {
 
 TEST(LasercncDrill, BadTableIsRefusedWithItsLineAndColumn) {
   const fs::path t = table("11,1O0,100,20,0,0,2000,0.1,2,0.2,80,0.5,0.5,1,200,3000,0,helix,\n");
-  const CmdResult r = lasercnc("drill " + t.string() + " --no-realtime");
+  const CmdResult r = lasercnc("drill " + t.string() + " --fast");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("holes.csv:2:4: error E701"), std::string::npos) << r.err;
   EXPECT_EQ(r.out, "");
@@ -75,7 +75,7 @@ TEST(LasercncDrill, HoleBeyondTheTravelIsRefusedBeforeAnythingMoves) {
   // Z 499: its clearance point (5 mm above, plus the head's pivot) leaves the travel
   const fs::path t = table("11,100,100,20,0,0,2000,0.1,2,0.2,80,0.5,0.5,1,200,3000,0,helix,\n"
                            "12,120,100,499,0,0,2000,0.1,2,0.2,80,0.5,0.5,1,200,3000,0,helix,\n");
-  const CmdResult r = lasercnc("drill " + t.string() + " --no-realtime");
+  const CmdResult r = lasercnc("drill " + t.string() + " --fast");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("holes.csv:3:1:"), std::string::npos) << r.err;  // the row of hole 12
   EXPECT_NE(r.err.find("hole 12: axis Z"), std::string::npos) << r.err;

@@ -38,7 +38,7 @@ TEST(LasercncTcp, TiltingCutRunsWithEveryStepSent) {
   std::ofstream(prog) << "G21 G90 G64 P0.01\nG0 X100 Y100 Z20 A0 C0\nM3 S80\n"
                          "G1 X120 A10 F3000\nG1 Y110 C45\nG1 X100 A0\nM5\nM2\n";
   const CmdResult r = lasercnc("run " + prog.string() + " --machine " + tcp_machine("pole_smoothed").string() +
-                               " --json --no-realtime");
+                               " --json --fast");
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
   const nlohmann::json j = nlohmann::json::parse(r.out, nullptr, false);
   ASSERT_TRUE(j.is_object()) << r.out;
@@ -61,7 +61,7 @@ TEST(LasercncTcp, TiltingCutRunsWithEveryStepSent) {
 // never finished (its pieces became feed moves of feed 0); the tool tip is
 // held to the program as written.
 nlohmann::json run_json(const fs::path& prog, const std::string& machine_args) {
-  const CmdResult r = lasercnc("run " + prog.string() + machine_args + " --json --no-realtime");
+  const CmdResult r = lasercnc("run " + prog.string() + machine_args + " --json --fast");
   EXPECT_EQ(r.exit_code, 0) << prog << ": " << r.err << r.out;
   nlohmann::json j = nlohmann::json::parse(r.out, nullptr, false);
   EXPECT_TRUE(j.is_object()) << r.out;

@@ -14,6 +14,7 @@
 
 #include "drivers/modbus/modbus_master.h"
 #include "drivers/modbus/register_map.h"
+#include "daemon_status.h"
 #include "e2e_support.h"
 
 namespace {
@@ -25,12 +26,6 @@ using lcnc::drivers::ModbusMaster;
 std::string shm_name() {
   return "/lcnc_e2e_mb_" + std::to_string(getpid()) + "_" +
          ::testing::UnitTest::GetInstance()->current_test_info()->name();
-}
-
-nlohmann::json status(const std::string& shm) {
-  const CmdResult r = lasercnc("status --json --shm " + shm);
-  EXPECT_EQ(r.exit_code, 0) << r.err;
-  return nlohmann::json::parse(r.out, nullptr, false);
 }
 
 // The port the daemon says it bound (it logs "… on tcp 127.0.0.1:PORT").
@@ -103,10 +98,10 @@ TEST(LasercncdModbus, APlcRunsHoldsResumesAndOverridesAJob) {
   // hold and resume by coil
   ASSERT_TRUE(plc->write("cmd_hold", 1).get().ok());
   ASSERT_TRUE(wait_for(*plc, "state", 2.0));  // feed hold
-  std::this_thread::sleep_for(400ms);       // the ramp is over: at rest
+  ASSERT_TRUE(wait_machine_time(shm, 0.4));  // the ramp is over: at rest
   const double x_held = read(*plc, "x_mm");
   EXPECT_GT(x_held, 10.0);
-  std::this_thread::sleep_for(100ms);
+  ASSERT_TRUE(wait_machine_time(shm, 0.1));
   EXPECT_EQ(read(*plc, "x_mm"), x_held);
   EXPECT_EQ(read(*plc, "laser_on"), 0.0);  // dark during a hold
   // the status agrees with the shm status, to the map's resolution (1 µm)

@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "daemon_status.h"
 #include "e2e_support.h"
 #include "rt/shm_interface.h"
 
@@ -29,12 +30,6 @@ namespace lshm = lcnc::shm;
 std::string shm_name() {
   return "/lcnc_op_" + std::to_string(getpid()) + "_" +
          ::testing::UnitTest::GetInstance()->current_test_info()->name();
-}
-
-nlohmann::json status(const std::string& shm) {
-  const CmdResult r = lasercnc("status --json --shm " + shm);
-  EXPECT_EQ(r.exit_code, 0) << r.err;
-  return nlohmann::json::parse(r.out, nullptr, false);
 }
 
 CmdResult send(const std::string& shm, const std::string& what) {
@@ -98,7 +93,7 @@ bool sample_job(lcnc::shm::ShmClient& c, F each, std::chrono::milliseconds limit
 
 // Waits until a jog (or any motion) is over.
 bool wait_idle(const std::string& shm) {
-  for (int i = 0; i < 1000; ++i) {
+  for (const auto until = std::chrono::steady_clock::now() + 60s; std::chrono::steady_clock::now() < until;) {
     const nlohmann::json s = status(shm);
     if (s.is_object() && s["state"] == "idle" && !s["job_active"].get<bool>()) return true;
     std::this_thread::sleep_for(5ms);
@@ -116,7 +111,9 @@ class LasercncdJob : public ::testing::Test {
   }
   // Waits for the job to end; the status then.
   nlohmann::json job_end() const {
-    for (int i = 0; i < 500 && status(shm)["job_active"].get<bool>(); ++i) std::this_thread::sleep_for(10ms);
+    for (const auto until = std::chrono::steady_clock::now() + 60s;
+         std::chrono::steady_clock::now() < until && status(shm)["job_active"].get<bool>();)
+      std::this_thread::sleep_for(10ms);
     return status(shm);
   }
   const std::string shm = shm_name();
@@ -237,7 +234,7 @@ TEST_F(LasercncdJob, SingleBlockStopsAfterEachBlock) {
     EXPECT_NEAR(st.pos[1], y, 1e-9) << "line " << line;
     EXPECT_EQ(st.line, static_cast<std::uint32_t>(line));
     // it stays there until resumed
-    std::this_thread::sleep_for(100ms);
+    ASSERT_TRUE(wait_machine_time(shm, 0.1));
     ASSERT_TRUE(w->read(st));
     EXPECT_NEAR(st.pos[0], x, 1e-9);
     EXPECT_TRUE(st.program_pause);

@@ -20,7 +20,7 @@ const std::string kShare = std::string(LCNC_SOURCE_DIR) + "/share";
 const std::string kPlate = kShare + "/examples/plate_decompose.dxf";
 // A short job: a few millimetres, well inside the default machine's travel.
 const std::string kProgram = "G21 G90\nG1 X2 Y1 F1200\nG1 X0 Y0\nM30\n";
-const std::string kRun = " --no-progress --no-realtime";
+const std::string kRun = " --no-progress --fast";
 
 fs::path write(const fs::path& p, const std::string& text) {
   std::ofstream(p, std::ios::binary) << text;
@@ -65,12 +65,12 @@ TEST(OutputFiles, ARefusedRunLeavesTheOldTraceByteIdenticalAndCreatesNothing) {
   const std::string old = "t,x,y,z,a,b,c,power\nthe previous run's trace\n";
   const fs::path trace = write(dir / "x.csv", old);
   // no laser source on that port: refused before anything moves
-  CmdResult r = lasercnc("run " + prog.string() + kRun + " --trace " + trace.string() +
+  CmdResult r = lasercnc("run " + prog.string() + " --no-progress --trace " + trace.string() +
                          " --laser tcp:127.0.0.1:1");
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_EQ(slurp(trace), old);
   // a new target is not created either
-  r = lasercnc("run " + prog.string() + kRun + " --trace " + (dir / "new.csv").string() +
+  r = lasercnc("run " + prog.string() + " --no-progress --trace " + (dir / "new.csv").string() +
                " --laser tcp:127.0.0.1:1");
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_EQ(listing(dir), (std::set<std::string>{"p.ngc", "x.csv"}));

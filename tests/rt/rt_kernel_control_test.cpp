@@ -348,6 +348,43 @@ TEST(RtKernelControl, AProgramPauseHoldsAtItsEntryUntilResumed) {
   r.kernel->shutdown();
 }
 
+// Unattended (`lasercnc run --pause S`): the kernel ends a program pause by
+// itself after RtOptions::program_pause_periods, counted in its own periods,
+// so the pause lasts the same machine time on the simulated clock as on the
+// wall clock; the job then runs to its end with every step.
+TEST(RtKernelControl, AnUnattendedProgramPauseEndsAfterItsPeriodsOnTheSimulatedClock) {
+  Rig r;
+  std::int64_t sum = 0;
+  for (int i = 0; i < 600; ++i) {
+    PeriodIncrement inc = step_x(i < 300 ? 10 : 0, i < 300 ? 1 : 2);
+    if (i >= 300 && i < 302) inc.kind = MotionKind::Dwell;
+    inc.pause = i == 300;
+    if (i >= 302) inc = step_x(10, 3);
+    inc.end_of_program = i == 599;
+    sum += inc.steps[0];
+    ASSERT_TRUE(r.buffer->try_push(inc));
+  }
+  RtOptions o;
+  o.try_realtime = false;
+  o.clock = RtClock::Simulated;
+  o.program_pause_periods = 400;
+  r.kernel->start(o);
+  r.kernel->join();
+  r.drain();
+  EXPECT_EQ(r.kernel->program_pauses(), 1u);
+  EXPECT_EQ(r.kernel->position_steps(0), sum);
+  EXPECT_EQ(r.sim->position_steps(0), sum);
+  std::size_t held = 0;
+  for (const TraceRecord& t : r.records) held += t.held;
+  // after the pause's own period, 399 held ones; then the resume ramps K up
+  // from 0, its first periods below K_min held too (a few dozen at most)
+  EXPECT_GE(held, 399u);
+  EXPECT_LT(held, 399u + 50u);
+  EXPECT_EQ(r.records.size(), 600u + held);
+  EXPECT_EQ(r.kernel->periods(), 600u + held);
+  EXPECT_EQ(r.kernel->latency().total(), 0u);  // the simulated clock measures none
+}
+
 // M66: the job holds at the wait's entry until the input does as asked —
 // a resume does not end it — then goes on; the time up, it stops with E420.
 TEST(RtKernelControl, AnInputWaitHoldsUntilTheInputComesOrStopsAtItsTimeout) {
