@@ -208,7 +208,7 @@ void ModbusSlave::Impl::read_from(Connection& c) noexcept {
 
 Clock::time_point ModbusSlave::Impl::deadline(const Connection& c) const noexcept {
   if (c.len == 0) return c.last_byte + cfg.idle_timeout;
-  return std::min(c.last_byte + kTcpByteTimeout, c.frame_start + kTcpFrameTimeout);
+  return std::min(c.last_byte + cfg.byte_timeout, c.frame_start + cfg.frame_timeout);
 }
 
 void ModbusSlave::Impl::expire(Clock::time_point now) noexcept {

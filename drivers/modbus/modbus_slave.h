@@ -70,6 +70,10 @@ struct SlaveConfig {
   int unit_id = -1;            // −1: the map's unit_id (RTU answers only it; TCP it, 0 and 255)
   int max_clients = kTcpMaxClients;  // TCP connections served at once (≥ 1)
   std::chrono::milliseconds idle_timeout = kTcpIdleTimeout;  // TCP: a silent connection is closed
+  // TCP: a frame's bytes may be this far apart, and it must be whole this
+  // long after its first byte; otherwise its connection is closed.
+  std::chrono::milliseconds byte_timeout = kTcpByteTimeout;
+  std::chrono::milliseconds frame_timeout = kTcpFrameTimeout;
   std::chrono::milliseconds tick_period{0};  // 0: no tick hook calls
 };
 
