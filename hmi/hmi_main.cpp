@@ -34,6 +34,7 @@
 #include "drivers/modbus/endpoint_spec.h"
 #include "hmi/adjust_page.h"
 #include "hmi/decomposition_page.h"
+#include "hmi/hmi_font.h"
 #include "hmi/cut_page.h"
 #include "hmi/main_window.h"
 #include "hmi/program_page.h"
@@ -84,6 +85,10 @@ int main(int argc, char** argv) {
     }
   }
   QApplication app(argc, argv);
+  lcnc::hmi::apply_hmi_font();
+  if (const QStringList missing = lcnc::hmi::missing_hmi_font_families(); !missing.isEmpty())
+    std::fprintf(stderr, "lasercnc-hmi: warning: font %s not installed: the screens may not fit 1280 x 800\n",
+                 missing.join(", ").toStdString().c_str());
   std::string db_path;  // default: the user's data folder
   std::string shm_name = lcnc::shm::kDefaultName;
   QString screenshot_dir;

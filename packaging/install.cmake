@@ -33,9 +33,10 @@ set(CPACK_STRIP_FILES ON)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION misc)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
-# what dpkg-shlibdeps cannot see: QtSql's SQLite driver, a plugin
-set(CPACK_DEBIAN_PACKAGE_DEPENDS "adduser, libqt5sql5-sqlite")
-set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "linuxcnc-uspace, fonts-wqy-microhei")
+# what dpkg-shlibdeps cannot see: QtSql's SQLite driver, a plugin; the
+# HMI's fonts, which it names (hmi/hmi_font.h: its screens are laid out in them)
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "adduser, libqt5sql5-sqlite, fonts-dejavu-core, fonts-wqy-microhei")
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "linuxcnc-uspace")
 set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA ${CMAKE_CURRENT_LIST_DIR}/postinst)
 set(CPACK_DEBIAN_PACKAGE_CONTROL_STRICT_PERMISSION ON)
 include(CPack)

@@ -4,11 +4,13 @@
 
 #include <QApplication>
 
+#include "hmi/hmi_font.h"
 #include "tests/e2e/e2e_support.h"
 
 int main(int argc, char** argv) {
   if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) qputenv("QT_QPA_PLATFORM", "offscreen");
   QApplication app(argc, argv);
+  lcnc::hmi::apply_hmi_font();  // as lasercnc-hmi does: the layout is the named font's
   ::testing::InitGoogleTest(&argc, argv);
   ::testing::AddGlobalTestEnvironment(new e2e::NoLeakedSegments);  // every test removes its segments
   return RUN_ALL_TESTS();
