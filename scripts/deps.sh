@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config
+  ccache                   # scripts/test.sh: a rebuild compiles only what changed, in any tree
   libeigen3-dev            # geometry (docs/design.md §3)
   libtomlplusplus-dev      # machine config (TOML)
   libspdlog-dev            # logging outside the RT path
@@ -15,7 +16,8 @@ packages=(
   libmodbus-dev            # peripherals
   qtbase5-dev libqt5sql5-sqlite  # HMI, process DB
   qttools5-dev qttools5-dev-tools  # the HMI's translations (Qt Linguist: lupdate, lrelease)
-  fonts-wqy-microhei       # the HMI's Chinese text
+  fonts-dejavu-core fonts-wqy-microhei  # the HMI's fonts, by name (hmi/hmi_font.h)
+  fonts-urw-base35 xfonts-base  # tests: the HMI's layout with fonts it does not use installed
   ghdl                     # hdl/: VHDL-2008 simulation of the interpolator
   linuxcnc-uspace linuxcnc-uspace-dev  # LinuxCNC's HAL: real drives (drivers/hal/), the hal tests
   rt-tests                 # cyclictest: the RT latency reference (bench/rt_latency_vs_cyclictest.sh)
