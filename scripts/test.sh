@@ -22,7 +22,12 @@ case "${1:-}" in
 esac
 scripts/deps.sh
 launcher=()
-command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+if command -v ccache >/dev/null; then
+  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  # paths relative to the checkout and the build folder left out of the
+  # hash: a second clone of the same sources compiles only what differs
+  export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=true
+fi
 werror=OFF
 [ $mode = ci ] && werror=ON
 cmake --preset default -DLCNC_WERROR=$werror "${launcher[@]}" >/dev/null

@@ -133,12 +133,16 @@ inline pid_t spawn(std::vector<std::string> args, const fs::path& out, const fs:
 // in a log file of the test's folder; `extra` are further arguments. It runs
 // on the simulated clock at the wall clock's pace (--simulated-clock): jobs
 // take their real time, commands come in the test's time, and a loaded
-// computer slows the machine instead of running its buffer dry.
+// computer slows the machine instead of running its buffer dry (with
+// --hal, HAL's thread keeps the time).
 class Daemon {
  public:
   explicit Daemon(std::string shm, std::vector<std::string> extra = {})
       : shm_(std::move(shm)), log_(temp_dir() / ("daemon_" + std::to_string(++count_) + ".log")) {
-    std::vector<std::string> args = {LASERCNCD_EXE, "--shm", shm_, "--simulated-clock"};
+    std::vector<std::string> args = {LASERCNCD_EXE, "--shm", shm_};
+    // with --hal, HAL's thread keeps the time (and LinuxCNC's real-time setup)
+    const bool hal = std::find(extra.begin(), extra.end(), "--hal") != extra.end();
+    args.push_back(hal ? "--no-realtime" : "--simulated-clock");
     args.insert(args.end(), extra.begin(), extra.end());
     // the work offsets in the test's own file, never the user's (unless the test names one)
     if (std::find(extra.begin(), extra.end(), "--parameter-file") == extra.end()) {
