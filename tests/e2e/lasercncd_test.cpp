@@ -393,7 +393,7 @@ void expect_estop_stops_a_jog(const std::string& shm, const std::function<void()
   ASSERT_TRUE(wait_state(shm, "jog"));
   if (while_busy) while_busy();
   const auto t0 = std::chrono::steady_clock::now();
-  const CmdResult r = run_program("timeout 10 " LASERCNC_EXE, "send estop --shm " + shm);
+  const CmdResult r = run_program(std::string("timeout 10 ") + LASERCNC_EXE, "send estop --shm " + shm);
   const auto took = std::chrono::steady_clock::now() - t0;
   EXPECT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json s = status(shm);
@@ -423,7 +423,7 @@ TEST(LasercncdEStop, ActsWhileALoadOfAFifoIsAsked) {
   EXPECT_EQ(a.seq, seq);
   EXPECT_NE(std::string(a.message).find("named pipe"), std::string::npos) << a.message;
   // the CLI refuses it itself, without sending
-  const CmdResult r = run_program("timeout 10 " LASERCNC_EXE, "send load " + fifo.string() + " --shm " + shm.name());
+  const CmdResult r = run_program(std::string("timeout 10 ") + LASERCNC_EXE, "send load " + fifo.string() + " --shm " + shm.name());
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("named pipe"), std::string::npos) << r.err;
   // a directory likewise
@@ -445,7 +445,7 @@ TEST(LasercncdEStop, ActsWhileAnotherProcessHoldsTheSendersLock) {
   expect_estop_stops_a_jog(shm, [&] { locked = pthread_mutex_lock(lock) == 0; });
   ASSERT_TRUE(locked);
   const auto t0 = std::chrono::steady_clock::now();
-  const CmdResult r = run_program("timeout 10 " LASERCNC_EXE, "send override 50 --timeout 0.3 --shm " + shm.name());
+  const CmdResult r = run_program(std::string("timeout 10 ") + LASERCNC_EXE, "send override 50 --timeout 0.3 --shm " + shm.name());
   const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("senders' lock"), std::string::npos) << r.err;

@@ -198,8 +198,16 @@ class Sampling {
   fs::path file_;
 };
 
+// The daemon's status. A loaded computer can hold a status read past its
+// patience (the writer preempted mid-write): that is asked again, for up to
+// 10 s; what still fails reads as an empty status.
 nlohmann::json status(const std::string& shm) {
-  const CmdResult r = lasercnc("status --json --shm " + shm);
+  CmdResult r;
+  for (const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);;) {
+    r = lasercnc("status --json --shm " + shm);
+    if (r.exit_code == 0 || std::chrono::steady_clock::now() > until) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
   return r.exit_code == 0 ? nlohmann::json::parse(r.out) : nlohmann::json::object();
 }
 
