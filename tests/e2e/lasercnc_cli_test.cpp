@@ -392,6 +392,20 @@ TEST(LasercncRun, BadMachineConfigIsRejectedWithTheKey) {
   EXPECT_NE(r2.err.find("max_velocity"), std::string::npos) << r2.err;
 }
 
+// --fast runs the machine on the simulated clock; the Modbus devices keep
+// wall time, so the two are not combined: a usage error naming why.
+TEST(LasercncCli, FastIsRefusedWithDevicesThatKeepWallTime) {
+  const fs::path prog = write_file("p.ngc", "G0 X1\nM2\n");
+  for (const std::string devices : {"--devices", "--laser tcp:127.0.0.1:1", "--power-meter tcp:127.0.0.1:1"}) {
+    const CmdResult r = lasercnc("run " + prog.string() + " --fast " + devices);
+    EXPECT_EQ(r.exit_code, 2) << devices;
+    EXPECT_NE(r.err.find("keep wall time"), std::string::npos) << r.err;
+  }
+  const CmdResult d = lasercnc("drill " + kShare + "/examples/holes.csv --fast --devices");
+  EXPECT_EQ(d.exit_code, 2);
+  EXPECT_NE(d.err.find("keep wall time"), std::string::npos) << d.err;
+}
+
 TEST(LasercncCli, FeedOverrideOutsideItsRangeIsAUsageError) {
   // 1e-300 % would make a period last 10^297 s: the run never ends
   for (const char* pct : {"0", "200", "-10", "150.5", "1e-300", "0.99"}) {

@@ -88,6 +88,9 @@ TEST(LasercncDecompose, RunCutsThePartWithTwoAxisGroupsAndDrawsTheAxisCurves) {
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("main X, Y ('default'), auxiliary P, Q ('aux_stage')"), std::string::npos)
       << r.out;
+  // on the simulated clock: nothing under-ran, no wake-up measured
+  EXPECT_NE(r.out.find("simulated clock: no RT wake-up measured"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("RT wake-up p99.9"), std::string::npos) << r.out;
   // both groups exact
   const std::size_t first = r.out.find("(exact)");
   ASSERT_NE(first, std::string::npos) << r.out;

@@ -676,6 +676,14 @@ TEST(Lasercncd, SigtermTheMomentTheSegmentAppearsIsACleanShutdown) {
 
 const auto* const kNoLeaks = ::testing::AddGlobalTestEnvironment(new e2e::NoLeakedSegments);
 
+// The simulated clock is the simulated machine's: with --hal, HAL's thread
+// keeps the time, and asking for both is a usage error.
+TEST(Lasercncd, TheSimulatedClockIsRefusedWithHal) {
+  const CmdResult r = run_program(LASERCNCD_EXE, "--simulated-clock --hal --shm /lcnc_e2e_never");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("HAL's thread keeps the time"), std::string::npos) << r.err;
+}
+
 TEST(Lasercncd, StatusWithoutDaemonSaysSo) {
   const CmdResult r = lasercnc("status --shm /lcnc_e2e_nobody_here");
   EXPECT_EQ(r.exit_code, 1);
