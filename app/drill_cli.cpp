@@ -157,9 +157,6 @@ int drill_main(int argc, char** argv) {
     }
   }
   if (table.empty()) return usage_error("missing HOLES.csv");
-  if (opt.clock == rt::RtClock::Simulated && opt.devices)
-    return usage_error("--fast runs the machine on the simulated clock; the scanning head, laser "
-                       "source and power meter keep wall time: run --devices without --fast");
 
   // Everything is checked before anything moves: machine, table, the job's
   // travel.

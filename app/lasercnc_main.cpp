@@ -262,9 +262,6 @@ int main(int argc, char** argv) {
     }
   }
   if (opt.program.empty()) return usage_error("missing PROGRAM");
-  if (opt.clock == lcnc::rt::RtClock::Simulated && (opt.devices || opt.laser || opt.power_meter))
-    return usage_error("--fast runs the machine on the simulated clock; the laser source and power "
-                       "meter keep wall time: run --devices, --laser and --power-meter without --fast");
 
   if (cmd == "check") {
     auto machine = lcnc::app::load_machine(opt);

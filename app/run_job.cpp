@@ -198,6 +198,13 @@ void fill_run_figures(RunReport& report, const rt::RtKernel& kernel, const drive
 }
 
 Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress) {
+  // The Modbus devices answer in wall time; on the simulated clock the job
+  // would run past them (`run --fast`, `drill --fast`).
+  if (rt::is_simulated(options.clock) && (options.devices || options.laser || options.power_meter))
+    return make_error(ErrorCode::Usage,
+                      "--fast runs the machine on the simulated clock; the laser source, power meter "
+                      "and scanning head keep wall time: run --devices, --laser and --power-meter "
+                      "without --fast");
   Result<MachineConfig> loaded = load_machine(options);
   if (!loaded) return loaded.error();
   const MachineConfig machine = std::move(loaded).value();
