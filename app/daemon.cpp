@@ -37,6 +37,7 @@ namespace {
 
 constexpr auto kTick = std::chrono::microseconds(500);  // control loop period
 constexpr auto kModbusPublish = std::chrono::milliseconds(5);  // status to the Modbus slave
+constexpr auto kKernelSettle = std::chrono::seconds(1);  // longest wait for the kernel to take a command
 
 template <std::size_t N>
 void copy_text(char (&dst)[N], const std::string& src) {
@@ -188,11 +189,14 @@ struct Daemon::Impl {
     ans.seq = c.seq;
     ans.code = a.ok ? 0 : static_cast<std::uint16_t>(a.code);
     copy_text(ans.message, a.message);
-    shm.block().answers[c.seq % shm::kAnswerSlots].store(ans);
     job.ack_seq = c.seq;
     job.ack_code = ans.code;
     copy_text(job.message, a.message);
+    // the job status first: a sender that has its answer reads the job the
+    // command began (`send mdi --wait` tells a move from a command that
+    // does not move by the job's flag)
     shm.block().job.store(job);
+    shm.block().answers[c.seq % shm::kAnswerSlots].store(ans);
     log_ack(a);
     remember(c, a);
   }
@@ -349,8 +353,26 @@ struct Daemon::Impl {
   }
 
   // Executes a command (from the shm ring or the Modbus slave) and says what
-  // came of it.
+  // came of it, once the kernel has taken what the command asked of it: the
+  // sender that has its answer reads the state it brought (a jog's Jog, a
+  // hold's FeedHold), never the one before.
   Ack handle(const shm::Command& c) {
+    Ack a = execute(c);
+    settle_kernel();
+    return a;
+  }
+
+  // Waits for the kernel to take the commands pushed to it; bounded, for a
+  // kernel that no longer runs (its HAL thread stopped): then the answer goes
+  // out as it is and the status shows the state as it stands.
+  void settle_kernel() const {
+    if (hal && hal->attached() == 0) return;
+    const auto until = std::chrono::steady_clock::now() + kKernelSettle;
+    while (!kernel->commands_taken() && std::chrono::steady_clock::now() < until)
+      std::this_thread::sleep_for(std::chrono::microseconds(50));
+  }
+
+  Ack execute(const shm::Command& c) {
     follow_job();  // a job the kernel has just ended is over for this command too
     const shm::MachineState st = kernel->state();
     const auto refuse = [](const std::string& why) { return Ack{false, ErrorCode::RtRefused, why}; };

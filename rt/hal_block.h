@@ -25,7 +25,7 @@
 namespace lcnc::shm {
 
 inline constexpr std::uint32_t kHalMagic = 0x4C48414C;  // "LHAL"
-inline constexpr std::uint32_t kHalVersion = 4;  // 2: outputs in PeriodIncrement, 3: feed_control, 4: its signals first (EntrySignals)
+inline constexpr std::uint32_t kHalVersion = 5;  // 2: outputs in PeriodIncrement, 3: feed_control, 4: its signals first (EntrySignals), 5: commands counted
 
 struct HalHeader {
   std::uint32_t magic = 0;

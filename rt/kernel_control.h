@@ -35,7 +35,18 @@ class KernelControl {
   // A command for the RT thread, executed at the start of its next period.
   // From one control thread only (single producer). False if the ring is
   // full (16 pending commands).
-  bool command(const RtCommand& c) noexcept { return port_.commands.try_push(c); }
+  bool command(const RtCommand& c) noexcept {
+    if (!port_.commands.try_push(c)) return false;
+    port_.commands_pushed.fetch_add(1, std::memory_order_relaxed);
+    return true;
+  }
+  // Every command pushed has been taken by the RT side, and what it did
+  // (state, status, fault) is published. acquire pairs with the RT's
+  // release store of commands_taken.
+  [[nodiscard]] bool commands_taken() const noexcept {
+    return port_.commands_taken.load(std::memory_order_acquire) >=
+           port_.commands_pushed.load(std::memory_order_relaxed);
+  }
 
   // The producer of the position buffer streams a job that is longer than
   // the buffer: while streaming, the kernel keeps a braking reserve in the

@@ -40,6 +40,11 @@ using RtCommandRing = SpscRing<RtCommand, 16>;
 
 struct KernelPort {
   RtCommandRing commands;
+  // Commands pushed (control side) and taken (RT side, counted after the
+  // period's commands changed state and status): the control side knows a
+  // command's effect is visible once taken reaches what it pushed.
+  std::atomic<std::uint64_t> commands_pushed{0};
+  std::atomic<std::uint64_t> commands_taken{0};
   std::atomic<bool> shutdown_requested{false};
   std::atomic<bool> streaming{false};
   // laser_inhibit(): relaxed on both sides — one flag, read once a period,

@@ -299,8 +299,13 @@ void RtKernel::take_commands() noexcept {
   // but none moves the machine after an e-stop among them.
   const MachineState s = state_now_;
   RtCommand c;
-  while (port_.commands.try_pop(c))
+  std::uint64_t taken = 0;
+  while (port_.commands.try_pop(c)) {
     if (!take_command(c, s)) log(RtLogCode::Refused, static_cast<std::int64_t>(c.type), c.axis);
+    ++taken;
+  }
+  // release: what the commands changed (state, status) is seen with the count
+  if (taken != 0) port_.commands_taken.fetch_add(taken, std::memory_order_release);
   if (reset_asked_ && !flushing_ && state_now_ == MachineState::EStop) {
     reset_asked_ = false;
     port_.fault_code.store(0, std::memory_order_release);

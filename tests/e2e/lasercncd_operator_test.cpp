@@ -211,6 +211,24 @@ TEST(LasercncdOperator, MdiMovesInTheModesTheLastCommandLeft) {
   ASSERT_EQ(send(shm, "stop").exit_code, 0);
 }
 
+// `--wait` tells a move from an MDI command that does not move by the job
+// status it reads after its answer: the daemon publishes the job its command
+// began before the answer, so no move is taken for a command that is done.
+TEST(LasercncdOperator, AnMdiMoveWithWaitReturnsAfterItsMoveNeverBefore) {
+  const std::string shm = shm_name();
+  Daemon d(shm);
+  ASSERT_TRUE(d.ready()) << d.log();
+  for (int i = 0; i < 12; ++i) {
+    const double x = (i % 2 == 0) ? 2.0 : 0.0;
+    const CmdResult r = send(shm, "mdi G0 X" + std::to_string(x) + " --wait");
+    ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+    ASSERT_NE(r.out.find("job done: MDI"), std::string::npos) << "move " << i << ": " << r.out;
+    const nlohmann::json s = status(shm);
+    EXPECT_FALSE(s["job_active"].get<bool>()) << "move " << i;
+    EXPECT_NEAR(at(s, "position", 0), x, 1e-9) << "move " << i;
+  }
+}
+
 constexpr const char* kBlocks =
     "G21 G90 G64 P0.01\n"   // 1
     "G0 X10 Y10\n"          // 2

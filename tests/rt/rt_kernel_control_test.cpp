@@ -234,6 +234,25 @@ TEST(RtKernelControl, EStopWordActsInTheNextPeriod) {
   EXPECT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::EStop; }));
 }
 
+// The control side knows when a command has been taken: until then the state
+// is the one before it; once taken, the one the command brought (the daemon
+// answers its senders only then).
+TEST(RtKernelControl, ACommandIsCountedTakenWithTheStateItBrought) {
+  Rig r;
+  EXPECT_TRUE(r.kernel->commands_taken());  // none pushed
+  r.send(RtCommandType::Jog, 0, 90.0);
+  EXPECT_FALSE(r.kernel->commands_taken());  // no period has run
+  EXPECT_EQ(r.kernel->state(), MachineState::Idle);
+  r.start_idle();
+  ASSERT_TRUE(wait_for([&] { return r.kernel->commands_taken(); }));
+  EXPECT_EQ(r.kernel->state(), MachineState::Jog);  // a 90 mm jog is far from its end
+  r.send(RtCommandType::Stop);
+  ASSERT_TRUE(wait_for([&] { return r.kernel->commands_taken(); }));
+  r.send(RtCommandType::EStop);
+  ASSERT_TRUE(wait_for([&] { return r.kernel->commands_taken(); }));
+  EXPECT_EQ(r.kernel->state(), MachineState::EStop);
+}
+
 // A job that ran to its end is told apart from a stopped one.
 TEST(RtKernelControl, LastJobCompletedSaysWhetherTheJobRanToItsEnd) {
   Rig r;
