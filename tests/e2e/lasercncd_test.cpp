@@ -384,13 +384,15 @@ lcnc::shm::Answer wait_answer(lcnc::shm::ShmClient& c, std::uint32_t seq, std::c
 }
 
 // A jog of 200 mm (seconds at the jog speed) under way; then `lasercnc send
-// estop` must reach the RT kernel within kEStopWithin (a generous bound for
-// a loaded CI machine: the kernel itself takes it in the next period,
-// RtKernelControl.EStopWordActsInTheNextPeriod) and the axis stands still.
-constexpr auto kEStopWithin = 250ms;
-void expect_estop_stops_a_jog(const std::string& shm, const std::function<void()>& while_busy = {}) {
-  ASSERT_EQ(lasercnc("send jog X 200 --shm " + shm).exit_code, 0);
-  ASSERT_TRUE(wait_state(shm, "jog"));
+// estop` stops it: the daemon answers e-stop and the axis stands still short
+// of the jog's end. How long the e-stop took, the CLI's start-up included.
+// (How soon is the real-time path's own matter, measured on an unloaded
+// machine by LasercncdEStop.ReachesTheKernelWithinItsBound; here the e-stop
+// must act whatever else the daemon is asked meanwhile.)
+std::chrono::steady_clock::duration expect_estop_stops_a_jog(const std::string& shm,
+                                                             const std::function<void()>& while_busy = {}) {
+  EXPECT_EQ(lasercnc("send jog X 200 --shm " + shm).exit_code, 0);
+  EXPECT_TRUE(wait_state(shm, "jog"));
   if (while_busy) while_busy();
   const auto t0 = std::chrono::steady_clock::now();
   const CmdResult r = run_program(std::string("timeout 10 ") + LASERCNC_EXE, "send estop --shm " + shm);
@@ -398,12 +400,25 @@ void expect_estop_stops_a_jog(const std::string& shm, const std::function<void()
   EXPECT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json s = status(shm);
   EXPECT_EQ(s["state"], "e-stop");
-  // the CLI's own start-up counts in `took`: the bound is for all of it
-  EXPECT_LT(took, kEStopWithin + 500ms) << std::chrono::duration<double>(took).count() << " s";
   const double x = s["position"][0].get<double>();
   EXPECT_LT(x, 200.0);
-  ASSERT_TRUE(wait_machine_time(shm, 0.05));
+  EXPECT_TRUE(wait_machine_time(shm, 0.05));
   EXPECT_EQ(status(shm)["position"][0].get<double>(), x);  // not moving
+  return took;
+}
+
+// The e-stop from `lasercnc send estop` to the RT kernel within kEStopWithin
+// (the kernel itself takes it in the next period,
+// RtKernelControl.EStopWordActsInTheNextPeriod), plus the CLI's own
+// start-up. Label realtime: run alone, after the other tests.
+constexpr auto kEStopWithin = 250ms;
+TEST(LasercncdEStop, ReachesTheKernelWithinItsBound) {
+  const e2e::ShmGuard shm(shm_name());
+  Daemon d(shm);
+  ASSERT_TRUE(d.ready()) << d.log();
+  const auto took = expect_estop_stops_a_jog(shm);
+  EXPECT_LT(took, kEStopWithin + 500ms) << std::chrono::duration<double>(took).count() << " s";
+  EXPECT_EQ(d.stop(SIGTERM), 0) << d.log();
 }
 
 // (a) The daemon asked to load a FIFO nobody writes (a sender that skips
