@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "app/cli_values.h"
-#include "app/output_file.h"
+#include "app/output_set.h"
 #include "cut/cut_program.h"
 #include "cut/cut_svg.h"
 #include "dxf/dxf_reader.h"

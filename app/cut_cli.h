@@ -8,7 +8,7 @@
 // Exit codes as `lasercnc run`: 0 done, 1 bad input (drawing, process
 // table, units, a hole too small for the kerf), 2 bad command line (an
 // output that is an input or another output, too). Outputs are written
-// through app/output_file.h: a refused command leaves them as they were.
+// through common/output_file.h: a refused command leaves them as they were.
 #pragma once
 
 namespace lcnc::app {

@@ -11,7 +11,7 @@
 
 #include "app/cli_values.h"
 #include "app/decompose_run.h"
-#include "app/output_file.h"
+#include "app/output_set.h"
 #include "app/machine_files.h"
 #include "app/run_job.h"
 #include "decompose/decompose_svg.h"

@@ -8,7 +8,7 @@
 // speed the limits do not allow — the message gives the highest that works),
 // 2 bad command line (an output that is an input or another output, too).
 // The outputs (--csv, --svg, --accel-svg, --run-svg) are written through
-// app/output_file.h: they replace their files only once the command has done
+// common/output_file.h: they replace their files only once the command has done
 // its work, and a refused command leaves them as they were.
 #pragma once
 

@@ -277,7 +277,9 @@ int main(int argc, char** argv) {
     for (const auto& w : summary->warnings) std::fprintf(stderr, "%s\n", w.to_string().c_str());
     if (!moves_file.empty()) {
       std::fflush(stdout);
-      if (lcnc::Status st = lcnc::app::write_moves(opt.program, *machine, moves_file); !st) {
+      if (lcnc::Status st = lcnc::app::write_moves(opt.program, *machine, moves_file,
+                                                              lcnc::app::job_inputs(opt, *summary));
+          !st) {
         std::fprintf(stderr, "%s\n", st.error().to_string().c_str());
         return st.error().code == lcnc::ErrorCode::OutputIsInput ? 2 : 1;
       }

@@ -1,15 +1,15 @@
 #include "app/moves_list.h"
 
-#include "app/output_file.h"
+#include "common/output_file.h"
 #include "gcode/program_reader.h"
 
 namespace lcnc::app {
 
 Status write_moves(const std::string& program, const MachineConfig& machine,
-                   const std::string& out_path) {
+                   const std::string& out_path, const std::vector<std::string>& inputs) {
   auto reader = ProgramReader::open(program, machine);
   if (!reader) return reader.error();
-  auto out = OutputFile::open(out_path, {program});
+  auto out = OutputFile::open(out_path, inputs);
   if (!out) return out.error();
   Segment s;
   for (;;) {

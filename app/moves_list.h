@@ -16,13 +16,16 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "common/result.h"
 #include "machine/machine_config.h"
 
 namespace lcnc::app {
 
+// `inputs`: every file the program's reading reads (app/run_job.h
+// job_inputs), which the list must not be written over.
 [[nodiscard]] Status write_moves(const std::string& program, const MachineConfig& machine,
-                                 const std::string& out_path);
+                                 const std::string& out_path, const std::vector<std::string>& inputs);
 
 }  // namespace lcnc::app

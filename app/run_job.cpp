@@ -22,7 +22,7 @@
 #include "plan/tolerances.h"
 #include "app/machine_files.h"
 #include "app/job_session.h"
-#include "app/output_file.h"
+#include "common/output_file.h"
 #include "app/rt_text.h"
 #include "app/planner_feed.h"
 #include "rt/rt_kernel.h"
@@ -31,7 +31,7 @@
 namespace lcnc::app {
 namespace {
 
-// The trace CSV: an OutputFile (app/output_file.h), so the old file stays
+// The trace CSV: an OutputFile (common/output_file.h), so the old file stays
 // until the job has run to its end and nothing half-written replaces it.
 class TraceWriter {
  public:
@@ -197,6 +197,13 @@ void fill_run_figures(RunReport& report, const rt::RtKernel& kernel, const drive
   report.rt_warning = kernel.warning();
 }
 
+std::vector<std::string> job_inputs(const RunOptions& options, const ProgramSummary& summary) {
+  std::vector<std::string> in{options.program,
+                              options.machine_file.empty() ? default_machine_file() : options.machine_file};
+  in.insert(in.end(), summary.files.begin(), summary.files.end());
+  return in;
+}
+
 Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress) {
   // The Modbus devices answer in wall time; on the simulated clock the job
   // would run past them (`run --fast`, `drill --fast`).
@@ -236,12 +243,7 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   report.period_s = machine.period_s();
 
   TraceWriter trace_out;
-  if (Status s = trace_out.open(options.trace_file,
-                                {options.program, options.machine_file.empty()
-                                                      ? default_machine_file()
-                                                      : options.machine_file});
-      !s)
-    return s.error();
+  if (Status s = trace_out.open(options.trace_file, job_inputs(options, *summary)); !s) return s.error();
 
   std::array<double, kAxisCount> spu{};
   std::array<std::int64_t, kAxisCount> start_steps{};
@@ -266,6 +268,13 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   }
   LaserLink* const laser = session.laser();
 
+  // The job's own check reads the program again: opened before the job
+  // starts, so it reads the offsets the job starts from, not those the job
+  // keeps in the parameter file at its end (a G10 would move the check's
+  // path under the job's feet).
+  Result<std::unique_ptr<PathCheck>> path_check = source.path_check(machine);
+  if (!path_check) return path_check.error();
+
   // Planner thread: plan, coarse-interpolate, quantize, keep the buffer
   // full; the RT thread starts once half the buffer (or the whole job) is in.
   // M0/M1/M60: unattended, each pause ends after options.pause_s of machine
@@ -276,8 +285,6 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   const auto started = std::chrono::steady_clock::now();
 
   // Drain the trace while the job runs: CSV, the job's check, progress.
-  Result<std::unique_ptr<PathCheck>> path_check = source.path_check(machine);
-  if (!path_check) return path_check.error();
   JobCheck check(machine, std::move(path_check).value(), start_steps);
   std::uint32_t segment_seen = UINT32_MAX;
   const double total_segments = std::max<double>(1.0, static_cast<double>(summary->segments));

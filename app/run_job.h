@@ -59,6 +59,11 @@ struct RunOptions {
   std::function<void(std::uint32_t segment, double machine_time_s)> on_segment;
 };
 
+// Every file a run of `options` reads, as its check found them: the program
+// (or hole table), each subroutine file, the parameter file, the machine
+// file. None of the run's outputs may be one of them.
+[[nodiscard]] std::vector<std::string> job_inputs(const RunOptions& options, const ProgramSummary& summary);
+
 struct AxisReport {
   bool present = false;
   // Commanded, as executed at the run's feed override K: the plan's peaks

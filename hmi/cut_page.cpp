@@ -12,7 +12,7 @@
 
 #include "dxf/dxf_reader.h"
 #include "hmi/page_support.h"
-#include "hmi/replace_file.h"
+#include "common/output_file.h"
 #include "ui_cut_page.h"
 
 namespace lcnc::hmi {
@@ -183,10 +183,12 @@ std::string CutPage::gcode() const {
 
 bool CutPage::save(const QString& path) {
   if (!plan_) return false;
-  std::string error;
   const std::string text = gcode();
-  if (!replace_file(path.toStdString(), [&text](std::ostream& out) { out << text; }, error)) {
-    show_message(tr("Cannot write %1: %2").arg(path, QString::fromStdString(error)), true);
+  // never over the drawing it was made from
+  if (const Status s = write_output(path.toStdString(), {file_.toStdString()},
+                                    [&text](std::ostream& out) { out << text; });
+      !s) {
+    show_message(tr("Cannot write %1: %2").arg(path, QString::fromStdString(s.error().to_string())), true);
     return false;
   }
   show_message(tr("Saved %1.").arg(path), false);

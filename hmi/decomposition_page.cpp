@@ -16,7 +16,7 @@
 #include "dxf/dxf_reader.h"
 #include "hmi/decomposition_view.h"
 #include "hmi/page_support.h"
-#include "hmi/replace_file.h"
+#include "common/output_file.h"
 #include "ui_decomposition_page.h"
 
 namespace lcnc::hmi {
@@ -219,9 +219,10 @@ bool DecompositionPage::export_table(const QString& path) {
   }
   std::vector<const decompose::KinematicsTable*> tables;
   for (const decompose::ContourResult& c : part_->contours) tables.push_back(&c.table);
-  std::string why;
-  if (!replace_file(path.toStdString(), [&](std::ostream& f) { decompose::write_csv(f, tables); }, why)) {
-    show_message(tr("Cannot write %1.").arg(path), true);
+  if (const Status s = write_output(path.toStdString(), {path_.toStdString()},
+                                    [&](std::ostream& f) { decompose::write_csv(f, tables); });
+      !s) {
+    show_message(tr("Cannot write %1: %2").arg(path, QString::fromStdString(s.error().to_string())), true);
     return false;
   }
   show_message(tr("Exported %1.").arg(path), false);

@@ -10,7 +10,7 @@
 #include <QString>
 #include <QVariant>
 
-#include "hmi/replace_file.h"
+#include "common/output_file.h"
 #include "holes/hole_fields.h"
 #include "holes/hole_table.h"
 
@@ -306,10 +306,8 @@ Status ProcessDatabase::export_csv(const std::string& path) const {
   if (!all) return all.error();
   std::vector<HoleProcessParams> rows;
   for (const HoleRecord& r : *all) rows.push_back(r.params);
-  std::string why;
-  if (!replace_file(path, [&](std::ostream& out) { out << write_hole_table(rows); }, why))
-    return make_error(ErrorCode::FileNotFound, why, path);
-  return {};
+  // never over the database itself
+  return write_output(path, {path_}, [&](std::ostream& out) { out << write_hole_table(rows); });
 }
 
 Result<std::string> ProcessDatabase::integrity_check() const {

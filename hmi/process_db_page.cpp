@@ -15,7 +15,7 @@
 #include <numbers>
 
 #include "hmi/page_support.h"
-#include "hmi/replace_file.h"
+#include "common/output_file.h"
 #include "holes/hole_table.h"
 #include "ui_process_db_page.h"
 
@@ -189,9 +189,9 @@ std::string ProcessDbPage::send_to_controller() {
   std::filesystem::create_directories(dir, ec);
   const std::string path = (dir / "holes_run.csv").string();
   // replaced whole: the controller may still be reading the last one sent
-  std::string why;
-  if (!replace_file(path, [&](std::ostream& out) { out << write_hole_table(rows); }, why)) {
-    show_message(tr("Cannot write %1.").arg(QString::fromStdString(path)), true);
+  if (const Status s = write_output(path, {db_.path()}, [&](std::ostream& out) { out << write_hole_table(rows); });
+      !s) {
+    show_message(tr("Cannot write %1: %2").arg(QString::fromStdString(path), QString::fromStdString(s.error().to_string())), true);
     return {};
   }
   if (!link_.poll() || link_.send(shm::CommandType::Load, 0.0, 0, path) == 0) {

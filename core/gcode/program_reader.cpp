@@ -235,6 +235,7 @@ struct ProgramReader::Impl {
   MachineConfig machine;  // before interp, which keeps a reference to it
   ReaderOptions options;
   std::vector<OpenFile> files;  // [0] the program
+  bool from_memory = false;     // [0] is a name for text held in memory (MDI), no file
   std::size_t cur = 0;          // files[cur] is being read
   gcode::LineSource* in = nullptr;  // files[cur].src
   Parameters params;  // before parser, which reads them
@@ -1027,8 +1028,9 @@ std::unique_ptr<ProgramReader> ProgramReader::from_string(std::string text, std:
                                                           const MachineConfig& machine,
                                                           ReaderOptions options) {
   auto src = std::make_unique<gcode::LineSource>(std::move(text));
-  return std::unique_ptr<ProgramReader>(
-      new ProgramReader(std::make_unique<Impl>(std::move(src), std::move(name), machine, options)));
+  auto impl = std::make_unique<Impl>(std::move(src), std::move(name), machine, options);
+  impl->from_memory = true;
+  return std::unique_ptr<ProgramReader>(new ProgramReader(std::move(impl)));
 }
 
 ProgramReader::Next ProgramReader::next(Segment& out) { return impl_->read(out); }
@@ -1036,6 +1038,14 @@ const Diagnostic& ProgramReader::error() const { return impl_->error; }
 const std::vector<Diagnostic>& ProgramReader::warnings() const { return impl_->warnings; }
 std::uint32_t ProgramReader::lines_read() const {
   return impl_->cur == 0 ? std::max(impl_->main_lines, impl_->line) : impl_->main_lines;
+}
+
+std::vector<std::string> ProgramReader::files_read() const {
+  std::vector<std::string> out;
+  for (std::size_t i = impl_->from_memory ? 1 : 0; i < impl_->files.size(); ++i)
+    out.push_back(impl_->files[i].path);
+  if (!impl_->machine.parameter_file.empty()) out.push_back(impl_->machine.parameter_file);
+  return out;
 }
 
 ReaderModes ProgramReader::modes() const {
@@ -1091,6 +1101,7 @@ Result<ProgramSummary> check_program(const std::string& path, const MachineConfi
   sum.lines = reader.lines_read();
   sum.warnings = reader.warnings();
   sum.end = reader.modes();
+  sum.files = reader.files_read();
   return sum;
 }
 

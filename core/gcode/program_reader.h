@@ -90,6 +90,10 @@ class ProgramReader {
   [[nodiscard]] std::uint32_t lines_read() const;
   // The modes and offsets as the blocks read so far left them.
   [[nodiscard]] ReaderModes modes() const;
+  // The files this reading has read so far: the program (unless read from
+  // memory), each subroutine file a call opened, the machine's parameter
+  // file. What a run reads, none of its outputs may be.
+  [[nodiscard]] std::vector<std::string> files_read() const;
 
   struct Impl;
 
@@ -104,6 +108,7 @@ struct ProgramSummary : MotionSummary {
   ProgramSummary() = default;
   explicit ProgramSummary(MotionSummary motion) : MotionSummary(std::move(motion)) {}
   ReaderModes end;
+  std::vector<std::string> files;  // ProgramReader::files_read() at the end
 };
 
 // Reads the whole program, checking syntax, modal conflicts, arcs, feeds and

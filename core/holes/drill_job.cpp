@@ -102,6 +102,7 @@ Result<PreparedDrill> prepare_drill_job(const std::string& table, const MachineC
     return d;
   }
   p.summary = *summary;
+  p.summary.files = {table};
   return p;
 }
 

@@ -76,6 +76,7 @@ Result<ProgramSummary> check_job_program(const std::string& path, const MachineC
   sum.lines = read->lines;
   sum.warnings = read->warnings;
   sum.end = read->end;
+  sum.files = read->files;
   sum.feed_min = read->feed_min;  // of the tool tip: what framing shows
   sum.feed_max = read->feed_max;
   return sum;

@@ -357,6 +357,26 @@ TEST(LasercncRun, WorkOffsetsSetByAJobAreThereForTheNextJob) {
   EXPECT_NE(r.err.find("jobs.var:1:6"), std::string::npos) << r.err;
 }
 
+// A job that moves and then sets a work offset passes its own check: the
+// check reads the program from the offsets the job started from, not from
+// the parameter file the job rewrites at its end (read after, it held the
+// moves before the G10 to the new offset: 0.32 mm off, a failed run).
+TEST(LasercncRun, AJobThatSetsAWorkOffsetAfterItsMovesPassesItsOwnCheck) {
+  std::string cfg = slurp(kShare + "/machines/default.toml");
+  cfg.replace(cfg.find("[machine]\n"), 10, "[machine]\nparameter_file = \"moved.var\"\n");
+  const fs::path m = write_file("moved.toml", cfg);
+  const fs::path var = temp_dir() / "moved.var";
+  const fs::path prog = write_file("moves_then_g10.ngc", "G21 G90\nG1 X2 Y1 F1200\nG1 X0 Y0\nG10 L2 P1 X1\nM30\n");
+  for (int run = 0; run < 2; ++run) {  // with no parameter file yet, then with the one it wrote
+    const CmdResult r = lasercnc("run " + prog.string() + " --json --no-progress --fast --machine " + m.string());
+    ASSERT_EQ(r.exit_code, 0) << "run " << run << "\n" << r.out << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_TRUE(j["check"]["passed"].get<bool>()) << j["check"].dump();
+    EXPECT_LT(j["max_deviation_mm"].get<double>(), 0.01) << j.dump();
+    EXPECT_NE(slurp(var.string()).find("5221\t1\n"), std::string::npos);
+  }
+}
+
 // Unattended, `lasercnc run` resumes each M0/M1 after --pause seconds: the
 // cycle is that much longer, every step and limit as without them.
 TEST(LasercncRun, ProgramPausesAreResumedAfterThePauseOption) {

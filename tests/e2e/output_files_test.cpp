@@ -1,4 +1,4 @@
-// End to end: the CLI's output files (app/output_file.h) — an output that is
+// End to end: the CLI's output files (common/output_file.h) — an output that is
 // an input or another output is refused, a refused or failed run leaves every
 // target as it was and creates nothing, a write error is an error exit.
 #include <gtest/gtest.h>
@@ -7,8 +7,11 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <random>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "e2e_support.h"
 
@@ -57,6 +60,91 @@ TEST(OutputFiles, RunRefusesATraceThatIsTheProgramItselfOrALinkToIt) {
                                " --trace " + machine.string());
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_EQ(slurp(machine), before);
+}
+
+// A run reads more than its program: each subroutine file a call opens,
+// the machine's parameter file (read at the start, written at the end). Its
+// outputs may be none of them — by path, link or hard link — and a refused
+// output leaves every input byte-identical (a trace over a subroutine once
+// replaced it; over the parameter file, lost every work offset).
+struct CallingJob {
+  fs::path dir = temp_dir();
+  fs::path prog, sub, machine, params;
+  std::map<fs::path, std::string> before;  // every input's bytes
+  CallingJob() {
+    prog = write(dir / "p.ngc", "G21 G90\no<mysub> call [2]\nG10 L2 P1 X1\nM30\n");
+    sub = write(dir / "mysub.ngc", "o<mysub> sub\nG1 X#1 Y1 F1200\nG1 X0 Y0\no<mysub> endsub\nM2\n");
+    std::string cfg = slurp(kShare + "/machines/default.toml");
+    cfg.replace(cfg.find("[machine]\n"), 10, "[machine]\nparameter_file = \"jobs.var\"\n");
+    machine = write(dir / "m.toml", cfg);
+    params = dir / "jobs.var";
+    const CmdResult r = lasercnc("run " + prog.string() + kRun + " --machine " + machine.string());
+    EXPECT_EQ(r.exit_code, 0) << r.err;  // the parameter file now exists
+    for (const fs::path& f : {prog, sub, machine, params}) before[f] = slurp(f);
+  }
+  // Each input as it was, and `check` still reads the program.
+  void expect_intact(const std::string& how) const {
+    for (const auto& [f, bytes] : before) EXPECT_EQ(slurp(f), bytes) << f << " changed by " << how;
+    const CmdResult r = lasercnc("check " + prog.string() + " --machine " + machine.string());
+    EXPECT_EQ(r.exit_code, 0) << how << "\n" << r.err;
+  }
+  // `lasercnc run --trace out` and `lasercnc check --moves out`: both refused.
+  void expect_refused(const fs::path& out) const {
+    const std::string m = " --machine " + machine.string();
+    const CmdResult run = lasercnc("run " + prog.string() + kRun + m + " --trace " + out.string());
+    EXPECT_EQ(run.exit_code, 2) << out << "\n" << run.err;
+    EXPECT_NE(run.err.find("E102"), std::string::npos) << run.err;
+    const CmdResult check = lasercnc("check " + prog.string() + m + " --moves " + out.string());
+    EXPECT_EQ(check.exit_code, 2) << out << "\n" << check.err;
+    EXPECT_NE(check.err.find("E102"), std::string::npos) << check.err;
+    expect_intact(out.string());
+  }
+};
+
+TEST(OutputFiles, NoOutputIsASubroutineFileOrTheParameterFileTheRunReads) {
+  const CallingJob job;
+  job.expect_refused(job.sub);
+  job.expect_refused(job.params);
+  fs::create_symlink(job.sub, job.dir / "sub_link.ngc");
+  job.expect_refused(job.dir / "sub_link.ngc");
+  fs::create_hard_link(job.params, job.dir / "params_hard.var");
+  job.expect_refused(job.dir / "params_hard.var");
+  // a parameter file not written yet is where the run will write it
+  fs::remove(job.dir / "params_hard.var");
+  fs::remove(job.params);
+  const std::string m = " --machine " + job.machine.string();
+  const CmdResult r = lasercnc("run " + job.prog.string() + kRun + m + " --trace " + job.params.string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_FALSE(fs::exists(job.params));
+}
+
+// The property: any path that reaches one of a run's inputs — as given, with
+// ./ and ../ in it, through a symbolic link to it or to its folder, through
+// a hard link — is refused as an output, and nothing is changed.
+TEST(OutputFiles, EveryPathToAnyInputIsRefusedAsAnOutput) {
+  const CallingJob job;
+  fs::create_directory(job.dir / "deeper");
+  fs::create_directory_symlink(job.dir, job.dir / "dir_link");
+  std::mt19937 rng(20261207);
+  const std::vector<fs::path> inputs{job.prog, job.sub, job.machine, job.params};
+  for (int k = 0; k < 16; ++k) {
+    const fs::path in = inputs[rng() % inputs.size()];
+    const std::string name = in.filename().string();
+    fs::path out;
+    switch (rng() % 5) {
+      case 0: out = in; break;
+      case 1: out = job.dir / "." / name; break;
+      case 2: out = job.dir / "deeper" / ".." / name; break;
+      case 3: out = job.dir / "dir_link" / name; break;
+      default: {
+        out = job.dir / ("link_" + std::to_string(k));
+        if (rng() % 2 == 0) fs::create_symlink(in, out);
+        else fs::create_hard_link(in, out);
+      }
+    }
+    SCOPED_TRACE(out.string() + " -> " + in.string());
+    job.expect_refused(out);
+  }
 }
 
 TEST(OutputFiles, ARefusedRunLeavesTheOldTraceByteIdenticalAndCreatesNothing) {

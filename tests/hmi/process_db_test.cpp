@@ -307,7 +307,18 @@ TEST(ProcessDatabase, CsvImportIsAllOrNothingAndExportReadsBack) {
   EXPECT_EQ(*(*db->hole(1))->focus_offset_mm, 0.2);
   // export, then replace from it: the same rows
   ASSERT_TRUE(db->export_csv((dir / "out.csv").string()).ok());
-  EXPECT_FALSE(fs::exists(dir / "out.csv.part"));
+  for (const fs::directory_entry& e : fs::directory_iterator(dir))  // no temporary file left
+    EXPECT_NE(e.path().filename().string().rfind(".out.csv.", 0), 0u) << e.path();
+  // an export over the database itself (or a link to it) is refused, the
+  // database unchanged
+  const fs::path db_link = dir / "db_link.csv";
+  fs::create_symlink(db->path(), db_link);
+  for (const std::string& over : {db->path(), db_link.string()}) {
+    const Status refused = db->export_csv(over);
+    ASSERT_FALSE(refused.ok()) << over;
+    EXPECT_EQ(refused.error().code, ErrorCode::OutputIsInput) << refused.error().to_string();
+  }
+  EXPECT_EQ(count(*db), 2u);
   ASSERT_TRUE(db->import_csv((dir / "out.csv").string(), ProcessDatabase::ImportMode::Replace).ok());
   Result<std::vector<HoleRecord>> all = db->holes();
   ASSERT_EQ(all->size(), 2u);

@@ -1,4 +1,4 @@
-#include "app/output_file.h"
+#include "common/output_file.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -11,7 +11,7 @@
 #include <optional>
 #include <random>
 
-namespace lcnc::app {
+namespace lcnc {
 namespace {
 
 // The stdio buffer of an output: rows are small, syscalls few.
@@ -62,9 +62,11 @@ Diagnostic write_error(const std::string& path, int err, const char* doing) {
                     path);
 }
 
+// An output not there yet is still refused where an input will be (a
+// parameter file the run writes at its end): same folder, same name.
 Status check_inputs(const std::string& output, const std::optional<FileId>& id,
                     const std::vector<std::string>& inputs) {
-  if (!id || !id->name.empty()) return {};  // not there yet: no input can be it
+  if (!id) return {};
   for (const std::string& in : inputs) {
     if (in.empty()) continue;
     if (const std::optional<FileId> iid = file_id(in); iid && *iid == *id)
@@ -254,4 +256,15 @@ Status OutputFile::commit() {
   return {};
 }
 
-}  // namespace lcnc::app
+Status write_output(const std::string& path, const std::vector<std::string>& inputs,
+                    const std::function<void(std::ostream&)>& fill) {
+  Result<OutputFile> f = OutputFile::open(path, inputs);
+  if (!f) return f.error();
+  OutputStreamBuf buf(*f);
+  std::ostream out(&buf);
+  fill(out);
+  out.flush();
+  return f->commit();
+}
+
+}  // namespace lcnc

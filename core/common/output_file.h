@@ -1,5 +1,6 @@
-// Output files of the CLI (a run's trace, decompose's table and pictures):
-// written so that nothing already stored is lost or half-written.
+// The one door for output files (the CLI's trace, tables, pictures and
+// programs, the HMI's exports): written so that nothing already stored is
+// lost or half-written, and never over a file the work read.
 //
 // * An output is refused when it is one of the command's inputs or another
 //   output of the same command: same file = same device and inode, so a
@@ -23,6 +24,8 @@
 #pragma once
 
 #include <cstdio>
+#include <functional>
+#include <ostream>
 #include <streambuf>
 #include <string>
 #include <string_view>
@@ -30,7 +33,7 @@
 
 #include "common/result.h"
 
-namespace lcnc::app {
+namespace lcnc {
 
 class OutputFile {
  public:
@@ -98,44 +101,16 @@ class OutputStreamBuf : public std::streambuf {
   OutputFile& f_;
 };
 
-// The outputs of one command: each written to its temporary file as it is
-// made, all renamed over their targets by commit_all() once the command has
-// done its work; a refused or failed command leaves every target as it was.
-class OutputSet {
- public:
-  explicit OutputSet(std::vector<std::string> inputs) : inputs_(std::move(inputs)) {}
-  // Opens `path`, `fill` writes it; false (and the message printed) when it
-  // cannot be opened.
-  template <typename Fill>
-  bool add(const std::string& path, Fill fill) {
-    Result<OutputFile> f = OutputFile::open(path, inputs_);
-    if (!f) {
-      std::fprintf(stderr, "%s\n", f.error().to_string().c_str());
-      return false;
-    }
-    fill(*f);
-    files_.push_back(std::move(f).value());
-    return true;
-  }
-  bool commit_all() {
-    for (OutputFile& f : files_) {
-      if (Status s = f.commit(); !s) {
-        std::fprintf(stderr, "%s\n", s.error().to_string().c_str());
-        return false;
-      }
-    }
-    return true;
-  }
-
- private:
-  std::vector<std::string> inputs_;
-  std::vector<OutputFile> files_;
-};
-
 // Refuses a command's outputs when one is one of `inputs` or two are the same
 // file (OutputIsInput, naming both). Empty paths are skipped (no such output).
 // Nothing is created: this runs before any work.
 [[nodiscard]] Status check_outputs(const std::vector<std::string>& outputs,
                                    const std::vector<std::string>& inputs);
 
-}  // namespace lcnc::app
+// One output whole: opened as OutputFile::open (refused over any of
+// `inputs`), written by `fill` through a stream, committed. On any failure
+// the target is as it was.
+[[nodiscard]] Status write_output(const std::string& path, const std::vector<std::string>& inputs,
+                                  const std::function<void(std::ostream&)>& fill);
+
+}  // namespace lcnc
