@@ -264,8 +264,26 @@ struct Daemon::Impl {
   // Checks the program's copy (or builds and checks the drilling job) from
   // `start`; changes nothing of what is loaded. Any thread: reads only the
   // machine.
-  Result<CheckedJob> check(const ProgramSnapshot& p, ReaderOptions ropt) const {
+  // Who a command's files are read for: its sender, in the program folders.
+  FileAccess access_for(const shm::Command& c) const {
+    return FileAccess{c.sender_uid, c.sender_gid, program_dirs};
+  }
+
+  // How `p` is read: its subroutines from the folder of the file it was
+  // copied from (an MDI command's or the framing's: from
+  // machine.subroutine_path alone), each file passing may_read() for whom it
+  // was loaded — the one policy of every file a job reads.
+  static ReaderOptions reading_of(const ProgramSnapshot& p, ReaderOptions ropt) {
     ropt.program_dir = std::filesystem::path(p.name()).parent_path().string();  // not the copy's
+    ropt.file_policy = [access = p.access()](const std::string& path) { return may_read(path, access); };
+    return ropt;
+  }
+
+  // Checks the program's copy (or builds and checks the drilling job) from
+  // `start`; changes nothing of what is loaded. Any thread: reads only the
+  // machine.
+  Result<CheckedJob> check(const ProgramSnapshot& p, ReaderOptions ropt) const {
+    ropt = reading_of(p, std::move(ropt));
     CheckedJob out;
     if (!is_hole_table(p.name())) {
       Result<ProgramSummary> s = check_job_program(p.path(), machine, ropt);
@@ -301,10 +319,8 @@ struct Daemon::Impl {
     p->params_gen = params_gen;
     SnapshotRequest req;
     req.path = c.text;
-    req.sender_uid = c.sender_uid;
-    req.sender_gid = c.sender_gid;
+    req.access = access_for(c);
     req.hole_table = is_hole_table(req.path);
-    req.program_dirs = program_dirs;
     PendingLoad& l = *p;
     l.thread = std::thread([this, &l, req = std::move(req)] {
       Result<std::shared_ptr<const ProgramSnapshot>> snap = ProgramSnapshot::take(req);
@@ -389,7 +405,6 @@ struct Daemon::Impl {
         if (!program) return refuse("start refused: no program loaded");
         ReaderOptions ropt;
         ropt.start = position();
-        ropt.program_dir = std::filesystem::path(program->name()).parent_path().string();
         ropt.start_line = static_cast<std::uint32_t>(c.value);
         ropt.single_block = (c.axis & shm::kStartSingleBlock) != 0;
         ropt.laser_off = (c.axis & shm::kStartDryRun) != 0;
@@ -446,7 +461,7 @@ struct Daemon::Impl {
         kernel->command({rt::RtCommandType::Home, static_cast<std::int8_t>(c.axis), 0.0});
         return Ack{true, ErrorCode::Ok, "home " + axis_text};
       }
-      case shm::CommandType::Mdi: return mdi(c.text, st);
+      case shm::CommandType::Mdi: return mdi(c, st);
       case shm::CommandType::Frame: return frame(st);
       case shm::CommandType::Count: break;
     }
@@ -472,7 +487,8 @@ struct Daemon::Impl {
   // The job: `snap` as `checked` from `ropt.start`, planned and run. An MDI
   // command or the framing (`mdi`) leaves the loaded program as it is.
   Ack begin_job(std::shared_ptr<const ProgramSnapshot> snap, const CheckedJob& checked,
-                const ReaderOptions& ropt, bool mdi) {
+                const ReaderOptions& asked, bool mdi) {
+    const ReaderOptions ropt = reading_of(*snap, asked);
     const JobSource source = checked.drill_segments
                                  ? JobSource::segments(checked.drill_segments, snap->name(), ropt.start)
                                  : JobSource::program(snap->path(), ropt);
@@ -508,11 +524,12 @@ struct Daemon::Impl {
 
   // MDI: one line of G-code, in the modes the last command left, from here.
   // One that does not move (G10 L20, G55, F600) is done at once.
-  Ack mdi(const std::string& text, shm::MachineState st) {
+  Ack mdi(const shm::Command& c, shm::MachineState st) {
+    const std::string text(c.text, strnlen(c.text, sizeof c.text));
     std::size_t b = text.find_first_not_of(" \t");
     if (b == std::string::npos) return Ack{false, ErrorCode::RtRefused, "mdi refused: no G-code"};
     if (std::optional<Ack> no = refuse_motion("mdi", st)) return *no;
-    Result<std::shared_ptr<const ProgramSnapshot>> snap = ProgramSnapshot::from_text("MDI", text + "\n");
+    Result<std::shared_ptr<const ProgramSnapshot>> snap = ProgramSnapshot::from_text("MDI", text + "\n", access_for(c));
     if (!snap) return Ack{false, snap.error().code, "mdi: " + snap.error().to_string()};
     ReaderOptions ropt;
     ropt.start = position();
@@ -558,7 +575,7 @@ struct Daemon::Impl {
                   "G53 G0 X%.6f Y%.6f\n",
                   program->name().c_str(), lo[0], hi[0], lo[1], hi[1], lo[0], lo[1], hi[0],
                   feed_mm_min, hi[1], lo[0], lo[1], here[0], here[1]);
-    Result<std::shared_ptr<const ProgramSnapshot>> snap = ProgramSnapshot::from_text("framing", text);
+    Result<std::shared_ptr<const ProgramSnapshot>> snap = ProgramSnapshot::from_text("framing", text, FileAccess{});
     if (!snap) return Ack{false, snap.error().code, "frame: " + snap.error().to_string()};
     ReaderOptions ropt;
     ropt.start = here;

@@ -80,6 +80,20 @@ bool inside(const std::string& path, const std::vector<std::string>& dirs) {
   return false;
 }
 
+// The policy on a file opened already (`real`: where it is): why it may not
+// be read, empty if it may.
+std::string access_of(const struct stat& st, const std::string& real, const FileAccess& a) {
+  if (!S_ISREG(st.st_mode)) return std::string("it is ") + kind_of(st.st_mode) + "; expected a regular file";
+  if (!sender_may_read(st, a.sender_uid, a.sender_gid))
+    return "the sender (uid " + std::to_string(a.sender_uid) + ") may not read it";
+  if (!a.program_dirs.empty() && !inside(real, a.program_dirs)) {
+    std::string dirs;
+    for (const std::string& d : a.program_dirs) dirs += (dirs.empty() ? "" : ", ") + d;
+    return "outside the program folders; expected a file in " + dirs;
+  }
+  return {};
+}
+
 bool write_all(int fd, const char* p, std::size_t n) {
   while (n > 0) {
     const ssize_t w = write(fd, p, n);
@@ -136,18 +150,8 @@ Result<std::shared_ptr<const ProgramSnapshot>> ProgramSnapshot::take(const Snaps
   if (in.fd < 0) return refused(path, std::strerror(errno));
   struct stat st {};
   if (fstat(in.fd, &st) != 0) return refused(path, std::strerror(errno));
-  if (!S_ISREG(st.st_mode))
-    return refused(path, std::string("it is ") + kind_of(st.st_mode) + "; expected a regular file");
-  if (!sender_may_read(st, r.sender_uid, r.sender_gid))
-    return refused(path, "the sender (uid " + std::to_string(r.sender_uid) + ") may not read it");
-  if (!r.program_dirs.empty()) {
-    const std::string real = real_path_of(in.fd);
-    if (!inside(real, r.program_dirs)) {
-      std::string dirs;
-      for (const std::string& d : r.program_dirs) dirs += (dirs.empty() ? "" : ", ") + d;
-      return refused(path, "outside the program folders; expected a file in " + dirs);
-    }
-  }
+  if (const std::string why = access_of(st, real_path_of(in.fd), r.access); !why.empty())
+    return refused(path, why);
   if (static_cast<std::uint64_t>(st.st_size) > kMaxProgramBytes)
     return refused(path, std::to_string(st.st_size) + " bytes; a program may have at most " +
                              std::to_string(kMaxProgramBytes) + " bytes");
@@ -181,19 +185,35 @@ Result<std::shared_ptr<const ProgramSnapshot>> ProgramSnapshot::take(const Snaps
                           "); its content is not shown",
                       path, 1, 1);
   }
-  return std::shared_ptr<const ProgramSnapshot>(new ProgramSnapshot(path, copy.release(), total));
+  return std::shared_ptr<const ProgramSnapshot>(new ProgramSnapshot(path, copy.release(), total, r.access));
+}
+
+Status may_read(const std::string& path, const FileAccess& access) {
+  // opened as take() opens, so that what is checked is the file itself
+  Fd in(open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC));
+  struct stat st {};
+  std::string why = in.fd < 0 || fstat(in.fd, &st) != 0 ? std::string(std::strerror(errno))
+                                                         : access_of(st, real_path_of(in.fd), access);
+  if (why.empty()) return {};
+  return make_error(ErrorCode::FileNotFound, why, path);
 }
 
 Result<std::shared_ptr<const ProgramSnapshot>> ProgramSnapshot::from_text(std::string name,
-                                                                          const std::string& text) {
+                                                                          const std::string& text,
+                                                                          FileAccess access) {
   Fd copy(open_copy());
   if (copy.fd < 0 || !write_all(copy.fd, text.data(), text.size()))
     return make_error(ErrorCode::FileNotFound, std::string("no room for its copy: ") + std::strerror(errno), name);
-  return std::shared_ptr<const ProgramSnapshot>(new ProgramSnapshot(std::move(name), copy.release(), text.size()));
+  return std::shared_ptr<const ProgramSnapshot>(
+      new ProgramSnapshot(std::move(name), copy.release(), text.size(), std::move(access)));
 }
 
-ProgramSnapshot::ProgramSnapshot(std::string name, int fd, std::uint64_t bytes)
-    : name_(std::move(name)), path_("/proc/self/fd/" + std::to_string(fd)), fd_(fd), bytes_(bytes) {}
+ProgramSnapshot::ProgramSnapshot(std::string name, int fd, std::uint64_t bytes, FileAccess access)
+    : name_(std::move(name)),
+      access_(std::move(access)),
+      path_("/proc/self/fd/" + std::to_string(fd)),
+      fd_(fd),
+      bytes_(bytes) {}
 
 ProgramSnapshot::~ProgramSnapshot() {
   if (fd_ >= 0) close(fd_);

@@ -31,13 +31,26 @@ inline constexpr std::uint64_t kMaxProgramBytes = 4ull << 30;
 // The bytes looked at to tell a program from another file.
 inline constexpr std::size_t kSniffBytes = 4096;
 
-struct SnapshotRequest {
-  std::string path;            // absolute, as the sender named it
+// Who a file is read for, and where it may lie: the one policy of every file
+// a daemon job or MDI command reads (the program a load copies, each
+// subroutine file its reading opens). A regular file, readable by the
+// sender by its mode bits, inside the program folders when there are any.
+struct FileAccess {
   std::uint32_t sender_uid = 0;
   std::uint32_t sender_gid = 0;
-  bool hole_table = false;     // a .csv hole table, not G-code
-  // Canonical folders a program must lie in; empty: anywhere.
+  // Canonical folders a file must lie in; empty: anywhere.
   std::vector<std::string> program_dirs;
+};
+
+// Whether `path` may be read for `access`: FileNotFound saying why not
+// ("outside the program folders", "the sender (uid 65534) may not read
+// it"), never what the file holds.
+[[nodiscard]] Status may_read(const std::string& path, const FileAccess& access);
+
+struct SnapshotRequest {
+  std::string path;            // absolute, as the sender named it
+  FileAccess access;
+  bool hole_table = false;     // a .csv hole table, not G-code
 };
 
 class ProgramSnapshot {
@@ -48,7 +61,8 @@ class ProgramSnapshot {
   // A program the daemon writes itself (an MDI command, framing), read like
   // a loaded one; `name` stands for it in messages ("MDI:1:7: …").
   [[nodiscard]] static Result<std::shared_ptr<const ProgramSnapshot>> from_text(std::string name,
-                                                                               const std::string& text);
+                                                                               const std::string& text,
+                                                                               FileAccess access);
   ~ProgramSnapshot();
   ProgramSnapshot(const ProgramSnapshot&) = delete;
   ProgramSnapshot& operator=(const ProgramSnapshot&) = delete;
@@ -60,10 +74,14 @@ class ProgramSnapshot {
   [[nodiscard]] std::uint64_t bytes() const noexcept { return bytes_; }
   // A diagnostic of the copy, told of the file it was taken from.
   [[nodiscard]] Diagnostic rename(Diagnostic d) const;
+  // Whom it was loaded (or its text sent) for: every file its readings open
+  // passes may_read() for them.
+  [[nodiscard]] const FileAccess& access() const noexcept { return access_; }
 
  private:
-  ProgramSnapshot(std::string name, int fd, std::uint64_t bytes);
+  ProgramSnapshot(std::string name, int fd, std::uint64_t bytes, FileAccess access);
   std::string name_;
+  FileAccess access_;
   std::string path_;
   int fd_ = -1;
   std::uint64_t bytes_ = 0;

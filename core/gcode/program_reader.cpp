@@ -633,17 +633,35 @@ bool ProgramReader::Impl::call(std::string_view text, const Location& after) {
   params.set_global("_value_returned", 0.0);
   if (auto it = subs.find(label); it != subs.end()) return jump(it->second);
   if (label.front() == '<') {
-    const std::string name = label.substr(1, label.size() - 2) + ".ngc";
+    const std::string stem = label.substr(1, label.size() - 2);
+    // a name, never a path: o</etc/x> or o<../x> would read files outside
+    // the folders a program's subroutines come from
+    if (stem.find_first_of("/\\") != std::string::npos || stem == "." || stem == "..") {
+      fail_o(text, "found " + o_name(label) + " call: a subroutine's name is a path; expected a plain "
+                   "name, whose file <name>.ngc is looked for in the program's folder and "
+                   "machine.subroutine_path");
+      return false;
+    }
+    const std::string name = stem + ".ngc";
     std::vector<std::filesystem::path> dirs;
-    dirs.push_back(options.program_dir.empty()
-                       ? std::filesystem::path(files[0].path).parent_path()
-                       : std::filesystem::path(options.program_dir));
+    if (options.program_dir) {
+      if (!options.program_dir->empty()) dirs.emplace_back(*options.program_dir);
+    } else if (!from_memory) {
+      dirs.push_back(std::filesystem::path(files[0].path).parent_path());
+    }
     for (const std::string& d : machine.subroutine_path) dirs.emplace_back(d);
     for (const auto& dir : dirs) {
       std::error_code ec;
       const std::filesystem::path candidate = dir / name;  // a bare program name: the working folder
       if (!std::filesystem::is_regular_file(candidate, ec)) continue;
       const std::string path = candidate.string();
+      if (options.file_policy) {
+        if (const Status may = options.file_policy(path); !may) {
+          fail_o(text, "subroutine " + o_name(label) + ": its file " + path + " is refused: " +
+                           may.error().message);
+          return false;
+        }
+      }
       std::size_t index = 0;
       while (index < files.size() && files[index].path != path) ++index;
       if (index == files.size()) files.push_back(OpenFile{path, nullptr});

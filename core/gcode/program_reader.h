@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <istream>
 #include <limits>
 #include <memory>
@@ -32,9 +33,16 @@ struct ReaderOptions {
   // '/' lines skipped (true) or run (false); unset: the machine's
   // block_delete (skipped by default, as LinuxCNC does)
   std::optional<bool> block_delete;
-  // The folder searched first for a subroutine's file <name>.ngc; empty: the
-  // program file's own (set it when the program is read from a copy).
-  std::string program_dir;
+  // The folder searched first for a subroutine's file <name>.ngc: unset, the
+  // program file's own (a program read from memory has none); set it when
+  // the program is read from a copy; empty: none, machine.subroutine_path
+  // alone (an MDI command's).
+  std::optional<std::string> program_dir;
+  // Every subroutine file the reading would open is asked here first (the
+  // daemon's: inside the program folders, readable by the sender); a refusal
+  // is the reading's error at the call, and the file is not read. Unset:
+  // any file the process may read.
+  std::function<Status(const std::string& path)> file_policy;
   // The job's own reading (not a check): at the program's end the offsets
   // and tools it set are written to the machine's parameter_file.
   bool keep_parameters = false;

@@ -16,6 +16,7 @@
 #include <atomic>
 #include <chrono>
 #include <future>
+#include <random>
 #include <set>
 #include <vector>
 #include <cmath>
@@ -589,6 +590,61 @@ TEST(Lasercncd, LoadsOnlyProgramsTheSenderMayReadAndNeverEchoesOtherFiles) {
   // and a program in the folder loads
   r = lasercnc("send load " + mine.string() + " --shm " + shm.name());
   EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(d.stop(SIGTERM), 0) << d.log();
+}
+
+// Every file a daemon job or MDI command reads passes the load's policy —
+// inside the program folders, readable by the sender — subroutine files as
+// much as the program: a less-privileged sender runs no file it may not
+// read, and no message shows what such a file holds. The property: random
+// subroutine names and callers from uid 65534, each refused, the machine
+// still.
+TEST(Lasercncd, ASubroutineFileIsReadOnlyUnderTheLoadsPolicy) {
+  const e2e::ShmGuard shm(shm_name());
+  const fs::path dir = temp_dir() / "programs";
+  const fs::path out = temp_dir() / "outside";
+  fs::create_directories(dir);
+  fs::create_directories(out);
+  Daemon d(shm, {"--programs", dir.string()});
+  ASSERT_TRUE(d.ready()) << d.log();
+  const auto sub_text = [](const std::string& name) {
+    return "(s3cr3t of " + name + ")\no<" + name + "> sub\nG1 X7 F600\no<" + name + "> endsub\nM2\n";
+  };
+  std::ofstream(dir / "root_only.ngc") << sub_text("root_only");
+  fs::permissions(dir / "root_only.ngc", fs::perms::owner_read | fs::perms::owner_write);
+  std::ofstream(out / "outer.ngc") << sub_text("outer");
+  fs::create_symlink(out / "outer.ngc", dir / "link_out.ngc");
+  std::ofstream(dir / "shared.ngc") << sub_text("shared");
+  auto c = client(shm);
+  const auto as_nobody = [&](lcnc::shm::CommandType t, const std::string& text) {
+    return wait_answer(c, send_frame(c, t, text, 0.0, 0, 0, 65534));
+  };
+  const auto caller = [&](const std::string& name) {
+    const fs::path p = dir / ("call_" + std::to_string(std::hash<std::string>{}(name)) + ".ngc");
+    std::ofstream(p) << "G21 G90\no<" << name << "> call\nM2\n";
+    return p;
+  };
+  // the positive control: a readable subroutine in the folder, for nobody
+  lcnc::shm::Answer a = as_nobody(lcnc::shm::CommandType::Load, caller("shared").string());
+  EXPECT_EQ(a.code, 0) << a.message;
+  // the findings: MDI of an absolute path and of ../, a loaded program
+  // calling a root-only file and one behind a link out of the folder
+  const std::vector<std::string> names{(out / "outer").string(), "../outside/outer", "../programs/root_only",
+                                       "root_only", "link_out", "/etc/passwd"};
+  std::mt19937 rng(7);
+  for (int k = 0; k < 16; ++k) {
+    const std::string& name = names[rng() % names.size()];
+    const bool mdi = rng() % 2 == 0;
+    SCOPED_TRACE((mdi ? "mdi o<" : "load of a call of o<") + name + ">");
+    a = mdi ? as_nobody(lcnc::shm::CommandType::Mdi, "o<" + name + "> call")
+            : as_nobody(lcnc::shm::CommandType::Load, caller(name).string());
+    EXPECT_NE(a.code, 0) << a.message;
+    EXPECT_EQ(std::string(a.message).find("s3cr3t"), std::string::npos) << a.message;
+    EXPECT_EQ(std::string(a.message).find("root:"), std::string::npos) << a.message;
+  }
+  const nlohmann::json s = status(shm.name());
+  EXPECT_EQ(s["position"][0].get<double>(), 0.0) << "nothing ran";
+  EXPECT_FALSE(s["job_active"].get<bool>());
   EXPECT_EQ(d.stop(SIGTERM), 0) << d.log();
 }
 

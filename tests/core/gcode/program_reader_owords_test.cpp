@@ -128,6 +128,64 @@ TEST(ProgramOWords, SubroutineFilesAreFoundBesideTheProgramAndOnTheSearchPath) {
   fs::remove_all(dir);
 }
 
+// A subroutine's name is a name: o</abs/file> and o<../x> would read files
+// from anywhere (the daemon ran a root-only file so); refused at the call,
+// and nothing of the file is read.
+TEST(ProgramOWords, ASubroutineNameThatIsAPathIsRefusedAtTheCall) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("lcnc_owords_path_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "progs");
+  std::ofstream(dir / "outside.ngc") << "o<outside> sub\nG1 X5 F600\no<outside> endsub\n";
+  for (const std::string& name : {(dir / "outside").string(), std::string("../outside"), std::string("."),
+                                  std::string(".."), std::string("progs\\..\\outside")}) {
+    SCOPED_TRACE(name);
+    std::ofstream(dir / "progs" / "job.ngc") << "G21 G90\no<" << name << "> call\nM2\n";
+    const Result<ProgramSummary> r = check_program((dir / "progs" / "job.ngc").string(),
+                                                   test::test_machine(), test::start_at());
+    ASSERT_FALSE(r);
+    EXPECT_EQ(r.error().line, 2u);
+    EXPECT_EQ(r.error().file, (dir / "progs" / "job.ngc").string());
+    EXPECT_MENTIONS(r.error(), "a subroutine's name is a path");
+  }
+  fs::remove_all(dir);
+}
+
+// ReaderOptions::file_policy is asked before a subroutine file is opened;
+// its refusal is the reading's error at the call, and the file is not read
+// (a file of something else would otherwise be quoted in a syntax error).
+TEST(ProgramOWords, TheFilePolicyIsAskedBeforeASubroutineFileIsRead) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("lcnc_owords_policy_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "job.ngc") << "G21 G90 F600\no<open> call\no<secret> call\nM2\n";
+  std::ofstream(dir / "open.ngc") << "o<open> sub\nG1 X1\no<open> endsub\n";
+  std::ofstream(dir / "secret.ngc") << "ROOTSECRET\n";
+  ReaderOptions o = test::start_at();
+  std::vector<std::string> asked;
+  o.file_policy = [&](const std::string& path) -> Status {
+    asked.push_back(fs::path(path).filename().string());
+    if (fs::path(path).filename() == "secret.ngc")
+      return make_error(ErrorCode::FileNotFound, "the sender (uid 65534) may not read it", path);
+    return {};
+  };
+  const Result<ProgramSummary> r = check_program((dir / "job.ngc").string(), test::test_machine(), o);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(asked, (std::vector<std::string>{"open.ngc", "secret.ngc"}));
+  EXPECT_EQ(r.error().line, 3u);
+  EXPECT_MENTIONS(r.error(), "may not read it");
+  EXPECT_EQ(r.error().to_string().find("ROOTSECRET"), std::string::npos) << r.error().to_string();
+  // a program held in memory has no folder: its calls look on the search
+  // path alone, never in the working folder
+  const fs::path cwd = fs::current_path();
+  fs::current_path(dir);
+  const Diagnostic d = expect_error("o<open> call\n", ErrorCode::GcodeFlow, 1, 1);
+  EXPECT_MENTIONS(d, "not found");
+  fs::current_path(cwd);
+  fs::remove_all(dir);
+}
+
 TEST(ProgramOWords, MismatchesAndOpenStructuresAreErrorsAtTheirLine) {
   Diagnostic d = expect_error("G1 X20 F600\nO100 endwhile\n", ErrorCode::GcodeFlow, 2, 1);
   EXPECT_MENTIONS(d, "O100 endwhile");
