@@ -629,6 +629,13 @@ bool BlockParser::read_setting(std::uint32_t& i, Block& out) {
     }
     set.index = static_cast<int>(rounded);
   }
+  if (const std::string why = params_->read_only(set.index, set.name); !why.empty()) {
+    const std::string shown = set.index > 0 ? "#" + std::to_string(set.index) : "#<" + set.name + ">";
+    return fail(ErrorCode::GcodeBadValue, text_.offset[at],
+                "found " + quoted(at, i) + " set: " + shown + " is read-only (" + why +
+                    "); expected a parameter a program may set, e.g. #1 … #5000 or #<_name> of "
+                    "its own");
+  }
   if (i >= n || c[i] != '=') {
     return fail(ErrorCode::GcodeSyntax, text_.offset[at],
                 "found " + quoted(at, std::min(n, i + 1)) +

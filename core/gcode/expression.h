@@ -37,6 +37,13 @@ class ParameterReader {
   [[nodiscard]] virtual double numbered(int index) const = 0;
   // #<name>: false when it is not defined (an error for the reader).
   [[nodiscard]] virtual bool named(std::string_view name, double& out) const = 0;
+  // What an assignment may not set (#index, or #<name> when index is 0):
+  // why not ("the current position, …"), empty when it may.
+  [[nodiscard]] virtual std::string read_only(int index, std::string_view name) const {
+    (void)index;
+    (void)name;
+    return {};
+  }
 };
 
 class ExpressionReader {

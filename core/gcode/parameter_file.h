@@ -36,6 +36,7 @@ inline constexpr int kParamInputResult = 5399;  // M66: the input's value
 inline constexpr int kParamTool = 5400;        // the tool in the spindle (M6, M61)
 inline constexpr int kParamToolOffset = 5401;  // #5401 … #5409: the tool offset in effect (G43)
 inline constexpr int kParamToolDiameter = 5410;
+inline constexpr int kParamToolLast = 5413;    // … #5411 – #5413: its angles and orientation (lathes)
 inline constexpr int kParamPosition = 5420;    // #5420 … #5428: the position, program coordinates
 // Kept in the file (LinuxCNC's required set).
 inline constexpr int kParamPersistentFirst = 5161;

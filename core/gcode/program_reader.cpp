@@ -87,6 +87,21 @@ class Parameters final : public gcode::ParameterReader {
     out = it->second;
     return true;
   }
+  // LinuxCNC's read-only parameters: the predefined names (views of the
+  // machine's state: set, the next move would go elsewhere than the machine
+  // is) and the numbered views of the tool and the position.
+  [[nodiscard]] std::string read_only(int index, std::string_view name) const override {
+    double v = 0.0;
+    if (index == 0)
+      return name.front() == '_' && interp_ != nullptr && interp_->predefined(name, v)
+                 ? "a predefined parameter, the interpreter's own state"
+                 : std::string();
+    if (index >= gcode::kParamPosition && index < gcode::kParamPosition + gcode::kParamAxes)
+      return "the current position";
+    if (index >= gcode::kParamInputResult && index <= gcode::kParamToolLast)
+      return index == gcode::kParamInputResult ? "M66's input value" : "the tool's data, set by M6, M61 and G43";
+    return {};
+  }
   // Where the interpreter keeps its offsets (and reads them back).
   std::vector<double>& store() { return numbered_; }
   // The predefined names (#<_x> …) are the interpreter's state.
