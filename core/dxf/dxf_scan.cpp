@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <map>
 
+#include "common/quote.h"
 #include "common/error.h"
 #include "dxf/dxf_tolerances.h"
 
@@ -177,7 +178,7 @@ Status Scanner::finish_entity() {
       double v = 0;
       if (!parse_real(p.value, v)) {
         return error(ErrorCode::DxfSyntax, p.line + 1,
-                     "found '" + std::string(trim(p.value)) + "' for group " +
+                     "found " + quote(trim(p.value)) + " for group " +
                          std::to_string(p.code) + " of " + e.type + " at line " +
                          std::to_string(e.line) + "; expected a finite real number");
       }
@@ -185,7 +186,7 @@ Status Scanner::finish_entity() {
       long long v = 0;
       if (!parse_int(p.value, v)) {
         return error(ErrorCode::DxfSyntax, p.line + 1,
-                     "found '" + std::string(trim(p.value)) + "' for group " +
+                     "found " + quote(trim(p.value)) + " for group " +
                          std::to_string(p.code) + " of " + e.type + " at line " +
                          std::to_string(e.line) + "; expected an integer");
       }
@@ -239,8 +240,8 @@ Result<ScanResult> Scanner::run() {
     long long code_ll = 0;
     if (!parse_int(lines[i], code_ll) || code_ll < -5 || code_ll > 1071) {
       return error(ErrorCode::DxfSyntax, line,
-                   "found '" + std::string(trim(lines[i])) +
-                       "' where a group code was expected (an integer 0–1071 on the first "
+                   "found " + quote(trim(lines[i])) +
+                       " where a group code was expected (an integer 0–1071 on the first "
                        "line of each code/value pair)");
     }
     if (i + 1 >= lines.size()) {
@@ -286,8 +287,8 @@ Result<ScanResult> Scanner::run() {
       }
       if (section_.empty()) {
         return error(ErrorCode::DxfSyntax, line,
-                     "found '" + std::string(value) +
-                         "' outside any section; expected 0/SECTION or 0/EOF");
+                     "found " + quote(value) +
+                         " outside any section; expected 0/SECTION or 0/EOF");
       }
       if (section_ == "BLOCKS" || section_ == "ENTITIES") {
         in_entity_ = true;
@@ -318,7 +319,7 @@ Result<ScanResult> Scanner::run() {
         long long u = 0;
         if (!parse_int(value, u)) {
           return error(ErrorCode::DxfSyntax, line + 1,
-                       "found '" + std::string(value) + "' for $INSUNITS; expected an integer");
+                       "found " + quote(value) + " for $INSUNITS; expected an integer");
         }
         out_.insunits = static_cast<int>(u);
       } else if (header_var == "$ACADVER" && code == 1) {

@@ -97,34 +97,11 @@ bool BlockParser::fail(ErrorCode code, std::uint32_t byte_pos, std::string messa
   return false;
 }
 
-std::string quote(std::string_view text) {
-  static constexpr char kHex[] = "0123456789ABCDEF";
-  std::string q;
-  q.reserve(text.size() + 2);
-  q += '\'';
-  for (const char ch : text) {
-    const auto c = static_cast<unsigned char>(ch);
-    if (c < 0x20 || c == 0x7F) {
-      q += "\\x";
-      q += kHex[c >> 4];
-      q += kHex[c & 0xF];
-    } else {
-      q += ch;
-    }
-  }
-  q += '\'';
-  return q;
-}
-
 std::string BlockParser::quoted(Span s) const { return quote(text_.text(s)); }
 
 // Compact chars [begin, end), at most 24 of them (with "..." when cut).
 std::string BlockParser::quoted(std::uint32_t begin, std::uint32_t end) const {
-  constexpr std::uint32_t kShown = 24;
-  const bool cut = end - begin > kShown;
-  std::string q = quote(std::string_view(text_.compact.data() + begin, cut ? kShown : end - begin));
-  if (cut) q.insert(q.size() - 1, "...");
-  return q;
+  return quote(std::string_view(text_.compact.data() + begin, end - begin), 24);
 }
 
 // Start (compact index) of the word whose number ends just before `end`:

@@ -20,6 +20,7 @@
 #include <string_view>
 #include <vector>
 
+#include "common/quote.h"
 #include "common/error.h"
 
 namespace lcnc::gcode {
@@ -201,10 +202,5 @@ class BlockParser {
 
 // "G38.2" from a code stored ×10.
 [[nodiscard]] std::string g_code_name(int tenths);
-
-// `text` in single quotes for a message, each control byte (NUL, ESC, a stray
-// CR, DEL) written as \xNN: a message never carries them raw to a terminal
-// or a log. Other bytes, UTF-8 included, stay as they are.
-[[nodiscard]] std::string quote(std::string_view text);
 
 }  // namespace lcnc::gcode

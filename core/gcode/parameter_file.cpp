@@ -10,6 +10,8 @@
 #include <sstream>
 #include <string_view>
 
+#include "common/quote.h"
+
 namespace lcnc::gcode {
 namespace {
 
@@ -53,7 +55,7 @@ Status tool_line(std::string_view s, const std::string& path, std::uint32_t line
     double v = 0.0;
     if (!number(s, i, v))
       return bad(path, line, static_cast<std::uint32_t>(at + 1),
-                 std::string("found '") + s[at] + "' with no number after it; expected tool words "
+                 "found " + quote(s.substr(at, 1)) + " with no number after it; expected tool words "
                  "T<n> X<mm> Y<mm> Z<mm> D<mm> and a ;description");
     switch (letter) {
       case 'T':
@@ -72,7 +74,7 @@ Status tool_line(std::string_view s, const std::string& path, std::uint32_t line
       default:
         if (v != 0.0)
           return bad(path, line, static_cast<std::uint32_t>(at + 1),
-                     std::string("found '") + s[at] + "' in a tool line; expected T X Y Z D");
+                     "found " + quote(s.substr(at, 1)) + " in a tool line; expected T X Y Z D");
     }
   }
   if (!have_number) return bad(path, line, 1, "a tool line without T<n>");
@@ -111,19 +113,30 @@ Result<ParameterFileData> read_parameter_file(const std::string& path) {
     if (!number(s, i, index) || index != std::floor(index) || index < kParamPersistentFirst ||
         index > kParamPersistentLast)
       return bad(path, line, static_cast<std::uint32_t>(at + 1),
-                 "found '" + std::string(s.substr(at, 24)) + "'; expected '<parameter> <value>' "
+                 "found " + quote(s.substr(at), 24) + "; expected '<parameter> <value>' "
                  "with a parameter from " + std::to_string(kParamPersistentFirst) + " to " +
                  std::to_string(kParamPersistentLast) + ", or a tool line 'T<n> Z<mm> …'");
     skip_blanks(s, i);
     const std::size_t vat = i;
-    if (!number(s, i, value))
+    if (!number(s, i, value)) {
+      std::size_t end = vat;
+      while (end < s.size() && s[end] != ' ' && s[end] != '\t' && s[end] != '\r') ++end;
+      const std::string p = "parameter " + std::to_string(static_cast<int>(index));
+      if (end == vat)
+        return bad(path, line, static_cast<std::uint32_t>(vat + 1),
+                   p + " with no value; expected a finite number after it");
       return bad(path, line, static_cast<std::uint32_t>(vat + 1),
-                 "parameter " + std::to_string(static_cast<int>(index)) +
-                     " with no value; expected a finite number after it");
+                 "found " + quote(s.substr(vat, end - vat), 24) + " as the value of " + p + ": " +
+                     (std::isdigit(static_cast<unsigned char>(s[vat])) || s[vat] == '-' || s[vat] == '+' ||
+                              s[vat] == '.'
+                          ? "not a finite number (beyond the largest, about 1.8e308)"
+                          : "not a number") +
+                     "; expected a finite number such as 12.5 or -3e-2");
+    }
     skip_blanks(s, i);
     if (i < s.size())
       return bad(path, line, static_cast<std::uint32_t>(i + 1),
-                 "found '" + std::string(s.substr(i, 24)) + "' after the value; expected the "
+                 "found " + quote(s.substr(i), 24) + " after the value; expected the "
                  "line's end");
     data.params.emplace_back(static_cast<int>(index), value);
   }

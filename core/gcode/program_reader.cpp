@@ -993,7 +993,7 @@ bool ProgramReader::Impl::grbl_system_line(std::string_view text) {
   std::string_view cmd = text.substr(i);
   while (!cmd.empty() && (cmd.back() == '\r' || cmd.back() == ' ')) cmd.remove_suffix(1);
   warnings.push_back(make_error(ErrorCode::GcodeLinePassedOver,
-                                "found " + gcode::quote(cmd.substr(0, 40)) +
+                                "found " + quote(cmd.substr(0, 40)) +
                                     ": a grbl system command, passed over (it configures a grbl "
                                     "board; this machine's setup is its config)",
                                 file, line, static_cast<std::uint32_t>(i + 1)));
@@ -1018,7 +1018,7 @@ void ProgramReader::Impl::warn_lines_after_end() {
       while (!excerpt.empty() && (excerpt.back() == ' ' || excerpt.back() == '\t')) {
         excerpt.remove_suffix(1);
       }
-      first_text = gcode::quote(excerpt);
+      first_text = quote(excerpt);
     }
   }
   if (count == 0 && !src().too_long()) return;

@@ -1,5 +1,6 @@
 #include "holes/hole_table.h"
 
+#include "common/quote.h"
 #include "holes/hole_fields.h"
 
 #include <array>
@@ -112,7 +113,7 @@ Result<std::vector<HoleProcessParams>> parse_hole_table(std::string_view text, c
     for (std::size_t k = 0; k < kHoleFields.size(); ++k) {
       const HoleField& f = kHoleFields[k];
       const Cell x = cell(k);
-      const std::string found = std::string(f.column) + ": found '" + std::string(x.text) + "'; expected ";
+      const std::string found = std::string(f.column) + ": found " + quote(x.text) + "; expected ";
       double v = 0.0;
       std::uint32_t n = 0;
       switch (f.type) {
@@ -149,7 +150,7 @@ Result<std::vector<HoleProcessParams>> parse_hole_table(std::string_view text, c
         if (at == std::string_view::npos || !parse_double(trim(v.substr(0, at)), pv.radius_mm) ||
             !parse_double(trim(v.substr(at + 1)), pv.angle_deg))
           return err(ErrorCode::HoleTableSyntax, col,
-                     "shape: found '" + std::string(v) + "'; expected radius@angle (mm@deg), separated by ';'");
+                     "shape: found " + quote(v) + "; expected radius@angle (mm@deg), separated by ';'");
         p.shape.push_back(pv);
         if (semi == std::string_view::npos) break;
         rest.remove_prefix(semi + 1);

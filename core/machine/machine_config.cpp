@@ -2,6 +2,7 @@
 // names the key, the value found and what is allowed, with file:line:col where
 // the TOML source has it. Unknown keys are errors: a misspelt key must never
 // leave a default silently in force.
+#include "common/quote.h"
 #include "machine/machine_config.h"
 
 #include "machine/config_keys.h"
@@ -519,14 +520,14 @@ std::string startup_code_problem(const std::string& code) {
       char* end = nullptr;
       const double v = std::strtod(w.c_str() + 1, &end);
       if (w.size() == 1 || *end != '\0' || !(v >= 0.0 && v <= 10.0))
-        return "found '" + w + "'; expected " + w[0] + " as a number of mm from 0 to 10 after G64";
+        return "found " + quote(w) + "; expected " + w[0] + " as a number of mm from 0 to 10 after G64";
       continue;
     }
     if (w == "M5" || w == "M9") continue;
     bool known = false;
     for (const char* a : kAllowed) known = known || w == a;
     if (!known)
-      return "found '" + w + "'; expected only G17 G18 G19 G20 G21 G90 G91 G90.1 G91.1 G93 G94 "
+      return "found " + quote(w) + "; expected only G17 G18 G19 G20 G21 G90 G91 G90.1 G91.1 G93 G94 "
              "G54…G59 G61 G61.1 G64 [P Q] G40 G49 G80 M5 M9 (modes a program starts in, no "
              "motion)";
     after_g64 = w == "G64";

@@ -227,6 +227,35 @@ TEST(ParameterFile, AMalformedFileIsAnErrorAtItsLineAndColumnBeforeAnythingRuns)
   fs::remove_all(dir);
 }
 
+// A value that is there but does not parse is named as such (not "no
+// value"), and bytes that cannot be shown are escaped: a NUL no longer cuts
+// the message off.
+TEST(ParameterFile, AValueThatDoesNotParseIsNamedAndItsBytesEscaped) {
+  const fs::path dir = temp_dir();
+  MachineConfig m = tool_machine();
+  m.parameter_file = (dir / "bad.var").string();
+  const auto error_of = [&](const std::string& text) {
+    std::ofstream(m.parameter_file, std::ios::binary) << text;
+    const test::Run r = test::run("G0 X1\n", test::start_at(), m);
+    EXPECT_EQ(r.last, ProgramReader::Next::Error) << text;
+    EXPECT_EQ(r.error.code, ErrorCode::ParameterFileBad);
+    EXPECT_TRUE(r.segments.empty());
+    return r.error;
+  };
+  Diagnostic d = error_of("5221 1e400\n");
+  EXPECT_MENTIONS(d, "'1e400' as the value of parameter 5221: not a finite number");
+  EXPECT_EQ(d.col, 6u);
+  d = error_of("5221 abc\n");
+  EXPECT_MENTIONS(d, "'abc' as the value of parameter 5221: not a number");
+  d = error_of("5221\n");
+  EXPECT_MENTIONS(d, "parameter 5221 with no value");
+  d = error_of(std::string("5221 1 x\0y tail\n", 16));
+  EXPECT_MENTIONS(d, "'x\\x00y tail' after the value");
+  d = error_of(std::string("\x1b[2J5221 1\n"));
+  EXPECT_MENTIONS(d, "'\\x1B[2J5221 1'");
+  fs::remove_all(dir);
+}
+
 TEST(MachineConfigTools, ToolsAndTheNineWorkOffsetsAreReadFromToml) {
   Result<MachineConfig> m = parse_machine_config(R"(
 [machine]
