@@ -308,9 +308,18 @@ struct Daemon::Impl {
     std::shared_ptr<const ProgramSnapshot> snapshot;  // valid once done
     std::optional<Result<CheckedJob>> checked;        // valid once done
     std::atomic<bool> done{false};  // release by the loader, acquire by the command thread
+    // Set by stop, e-stop, reset and shutdown: the copy and the check end at
+    // their next chunk or line, the load answered as cancelled.
+    std::atomic<bool> cancel{false};
     std::thread thread;
   };
   std::unique_ptr<PendingLoad> pending;
+
+  // A load in progress is given up (the operator stops, or the daemon ends):
+  // however long its program's loops would run, the loader ends at once.
+  void cancel_load() {
+    if (pending) pending->cancel.store(true, std::memory_order_relaxed);
+  }
 
   void begin_load(const shm::Command& c) {
     auto p = std::make_unique<PendingLoad>();
@@ -321,6 +330,7 @@ struct Daemon::Impl {
     req.path = c.text;
     req.access = access_for(c);
     req.hole_table = is_hole_table(req.path);
+    req.cancel = &p->cancel;
     PendingLoad& l = *p;
     l.thread = std::thread([this, &l, req = std::move(req)] {
       Result<std::shared_ptr<const ProgramSnapshot>> snap = ProgramSnapshot::take(req);
@@ -330,6 +340,7 @@ struct Daemon::Impl {
         l.snapshot = *snap;
         ReaderOptions ropt;
         ropt.start = l.start;
+        ropt.cancel = &l.cancel;
         l.checked.emplace(check(*l.snapshot, ropt));
       }
       l.done.store(true, std::memory_order_release);
@@ -432,12 +443,15 @@ struct Daemon::Impl {
         kernel->command({rt::RtCommandType::Resume, 0, 0.0});
         return Ack{true, ErrorCode::Ok, "resume"};
       case shm::CommandType::Stop:
+        cancel_load();
         kernel->command({rt::RtCommandType::Stop, 0, 0.0});
         return Ack{true, ErrorCode::Ok, "stop"};
       case shm::CommandType::EStop:
+        cancel_load();
         kernel->command({rt::RtCommandType::EStop, 0, 0.0});
         return Ack{true, ErrorCode::RtEstop, "e-stop"};
       case shm::CommandType::Reset:
+        cancel_load();
         if (st != shm::MachineState::EStop) return refuse("reset refused: not in e-stop");
         kernel->command({rt::RtCommandType::Reset, 0, 0.0});
         return Ack{true, ErrorCode::Ok, "reset"};
@@ -953,7 +967,8 @@ int Daemon::run(const std::atomic<bool>& quit) {
            d.kernel->state() != shm::MachineState::EStop && std::chrono::steady_clock::now() < until)
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
-  d.finish_load(true);  // a regular file's read ends: the loader is joined
+  d.cancel_load();
+  d.finish_load(true);  // cancelled, the loader ends at its next line: joined
   d.feed->abort();
   if (d.rt_kernel) {
     d.rt_kernel->shutdown();

@@ -164,6 +164,8 @@ Result<std::shared_ptr<const ProgramSnapshot>> ProgramSnapshot::take(const Snaps
   std::uint64_t total = 0;
   std::array<char, 1 << 16> buf{};
   for (;;) {
+    if (r.cancel != nullptr && r.cancel->load(std::memory_order_relaxed))
+      return refused(path, "cancelled (stop, reset or shutdown) while it was copied");
     const ssize_t n = read(in.fd, buf.data(), buf.size());
     if (n < 0 && errno == EINTR) continue;
     if (n < 0) return refused(path, std::string("read failed: ") + std::strerror(errno));

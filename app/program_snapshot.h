@@ -16,6 +16,7 @@
 
 #include <sys/types.h>
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -51,6 +52,9 @@ struct SnapshotRequest {
   std::string path;            // absolute, as the sender named it
   FileAccess access;
   bool hole_table = false;     // a .csv hole table, not G-code
+  // Set by another thread: the copy ends at its next chunk, refused as
+  // cancelled. Null: never.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 class ProgramSnapshot {

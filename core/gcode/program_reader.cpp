@@ -182,8 +182,9 @@ struct OpenFile {
   std::unique_ptr<gcode::LineSource> src;  // null while closed (reopened on a jump back)
 };
 
-// Jumps back (loops, calls) with no motion in between before the reader
-// calls it an endless loop: a program may compute, but never hang the reader.
+// Jumps back (loops, calls) with no motion in between (nothing that takes
+// machine time: G4 P0 and M0 do not) before the reader calls it an endless
+// loop: a program may compute, but never hang the reader.
 constexpr std::uint32_t kMaxJumpsWithoutMotion = 1'000'000;
 // Nested calls (LinuxCNC's limit).
 constexpr std::size_t kMaxCallDepth = 10;
@@ -202,6 +203,8 @@ struct ProgramReader::Impl {
         interp(machine, options.start, params.store()) {
     files.push_back(OpenFile{std::move(name), std::move(src)});
     in = files[0].src.get();
+    for (int a = 0; a < 3; ++a)
+      if (machine.axes[a].present) fastest_axis = std::max(fastest_axis, machine.axes[a].max_velocity);
     frames.emplace_back();
     parser.set_parameters(&params);
     params.set_interpreter(&interp);
@@ -269,6 +272,12 @@ struct ProgramReader::Impl {
   std::uint32_t skip_col = 1;                  // and the column of its O-word
   std::vector<double> args;
   std::uint32_t jumps_without_motion = 0;
+  // The work budget spent (MachineConfig::program_segment_limit,
+  // program_time_limit_s): segments made, machine time at their feeds.
+  double budget_segments = 0.0;
+  double budget_time_s = 0.0;
+  double fastest_axis = 1.0;  // mm/s: a rapid's time is counted at it (the least it takes)
+  bool within_budget(const Segment& s);
 
   State state = State::Running;
   Diagnostic error;
@@ -292,6 +301,47 @@ ProgramReader::Next ProgramReader::Impl::fail(ErrorCode code, std::string_view t
   return Next::Error;
 }
 
+// Counts `s` against the work budget; past it, the reading fails at the
+// segment's line: a loop that moves (or dwells, or pauses) without end is
+// stopped there, as one without motion is by jump().
+bool ProgramReader::Impl::within_budget(const Segment& s) {
+  budget_segments += 1.0;
+  double dt = 0.0;
+  switch (s.kind) {
+    case MotionKind::Dwell: dt = s.dwell_s; break;
+    case MotionKind::Rapid: dt = (s.end.head<3>() - s.start.head<3>()).norm() / fastest_axis; break;
+    case MotionKind::Linear:
+      if (s.feed_mm_s > 0.0) dt = (s.end.head<3>() - s.start.head<3>()).norm() / s.feed_mm_s;
+      break;
+    case MotionKind::Arc:
+      if (s.feed_mm_s > 0.0) dt = gcode::arc_length_mm(s) / s.feed_mm_s;
+      break;
+  }
+  budget_time_s += dt;
+  // only what takes machine time of its own is progress: a loop of G4 P0,
+  // M0 or M66 (held for the operator or an input, not by the program) is
+  // stopped by jump() as one without motion
+  if (dt > 0.0 && !s.pause && s.wait_input < 0) jumps_without_motion = 0;
+  std::string what;
+  if (budget_segments > machine.program_segment_limit) {
+    char n[32];
+    std::snprintf(n, sizeof n, "%.0f", machine.program_segment_limit);
+    what = std::string("more than ") + n + " moves, dwells and pauses (machine.program_segment_limit)";
+  } else if (budget_time_s > machine.program_time_limit_s) {
+    char h[32];
+    std::snprintf(h, sizeof h, "%g", machine.program_time_limit_s / 3600.0);
+    what = std::string("more than ") + h + " h of machine time (machine.program_time_limit_h)";
+  } else {
+    return true;
+  }
+  error = make_error(ErrorCode::GcodeWorkBudget,
+                     "the program makes " + what + " by this line: an endless loop? expected a "
+                     "program that ends within its work budget (raise the limit for a longer one)",
+                     file, s.line, 1);
+  state = State::Failed;
+  return false;
+}
+
 ProgramReader::Next ProgramReader::Impl::fail_o(std::string_view text, std::string message) {
   return fail(ErrorCode::GcodeFlow, text, parser.text().byte_pos(block.o.word),
               std::move(message));
@@ -308,7 +358,7 @@ ProgramReader::Next ProgramReader::Impl::read_program(Segment& out) {
     }
     if (!pending.empty()) {
       out = pending.pop();
-      jumps_without_motion = 0;
+      if (!within_budget(out)) return Next::Error;
       return Next::Segment;
     }
     if (ended) {
@@ -317,6 +367,11 @@ ProgramReader::Next ProgramReader::Impl::read_program(Segment& out) {
       warn_lines_after_end();
       state = State::Ended;
       continue;
+    }
+    if (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed)) {
+      error = make_error(ErrorCode::GcodeCancelled, "the reading was cancelled before its end", file, line, 0);
+      state = State::Failed;
+      return Next::Error;
     }
     std::string_view text;
     const std::uint64_t line_start = in->tell();
@@ -580,7 +635,8 @@ bool ProgramReader::Impl::jump(const Location& to) {
   if (++jumps_without_motion > kMaxJumpsWithoutMotion) {
     error = make_error(ErrorCode::GcodeFlow,
                        "found " + std::to_string(kMaxJumpsWithoutMotion) +
-                           " loop passes or calls in a row without a move: an endless loop; "
+                           " loop passes or calls in a row without a move or dwell that takes "
+                           "time: an endless loop; "
                            "expected each loop to end (check its condition)",
                        file, line, 1);
     state = State::Failed;

@@ -10,6 +10,7 @@
 // part half-cut.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <istream>
@@ -43,6 +44,10 @@ struct ReaderOptions {
   // is the reading's error at the call, and the file is not read. Unset:
   // any file the process may read.
   std::function<Status(const std::string& path)> file_policy;
+  // Set by another thread, the reading ends at its next line with
+  // GcodeCancelled (the daemon's load check, cancelled by stop, reset or
+  // shutdown). Null: never.
+  const std::atomic<bool>* cancel = nullptr;
   // The job's own reading (not a check): at the program's end the offsets
   // and tools it set are written to the machine's parameter_file.
   bool keep_parameters = false;

@@ -77,6 +77,21 @@ const MachineKey kMachineKeys[] = {
      "A line that starts with '/' is skipped (LinuxCNC's block delete switch); false: such lines "
      "run like any other.",
      &set_bool<M, &M::block_delete>},
+    {"machine", "program_segment_limit", KeyType::Number, "", "", range(1, 1e12), "", "200000000",
+     false,
+     "The most moves, dwells and pauses one program may make (its loops and calls run out). A "
+     "program past it is an error at the line its loop stands on, so a check always ends. Far "
+     "above the longest program a load takes (some 100 million lines).",
+     &set_number<M, &M::program_segment_limit>, &get_number<M, &M::program_segment_limit>},
+    {"machine", "program_time_limit_h", KeyType::Number, "h", "", range(0.001, 100000), "", "168",
+     false,
+     "The longest one program may run, in machine time at its programmed feeds (rapids at the "
+     "fastest axis, dwells as written): a loop past it is an error at its line. 168 h: a week.",
+     [](M& m, const KeyValue& v) {
+       m.program_time_limit_s = std::get<double>(v) * 3600.0;
+       return std::string();
+     },
+     [](const M& m) { return m.program_time_limit_s / 3600.0; }},
     {"machine", "optional_stop", KeyType::Boolean, "", "", {}, "true, false", "true", false,
      "M1 pauses a program like M0 (LinuxCNC's optional stop switch); false: M1 is passed over.",
      &set_bool<M, &M::optional_stop>},

@@ -147,6 +147,14 @@ struct MachineConfig {
   // Block delete (LinuxCNC's switch, on by default there): a line that
   // starts with '/' is skipped. false: such lines run like any other.
   bool block_delete = true;
+  // The work budget of one reading of a program: its moves, dwells and
+  // pauses counted, and its machine time at the programmed feeds (rapids at
+  // the fastest axis, dwells as long as they are). A loop that would run
+  // past either is an error at its line, so a check always ends. Far above
+  // any real program: the longest a load takes (4 GiB, some 100 million
+  // lines) and a week of cutting.
+  double program_segment_limit = 200e6;
+  double program_time_limit_s = 7 * 24 * 3600.0;
   // M1 pauses a program like M0 when on (LinuxCNC's optional stop switch);
   // off, M1 is passed over.
   bool optional_stop = true;

@@ -377,6 +377,28 @@ TEST(LasercncRun, AJobThatSetsAWorkOffsetAfterItsMovesPassesItsOwnCheck) {
   }
 }
 
+// `check` and `run` always end: an endless loop that moves runs into the
+// reading's work budget (a week of machine time, 200 million segments), one
+// of G4 P0 or M0 into the limit on passes without anything that takes time —
+// an error at the loop's line, with the shipped machine's limits.
+TEST(LasercncRun, CheckAndRunEndOnEveryEndlessLoop) {
+  const std::vector<std::pair<std::string, std::string>> loops{
+      {"G21 G90 F6000\no1 while [1]\nG1 X10\nG1 X0\no1 endwhile\nM2\n", "E314"},
+      {"G21 G90 F6000\nG0 Y20\no1 repeat [1000000000000]\nG2 X10 I5\nG2 X0 I-5\no1 endrepeat\nM2\n", "E314"},
+      {"G21 G90\no1 do\nG4 P0\no1 while [1]\nM2\n", "E310"},
+      {"G21 G90\no1 while [1]\nM0\no1 endwhile\nM2\n", "E310"},
+  };
+  for (std::size_t k = 0; k < loops.size(); ++k) {
+    const fs::path p = write_file("endless_" + std::to_string(k) + ".ngc", loops[k].first);
+    for (const std::string cmd : {"check ", "run "}) {
+      const CmdResult r = lasercnc(cmd + p.string() + " --no-progress --fast");
+      EXPECT_EQ(r.exit_code, 1) << cmd << k << "\n" << r.out << r.err;
+      EXPECT_NE(r.err.find(loops[k].second), std::string::npos) << cmd << k << "\n" << r.err;
+      EXPECT_NE(r.err.find("endless_" + std::to_string(k) + ".ngc:"), std::string::npos) << r.err;
+    }
+  }
+}
+
 // Unattended, `lasercnc run` resumes each M0/M1 after --pause seconds: the
 // cycle is that much longer, every step and limit as without them.
 TEST(LasercncRun, ProgramPausesAreResumedAfterThePauseOption) {

@@ -648,6 +648,41 @@ TEST(Lasercncd, ASubroutineFileIsReadOnlyUnderTheLoadsPolicy) {
   EXPECT_EQ(d.stop(SIGTERM), 0) << d.log();
 }
 
+// A load whose check would run for hours (an endless loop on a machine
+// whose work budget allows 100,000 h) holds no one up: stop cancels it —
+// answered as cancelled, and the next load goes through — and SIGTERM ends
+// the daemon at once, whatever its loader is doing (systemd's stop).
+TEST(Lasercncd, ALongLoadIsCancelledByStopAndSigtermEndsTheDaemonDuringOne) {
+  const e2e::ShmGuard shm(shm_name());
+  std::string cfg = slurp(std::string(LCNC_SOURCE_DIR) + "/share/machines/default.toml");
+  cfg.replace(cfg.find("[machine]\n"), 10, "[machine]\nprogram_time_limit_h = 100000\n");
+  const fs::path machine = write_program("patient.toml", cfg);
+  const fs::path endless = write_program("endless.ngc", "G21 G90 F6000\no1 while [1]\nG1 X10\nG1 X0\no1 endwhile\nM2\n");
+  Daemon d(shm, {"--machine", machine.string()});
+  ASSERT_TRUE(d.ready()) << d.log();
+  auto c = client(shm);
+  const std::uint32_t load = send_frame(c, lcnc::shm::CommandType::Load, endless.string());
+  lcnc::shm::Answer a;
+  std::this_thread::sleep_for(200ms);  // the loader is in the loop (an answer now would fail below)
+  EXPECT_FALSE(c.answer(load, a)) << a.message;
+  EXPECT_EQ(lasercnc("send stop --shm " + shm.name()).exit_code, 0);
+  a = wait_answer(c, load, 10s);  // bounds a failure only
+  EXPECT_EQ(a.seq, load);
+  EXPECT_NE(a.code, 0);
+  EXPECT_NE(std::string(a.message).find("cancelled"), std::string::npos) << a.message;
+  const fs::path fine = write_program("fine.ngc", kShortJob);
+  CmdResult r = lasercnc("send load " + fine.string() + " --shm " + shm.name());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  // again, and SIGTERM meanwhile
+  (void)send_frame(c, lcnc::shm::CommandType::Load, endless.string());
+  std::this_thread::sleep_for(200ms);
+  const auto t0 = std::chrono::steady_clock::now();
+  EXPECT_EQ(d.stop(SIGTERM), 0) << d.log();
+  const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("[ figures  ] SIGTERM during a load: the daemon ended in %.3f s\n", took);
+  EXPECT_LT(took, 5.0);  // about 0.01 s; the bound is far inside systemd's stop timeout (90 s)
+}
+
 // ---- answers ---------------------------------------------------------------
 
 // Twenty senders at once: each gets its own answer.

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <random>
 
 #include <unistd.h>
 
@@ -220,6 +221,74 @@ TEST(ProgramOWords, AnEndlessLoopWithoutMotionIsAnErrorNotAHang) {
   const Diagnostic d = expect_error("G1 X20 F600\nO1 while [1]\n#1 = [#1 + 1]\nO1 endwhile\n",
                                     ErrorCode::GcodeFlow, 4, 1);
   EXPECT_MENTIONS(d, "endless loop");
+}
+
+// A loop that moves, dwells or pauses without end runs into the reading's
+// work budget (MachineConfig::program_segment_limit, program_time_limit_s):
+// an error at the line the loop stands on, so `check` always ends.
+TEST(ProgramOWords, AnEndlessLoopThatMovesRunsIntoTheWorkBudget) {
+  MachineConfig m = test::test_machine();
+  m.program_segment_limit = 5000;
+  Diagnostic d = expect_error("G1 X20 F600\nO1 while [1]\nG1 X10\nG1 X20\nO1 endwhile\n",
+                              ErrorCode::GcodeWorkBudget, 4, 1, test::start_at(), m);
+  EXPECT_MENTIONS(d, "program_segment_limit");
+  d = expect_error("O1 repeat [1000000000000]\nG4 P0\nO1 endrepeat\n", ErrorCode::GcodeWorkBudget, 2, 1,
+                   test::start_at(), m);
+  d = expect_error("O1 do\nM0\nO1 while [1]\n", ErrorCode::GcodeWorkBudget, 2, 1, test::start_at(), m);
+  // machine time: 10 mm at F60 is 10 s; a minute's budget ends within 7 moves
+  m.program_segment_limit = 200e6;
+  m.program_time_limit_s = 60.0;
+  d = expect_error("G1 X0 F60\nO1 while [1]\nG1 X10\nG1 X0\nO1 endwhile\n", ErrorCode::GcodeWorkBudget, 4, 1,
+                   test::start_at(), m);
+  EXPECT_MENTIONS(d, "program_time_limit_h");
+  // within the budget: runs whole
+  EXPECT_EQ(segments("O1 repeat [2]\nG1 X30 F600\nG1 X40\nO1 endrepeat\n", test::start_at(), m).size(), 4u);
+}
+
+// The property: random loops — while, do-while, repeat; bodies that move,
+// dwell, pause, compute, call a subroutine, nest — each ends, with the
+// budget's error or the one for loops without motion, never a hang.
+TEST(ProgramOWords, EveryEndlessLoopEndsWithAnError) {
+  MachineConfig m = test::test_machine();
+  m.program_segment_limit = 2000;
+  m.program_time_limit_s = 3600.0;
+  std::mt19937 rng(38);
+  const char* bodies[] = {"G1 X10\nG1 X20\n", "G4 P0\n", "M0\n", "M1\n", "#1 = [#1 + 1]\n",
+                          "o<step> call\n", "G0 X15\nG4 P0.5\n", "O9 repeat [3]\nG1 X12\nG1 X20\nO9 endrepeat\n",
+                          "O8 if [#1 LT 0]\nG1 X1\nO8 endif\n"};
+  for (int k = 0; k < 24; ++k) {
+    const std::string body = bodies[rng() % std::size(bodies)];
+    std::string loop;
+    switch (rng() % 3) {
+      case 0: loop = "O1 while [1]\n" + body + "O1 endwhile\n"; break;
+      case 1: loop = "O1 do\n" + body + "O1 while [1]\n"; break;
+      default: loop = "O1 repeat [1000000000000000]\n" + body + "O1 endrepeat\n"; break;
+    }
+    const std::string program = "o<step> sub\nG1 X11\no<step> endsub\nG1 X20 F600\n" + loop + "M2\n";
+    SCOPED_TRACE(program);
+    const test::Run r = test::run(program, test::start_at(), m);
+    ASSERT_EQ(r.last, ProgramReader::Next::Error);
+    EXPECT_TRUE(r.error.code == ErrorCode::GcodeWorkBudget || r.error.code == ErrorCode::GcodeFlow)
+        << r.error.to_string();
+    EXPECT_GE(r.error.line, 5u) << r.error.to_string();  // in the loop (or the sub it calls)
+    EXPECT_LE(r.segments.size(), 2000u);
+  }
+}
+
+// Another thread's cancel ends a reading at its next line.
+TEST(ProgramOWords, ACancelledReadingEndsAtItsNextLine) {
+  std::atomic<bool> cancel{false};
+  ReaderOptions o = test::start_at();
+  o.cancel = &cancel;
+  auto reader = ProgramReader::from_string("G1 X20 F600\nO1 while [1]\nG1 X10\nG1 X20\nO1 endwhile\n", "test.ngc",
+                                           test::test_machine(), o);
+  Segment s;
+  for (int i = 0; i < 1000; ++i) ASSERT_EQ(reader->next(s), ProgramReader::Next::Segment);
+  cancel = true;
+  ProgramReader::Next n = ProgramReader::Next::Segment;
+  for (int i = 0; i < 10 && n == ProgramReader::Next::Segment; ++i) n = reader->next(s);
+  ASSERT_EQ(n, ProgramReader::Next::Error);
+  EXPECT_EQ(reader->error().code, ErrorCode::GcodeCancelled);
 }
 
 }  // namespace
