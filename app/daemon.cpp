@@ -88,6 +88,26 @@ std::string default_parameter_file(std::string& warning) {
   return tmp.string();
 }
 
+// Whether the parameter file can be written where it is: the file, or for
+// a new one its folder, writable by this process.
+Status parameter_file_writable(const std::string& path) {
+  namespace fs = std::filesystem;
+  const fs::path p(path);
+  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+  std::error_code ec;
+  const bool exists = fs::exists(p, ec);
+  const std::string target = exists ? path : dir.string();
+  if ((exists || fs::is_directory(dir, ec)) && ::access(target.c_str(), W_OK) == 0) return {};
+  return make_error(ErrorCode::ParameterFileBad,
+                    std::string("the parameter file cannot be written: ") +
+                        (exists ? "it is not writable"
+                         : fs::is_directory(dir, ec) ? "its folder " + dir.string() + " is not writable"
+                                                     : "its folder " + dir.string() + " does not exist") +
+                        "; expected a file lasercncd may write (--parameter-file FILE), so that the work "
+                        "offsets and tools a job or MDI command sets are kept",
+                    path);
+}
+
 // The work offsets and modes from the parameter file: an empty reading
 // from `at` in `modes`.
 Result<ReaderModes> read_work(const MachineConfig& machine, const Pose& at, const std::string& modes) {
@@ -555,7 +575,7 @@ struct Daemon::Impl {
     const std::string shown = text.substr(b);
     if (checked->summary.segments == 0) {
       mdi_modes = checked->summary.end.block;
-      publish_work(checked->summary.end);
+      refresh_work();  // what is stored, read back: the status never shows what is not
       return Ack{true, ErrorCode::Ok, "mdi " + shown + ": done"};
     }
     mdi_end_modes = checked->summary.end.block;
@@ -860,6 +880,9 @@ Result<std::unique_ptr<Daemon>> Daemon::create(const DaemonOptions& options) {
   // read before the segment appears: an HMI never sees other offsets
   Result<ReaderModes> work = read_work(*machine, Pose::Zero(), "");
   if (!work) return work.error();
+  // and writable: a G10 the daemon could not keep is refused, but one that
+  // can never be kept is a configuration error, said at start
+  if (Status s = parameter_file_writable(machine->parameter_file); !s) return s.error();
   Result<shm::ShmOwner> owner =
       shm::ShmOwner::create(options.shm_name.empty() ? shm::kDefaultName : options.shm_name);
   if (!owner) return owner.error();

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string_view>
 
+#include "common/output_file.h"
 #include "common/quote.h"
 
 namespace lcnc::gcode {
@@ -155,15 +156,11 @@ Status write_parameter_file(const std::string& path, const std::vector<double>& 
     if (!t.description.empty()) out << " ;" << t.description;
     out << '\n';
   }
-  const std::string tmp = path + ".new";
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!(f << out.str()) || !f.flush())
-      return bad(path, 0, 0, "cannot write " + tmp + ": " + std::strerror(errno));
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) return bad(path, 0, 0, "cannot replace the parameter file: " + ec.message());
+  // through the one door for outputs: replaced whole (synced, renamed over
+  // it), or left as it was
+  const std::string text = out.str();
+  if (Status s = write_output(path, {}, [&text](std::ostream& o) { o << text; }); !s)
+    return bad(path, 0, 0, "cannot write it: " + s.error().message);
   return {};
 }
 

@@ -104,6 +104,7 @@ class Parameters final : public gcode::ParameterReader {
   }
   // Where the interpreter keeps its offsets (and reads them back).
   std::vector<double>& store() { return numbered_; }
+  [[nodiscard]] const std::vector<double>& store() const { return numbered_; }
   // The predefined names (#<_x> …) are the interpreter's state.
   void set_interpreter(const gcode::Interpreter* interp) { interp_ = interp; }
   // A line's settings, after all of its values have been read.
@@ -227,7 +228,9 @@ struct ProgramReader::Impl {
   enum class State : std::uint8_t { Running, Ended, Failed };
 
   bool load_offsets();
-  void save_offsets();
+  bool save_offsets();
+  std::string kept_state() const;
+  std::string kept_at_start;  // kept_state() after load_offsets()
   void run_startup();
   // A line of modes run before the program (line 0): nothing may move.
   void run_line0(const std::string& code, const char* what, ErrorCode code_if_bad);
@@ -351,7 +354,7 @@ ProgramReader::Next ProgramReader::Impl::read_program(Segment& out) {
   for (;;) {
     switch (state) {
       case State::Ended:
-        if (!saved) save_offsets();
+        if (!saved && !save_offsets()) return Next::Error;
         return Next::End;
       case State::Failed: return Next::Error;
       case State::Running: break;
@@ -1001,19 +1004,44 @@ bool ProgramReader::Impl::load_offsets() {
     }
   }
   interp.load_offsets(std::move(tools), std::move(changed));
+  kept_at_start = kept_state();
   return true;
 }
 
+// What a job keeps in the parameter file: the persistent parameters and the
+// changed tools, as one comparable text.
+std::string ProgramReader::Impl::kept_state() const {
+  std::string s;
+  const std::vector<double>& p = params.store();
+  for (int k = gcode::kParamPersistentFirst; k <= gcode::kParamPersistentLast; ++k) {
+    const double v = p[static_cast<std::size_t>(k)];
+    s.append(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  for (const ToolConfig& t : interp.changed_tools()) {
+    s += std::to_string(t.number) + ' ';
+    for (int a = 0; a < 3; ++a) s.append(reinterpret_cast<const char*>(&t.offset[a]), sizeof(double));
+    s.append(reinterpret_cast<const char*>(&t.diameter_mm), sizeof(double));
+    s += t.description + '\n';
+  }
+  return s;
+}
+
 // The job's reader keeps what the program set for the next job. A failure
-// is a warning: the program ran, its offsets were not kept.
-void ProgramReader::Impl::save_offsets() {
+// is the reading's error at its end: offsets and tools that are not stored
+// are never reported as kept (the job fails, an MDI G10 is refused).
+bool ProgramReader::Impl::save_offsets() {
   saved = true;
-  if (!options.keep_parameters || machine.parameter_file.empty()) return;
+  if (!options.keep_parameters || machine.parameter_file.empty()) return true;
+  if (kept_state() == kept_at_start) return true;  // nothing to keep: the file stays as it is
   if (Status st = gcode::write_parameter_file(machine.parameter_file, params.store(),
                                               interp.changed_tools());
       !st) {
-    warnings.push_back(st.error());
+    error = st.error();
+    error.message = "the offsets and tools this program set are not kept: " + error.message;
+    state = State::Failed;
+    return false;
   }
+  return true;
 }
 
 void ProgramReader::Impl::run_startup() {

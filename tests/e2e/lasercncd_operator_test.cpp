@@ -390,4 +390,31 @@ TEST(LasercncdOperator, ABadParameterFileIsRefusedAtStart) {
   EXPECT_NE(r.err.find("bad.var:2:"), std::string::npos) << r.err;
 }
 
+// State that is not stored is not reported as stored. A parameter file that
+// can never be written stops the daemon at its start (it once answered a
+// G10 done, showed the offset, and the next G54 move ignored it). The
+// status shows the offsets as read back from the file, and a move goes where
+// it says. (A file that can no longer be written fails the reading that
+// set the offsets: ParameterFile.OffsetsThatCannotBeKeptFailTheReadingThatSetThem;
+// the tests run as root here, whom no mode bit stops writing.)
+TEST(LasercncdOperator, AnOffsetThatCannotBeKeptIsRefusedNotAcknowledged) {
+  const CmdResult r = run_program(LASERCNCD_EXE, "--shm " + shm_name() + " --no-realtime --parameter-file " +
+                                                     (temp_dir() / "no_such_folder" / "p.var").string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("does not exist"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("E114"), std::string::npos) << r.err;
+
+  const std::string shm = shm_name();
+  const fs::path folder = temp_dir() / "params";
+  fs::create_directories(folder);
+  Daemon d(shm, {"--parameter-file", (folder / "p.var").string()});
+  ASSERT_TRUE(d.ready()) << d.log();
+  ASSERT_EQ(send(shm, "mdi G10 L2 P1 X5").exit_code, 0);
+  EXPECT_NE(slurp(folder / "p.var").find("5221\t5\n"), std::string::npos);  // stored
+  EXPECT_NEAR(at(status(shm), "work_offset", 0), 5.0, 1e-9);                // and so shown
+  const CmdResult move = send(shm, "mdi G54 G0 X1 --wait");
+  EXPECT_EQ(move.exit_code, 0) << move.out << move.err;
+  EXPECT_NEAR(at(status(shm), "position", 0), 6.0, 1e-9);  // G54 X1 = machine 5 + 1
+}
+
 }  // namespace

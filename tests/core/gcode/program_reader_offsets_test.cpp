@@ -184,7 +184,8 @@ TEST(ParameterFile, AJobKeepsItsOffsetsAndToolsForTheNextAndACheckWritesNothing)
   job.keep_parameters = true;
   segments(setter, job, m);
   ASSERT_TRUE(fs::exists(m.parameter_file));
-  EXPECT_FALSE(fs::exists(m.parameter_file + ".new"));
+  for (const auto& e : fs::directory_iterator(dir))  // no temporary file left
+    EXPECT_EQ(e.path().filename().string().rfind(".lasercnc.var.", 0), std::string::npos) << e.path();
   // the next job: G55 as set (M2 returned to G54), G92 still on, G28 stored, tool 4 changed
   const auto segs = segments("G55 G0 X0 Y0\nG92.1\nG28\nG43 H4\nG0 Z0\n", test::start_at(50, 50, 50), m);
   ASSERT_EQ(segs.size(), 3u);
@@ -224,6 +225,26 @@ TEST(ParameterFile, AMalformedFileIsAnErrorAtItsLineAndColumnBeforeAnythingRuns)
   const auto segs = segments("G0 X0\n", test::start_at(), m);
   ASSERT_EQ(segs.size(), 1u);
   EXPECT_DOUBLE_EQ(segs[0].end[0], 1.5);
+  fs::remove_all(dir);
+}
+
+// Offsets a job sets but cannot keep are not reported as kept: the reading
+// that should store them fails at its end, naming the file (the daemon then
+// refuses the MDI G10, a job fails), and the file stays as it was.
+TEST(ParameterFile, OffsetsThatCannotBeKeptFailTheReadingThatSetThem) {
+  const fs::path dir = temp_dir();
+  MachineConfig m = tool_machine();
+  m.parameter_file = (dir / "gone" / "lasercnc.var").string();  // its folder does not exist
+  ReaderOptions job = test::start_at();
+  job.keep_parameters = true;
+  const test::Run r = test::run("G10 L2 P1 X20\nG0 X1\nM2\n", job, m);
+  ASSERT_EQ(r.last, ProgramReader::Next::Error);
+  EXPECT_EQ(r.error.code, ErrorCode::ParameterFileBad);
+  EXPECT_EQ(r.error.file, m.parameter_file);
+  EXPECT_MENTIONS(r.error, "not kept");
+  EXPECT_EQ(r.segments.size(), 1u);  // its moves were read; its end is the error
+  // a reading that keeps nothing (a check) is not concerned
+  EXPECT_EQ(test::run("G10 L2 P1 X20\nG0 X1\nM2\n", test::start_at(), m).last, ProgramReader::Next::End);
   fs::remove_all(dir);
 }
 
