@@ -222,7 +222,7 @@ bool DecompositionPage::export_table(const QString& path) {
   if (const Status s = write_output(path.toStdString(), {path_.toStdString()},
                                     [&](std::ostream& f) { decompose::write_csv(f, tables); });
       !s) {
-    show_message(tr("Cannot write %1: %2").arg(path, QString::fromStdString(s.error().to_string())), true);
+    show_message(tr("Cannot write %1.").arg(path) + " " + QString::fromStdString(s.error().to_string()), true);
     return false;
   }
   show_message(tr("Exported %1.").arg(path), false);

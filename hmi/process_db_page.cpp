@@ -191,7 +191,9 @@ std::string ProcessDbPage::send_to_controller() {
   // replaced whole: the controller may still be reading the last one sent
   if (const Status s = write_output(path, {db_.path()}, [&](std::ostream& out) { out << write_hole_table(rows); });
       !s) {
-    show_message(tr("Cannot write %1: %2").arg(QString::fromStdString(path), QString::fromStdString(s.error().to_string())), true);
+    show_message(tr("Cannot write %1.").arg(QString::fromStdString(path)) + " " +
+                     QString::fromStdString(s.error().to_string()),
+                 true);
     return {};
   }
   if (!link_.poll() || link_.send(shm::CommandType::Load, 0.0, 0, path) == 0) {

@@ -109,8 +109,9 @@ perm=$(in_root stat -c "%U:%G %a" /dev/shm/lasercnc)
 # an operator runs a job through the service
 out=$(as_operator sh -c 'cd /tmp && lasercnc send load /usr/share/lasercnc/examples/bracket.ngc && lasercnc send start --wait' 2>&1) ||
   fail "a job through the installed service: $out"
-# the job's offsets kept in the service's state folder
-in_root test -s /var/lib/lasercnc/lasercncd.var || fail "no /var/lib/lasercnc/lasercncd.var after a job"
+# a touch-off kept in the service's state folder (written when the offsets change)
+out=$(as_operator sh -c 'cd /tmp && lasercnc send mdi "G10 L2 P1 X1"' 2>&1) || fail "a touch-off through the service: $out"
+in_root grep -q "^5221	1$" /var/lib/lasercnc/lasercncd.var || fail "no G54 X1 in /var/lib/lasercnc/lasercncd.var after a touch-off"
 kill -TERM "$daemon_pid"
 wait "$daemon_pid" || fail "the service did not end cleanly on SIGTERM: $(cat "$work/daemon.log")"
 daemon_pid=
