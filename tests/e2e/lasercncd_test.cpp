@@ -662,8 +662,13 @@ TEST(Lasercncd, ALongLoadIsCancelledByStopAndSigtermEndsTheDaemonDuringOne) {
   ASSERT_TRUE(d.ready()) << d.log();
   auto c = client(shm);
   const std::uint32_t load = send_frame(c, lcnc::shm::CommandType::Load, endless.string());
+  // the load is in progress: a second one is refused for it (an event, not a wait)
+  const auto load_in_progress = [&] {
+    const lcnc::shm::Answer other = wait_answer(c, send_frame(c, lcnc::shm::CommandType::Load, endless.string()));
+    return std::string(other.message).find("another load is in progress") != std::string::npos;
+  };
+  EXPECT_TRUE(load_in_progress());
   lcnc::shm::Answer a;
-  std::this_thread::sleep_for(200ms);  // the loader is in the loop (an answer now would fail below)
   EXPECT_FALSE(c.answer(load, a)) << a.message;
   EXPECT_EQ(lasercnc("send stop --shm " + shm.name()).exit_code, 0);
   a = wait_answer(c, load, 10s);  // bounds a failure only
@@ -675,7 +680,7 @@ TEST(Lasercncd, ALongLoadIsCancelledByStopAndSigtermEndsTheDaemonDuringOne) {
   EXPECT_EQ(r.exit_code, 0) << r.err;
   // again, and SIGTERM meanwhile
   (void)send_frame(c, lcnc::shm::CommandType::Load, endless.string());
-  std::this_thread::sleep_for(200ms);
+  EXPECT_TRUE(load_in_progress());
   const auto t0 = std::chrono::steady_clock::now();
   EXPECT_EQ(d.stop(SIGTERM), 0) << d.log();
   const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
