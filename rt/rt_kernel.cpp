@@ -262,7 +262,19 @@ void RtKernel::wait_simulated() const noexcept {
     if (trace_ != nullptr && trace_->size() >= TraceRing::kCapacity) return true;
     return log_ != nullptr && log_->size() + kLogRoom > RtLogRing::kCapacity;
   };
-  while (!port_.shutdown_requested.load(std::memory_order_relaxed) && behind()) sched_yield();
+  // A planner that keeps up refills within a few yields; one that needs
+  // longer (a dense program, a loaded computer) is waited for with short
+  // clock sleeps, so the simulated machine never holds a core spinning while
+  // the threads it waits for want it.
+  constexpr int kYields = 64;
+  constexpr timespec kNap{0, 50'000};
+  for (int n = 0; !port_.shutdown_requested.load(std::memory_order_relaxed) && behind(); ++n) {
+    if (n < kYields) {
+      sched_yield();
+    } else {
+      clock_nanosleep(CLOCK_MONOTONIC, 0, &kNap, nullptr);
+    }
+  }
 }
 
 void RtKernel::log(RtLogCode code, std::int64_t value, int axis, std::uint32_t line) noexcept {
