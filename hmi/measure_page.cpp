@@ -112,8 +112,9 @@ void MeasurePage::measure() {
   show_message(tr("Measuring: the machine moves to each point…"), false);
   const std::filesystem::path dir = std::filesystem::temp_directory_path() /
                                     ("lasercnc_hmi_" + std::to_string(QCoreApplication::applicationPid()));
-  measuring_.start([plan = plan(), dir, shm = shm_name_, dev = probe_serial_](TaskProgress& p) {
-    Result<std::unique_ptr<SerialPointProbe>> probe = SerialPointProbe::open(dev);
+  measuring_.start([plan = plan(), dir, shm = shm_name_, dev = probe_serial_,
+                    timeout = probe_timeout_](TaskProgress& p) {
+    Result<std::unique_ptr<SerialPointProbe>> probe = SerialPointProbe::open(dev, timeout);
     if (!probe) {
       MeasureOutcome o;
       o.error = "3D probe: " + probe.error().to_string();

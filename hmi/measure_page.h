@@ -45,6 +45,8 @@ class MeasurePage : public QWidget {
   [[nodiscard]] QString message() const;
   [[nodiscard]] QString result_text() const;
   [[nodiscard]] QTableWidget* table() const;
+  // How long the probe's answer is waited for (SerialPointProbe::open).
+  void set_probe_timeout(std::chrono::milliseconds t) { probe_timeout_ = t; }
 
  signals:
   void finished(bool ok);
@@ -57,6 +59,7 @@ class MeasurePage : public QWidget {
   std::unique_ptr<Ui::MeasurePage> ui_;
   ProcessDatabase& db_;
   std::string shm_name_, probe_serial_;
+  std::chrono::milliseconds probe_timeout_ = SerialPointProbe::kAnswerTimeout;
   std::optional<MeasureOutcome> outcome_;
   BackgroundTask<MeasureOutcome> measuring_;
 };

@@ -8,14 +8,13 @@
 
 namespace lcnc::hmi {
 
-Result<std::unique_ptr<SerialPointProbe>> SerialPointProbe::open(const std::string& device) {
+Result<std::unique_ptr<SerialPointProbe>> SerialPointProbe::open(const std::string& device,
+                                                                 std::chrono::milliseconds answer_timeout) {
   Result<drivers::DeviceMap> map = drivers::shipped_device("probe_3d");
   if (!map) return map.error();
   drivers::ProbeClientConfig c;
   c.device = device;
-  // a probe answers within its latency; a loaded PC may take its time to
-  // read the answer: the workflow waits longer than the driver's default
-  c.timeout = std::chrono::milliseconds(1000);
+  c.timeout = answer_timeout;
   c.retries = 3;
   auto client = std::make_unique<drivers::ProbeClient>(*map, c);
   if (Status s = client->open(); !s) return s.error();

@@ -12,6 +12,8 @@
 // confirms (ProcessDatabase::set_positions, all or none). Qt-free.
 #pragma once
 
+#include <chrono>
+
 #include <array>
 #include <atomic>
 #include <functional>
@@ -41,7 +43,13 @@ class PointProbe {
 // The 3D probe over its RS-232 line protocol (drivers/serial/probe_client.h).
 class SerialPointProbe final : public PointProbe {
  public:
-  static Result<std::unique_ptr<SerialPointProbe>> open(const std::string& device);
+  // A probe answers within its latency; a loaded PC may take its time to
+  // read the answer: by default the workflow waits a second for each of four
+  // attempts. `answer_timeout` bounds a failure only: an answer is taken the
+  // moment it comes.
+  static constexpr std::chrono::milliseconds kAnswerTimeout{1000};
+  static Result<std::unique_ptr<SerialPointProbe>> open(
+      const std::string& device, std::chrono::milliseconds answer_timeout = kAnswerTimeout);
   [[nodiscard]] Result<Vec3> measure() override;
 
  private:

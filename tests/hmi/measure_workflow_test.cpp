@@ -23,6 +23,10 @@
 namespace lcnc::hmi {
 namespace {
 
+// The probe's answer, waited for as long as a loaded computer may need to
+// schedule the simulated probe's thread: a bound on a failure, never a wait.
+constexpr std::chrono::milliseconds kPatience{30000};
+
 std::string shm_name() {
   return "/lcnc_hmi_meas_" + std::to_string(getpid()) + "_" +
          ::testing::UnitTest::GetInstance()->current_test_info()->name();
@@ -54,7 +58,7 @@ TEST(MeasureWorkflow, FindsTheBlocksPlacementOnTheSimulatedMachine) {
   const drivers::WorkpieceBlock truth = default_sim_block();
   auto sims = SimPeripherals::start(shm, truth);
   ASSERT_TRUE(static_cast<bool>(sims)) << sims.error().to_string();
-  auto probe = SerialPointProbe::open((*sims)->probe_serial_path());
+  auto probe = SerialPointProbe::open((*sims)->probe_serial_path(), kPatience);
   ASSERT_TRUE(static_cast<bool>(probe)) << probe.error().to_string();
   MachineMover mover(shm, e2e::temp_dir() / "moves");
   MeasurePlan plan;
@@ -118,7 +122,7 @@ TEST(MeasureWorkflow, BestFitOnTenPointsFindsThePlacementToo) {
   const drivers::WorkpieceBlock truth = default_sim_block();
   auto sims = SimPeripherals::start(shm, truth);
   ASSERT_TRUE(static_cast<bool>(sims));
-  auto probe = SerialPointProbe::open((*sims)->probe_serial_path());
+  auto probe = SerialPointProbe::open((*sims)->probe_serial_path(), kPatience);
   ASSERT_TRUE(static_cast<bool>(probe));
   MachineMover mover(shm, e2e::temp_dir() / "moves");
   MeasurePlan plan;
@@ -141,7 +145,7 @@ TEST(MeasureWorkflow, APointThatFindsNoFaceEndsTheRunAndSaysWhich) {
   ASSERT_TRUE(daemon.ready()) << daemon.log();
   auto sims = SimPeripherals::start(shm);
   ASSERT_TRUE(static_cast<bool>(sims));
-  auto probe = SerialPointProbe::open((*sims)->probe_serial_path());
+  auto probe = SerialPointProbe::open((*sims)->probe_serial_path(), kPatience);
   ASSERT_TRUE(static_cast<bool>(probe));
   MachineMover mover(shm, e2e::temp_dir() / "moves");
   MeasurePlan plan;
@@ -172,6 +176,7 @@ TEST(MeasureScreen, MeasuresShowsThePlacementAndMovesTheHoles) {
   EXPECT_FALSE(none.apply());
 
   MeasurePage page(**db, shm, (*sims)->probe_serial_path());
+  page.set_probe_timeout(kPatience);
   EXPECT_EQ(page.table()->rowCount(), 6);  // the plan, before anything moves
   page.findChild<QPushButton*>("measureButton")->click();
   EXPECT_TRUE(page.findChild<QPushButton*>("cancelButton")->isEnabled());
