@@ -1,12 +1,13 @@
 // Tolerances and fixed numbers of laser cutting from a DXF drawing
 // (lasercnc cut), in one place. Lengths mm, angles radians.
 //
-// The cut path stays within kChordToleranceMm + kKerfArcToleranceMm
-// (+ half a unit of the last printed digit) of kerf/2 from the drawing:
-// arcs and splines are chords at most kChordToleranceMm inside the curve,
-// the round joins of the offset chords at most kKerfArcToleranceMm inside
-// their circle, and the integer grid moves a point by at most
-// kClipperUnitMm·√2/2.
+// The cut path stays within kChordToleranceMm + kKerfArcToleranceMm +
+// kOffsetSimplifyMm (+ half a unit of the last printed digit) of kerf/2 from
+// the drawing: arcs and splines are chords at most kChordToleranceMm inside
+// the curve, the polygon offset has dropped no vertex farther than
+// kOffsetSimplifyMm from its chords, the round joins of the offset chords
+// are at most kKerfArcToleranceMm inside their circle, and the integer grid
+// moves a point by at most kClipperUnitMm·√2/2.
 #pragma once
 
 #include <cstddef>
@@ -22,6 +23,12 @@ inline constexpr double kChordToleranceMm = 1e-3;
 // 64-bit units then reach ±9.2e13 mm, so any sheet fits, and rounding to
 // the grid (≤ 7.1 nm) is far below the machine's 1 µm step.
 inline constexpr double kClipperUnitMm = 1e-5;
+
+// Before the kerf offset, runs of vertices that lie within this of one chord
+// become that chord (a dense polyline of 10⁶ points on a circle keeps a few
+// thousand): the offset of n chords costs Clipper up to n² where their
+// offsets overlap, while 0.1 µm is a tenth of the machine's step.
+inline constexpr double kOffsetSimplifyMm = 1e-4;
 
 // The round joins of the kerf offset (ClipperOffset jtRound) are chords no
 // farther than this from their circle of radius kerf/2.

@@ -11,6 +11,10 @@
 // from the polygon (within the arc tolerance), and no point is nearer.
 // Coordinates go to Clipper's integers at kClipperUnitMm per unit and back.
 //
+// Runs of dense vertices are first thinned to chords they lie within
+// kOffsetSimplifyMm of (simplify_closed), so a polyline of a million points
+// is offset in seconds.
+//
 // Moving inward may leave nothing (a hole narrower than the kerf) or split a
 // hole in two (a narrow waist): the caller decides what is an error.
 #pragma once
@@ -26,5 +30,13 @@ namespace lcnc::cut {
 // largest first. Empty when the shrunk area vanishes.
 [[nodiscard]] std::vector<std::vector<Eigen::Vector2d>> offset_polygon(
     const std::vector<Eigen::Vector2d>& poly, double delta_mm);
+
+// The closed polygon with runs of vertices that lie within eps of one chord
+// replaced by that chord (Zhao and Saalfeld's sleeve fitting, 1997: each
+// chord is extended while the directions that pass within eps of every
+// point it covers still include it), in one pass. Every dropped vertex lies
+// within eps of the chord that replaced it; the first vertex stays.
+[[nodiscard]] std::vector<Eigen::Vector2d> simplify_closed(const std::vector<Eigen::Vector2d>& poly,
+                                                           double eps);
 
 }  // namespace lcnc::cut

@@ -2,11 +2,13 @@
 // ... for the absence of intersections"): no contour may cross or touch
 // itself or another one — the part would fall apart or be cut twice there.
 //
-// Every chord goes into the cells of a uniform grid (cell = 4 × the longest
-// chord, so a chord touches at most 4 cells); the chords that share a cell
-// are tested pairwise (orientation tests; collinear overlap and touching
-// count as crossing). Neighbouring chords of one contour share a vertex and
-// are only tested for folding back onto each other. O(n log n) for n chords.
+// Three passes, each O(n log n) for n chords whatever their lengths: a chord
+// that turns straight back onto its predecessor; a point two contours share
+// or one contour passes twice (sorted vertices); then a left-to-right sweep
+// (Shamos and Hoey 1976) that tests each chord against its neighbours along
+// the sweep line — crossing, touching and collinear overlap all count.
+// Neighbouring chords of one contour share a vertex and are not tested
+// against each other.
 // The check runs on the same points the machine will follow.
 #pragma once
 

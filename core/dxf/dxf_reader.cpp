@@ -73,6 +73,12 @@ struct PolyVertex {
   double bulge;
 };
 
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
 std::uint32_t next_line(const std::vector<std::uint32_t>& lines, std::size_t& i) {
   return i < lines.size() ? lines[i++] : 0;
 }
@@ -103,6 +109,7 @@ class Collector final : public DL_CreationAdapter {
   std::optional<Diagnostic> error;
   Container top;
   std::map<std::string, Container> blocks;
+  std::vector<std::string> degenerate;  // entities of zero length, not cut
 
   void finish() { flush(); }
 
@@ -194,6 +201,13 @@ class Collector final : public DL_CreationAdapter {
       p.x() = -p.x();
       bulge = -bulge;
     }
+    if (!std::isfinite(bulge) || std::abs(bulge) > kMaxBulge) {
+      fail(poly_->line, std::string(entity_name(poly_->kind)) + " vertex " +
+                            std::to_string(poly_vertices_.size() + 1) + " has bulge " +
+                            number(d.bulge) + "; expected a bulge within ±" + number(kMaxBulge) +
+                            " (tan of a quarter of the arc's angle)");
+      return;
+    }
     poly_vertices_.push_back(PolyVertex{p, bulge});
   }
 
@@ -283,7 +297,10 @@ class Collector final : public DL_CreationAdapter {
   }
 
   void push(RawEntity e) {
-    if (e.edges.empty() && !e.spline) return;  // degenerate (zero length)
+    if (e.edges.empty() && !e.spline) {  // zero length: nothing to cut, but said
+      degenerate.push_back(std::string(entity_name(e.kind)) + " at DXF line " + std::to_string(e.line));
+      return;
+    }
     for (Edge& ed : e.edges) {
       ed.source = e.kind;
       ed.line = e.line;
@@ -584,6 +601,15 @@ Result<ReadResult> read_dxf_text(std::string_view text, const std::string& file,
   dxf.in(in, &col);
   col.finish();
   if (col.error) return *col.error;
+  if (!col.degenerate.empty()) {
+    std::string list;
+    for (std::size_t i = 0; i < col.degenerate.size() && i < 5; ++i)
+      list += (i ? ", " : "") + col.degenerate[i];
+    if (col.degenerate.size() > 5) list += ", …";
+    out.notes.push_back("warning: " + std::to_string(col.degenerate.size()) + " entit" +
+                        (col.degenerate.size() == 1 ? "y" : "ies") +
+                        " of zero length, not cut: " + list);
+  }
 
   Affine units;
   units.m *= unit_mm;

@@ -41,6 +41,11 @@ inline constexpr int kSplineMaxDegree = 15;
 // Edges shorter than this are dropped (zero-length lines, repeated vertices).
 inline constexpr double kMinEdgeMm = 1e-9;
 
+// Largest polyline bulge (tan of a quarter of the arc's included angle):
+// 10⁴ is an arc of 359.98° whose radius is 2,500 times its chord. Beyond it a
+// drawing holds no arc but an overflow (1e300 gives an infinite centre).
+inline constexpr double kMaxBulge = 1e4;
+
 // An INSERT inside a block inside ... deeper than this is an error.
 inline constexpr int kMaxBlockDepth = 16;
 

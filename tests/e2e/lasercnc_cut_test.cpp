@@ -207,6 +207,68 @@ TEST(LasercncCut, ProcessTableSetsTheLayersFeedPowerAndKerf) {
   EXPECT_NE(g.find("kerf 0.300 mm"), std::string::npos);
 }
 
+// A drawing in mm with the given entities.
+std::string dxf_mm(const std::string& entities) {
+  return "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n" +
+         entities + "0\nENDSEC\n0\nEOF\n";
+}
+
+// A closed LWPOLYLINE; `bulges` (if given) per vertex.
+std::string lwpoly(const std::vector<Vec2>& pts, const std::vector<std::string>& bulges = {}) {
+  std::string s = "0\nLWPOLYLINE\n8\nCUT\n90\n" + std::to_string(pts.size()) + "\n70\n1\n";
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    s += "10\n" + std::to_string(pts[i].x()) + "\n20\n" + std::to_string(pts[i].y()) + "\n";
+    if (i < bulges.size()) s += "42\n" + bulges[i] + "\n";
+  }
+  return s;
+}
+
+// Drawings the machine cannot cut as drawn are refused before anything is
+// written, saying where; entities of zero size are named, never dropped
+// unsaid.
+TEST(LasercncCut, CrossingTouchingAndAbsurdDrawingsAreRefusedZeroSizeOnesNamed) {
+  const fs::path dir = e2e::temp_dir();
+  const fs::path ngc = dir / "out.ngc";
+  auto cut = [&](const std::string& name, const std::string& text) {
+    write_file(dir / name, text.c_str());
+    return lasercnc("cut " + (dir / name).string() + " -o " + ngc.string());
+  };
+  // the bow tie: one lobe only was cut before
+  e2e::CmdResult r = lasercnc("cut " + std::string(LCNC_SOURCE_DIR) +
+                              "/tests/data/dxf/crossing_self.dxf -o " + ngc.string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("E604"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("crosses itself at (5.000, 5.000)"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(ngc));
+  // a figure 8 pinched at one vertex: touches, does not cross
+  r = cut("eight.dxf", dxf_mm(lwpoly({{0, 0}, {10, 5}, {20, 0}, {20, 10}, {10, 5}, {0, 10}})));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("eight.dxf:"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("touches itself at (10.000, 5.000)"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(ngc));
+  // a notch whose two sides touch along a stretch (collinear overlap)
+  r = cut("notch.dxf", dxf_mm(lwpoly({{0, 0}, {30, 0}, {30, 20}, {20, 20}, {20, 5}, {20, 12}, {0, 12}})));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("E604"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(ngc));
+  // a bulge of 1e300 is no arc: it was cut as a straight edge
+  r = cut("bulge.dxf", dxf_mm(lwpoly({{0, 0}, {20, 0}, {20, 20}, {0, 20}}, {"0", "1e300"})));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("bulge.dxf:"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("vertex 2 has bulge 1e+300"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(ngc));
+  // a line of zero length and a polyline folded onto one point: said, then
+  // the square is cut
+  r = cut("dots.dxf", dxf_mm(lwpoly({{0, 0}, {20, 0}, {20, 20}, {0, 20}}) +
+                             "0\nLINE\n8\nCUT\n10\n40\n20\n5\n11\n40\n21\n5\n" +
+                             lwpoly({{50, 5}, {50, 5}, {50, 5}})));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("warning: 2 entities of zero length, not cut: LINE at DXF line"),
+            std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("LWPOLYLINE at DXF line"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(ngc));
+}
+
 TEST(LasercncCut, BadInputNamesWhereAndBadCommandLinesExit2) {
   const fs::path dir = e2e::temp_dir();
   const fs::path csv = dir / "bad.csv", ngc = dir / "x.ngc";

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <random>
+
 #include "cut/contour_polygon.h"
 #include "cut/cut_tolerances.h"
 #include "core/cut/cut_test_util.h"
@@ -58,6 +61,67 @@ TEST(KerfOffset, AHoleNarrowerThanTheKerfVanishesAndAWaistSplits) {
   const std::vector<Vec2> dumbbell = {{0, 0}, {4, 0}, {4, 1.9}, {6, 1.9}, {6, 0}, {10, 0},
                                       {10, 4}, {6, 4}, {6, 2.1}, {4, 2.1}, {4, 4}, {0, 4}};
   EXPECT_EQ(offset_polygon(dumbbell, -0.15).size(), 2u);
+}
+
+}  // namespace
+}  // namespace lcnc::cut
+
+namespace lcnc::cut {
+namespace {
+
+double segment_distance(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 ab = b - a;
+  const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  return (a + t * ab - p).norm();
+}
+
+// Thinning keeps the first vertex and only vertices of the polygon, in order;
+// every dropped vertex lies within eps of the chord that replaced it; a
+// dense circle thins to what its curvature needs, corners all stay.
+TEST(KerfOffset, ThinningKeepsEveryVertexWithinItsToleranceAndDropsTheRest) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> noise(-0.4e-4, 0.4e-4);
+  for (int trial = 0; trial < 30; ++trial) {
+    std::vector<Vec2> poly = test::ngon(0, 0, 20.0 + trial, 20000 + 1000 * trial);
+    for (Vec2& p : poly) p += Vec2(noise(rng), noise(rng));  // within ±0.04 µm
+    if (trial % 3 == 1) {  // a square corner in it
+      for (std::size_t i = 0; i < poly.size() / 4; ++i) poly[i] = Vec2(30.0 + trial, 30.0 + trial);
+      poly.erase(poly.begin() + 1, poly.begin() + static_cast<long>(poly.size() / 4));
+    }
+    const std::vector<Vec2> thin = simplify_closed(poly, kOffsetSimplifyMm);
+    ASSERT_GE(thin.size(), 3u);
+    EXPECT_LT(thin.size(), poly.size() / 5) << "trial " << trial;
+    ASSERT_EQ(thin.front(), poly.front());
+    // each dropped vertex between two kept ones lies within eps of their chord
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+      if (k + 1 < thin.size() && poly[i] == thin[k + 1]) {
+        ++k;
+        continue;
+      }
+      if (poly[i] == thin[k]) continue;
+      const Vec2& a = thin[k];
+      const Vec2& b = thin[(k + 1) % thin.size()];
+      ASSERT_LE(segment_distance(poly[i], a, b), kOffsetSimplifyMm * (1 + 1e-9))
+          << "trial " << trial << " vertex " << i;
+    }
+    EXPECT_EQ(k + 1, thin.size()) << "trial " << trial << ": kept vertices out of order";
+  }
+  // a polygon of real corners keeps them all
+  const std::vector<Vec2> star = {{0, 0}, {10, 1}, {20, 0}, {19, 10}, {20, 20}, {10, 19}, {0, 20}, {1, 10}};
+  EXPECT_EQ(simplify_closed(star, kOffsetSimplifyMm), star);
+}
+
+// A million chords on a circle are offset as the circle: in seconds, the
+// path half the kerf from the drawing (the cut of dense polylines).
+TEST(KerfOffset, AMillionChordCircleIsOffsetWithinTolerance) {
+  const std::vector<Vec2> circle = test::ngon(0, 0, 200.0, 1'000'000);
+  const auto off = offset_polygon(circle, 0.1);
+  ASSERT_EQ(off.size(), 1u);
+  EXPECT_LT(off[0].size(), 20000u);
+  for (std::size_t i = 0; i < off[0].size(); i += 7) {
+    EXPECT_NEAR(off[0][i].norm(), 200.1, kKerfArcToleranceMm + kOffsetSimplifyMm + 2 * kClipperUnitMm);
+  }
 }
 
 }  // namespace

@@ -49,7 +49,7 @@ TEST(ContourCheck, OverlappingCirclesCrossEachOther) {
 TEST(ContourCheck, SquaresSharingAnEdgeTouch) {
   const Status s = check_drawing(test::read_ok(test::dxf_data("touching_squares.dxf")));
   ASSERT_FALSE(s.ok());
-  EXPECT_MENTIONS(s.error(), "crosses contour 2");
+  EXPECT_MENTIONS(s.error(), "touches contour 1");
 }
 
 TEST(ContourCheck, NestedAndSeparateContoursPass) {
