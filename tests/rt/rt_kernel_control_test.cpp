@@ -302,7 +302,7 @@ TEST(RtKernelControl, LastJobCompletedSaysWhetherTheJobRanToItsEnd) {
   EXPECT_TRUE(r.kernel->last_job_completed());
   for (int i = 0; i < 12000; ++i) ASSERT_TRUE(r.buffer->try_push(step_x(20)));
   r.send(RtCommandType::StartJob);
-  ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::Running; }));
+  ASSERT_TRUE(wait_for([&] { return r.kernel->commands_taken(); }));  // running
   r.send(RtCommandType::Stop);
   ASSERT_TRUE(wait_for([&] { return r.kernel->jobs_ended() == 2; }));
   EXPECT_FALSE(r.kernel->last_job_completed());
@@ -342,10 +342,12 @@ TEST(RtKernelControl, StopRampsDownAlongThePathThenDiscardsTheJob) {
 TEST(RtKernelControl, FeedHoldAndResumeAreStates) {
   Rig r;
   std::int64_t sum = 0;
-  for (int i = 0; i < 4000; ++i) {
-    PeriodIncrement inc = step_x(10);
-    inc.end_of_program = i == 3999;
-    sum += 10;
+  // 1.2 s of motion: a loaded computer that lets this thread look late still
+  // finds the job running when it holds it
+  for (int i = 0; i < 16000; ++i) {
+    PeriodIncrement inc = step_x(5);  // 80 mm in all: within the travel
+    inc.end_of_program = i == 15999;
+    sum += 5;
     ASSERT_TRUE(r.buffer->try_push(inc));
   }
   r.start_idle();
@@ -358,8 +360,12 @@ TEST(RtKernelControl, FeedHoldAndResumeAreStates) {
   std::this_thread::sleep_for(10ms);
   EXPECT_EQ(r.kernel->position_steps(0), held_at);  // holds, laser off
   r.send(RtCommandType::Resume);
-  ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::Running; }));
-  ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::Idle; }));
+  // taken: the state it brought was Running (the rest of the job may be over
+  // before a loaded computer lets this thread look)
+  ASSERT_TRUE(wait_for([&] { return r.kernel->commands_taken(); }));
+  ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::Idle; }))
+      << "state " << static_cast<int>(r.kernel->state()) << " at " << r.kernel->position_steps(0)
+      << " of " << sum << ", underruns " << r.kernel->underruns();
   EXPECT_EQ(r.kernel->position_steps(0), sum);
   EXPECT_EQ(r.sim->position_steps(0), sum);
   EXPECT_EQ(r.kernel->underruns(), 0u);
