@@ -1,5 +1,5 @@
 // `lasercnc decompose PART.dxf ...` — main + auxiliary axes decomposition of a
-// DXF part (docs/design.md §5.7, issue 9): reads the drawing, checks every contour
+// DXF part (docs/design.md §5.7): reads the drawing, checks every contour
 // closed and free of crossings, decomposes each one (synchronous mode by
 // default, the paper's with --mode seed), prints a report and writes the
 // kinematics table (CSV) and pictures (SVG) when asked.

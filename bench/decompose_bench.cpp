@@ -1,4 +1,4 @@
-// Main + auxiliary axes decomposition (issue 9, docs/design.md §5.7):
+// Main + auxiliary axes decomposition (docs/design.md §5.7):
 //  1. throughput — contour points per second through chaining,
 //     discretization, crossing checks and the decomposition (sync and seed
 //     modes), on the sample part at 0.01 mm and at 1 µm (goal ≥ 1,000,000

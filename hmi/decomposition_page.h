@@ -1,4 +1,4 @@
-// The main + auxiliary axes screen (issue 9, docs/design.md §5.7): open a DXF part,
+// The main + auxiliary axes screen (docs/design.md §5.7): open a DXF part,
 // set the contour speed, step, field, main-axis acceleration and mode,
 // decompose it in the background (progress per contour), then see S, S1 and
 // S2 drawn, a row of figures per contour and the whole part's summary, and

@@ -22,7 +22,7 @@ inline constexpr double kDefaultAuxHalfField_mm = 5.0;
 // S1 to about θ/Δ: 1° at 0.01 mm is a radius of 0.57 mm.
 inline constexpr double kDefaultCriticalAngle_deg = 1.0;
 
-// S1 + S2 must equal S within this at every instant (issue 9: ≤ 1 µm).
+// S1 + S2 must equal S within this at every instant (the decomposition's promise: ≤ 1 µm).
 inline constexpr double kExactness_mm = 1e-3;
 
 // Seed mode: the smoothing gives up after this many vertex replacements per

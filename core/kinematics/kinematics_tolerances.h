@@ -9,7 +9,7 @@ namespace lcnc::kin {
 // neighbouring orientation needs).
 inline constexpr double kPoleSin = 1e-7;
 // Default orientation tolerance of the pole-smoothed interpolator: the largest
-// angle between its tool axis and the ideal great-circle axis (issue 8).
+// angle between its tool axis and the ideal great-circle axis.
 inline constexpr double kOrientationToleranceDeg = 0.01;
 // Pole-smoothed interpolator: half-width of the core (exactly through the
 // pole) and of each taper (rad, along the great circle). Wide enough that the

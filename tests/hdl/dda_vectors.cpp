@@ -1,4 +1,4 @@
-// Co-verification of hdl/ with the C++ DDA (issue 5; docs/design.md §5.4, §9).
+// Co-verification of hdl/ with the C++ DDA (docs/design.md §5.4, §9).
 //
 //   dda_vectors expect VECTORS.inc EXPECTED     the pulse trains rt::Dda makes
 //   dda_vectors compare EXPECTED ACTUAL         identical, or exit 1 naming the differences

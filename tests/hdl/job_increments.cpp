@@ -1,4 +1,4 @@
-// A real program's increment stream for the GHDL replay (issue 5): the core
+// A real program's increment stream for the GHDL replay: the core
 // planner pipeline of `lasercnc run` (app/run_job.cpp) — ProgramReader →
 // Planner (line merger, corner blending, look-ahead, coarse interpolation) →
 // StepQuantizer, owed steps paid after the last sample — on a machine config,

@@ -12,7 +12,7 @@
 namespace lcnc {
 namespace {
 
-constexpr double kUm = 0.001;  // 1 µm: the geometry tolerance of issue 8
+constexpr double kUm = 0.001;  // 1 µm: the drilling geometry's tolerance
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 HoleProcessParams row(HoleProcessId id) {

@@ -93,7 +93,7 @@ TEST(OrientationInterpolation, JointLinearLeavesTheGreatCircle) {
   EXPECT_TRUE(r.within(RotaryLimits{}));
 }
 
-// Issue 8: on a path through A = 0 the improved interpolator keeps C within
+// On a path through A = 0 the improved interpolator keeps C within
 // its velocity and acceleration limits with orientation error ≤ 0.01°, while
 // the plain vector interpolator exceeds them.
 TEST(OrientationInterpolation, PoleSmoothedBoundsCThroughThePole) {
