@@ -23,6 +23,10 @@
 //     offset path that would have to run backwards is an error (E313: the
 //     tool does not fit, it would gouge the part);
 //   - tangent moves (within kCornerTolRad): nothing between them.
+// Whatever the moves' count and order, no compensated feed move may come
+// nearer to the programmed path of the run than the tool radius (less the
+// corner tolerance's chord), nor run against its programmed direction:
+// comp_gouge.h measures each against the run's window of moves.
 // While compensation is on, what would move the path under it — another
 // plane, tool, tool offset, coordinate system, path mode, G28/G30, G92/G52,
 // canned cycles, M62/M63/M67 and M66 — is an error at its word, as in
@@ -97,6 +101,63 @@ bool Interpreter::comp_fail(std::string message) {
                   std::move(message));
 }
 
+namespace {
+
+// How near the tool may come to the programmed path: its radius, less what
+// a corner taken as tangent (kCornerTolRad) leaves of it and a micrometre.
+double gouge_distance(double r) { return r - (1e-3 + r * (1.0 - std::cos(kCornerTolRad))); }
+
+}  // namespace
+
+bool Interpreter::comp_gouge_fail(const GougeWindow::Gouge& g) {
+  const double s = length_scale();
+  const char* unit = modal_.inch ? " in" : " mm";
+  return comp_fail("the compensated path of line " + std::to_string(g.cut.line) + " comes within " +
+                   num(g.distance / s) + unit + " of the programmed path of line " +
+                   std::to_string(g.programmed.line) + ", nearer than the tool radius: the beam "
+                   "would cut into the part there; expected a path whose features are wider "
+                   "than the tool");
+}
+
+bool Interpreter::comp_check_programmed(const PlanePiece& p) {
+  const double r = comp_radius_mm_;
+  if (auto g = gouge_.add_programmed(p, gouge_distance(r), (r - gouge_distance(r)) / 4.0))
+    return comp_gouge_fail(*g);
+  return true;
+}
+
+// A compensated move as it goes: the beam's part of it (not the entry, not a
+// rapid) must stay the tool radius from the programmed path, and a straight
+// one must run the way it was programmed.
+bool Interpreter::comp_check_cut(const HeldMove& h) {
+  const Segment& s = h.s;
+  if (h.entry || s.kind == MotionKind::Rapid || s.kind == MotionKind::Dwell) return true;
+  const int a = comp_a_, b = comp_b_;
+  const Eigen::Vector2d from(s.start[a], s.start[b]), to(s.end[a], s.end[b]);
+  PlanePiece p;
+  if (s.kind == MotionKind::Arc) {
+    const Eigen::Vector2d c(s.center[a], s.center[b]);
+    p = PlanePiece::circular(from, to, c,
+                             find_turn(from.x(), from.y(), c.x(), c.y(), turn_of(s), to.x(), to.y()),
+                             s.line);
+  } else {
+    const Eigen::Vector2d dir(h.dx, h.dy);
+    if (dir.squaredNorm() > 0.0 && (to - from).dot(dir.normalized()) < -1e-6) {
+      return comp_fail("the straight move of line " + std::to_string(s.line) +
+                       " would run backwards under compensation (the moves around it leave "
+                       "the tool no room): the beam would cut into the part; expected a path "
+                       "whose features are wider than the tool");
+    }
+    p = PlanePiece::straight(from, to, s.line);
+  }
+  for (int i = 0; i < h.anchors; ++i) p.anchor[i] = h.anchor[i];
+  p.anchors = h.anchors;
+  const double r = comp_radius_mm_;
+  if (auto g = gouge_.add_cut(p, gouge_distance(r), (r - gouge_distance(r)) / 4.0))
+    return comp_gouge_fail(*g);
+  return true;
+}
+
 // What may not change under compensation, and what it cannot run (LinuxCNC
 // refuses each of these while it is on). A G40 in the block turns it off
 // before the codes after it in LinuxCNC's order run (not before a plane or
@@ -167,6 +228,7 @@ bool Interpreter::set_cutter_comp(SegmentBuffer& out) {
       if (!comp_dequeue(out)) return false;
       comp_exited_ = true;
     }
+    gouge_.clear();
     comp_side_ = 0;
     comp_first_move_ = true;
     return true;
@@ -221,6 +283,7 @@ bool Interpreter::set_cutter_comp(SegmentBuffer& out) {
   comp_side_ = side;
   comp_radius_mm_ = radius;
   comp_first_move_ = true;
+  gouge_.clear();
   const auto axes = arc_plane_axes(plane);
   comp_a_ = axes[0];
   comp_b_ = axes[1];
@@ -266,7 +329,12 @@ bool Interpreter::comp_round_corner(double mx, double my, const Pose& end, bool 
     Vec3 c = linear_part(pos_);
     c[comp_a_] = programmed_[comp_a_];
     c[comp_b_] = programmed_[comp_b_];
+    const std::size_t n = held_.size();
     if (!comp_held_arc(m, c, comp_side_ == kLeft ? -1 : 1, 0.0, out)) return false;
+    if (held_.size() > n) {
+      held_.back().anchor[0] = {c[comp_a_], c[comp_b_]};
+      held_.back().anchors = 1;
+    }
   }
   if (!comp_dequeue(out)) return false;
   comp_set_endpoint(mx, my);
@@ -341,6 +409,7 @@ bool Interpreter::comp_dequeue(SegmentBuffer& out) {
     s.start = at;
     if (s.kind == MotionKind::Dwell) s.end = at;
     if (s.kind != MotionKind::Dwell && s.kind != MotionKind::Arc && s.end == s.start) continue;
+    if (!comp_check_cut(h)) return false;
     if (s.kind == MotionKind::Arc) {  // its end moved along its circle: the travel again
       Vec3 lo3, hi3;
       arc_bounds(s, lo3, hi3);
@@ -383,7 +452,9 @@ bool Interpreter::comp_straight(const Pose& end, SegmentBuffer& out) {
     e[a] = px + r * std::cos(alpha);
     e[b] = py + r * std::sin(alpha);
     comp_set_endpoint(cx, cy);
+    const std::size_t n = held_.size();
     if (!comp_held_straight(e, std::cos(alpha), std::sin(alpha), out)) return false;
+    if (held_.size() > n) held_.back().entry = true;
     comp_first_move_ = false;
     programmed_ = end;
     return true;
@@ -393,7 +464,12 @@ bool Interpreter::comp_straight(const Pose& end, SegmentBuffer& out) {
   if (py == opy && px == opx) {  // no motion in the plane: the tool stays beside it
     e[a] = cx;
     e[b] = cy;
+    const std::size_t held = held_.size();
     if (!comp_held_straight(e, 0.0, 0.0, out)) return false;
+    if (held_.size() > held) {
+      held_.back().anchor[0] = {px, py};
+      held_.back().anchors = 1;
+    }
     programmed_ = end;
     return true;
   }
@@ -468,8 +544,15 @@ bool Interpreter::comp_straight(const Pose& end, SegmentBuffer& out) {
   }
   e[a] = ex;
   e[b] = ey;
+  const std::size_t held = held_.size();
   if (!comp_held_straight(e, px - opx, py - opy, out)) return false;
+  if (held_.size() > held) {
+    held_.back().anchor[0] = {opx, opy};
+    held_.back().anchor[1] = {px, py};
+    held_.back().anchors = 2;
+  }
   programmed_ = end;
+  if (!rapid && !comp_check_programmed(PlanePiece::straight({opx, opy}, {px, py}, line_))) return false;
   return true;
 }
 
@@ -524,7 +607,10 @@ bool Interpreter::comp_arc(const Pose& end_in, SegmentBuffer& out) {
       return comp_fail("the entry arc cannot be compensated (its radii differ); expected a "
                        "straight entry move");
     }
-    return comp_held_arc(e, c, turn, find_turn(cx, cy, c[a], c[b], turn, e[a], e[b]), out);
+    const std::size_t n = held_.size();
+    if (!comp_held_arc(e, c, turn, find_turn(cx, cy, c[a], c[b], turn, e[a], e[b]), out)) return false;
+    if (held_.size() > n) held_.back().entry = true;
+    return true;
   }
   const double opx = programmed_[a], opy = programmed_[b];
   const bool full_circle = !blk.has('R') && std::hypot(e[a] - opx, e[b] - opy) <= kSamePointMm;
@@ -613,9 +699,15 @@ bool Interpreter::comp_arc(const Pose& end_in, SegmentBuffer& out) {
     ne[a] = pos_[a];
     ne[b] = pos_[b];
   }
+  const std::size_t held = held_.size();
   if (!comp_held_arc(ne, c, turn, turns, out)) return false;
+  if (held_.size() > held) {
+    held_.back().anchor[0] = {opx, opy};
+    held_.back().anchor[1] = {e[a], e[b]};
+    held_.back().anchors = 2;
+  }
   programmed_ = e;
-  return true;
+  return comp_check_programmed(PlanePiece::circular({opx, opy}, {e[a], e[b]}, {ccx, ccy}, turns, line_));
 }
 
 }  // namespace lcnc::gcode

@@ -40,6 +40,7 @@
 #include <vector>
 
 #include "gcode/block_parser.h"
+#include "gcode/comp_gouge.h"
 #include "gcode/gcode_tolerances.h"
 #include "gcode/parameter_file.h"
 #include "machine/machine_config.h"
@@ -300,6 +301,10 @@ class Interpreter {
     Segment s;
     double dx = 0.0, dy = 0.0;  // straights: the direction programmed
     double turns = 0.0;         // arcs: the sweep programmed (rad; 0 for corner arcs)
+    bool entry = false;         // the entry move: it leaves the programmed start
+    // the programmed points the move belongs to (comp_gouge.h PlanePiece::anchor)
+    Eigen::Vector2d anchor[2] = {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
+    int anchors = 0;
   };
   int comp_side_ = 0;
   double comp_radius_mm_ = 0.0;
@@ -311,6 +316,10 @@ class Interpreter {
   double comp_endpoint_[2] = {0.0, 0.0};
   bool comp_endpoint_valid_ = false;
   int comp_a_ = 0, comp_b_ = 1;       // the plane's two axes (X Y in G17, Z X in G18)
+  GougeWindow gouge_;                 // the run's programmed and cut moves (comp_gouge.h)
+  bool comp_check_programmed(const PlanePiece& p);
+  bool comp_check_cut(const HeldMove& h);
+  bool comp_gouge_fail(const GougeWindow::Gouge& g);
 
   // M70/M73 saves, one per call level ([0]: the program's).
   struct Context {

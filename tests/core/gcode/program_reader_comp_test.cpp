@@ -152,6 +152,42 @@ TEST(CutterComp, ACornerTheToolCannotReachIsAnErrorNamingTheMove) {
   EXPECT_MENTIONS(d, "tool radius 2 mm");
 }
 
+// A notch 1.9 mm wide for a 2 mm kerf: the beam does not fit, however the
+// notch's end is drawn — one move, or two to four collinear ones (before,
+// split ends passed the corner check and the beam cut 0.1 mm into both
+// walls). A slot whose mouth is narrower than the beam is refused though
+// each of its corners fits; 2.1 mm wide, both pass.
+TEST(CutterComp, ANotchOrAMouthNarrowerThanTheToolIsRefusedHoweverItsMovesAreSplit) {
+  const std::string head = "G0 X95 Y110\nG41.1 D2\nG1 X100 Y100 F600\nX110\nY90\n";
+  const std::string tail = "Y100\nX130\nG40\nG0 X135 Y110\n";
+  for (const std::string bottom :
+       {"X111.9\n", "X110.5\nX111.9\n", "X110.1\nX111.9\n", "X110.2\nX110.4\nX111.6\nX111.9\n",
+        "X110.95\nX111.9\n", "X111.5\nX111.9\n"}) {
+    const test::Run r = test::run(head + bottom + tail);
+    ASSERT_EQ(r.last, ProgramReader::Next::Error) << bottom;
+    EXPECT_EQ(r.error.code, ErrorCode::GcodeCutterComp) << r.error.to_string();
+  }
+  // the notch wide enough: the tool fits, split or not
+  for (const std::string bottom : {"X112.1\n", "X111.05\nX112.1\n"}) {
+    const auto segs = segments(head + bottom + "Y100\nX130\nG40\nG0 X135 Y110\n");
+    EXPECT_FALSE(segs.empty());
+  }
+  // the mouth 1.9 mm wide, the slot under it 6 mm: no corner is too tight
+  const std::string slot = "G0 X95 Y110\nG41.1 D2\nG1 X100 Y100 F600\nX110\nY95\nX108\nY85\n"
+                           "X114\nY95\nX111.9\nY100\nX130\nG40\nG0 X135 Y110\n";
+  const test::Run r = test::run(slot);
+  ASSERT_EQ(r.last, ProgramReader::Next::Error);
+  EXPECT_EQ(r.error.code, ErrorCode::GcodeCutterComp);
+  // found where the right wall of the mouth comes in reach of the path down
+  // the left one (line 5, 0.9 mm from it)
+  EXPECT_EQ(r.error.line, 10u) << r.error.to_string();
+  EXPECT_MENTIONS(r.error, "compensated path of line 5 comes within 0.9 mm of the programmed "
+                           "path of line 10, nearer than the tool radius");
+  std::string wide = slot;
+  wide.replace(wide.find("X111.9"), 6, "X112.1");
+  EXPECT_FALSE(segments(wide).empty());
+}
+
 TEST(CutterComp, TheEntryMoveMustBeLongerThanTheRadius) {
   const Diagnostic d = expect_error("G0 X100 Y100\nG41.1 D4\nG1 X101 F600\n",
                                     ErrorCode::GcodeCutterComp, 3, 1);
