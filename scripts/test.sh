@@ -6,7 +6,8 @@
 #   --ci     warnings are errors, a second pass under ASan+UBSan and a third,
 #            the lock-free parts' stress tests (tests/tsan), under TSan
 # The tests of the real-time path itself (label `realtime`: wall-clock
-# latency, the loop's allocation, lock and syscall proofs) run after the
+# latency, the loop's allocation, lock and syscall proofs, and the jobs on
+# LinuxCNC's HAL, whose servo thread keeps the wall clock) run after the
 # others, one at a time. Every other test runs the simulated machine on the
 # simulated clock or waits on events, so load on the computer cannot change
 # its verdict. The presets are in CMakePresets.json (cmake --preset, ctest
