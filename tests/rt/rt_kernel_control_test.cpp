@@ -157,7 +157,7 @@ TEST(RtKernelControl, EStopStopsMotionAndLaserFromTheNextPeriod) {
   for (int i = 0; i < 12000; ++i) ASSERT_TRUE(r.buffer->try_push(step_x(20)));
   r.start_idle();
   r.send(RtCommandType::StartJob);
-  ASSERT_TRUE(wait_for([&] { return r.kernel->periods() > 200; }));
+  ASSERT_TRUE(wait_for([&] { return r.kernel->commands_taken() && r.kernel->periods() > 200; }));
   const std::uint64_t before = r.kernel->periods();  // periods completed when e-stop is sent
   r.send(RtCommandType::EStop);
   ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::EStop; }));
@@ -205,7 +205,7 @@ TEST(RtKernelControl, EStopStopsMotionAndLaserFromTheNextPeriod) {
 TEST(RtKernelControl, TraceMarksThePeriodsThatTookAJobsEntry) {
   Rig r;
   r.start_idle();
-  ASSERT_TRUE(wait_for([&] { return r.kernel->periods() > 50; }));
+  ASSERT_TRUE(wait_for([&] { return r.kernel->commands_taken() && r.kernel->periods() > 50; }));
   for (int i = 0; i < 200; ++i) {
     PeriodIncrement inc = step_x(3);
     inc.segment = 7;
@@ -245,7 +245,7 @@ TEST(RtKernelControl, EStopWordActsInTheNextPeriod) {
   r.kernel->set_estop_word(&word);
   r.start_idle();
   r.send(RtCommandType::StartJob);
-  ASSERT_TRUE(wait_for([&] { return r.kernel->periods() > 200; }));
+  ASSERT_TRUE(wait_for([&] { return r.kernel->commands_taken() && r.kernel->periods() > 200; }));
   EXPECT_EQ(r.kernel->state(), MachineState::Running);  // the old count was no e-stop
   (void)r.logs();
   // the periods completed at the request lie between these two
@@ -313,7 +313,7 @@ TEST(RtKernelControl, StopRampsDownAlongThePathThenDiscardsTheJob) {
   for (int i = 0; i < 12000; ++i) ASSERT_TRUE(r.buffer->try_push(step_x(20)));
   r.start_idle();
   r.send(RtCommandType::StartJob);
-  ASSERT_TRUE(wait_for([&] { return r.kernel->periods() > 300; }));
+  ASSERT_TRUE(wait_for([&] { return r.kernel->commands_taken() && r.kernel->periods() > 300; }));
   r.send(RtCommandType::Stop);
   ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::Idle; }));
   ASSERT_TRUE(wait_for([&] { return r.buffer->empty(); }));
@@ -356,7 +356,7 @@ TEST(RtKernelControl, FeedHoldAndResumeAreStates) {
   }
   r.start_idle();
   r.send(RtCommandType::StartJob);
-  ASSERT_TRUE(wait_for([&] { return r.kernel->periods() > 100; }));
+  ASSERT_TRUE(wait_for([&] { return r.kernel->commands_taken() && r.kernel->periods() > 100; }));
   r.send(RtCommandType::Hold);
   ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::FeedHold; }));
   ASSERT_TRUE(wait_for([&] { return r.kernel->held_periods() > 50; }));
@@ -687,7 +687,7 @@ TEST(RtKernelControl, CommandsOutsideTheirStatesAreRefused) {
   for (int i = 0; i < 5000; ++i) ASSERT_TRUE(r.buffer->try_push(step_x(5)));
   r.start_idle();
   r.send(RtCommandType::StartJob);
-  ASSERT_TRUE(wait_for([&] { return r.kernel->periods() > 10; }));
+  ASSERT_TRUE(wait_for([&] { return r.kernel->commands_taken() && r.kernel->periods() > 10; }));
   r.send(RtCommandType::Jog, 1, 1.0);
   r.send(RtCommandType::Home, 1);
   r.send(RtCommandType::StartJob);
@@ -794,7 +794,7 @@ TEST(RtKernelControl, EStopInputStopsTheJobInThePeriodItIsSeen) {
   for (int i = 0; i < 12000; ++i) ASSERT_TRUE(r.buffer->try_push(step_x(20)));
   r.start_idle();
   r.send(RtCommandType::StartJob);
-  ASSERT_TRUE(wait_for([&] { return r.kernel->periods() > 200; }));
+  ASSERT_TRUE(wait_for([&] { return r.kernel->commands_taken() && r.kernel->periods() > 200; }));
   r.sim->set_estop_input(true);
   const std::uint64_t before = r.kernel->periods();
   ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::EStop; }));
