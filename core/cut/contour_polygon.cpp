@@ -5,19 +5,15 @@
 #include <limits>
 
 #include "cut/cut_tolerances.h"
+#include "geom/plane.h"
 
 namespace lcnc::cut {
 namespace {
 
+using geom::point_segment;
+
 // Deepest halving of a spline edge (2^16 chords).
 constexpr int kMaxSplineDepth = 16;
-
-double point_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 ab = b - a;
-  const double l2 = ab.squaredNorm();
-  const double t = l2 > 0.0 ? std::clamp((p - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
-  return (a + t * ab - p).norm();
-}
 
 // Appends the points of (s0, s1] of a spline edge.
 void spline_points(const dxf::Edge& e, double s0, const Vec2& p0, double s1, const Vec2& p1,

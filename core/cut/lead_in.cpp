@@ -6,11 +6,12 @@
 
 #include "cut/contour_polygon.h"
 #include "cut/cut_tolerances.h"
+#include "geom/plane.h"
 
 namespace lcnc::cut {
 namespace {
 
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+using geom::cross;
 
 // Segments ab and cd meet (touching counts).
 bool segments_meet(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {

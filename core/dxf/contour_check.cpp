@@ -8,6 +8,7 @@
 
 #include "dxf/contour_chain.h"
 #include "common/error.h"
+#include "geom/plane.h"
 
 namespace lcnc::dxf {
 namespace {
@@ -17,7 +18,7 @@ struct ChordRef {
   std::uint32_t j;  // chord pts[j] → pts[j + 1 mod n]
 };
 
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+using geom::cross;
 
 // Lexicographic order of points, the order the sweep meets them in.
 bool before(const Vec2& a, const Vec2& b) {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "geom/plane.h"
+
 namespace lcnc::gcode {
 namespace {
 
@@ -12,15 +14,8 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 // The most chords an arc is measured by (arc to arc only).
 constexpr int kMaxChords = 4096;
 
-double cross(const V& a, const V& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-double point_segment(const V& p, const V& a, const V& b) {
-  const V ab = b - a;
-  const double l2 = ab.squaredNorm();
-  if (l2 == 0.0) return (p - a).norm();
-  const double t = std::clamp((p - a).dot(ab) / l2, 0.0, 1.0);
-  return (a + t * ab - p).norm();
-}
+using geom::cross;
+using geom::point_segment;
 
 bool within_sweep(const PlanePiece& arc, double angle) {
   if (std::abs(arc.sweep) >= kTwoPi) return true;
