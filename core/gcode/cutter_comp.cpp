@@ -131,7 +131,7 @@ bool Interpreter::comp_check_programmed(const PlanePiece& p) {
 // one must run the way it was programmed.
 bool Interpreter::comp_check_cut(const HeldMove& h) {
   const Segment& s = h.s;
-  if (h.entry || s.kind == MotionKind::Rapid || s.kind == MotionKind::Dwell) return true;
+  if (h.tag.entry || s.kind == MotionKind::Rapid || s.kind == MotionKind::Dwell) return true;
   const int a = comp_a_, b = comp_b_;
   const Eigen::Vector2d from(s.start[a], s.start[b]), to(s.end[a], s.end[b]);
   PlanePiece p;
@@ -150,8 +150,8 @@ bool Interpreter::comp_check_cut(const HeldMove& h) {
     }
     p = PlanePiece::straight(from, to, s.line);
   }
-  for (int i = 0; i < h.anchors; ++i) p.anchor[i] = h.anchor[i];
-  p.anchors = h.anchors;
+  for (int i = 0; i < h.tag.anchors; ++i) p.anchor[i] = h.tag.anchor[i];
+  p.anchors = h.tag.anchors;
   const double r = comp_radius_mm_;
   if (auto g = gouge_.add_cut(p, gouge_distance(r), (r - gouge_distance(r)) / 4.0))
     return comp_gouge_fail(*g);
@@ -292,7 +292,8 @@ bool Interpreter::set_cutter_comp(SegmentBuffer& out) {
 
 // --- the held moves ---------------------------------------------------------
 
-bool Interpreter::comp_held_straight(const Pose& end, double dx, double dy, SegmentBuffer& out) {
+bool Interpreter::comp_held_straight(const Pose& end, double dx, double dy, SegmentBuffer& out,
+                                     const HeldTag& tag) {
   holding_ = true;
   const std::size_t n = held_.size();
   const bool ok = block_motion_ == MotionMode::Rapid ? rapid_to(end, out) : line_to(end, out);
@@ -300,17 +301,21 @@ bool Interpreter::comp_held_straight(const Pose& end, double dx, double dy, Segm
   if (ok && held_.size() > n) {
     held_.back().dx = dx;
     held_.back().dy = dy;
+    held_.back().tag = tag;
   }
   return ok;
 }
 
 bool Interpreter::comp_held_arc(const Pose& end, const Vec3& c, int turn, double turns,
-                                SegmentBuffer& out) {
+                                SegmentBuffer& out, const HeldTag& tag) {
   holding_ = true;
   const std::size_t n = held_.size();
   const bool ok = arc_to(end, c, turn < 0, static_cast<std::uint32_t>(std::abs(turn) - 1), out);
   holding_ = false;
-  if (ok && held_.size() > n) held_.back().turns = turns;
+  if (ok && held_.size() > n) {
+    held_.back().turns = turns;
+    held_.back().tag = tag;
+  }
   return ok;
 }
 
@@ -324,16 +329,14 @@ bool Interpreter::comp_round_corner(double mx, double my, const Pose& end, bool 
   m[comp_b_] = my;
   for (int k = 3; k < kAxisCount; ++k) m[k] = end[k];
   if (rapid) {
-    if (!comp_held_straight(m, 0.0, 0.0, out)) return false;
+    if (!comp_held_straight(m, 0.0, 0.0, out, HeldTag{})) return false;
   } else {
     Vec3 c = linear_part(pos_);
     c[comp_a_] = programmed_[comp_a_];
     c[comp_b_] = programmed_[comp_b_];
-    const std::size_t n = held_.size();
-    if (!comp_held_arc(m, c, comp_side_ == kLeft ? -1 : 1, 0.0, out)) return false;
-    if (held_.size() > n) {
-      held_.back().anchor[0] = {c[comp_a_], c[comp_b_]};
-      held_.back().anchors = 1;
+    if (!comp_held_arc(m, c, comp_side_ == kLeft ? -1 : 1, 0.0, out,
+                       HeldTag::at({c[comp_a_], c[comp_b_]}))) {
+      return false;
     }
   }
   if (!comp_dequeue(out)) return false;
@@ -452,9 +455,8 @@ bool Interpreter::comp_straight(const Pose& end, SegmentBuffer& out) {
     e[a] = px + r * std::cos(alpha);
     e[b] = py + r * std::sin(alpha);
     comp_set_endpoint(cx, cy);
-    const std::size_t n = held_.size();
-    if (!comp_held_straight(e, std::cos(alpha), std::sin(alpha), out)) return false;
-    if (held_.size() > n) held_.back().entry = true;
+    if (!comp_held_straight(e, std::cos(alpha), std::sin(alpha), out, HeldTag::entry_move()))
+      return false;
     comp_first_move_ = false;
     programmed_ = end;
     return true;
@@ -464,12 +466,7 @@ bool Interpreter::comp_straight(const Pose& end, SegmentBuffer& out) {
   if (py == opy && px == opx) {  // no motion in the plane: the tool stays beside it
     e[a] = cx;
     e[b] = cy;
-    const std::size_t held = held_.size();
-    if (!comp_held_straight(e, 0.0, 0.0, out)) return false;
-    if (held_.size() > held) {
-      held_.back().anchor[0] = {px, py};
-      held_.back().anchors = 1;
-    }
+    if (!comp_held_straight(e, 0.0, 0.0, out, HeldTag::at({px, py}))) return false;
     programmed_ = end;
     return true;
   }
@@ -544,13 +541,8 @@ bool Interpreter::comp_straight(const Pose& end, SegmentBuffer& out) {
   }
   e[a] = ex;
   e[b] = ey;
-  const std::size_t held = held_.size();
-  if (!comp_held_straight(e, px - opx, py - opy, out)) return false;
-  if (held_.size() > held) {
-    held_.back().anchor[0] = {opx, opy};
-    held_.back().anchor[1] = {px, py};
-    held_.back().anchors = 2;
-  }
+  if (!comp_held_straight(e, px - opx, py - opy, out, HeldTag::between({opx, opy}, {px, py})))
+    return false;
   programmed_ = end;
   if (!rapid && !comp_check_programmed(PlanePiece::straight({opx, opy}, {px, py}, line_))) return false;
   return true;
@@ -607,10 +599,8 @@ bool Interpreter::comp_arc(const Pose& end_in, SegmentBuffer& out) {
       return comp_fail("the entry arc cannot be compensated (its radii differ); expected a "
                        "straight entry move");
     }
-    const std::size_t n = held_.size();
-    if (!comp_held_arc(e, c, turn, find_turn(cx, cy, c[a], c[b], turn, e[a], e[b]), out)) return false;
-    if (held_.size() > n) held_.back().entry = true;
-    return true;
+    return comp_held_arc(e, c, turn, find_turn(cx, cy, c[a], c[b], turn, e[a], e[b]), out,
+                         HeldTag::entry_move());
   }
   const double opx = programmed_[a], opy = programmed_[b];
   const bool full_circle = !blk.has('R') && std::hypot(e[a] - opx, e[b] - opy) <= kSamePointMm;
@@ -699,13 +689,8 @@ bool Interpreter::comp_arc(const Pose& end_in, SegmentBuffer& out) {
     ne[a] = pos_[a];
     ne[b] = pos_[b];
   }
-  const std::size_t held = held_.size();
-  if (!comp_held_arc(ne, c, turn, turns, out)) return false;
-  if (held_.size() > held) {
-    held_.back().anchor[0] = {opx, opy};
-    held_.back().anchor[1] = {e[a], e[b]};
-    held_.back().anchors = 2;
-  }
+  if (!comp_held_arc(ne, c, turn, turns, out, HeldTag::between({opx, opy}, {e[a], e[b]})))
+    return false;
   programmed_ = e;
   return comp_check_programmed(PlanePiece::circular({opx, opy}, {e[a], e[b]}, {ccx, ccy}, turns, line_));
 }

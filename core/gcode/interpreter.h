@@ -224,6 +224,19 @@ class Interpreter {
   // Where a new segment goes: to `out`, or held by cutter compensation.
   Segment& push_segment(SegmentBuffer& out);
   // Cutter (kerf) compensation (cutter_comp.cpp): G40 G41 G42 G41.1 G42.1.
+  // What the gouge check needs of a held move: whether it is the entry (it
+  // leaves the programmed start) and the programmed points it belongs to
+  // (comp_gouge.h PlanePiece::anchor).
+  struct HeldTag {
+    bool entry = false;
+    Eigen::Vector2d anchor[2] = {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
+    int anchors = 0;
+    static HeldTag entry_move() { return {true, {}, 0}; }
+    static HeldTag at(const Eigen::Vector2d& p) { return {false, {p, Eigen::Vector2d::Zero()}, 1}; }
+    static HeldTag between(const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
+      return {false, {p, q}, 2};
+    }
+  };
   bool check_comp_conflicts();
   bool set_cutter_comp(SegmentBuffer& out);
   [[nodiscard]] bool comp_active() const noexcept {
@@ -232,9 +245,10 @@ class Interpreter {
   bool comp_straight(const Pose& end, SegmentBuffer& out);
   bool comp_arc(const Pose& end, SegmentBuffer& out);
   bool comp_round_corner(double mx, double my, const Pose& end, bool rapid, SegmentBuffer& out);
-  bool comp_held_straight(const Pose& end, double dx, double dy, SegmentBuffer& out);
+  bool comp_held_straight(const Pose& end, double dx, double dy, SegmentBuffer& out,
+                          const HeldTag& tag);
   bool comp_held_arc(const Pose& end, const Vec3& c, int turn, double turns,
-                     SegmentBuffer& out);
+                     SegmentBuffer& out, const HeldTag& tag);
   bool comp_move_endpoint_and_flush(double x, double y, SegmentBuffer& out);
   bool comp_dequeue(SegmentBuffer& out);
   void comp_set_endpoint(double x, double y) {
@@ -301,10 +315,7 @@ class Interpreter {
     Segment s;
     double dx = 0.0, dy = 0.0;  // straights: the direction programmed
     double turns = 0.0;         // arcs: the sweep programmed (rad; 0 for corner arcs)
-    bool entry = false;         // the entry move: it leaves the programmed start
-    // the programmed points the move belongs to (comp_gouge.h PlanePiece::anchor)
-    Eigen::Vector2d anchor[2] = {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
-    int anchors = 0;
+    HeldTag tag;
   };
   int comp_side_ = 0;
   double comp_radius_mm_ = 0.0;
