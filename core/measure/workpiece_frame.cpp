@@ -81,22 +81,39 @@ Result<FrameFit> fit_best(const std::vector<Vec3>& nominal, const std::vector<Ve
                       " measured: each measured point needs its nominal");
   if (nominal.size() < 3)
     return degenerate("a best fit needs at least 3 points, " + std::to_string(nominal.size()) + " given");
-  const auto n = static_cast<Eigen::Index>(nominal.size());
-  Eigen::Matrix3Xd src(3, n), dst(3, n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    src.col(i) = nominal[static_cast<std::size_t>(i)];
-    dst.col(i) = measured[static_cast<std::size_t>(i)];
+  // Kabsch on the 3 × 3 moments (fixed-size algebra: the dynamic-size SVD
+  // that Eigen::umeyama instantiates costs minutes to compile under the
+  // sanitizers, for the same rotation)
+  const double n = static_cast<double>(nominal.size());
+  Vec3 cs = Vec3::Zero(), cd = Vec3::Zero();
+  for (std::size_t i = 0; i < nominal.size(); ++i) {
+    cs += nominal[i] / n;
+    cd += measured[i] / n;
   }
-  // the nominal points must span a plane (else the rotation about their line is free)
-  const Eigen::Matrix3Xd centred = src.colwise() - src.rowwise().mean();
-  const Eigen::JacobiSVD<Eigen::Matrix3Xd> svd(centred);
-  const Eigen::Vector3d sv = svd.singularValues();
-  if (sv(0) < kMinSpanMm || sv(1) < kMinSine * sv(0) * 1e3)
+  Eigen::Matrix3d spread = Eigen::Matrix3d::Zero(), cross = Eigen::Matrix3d::Zero();
+  for (std::size_t i = 0; i < nominal.size(); ++i) {
+    const Vec3 s = nominal[i] - cs;
+    spread += s * s.transpose();
+    cross += s * (measured[i] - cd).transpose();
+  }
+  // the nominal points must span a plane (else the rotation about their
+  // line is free): the singular values of the centred points are the roots
+  // of the spread's eigenvalues (ascending)
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(spread, Eigen::EigenvaluesOnly);
+  const double sv0 = std::sqrt(std::max(0.0, eig.eigenvalues()(2)));
+  const double sv1 = std::sqrt(std::max(0.0, eig.eigenvalues()(1)));
+  if (sv0 < kMinSpanMm || sv1 < kMinSine * sv0 * 1e3)
     return degenerate("the nominal points are collinear or coincide: a rigid fit needs 3 points not on one line");
-  const Eigen::Matrix4d t = Eigen::umeyama(src, dst, false);
+  // the rotation R minimising Σ|R s + t − d|²: cross = U Σ Vᵀ, R = V D Uᵀ
+  // with D flipping the last axis when that would be a reflection
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(cross, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
+  if ((svd.matrixV() * svd.matrixU().transpose()).determinant() < 0.0) d(2, 2) = -1.0;
   FrameFit f;
-  f.work_to_machine.matrix() = t;
-  for (Eigen::Index i = 0; i < n; ++i) f.residuals_mm.push_back((f.work_to_machine * src.col(i) - dst.col(i)).norm());
+  f.work_to_machine.linear() = svd.matrixV() * d * svd.matrixU().transpose();
+  f.work_to_machine.translation() = cd - f.work_to_machine.linear() * cs;
+  for (std::size_t i = 0; i < nominal.size(); ++i)
+    f.residuals_mm.push_back((f.work_to_machine * nominal[i] - measured[i]).norm());
   finish(f);
   return f;
 }

@@ -95,6 +95,18 @@ TEST(WorkpieceFrame, BestFitOfManyPointsRecoversThePlacementWithinTheNoise) {
   f = fit_best(nominal, measured);
   ASSERT_TRUE(static_cast<bool>(f));
   EXPECT_LT(f->max_residual_mm, 1e-9);
+  // points on one face (a plane): the fit is still a rotation, never the
+  // mirror image that fits a plane as well
+  for (int round = 0; round < 20; ++round) {
+    for (std::size_t i = 0; i < nominal.size(); ++i) {
+      nominal[i].z() = 0.0;
+      measured[i] = t * nominal[i] + (round % 2 == 0 ? Vec3(noise(rng), noise(rng), noise(rng)) : Vec3::Zero());
+    }
+    f = fit_best(nominal, measured);
+    ASSERT_TRUE(static_cast<bool>(f));
+    EXPECT_NEAR(f->work_to_machine.linear().determinant(), 1.0, 1e-12) << round;
+    EXPECT_LT(rotation_error_deg(f->work_to_machine, t), 0.01) << round;
+  }
 }
 
 // Best fit on faces: more points than six, each only known to lie on its
