@@ -20,8 +20,19 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/share/ DESTINATION ${CMAKE_INSTALL_DATAD
 install(FILES ${CMAKE_CURRENT_LIST_DIR}/lasercncd.service DESTINATION lib/systemd/system)
 install(FILES ${CMAKE_CURRENT_LIST_DIR}/lasercncd.default DESTINATION ${CMAKE_INSTALL_DOCDIR}/examples
         RENAME default-lasercncd)
-install(FILES ${PROJECT_SOURCE_DIR}/README.md ${PROJECT_SOURCE_DIR}/docs/hal.md
-        DESTINATION ${CMAKE_INSTALL_DOCDIR})
+# The user's docs placed as in the source tree (README.md, docs/,
+# docs/reference/), so the links between them resolve in the installed copy;
+# the contributors' docs and the HMI's screenshots stay in the source tree.
+install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
+install(FILES ${PROJECT_SOURCE_DIR}/docs/operator_guide.md ${PROJECT_SOURCE_DIR}/docs/integrator_guide.md
+              ${PROJECT_SOURCE_DIR}/docs/process_guide.md ${PROJECT_SOURCE_DIR}/docs/machine_config.md
+              ${PROJECT_SOURCE_DIR}/docs/hal.md ${PROJECT_SOURCE_DIR}/docs/laser_cutting.md
+              ${PROJECT_SOURCE_DIR}/docs/laser_cutting_plate.svg ${PROJECT_SOURCE_DIR}/docs/spiral_arcs.md
+              ${PROJECT_SOURCE_DIR}/docs/design.md
+        DESTINATION ${CMAKE_INSTALL_DOCDIR}/docs)
+install(FILES ${PROJECT_SOURCE_DIR}/docs/reference/cli.md ${PROJECT_SOURCE_DIR}/docs/reference/gcode.md
+              ${PROJECT_SOURCE_DIR}/docs/reference/planner.md ${PROJECT_SOURCE_DIR}/docs/reference/errors.md
+        DESTINATION ${CMAKE_INSTALL_DOCDIR}/docs/reference)
 
 set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME lasercnc)

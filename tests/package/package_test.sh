@@ -17,7 +17,9 @@ cmake --install "$build" --prefix "$prefix" --strip >/dev/null
 for f in bin/lasercnc bin/lasercncd bin/lasercnc-devices lib/systemd/system/lasercncd.service \
          share/lasercnc/machines/default.toml share/lasercnc/examples/bracket.ngc \
          share/lasercnc/modbus/register_map.toml share/lasercnc/hal/sim/lasercnc_sim.hal \
-         share/doc/lasercnc/README.md; do
+         share/doc/lasercnc/README.md share/doc/lasercnc/docs/operator_guide.md \
+         share/doc/lasercnc/docs/integrator_guide.md share/doc/lasercnc/docs/process_guide.md \
+         share/doc/lasercnc/docs/hal.md share/doc/lasercnc/docs/reference/cli.md; do
   [ -e "$prefix/$f" ] || fail "cmake --install: no $f"
 done
 cd /
