@@ -457,23 +457,25 @@ struct Daemon::Impl {
         return begin_job(program, loaded, ropt, false);
       }
       case shm::CommandType::Hold:
-        kernel->command({rt::RtCommandType::Hold, 0, 0.0});
+        if (!push({rt::RtCommandType::Hold, 0, 0.0})) return ring_full("hold");
         return Ack{true, ErrorCode::Ok, "hold"};
       case shm::CommandType::Resume:
-        kernel->command({rt::RtCommandType::Resume, 0, 0.0});
+        if (!push({rt::RtCommandType::Resume, 0, 0.0})) return ring_full("resume");
         return Ack{true, ErrorCode::Ok, "resume"};
       case shm::CommandType::Stop:
         cancel_load();
-        kernel->command({rt::RtCommandType::Stop, 0, 0.0});
+        if (!push({rt::RtCommandType::Stop, 0, 0.0})) return ring_full("stop");
         return Ack{true, ErrorCode::Ok, "stop"};
       case shm::CommandType::EStop:
         cancel_load();
-        kernel->command({rt::RtCommandType::EStop, 0, 0.0});
+        // a full ring: the e-stop's own word, one atomic add the kernel
+        // reads every period (never refused)
+        if (!push({rt::RtCommandType::EStop, 0, 0.0})) shm.block().estop.requests.fetch_add(1, std::memory_order_release);
         return Ack{true, ErrorCode::RtEstop, "e-stop"};
       case shm::CommandType::Reset:
         cancel_load();
         if (st != shm::MachineState::EStop) return refuse("reset refused: not in e-stop");
-        kernel->command({rt::RtCommandType::Reset, 0, 0.0});
+        if (!push({rt::RtCommandType::Reset, 0, 0.0})) return ring_full("reset");
         return Ack{true, ErrorCode::Ok, "reset"};
       case shm::CommandType::Override: {
         kernel->set_feed_override(c.value);
@@ -484,7 +486,7 @@ struct Daemon::Impl {
       case shm::CommandType::Jog: {
         if (st != shm::MachineState::Idle || job_active)
           return refuse(std::string("jog refused: the machine is ") + state_name(st));
-        kernel->command({rt::RtCommandType::Jog, static_cast<std::int8_t>(c.axis), c.value});
+        if (!push({rt::RtCommandType::Jog, static_cast<std::int8_t>(c.axis), c.value})) return ring_full("jog");
         char msg[96];
         std::snprintf(msg, sizeof msg, "jog %s %+g", axis_text.c_str(), c.value);
         return Ack{true, ErrorCode::Ok, msg};
@@ -492,7 +494,7 @@ struct Daemon::Impl {
       case shm::CommandType::Home: {
         if (st != shm::MachineState::Idle || job_active)
           return refuse(std::string("home refused: the machine is ") + state_name(st));
-        kernel->command({rt::RtCommandType::Home, static_cast<std::int8_t>(c.axis), 0.0});
+        if (!push({rt::RtCommandType::Home, static_cast<std::int8_t>(c.axis), 0.0})) return ring_full("home");
         return Ack{true, ErrorCode::Ok, "home " + axis_text};
       }
       case shm::CommandType::Mdi: return mdi(c, st);
@@ -500,6 +502,15 @@ struct Daemon::Impl {
       case shm::CommandType::Count: break;
     }
     return refuse("bad command frame");
+  }
+
+  // A command for the kernel; false when its ring is full (16 commands it
+  // has not taken: its thread is not running, or a HAL thread has stopped).
+  bool push(const rt::RtCommand& c) { return kernel->command(c); }
+  static Ack ring_full(const char* what) {
+    return Ack{false, ErrorCode::RtRefused,
+               std::string(what) + " refused: the kernel has not taken the 16 commands before it (is its "
+               "thread running?)"};
   }
 
   // Why `what` may not move the machine now; nothing if it may.
@@ -782,8 +793,7 @@ struct Daemon::Impl {
   void follow_job() {
     if (!job_active) return;
     if (start_pending && feed->prefilled()) {
-      start_pending = false;
-      kernel->command({rt::RtCommandType::StartJob, 0, 0.0});
+      start_pending = !push({rt::RtCommandType::StartJob, 0, 0.0});  // a full ring: again next tick
     }
     if (feed->stopped_short() && !stop_sent) stop_sent = kernel->command({rt::RtCommandType::Stop, 0, 0.0});
     if (running_segments > 0)
@@ -984,8 +994,9 @@ int Daemon::run(const std::atomic<bool>& quit) {
   logger()->info("lasercncd: shutting down");
   const shm::MachineState st = d.kernel->state();
   if (st != shm::MachineState::Idle && st != shm::MachineState::EStop) {
-    d.kernel->command({rt::RtCommandType::Stop, 0, 0.0});
     const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(3);
+    while (!d.push({rt::RtCommandType::Stop, 0, 0.0}) && std::chrono::steady_clock::now() < until)
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
     while (d.kernel->state() != shm::MachineState::Idle &&
            d.kernel->state() != shm::MachineState::EStop && std::chrono::steady_clock::now() < until)
       std::this_thread::sleep_for(std::chrono::milliseconds(1));

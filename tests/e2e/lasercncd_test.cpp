@@ -787,6 +787,32 @@ TEST(Lasercncd, SigtermTheMomentTheSegmentAppearsIsACleanShutdown) {
 
 const auto* const kNoLeaks = ::testing::AddGlobalTestEnvironment(new e2e::NoLeakedSegments);
 
+// A command the kernel cannot take is refused, never answered as done. With
+// --hal and no HAL component loaded nothing takes the kernel's commands, so
+// its ring of 16 fills: the 17th hold, a resume, a stop are refused. (An
+// e-stop never waits in the ring: the CLI's, the HMI's and, when the ring is
+// full, the Modbus slave's go through the e-stop word.)
+TEST(Lasercncd, ACommandTheKernelCannotTakeIsRefusedNotAnsweredAsDone) {
+  const std::string shm = shm_name();
+  struct Unlink {
+    std::string name;
+    ~Unlink() { shm_unlink(name.c_str()); }
+  } hal_segment{shm + ".hal"};  // the daemon's segment for the component, left by its SIGKILL
+  Daemon d(shm, {"--hal", "--machine", std::string(LCNC_SOURCE_DIR) + "/share/hal/sim/machine.toml"});
+  ASSERT_TRUE(d.ready()) << d.log();
+  for (int i = 0; i < 16; ++i) {
+    const CmdResult r = lasercnc("send hold --shm " + shm);
+    ASSERT_EQ(r.exit_code, 0) << i << ": " << r.out << r.err;
+  }
+  for (const char* c : {"hold", "resume", "stop"}) {
+    const CmdResult r = lasercnc(std::string("send ") + c + " --shm " + shm);
+    EXPECT_NE(r.exit_code, 0) << c;
+    EXPECT_NE((r.out + r.err).find(std::string(c) + " refused: the kernel has not taken the 16 commands"),
+              std::string::npos)
+        << r.out << r.err;
+  }
+}
+
 // The simulated clock is the simulated machine's: with --hal, HAL's thread
 // keeps the time, and asking for both is a usage error.
 TEST(Lasercncd, TheSimulatedClockIsRefusedWithHal) {
