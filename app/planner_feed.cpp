@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <memory>
 
+#include "plan/entry_stream.h"
 #include "plan/motion_stats.h"
 #include "plan/planner.h"
-#include "plan/ramp_room.h"
 #include "plan/program_source.h"
 
 namespace lcnc::app {
@@ -83,12 +83,6 @@ bool PlannerFeed::push(const PeriodIncrement& inc) {
   // An aborted job plans no further: the kernel discards what it is sent
   // after a stop faster than it can be planned, so the buffer never fills.
   if (abort_.load(std::memory_order_relaxed)) return false;
-  if (!guard_->admit(inc)) {
-    result_.limit = true;
-    result_.limit_error = guard_->error();
-    result_.limit_error.file = program_;
-    return false;
-  }
   while (result_.increments >= stall_after_.load(std::memory_order_relaxed)) {  // fault injection
     if (abort_.load(std::memory_order_relaxed)) return false;
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
@@ -102,66 +96,52 @@ bool PlannerFeed::push(const PeriodIncrement& inc) {
 }
 
 void PlannerFeed::run(const std::string& name, const Pose& start, const OpenSource& open) {
-  StepQuantizer quant(machine_, start);
-  for (int i = 0; i < kAxisCount; ++i) result_.start_steps[i] = quant.commanded(i);
-  guard_ = std::make_unique<IncrementGuard>(machine_, result_.start_steps);
   program_ = name;
   MotionStats stats(machine_.period_s(), start);
   SegmentSource source;
-  bool any = false;
-  if (!open(source, result_.error)) {
-    result_.failed = true;
-  } else {
-    Planner planner(machine_, std::move(source));
-    RampRoomMeter room(machine_, start);
-    PeriodSample sample;
-    PeriodSample last;
-    SourceStatus st;
-    bool pushed = true;
-    // An override above 100 % is planned for: from the start (the run's
-    // --feed-override), and on every raise (what is not yet handed out is
-    // planned again). A lower one the RT applies at once by itself.
-    planner.set_feed_scale(kernel_.feed_override_target());
-    while (pushed && (st = planner.next(sample)) == SourceStatus::Item) {
-      stats.add(sample.pose);
-      last = sample;
-      any = true;
-      PeriodIncrement inc = quant.quantize(sample);
-      inc.ramp = room.next(sample.pose);
-      pushed = push(inc);
-      const double asked = kernel_.feed_override_target();
-      if (asked > planner.feed_scale() || (asked < planner.feed_scale() && planner.feed_scale() > 1.0))
-        planner.set_feed_scale(asked);
-    }
-    if (pushed && st == SourceStatus::Error) {
-      result_.failed = true;
-      result_.error = source_error_;
-    }
-    // A read error mid-way (the file changed since it was checked) ends the
-    // motion like the end does: at rest where the last good segment ends.
-    while (pushed && quant.owed() && !abort_.load()) {
-      stats.add(last.pose);
-      PeriodIncrement inc = quant.pay_owed(last);
-      inc.ramp = room.next(last.pose);
-      pushed = push(inc);
-    }
-    // A job cut short (stopped, e-stopped) does not end where the plan
-    // does: no stop from the last sample to rest belongs to its figures.
-    if (!abort_.load()) stats.finish();
+  const bool opened = open(source, result_.error);
+  if (!opened) source = [](Segment&) { return SourceStatus::End; };  // no motion: the stream's end entry
+  Planner planner(machine_, std::move(source));
+  EntryStream stream(machine_, planner, start);
+  for (int i = 0; i < kAxisCount; ++i) result_.start_steps[i] = stream.start_steps(i);
+  // An override above 100 % is planned for: from the start (the run's
+  // --feed-override), and on every raise (what is not yet handed out is
+  // planned again). A lower one the RT applies at once by itself.
+  planner.set_feed_scale(kernel_.feed_override_target());
+  PeriodIncrement inc;
+  EntryStream::Next got = EntryStream::Next::End;
+  bool pushed = true;
+  while (pushed && (got = stream.next(inc)) == EntryStream::Next::Entry) {
+    stats.add(stream.pose());
+    pushed = push(inc);
+    const double asked = kernel_.feed_override_target();
+    if (asked > planner.feed_scale() || (asked < planner.feed_scale() && planner.feed_scale() > 1.0))
+      planner.set_feed_scale(asked);
   }
-  if (!any) {
-    PeriodIncrement end;  // nothing moved: a controlled end, laser off
-    end.end_of_program = true;
-    push(end);
-  } else if (result_.limit) {
-    // Stopped short of a soft limit while the machine may be moving: no end
-    // entry, which would stop it dead; the stream stays open, so the kernel
-    // brakes along the path with what is queued, until the caller's stop
-    // (RtCommandType::Stop) aborts the job.
+  if (!opened) {
+    result_.failed = true;
+  } else if (pushed && got == EntryStream::Next::Error) {
+    // a read error mid-way (the file changed since it was checked): the
+    // motion before it was planned to rest and has ended as a job does
+    result_.failed = true;
+    result_.error = source_error_;
+  }
+  if (pushed && got == EntryStream::Next::Limit) {
+    // Stopped short of a soft limit or an axis limit while the machine may
+    // be moving: no end entry, which would stop it dead; the stream stays
+    // open, so the kernel brakes along the path with what is queued, until
+    // the caller's stop (RtCommandType::Stop) aborts the job.
+    result_.limit = true;
+    result_.limit_error = stream.limit_error();
+    result_.limit_error.file = program_;
     stopped_short_.store(true, std::memory_order_release);
     while (!abort_.load()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  } else if (!abort_.load()) {
+    // A job cut short (stopped, e-stopped) does not end where the plan
+    // does: no stop from the last sample to rest belongs to its figures.
+    stats.finish();
   }
-  for (int i = 0; i < kAxisCount; ++i) result_.commanded[i] = quant.commanded(i);
+  for (int i = 0; i < kAxisCount; ++i) result_.commanded[i] = stream.commanded(i);
   result_.peak_v = stats.peak_velocity();
   result_.peak_a = stats.peak_acceleration();
   // release pairs with the kernel's acquire: the last entry is in the buffer

@@ -16,7 +16,6 @@
 #include "common/result.h"
 #include "gcode/program_reader.h"
 #include "machine/machine_config.h"
-#include "plan/increment_guard.h"
 #include "plan/planner.h"
 #include "plan/program_source.h"
 #include "rt/rt_kernel.h"
@@ -114,8 +113,7 @@ class PlannerFeed {
   std::atomic<std::uint64_t> stall_after_{kNever};
   std::string program_;
   std::unique_ptr<ProgramSource> program_source_;  // a program job's source (planner thread)
-  Diagnostic source_error_;                // why the source failed
-  std::unique_ptr<IncrementGuard> guard_;  // every entry passes it before the buffer
+  Diagnostic source_error_;  // why the source failed
   std::thread thread_;
 };
 

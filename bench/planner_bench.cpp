@@ -1,4 +1,4 @@
-// Planner benchmark (issue "Planner"): cycle time against the time-optimal
+// Planner benchmark: cycle time against the time-optimal
 // traversal of the same blended path, contour deviation against P, and
 // planner throughput and memory.
 //
@@ -23,6 +23,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <memory>
@@ -33,6 +34,7 @@
 #include "common/share_path.h"
 #include "gcode/program_reader.h"
 #include "path/deviation_meter.h"
+#include "plan/entry_stream.h"
 #include "plan/lookahead.h"
 #include "plan/path_blender.h"
 #include "plan/planner.h"
@@ -148,27 +150,33 @@ PlannerRun run_planner(const std::string& program, const Pose& start, const Mach
   Planner ci(m, reader_source(*reader));
   ci.on_planned([&](const PlannedSegment& p) { out.planned.push_back(p); });
   DeviationMeter dm(reader_source(*ref));
-  StepQuantizer q(m, opt.start);
+  // what a machine runs: the entries of the one chain from plan to RT
+  // (quantized, ramp room, guarded), as `lasercnc run` pushes them
+  EntryStream stream(m, ci, opt.start);
   std::array<std::int64_t, kAxisCount> pos{};
-  for (int i = 0; i < kAxisCount; ++i) pos[i] = q.commanded(i);
+  for (int i = 0; i < kAxisCount; ++i) pos[i] = stream.start_steps(i);
   out.jerk = ci.jerk_limit();
   std::array<Pose, 4> last;  // the last poses, newest first
   last.fill(opt.start);
   const double T = m.period_s();
-  PeriodSample s;
-  while (ci.next(s) == SourceStatus::Item) {
+  PeriodIncrement inc;
+  EntryStream::Next got;
+  while ((got = stream.next(inc)) == EntryStream::Next::Entry) {
     for (std::size_t k = last.size() - 1; k > 0; --k) last[k] = last[k - 1];
-    last[0] = s.pose;
+    last[0] = stream.pose();
     for (int i = 0; i < 3; ++i) {
       const double d3 = last[0][i] - 3 * last[1][i] + 3 * last[2][i] - last[3][i];
       out.peak_jerk = std::max(out.peak_jerk, std::abs(d3) / (T * T * T));
     }
-    const PeriodIncrement inc = q.quantize(s);
     for (int i = 0; i < 3; ++i) pos[i] += inc.steps[i];
     // rapids are not part of the contour
-    if (s.kind != MotionKind::Rapid) {
-      dm.add(Vec3(pos[0] / 1000.0, pos[1] / 1000.0, pos[2] / 1000.0), s.segment);
+    if (inc.kind != MotionKind::Rapid) {
+      dm.add(Vec3(pos[0] / 1000.0, pos[1] / 1000.0, pos[2] / 1000.0), inc.segment);
     }
+  }
+  if (got == EntryStream::Next::Limit) {  // a plan that breaks a limit measures nothing
+    std::fprintf(stderr, "planner_bench: %s\n", stream.limit_error().to_string().c_str());
+    std::exit(1);
   }
   out.cycle_s = static_cast<double>(ci.periods()) * m.period_s();
   out.max_dev_mm = dm.max_mm();
@@ -276,8 +284,9 @@ std::unique_ptr<ProgramReader> open_program(const std::string& file, const Machi
 
 // Planner throughput: the goal's four stages (parse + blend + look-ahead +
 // coarse interpolation: one pose per period) and, in runs alternating with
-// those, the same with the poses quantized to steps (the position buffer's
-// increments). False when the program cannot be read.
+// those, the same made into the position buffer's entries by the chain
+// production runs (plan/entry_stream.h: steps, ramp room, guard). False
+// when the program cannot be read.
 bool throughput(const std::string& file, const MachineConfig& m, int runs) {
   std::vector<double> rates[2];
   for (int r = 0; r < runs; ++r) {
@@ -292,12 +301,13 @@ bool throughput(const std::string& file, const MachineConfig& m, int runs) {
         if (st == SourceStatus::Item) ++segs;
         return st;
       });
-      StepQuantizer q(m, Pose::Zero());
       PeriodSample s;
       std::int64_t checksum = 0;
       double last_x = 0.0;
       if (steps == 1) {
-        while (ci.next(s) == SourceStatus::Item) checksum += q.quantize(s).steps[0];
+        EntryStream stream(m, ci, Pose::Zero());
+        PeriodIncrement inc;
+        while (stream.next(inc) == EntryStream::Next::Entry) checksum += inc.steps[0];
       } else {
         while (ci.next(s) == SourceStatus::Item) last_x = s.pose[0];
       }
@@ -313,7 +323,7 @@ bool throughput(const std::string& file, const MachineConfig& m, int runs) {
     }
   }
   for (auto& v : rates) std::sort(v.begin(), v.end());
-  std::printf("  median: %.0f segments/s through coarse interpolation; with step quantization "
+  std::printf("  median: %.0f segments/s through coarse interpolation; as RT entries (steps, ramp room, guard) "
               "%.0f segments/s; peak memory (max RSS) %ld MB\n",
               rates[0][rates[0].size() / 2], rates[1][rates[1].size() / 2], peak_rss_mb());
   return true;
@@ -321,13 +331,13 @@ bool throughput(const std::string& file, const MachineConfig& m, int runs) {
 
 // Where the throughput goes: the pipeline run whole up to each stage and cut
 // there (parse; + corner blends; + look-ahead; + coarse interpolation; +
-// step quantization), the median of `runs` for each; a stage costs the
+// the RT entries: steps, ramp room, guard), the median of `runs` for each; a stage costs the
 // difference to the one before.
 volatile std::int64_t g_sink = 0;
 
 bool stages(const std::string& file, const MachineConfig& m, int runs) {
   static const char* const kNames[] = {"parse (reader)", "+ corner blends", "+ look-ahead",
-                                       "+ coarse interpolation", "+ step quantization"};
+                                       "+ coarse interpolation", "+ entries (steps, guard)"};
   double before = 0.0;
   std::printf("%-24s %10s %12s %10s\n", "pipeline up to", "items", "median [s]", "stage [s]");
   for (int stage = 0; stage < 5; ++stage) {
@@ -355,16 +365,18 @@ bool stages(const std::string& file, const MachineConfig& m, int runs) {
         }
       } else {
         Planner planner(m, source);
-        StepQuantizer q(m, Pose::Zero());
-        PeriodSample s;
-        while (planner.next(s) == SourceStatus::Item) {
-          ++n;
-          if (stage == 4) checksum += q.quantize(s).steps[0];
+        if (stage == 4) {
+          EntryStream stream(m, planner, Pose::Zero());
+          PeriodIncrement inc;
+          for (; stream.next(inc) == EntryStream::Next::Entry; ++n) checksum += inc.steps[0];
+        } else {
+          PeriodSample s;
+          while (planner.next(s) == SourceStatus::Item) ++n;
         }
       }
       secs.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
       items = n;
-      g_sink = checksum;  // the quantizer's work is kept
+      g_sink = checksum;  // the entries' work is kept
     }
     std::sort(secs.begin(), secs.end());
     const double med = secs[secs.size() / 2];

@@ -1,7 +1,8 @@
-// A real program's increment stream for the GHDL replay: the core
-// planner pipeline of `lasercnc run` (app/run_job.cpp) — ProgramReader →
-// Planner (line merger, corner blending, look-ahead, coarse interpolation) →
-// StepQuantizer, owed steps paid after the last sample — on a machine config,
+// A real program's increment stream for the GHDL replay: the entries
+// `lasercnc run` pushes to the RT kernel — ProgramReader → Planner (line
+// merger, corner blending, look-ahead, coarse interpolation) → EntryStream
+// (steps, ramp room, the limit guard; owed steps paid after the last
+// sample: plan/entry_stream.h) — on a machine config,
 // written as a vector file (tests/vectors/README.md) plus the expected
 // signed pulse totals per axis: the commanded position in steps minus the
 // start (docs/design.md §4: Σ pulses = commanded steps).
@@ -18,7 +19,7 @@
 
 #include "gcode/program_reader.h"
 #include "machine/machine_config.h"
-#include "plan/coarse_interpolator.h"
+#include "plan/entry_stream.h"
 #include "plan/planner.h"
 
 using namespace lcnc;
@@ -59,9 +60,7 @@ int main(int argc, char** argv) {
     }
     return SourceStatus::Error;
   });
-  StepQuantizer quant(machine, ropt.start);
-  std::array<std::int64_t, kAxisCount> start{};
-  for (int i = 0; i < kAxisCount; ++i) start[i] = quant.commanded(i);
+  EntryStream stream(machine, planner, ropt.start);
 
   std::FILE* out = std::fopen(inc_path.c_str(), "w");
   if (out == nullptr) {
@@ -70,7 +69,7 @@ int main(int argc, char** argv) {
   }
   std::fprintf(out,
                "# The increment stream of %s on %s (machine '%s'), written by job_increments:\n"
-               "# ProgramReader -> Planner -> StepQuantizer, as `lasercnc run` plans it.\n",
+               "# ProgramReader -> Planner -> EntryStream, as `lasercnc run` plans it.\n",
                program.c_str(), machine_path.c_str(), machine.name.c_str());
   std::fprintf(out, "#! axes=%d mag_width=%u capacity=%u%s\n", kAxisCount,
                machine.dda.magnitude_bits, machine.dda.capacity, extra.c_str());
@@ -87,18 +86,15 @@ int main(int argc, char** argv) {
     std::fputc('\n', out);
     ++periods;
   };
-  PeriodSample sample, last;
-  SourceStatus st;
-  while ((st = planner.next(sample)) == SourceStatus::Item) {
-    last = sample;
-    write(quant.quantize(sample));
-  }
-  if (st == SourceStatus::Error) {
-    std::fprintf(stderr, "%s\n", r.error().to_string().c_str());
+  PeriodIncrement inc;
+  EntryStream::Next got;
+  while ((got = stream.next(inc)) == EntryStream::Next::Entry) write(inc);
+  if (got != EntryStream::Next::End) {
+    std::fprintf(stderr, "%s\n",
+                 (got == EntryStream::Next::Limit ? stream.limit_error() : r.error()).to_string().c_str());
     std::fclose(out);
     return 1;
   }
-  while (quant.owed()) write(quant.pay_owed(last));
   if (std::fclose(out) != 0) {
     std::fprintf(stderr, "%s: write failed\n", inc_path.c_str());
     return 1;
@@ -110,7 +106,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   for (int i = 0; i < kAxisCount; ++i) {
-    const std::int64_t commanded = quant.commanded(i) - start[i];
+    const std::int64_t commanded = stream.commanded(i) - stream.start_steps(i);
     if (sum[i] != commanded) {  // the quantizer's own invariant; never expected to fire
       std::fprintf(stderr, "axis %c: increments sum to %lld, commanded %lld steps\n",
                    kAxisLetters[i], static_cast<long long>(sum[i]), static_cast<long long>(commanded));

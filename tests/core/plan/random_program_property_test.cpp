@@ -29,8 +29,7 @@
 #include "gcode/program_reader.h"
 #include "machine/machine_config.h"
 #include "path/deviation_meter.h"
-#include "plan/coarse_interpolator.h"
-#include "plan/increment_guard.h"
+#include "plan/entry_stream.h"
 #include "plan/motion_check.h"
 #include "plan/planner.h"
 #include "core/plan/test_machine.h"
@@ -184,10 +183,9 @@ void check_one(const std::string& path, const std::string& text, const MachineCo
   Result<std::unique_ptr<ProgramSource>> ref = ProgramSource::open(path, m, {});
   ASSERT_TRUE(static_cast<bool>(ref));
   Planner planner(m, (*src)->source());
-  StepQuantizer quant(m, Pose::Zero());
+  EntryStream stream(m, planner, Pose::Zero());  // what `lasercnc run` pushes: guarded entries
   std::array<std::int64_t, kAxisCount> at{};
-  for (int i = 0; i < kAxisCount; ++i) at[i] = quant.commanded(i);
-  IncrementGuard guard(m, at);
+  for (int i = 0; i < kAxisCount; ++i) at[i] = stream.start_steps(i);
   MotionCheck motion(m, at);
   DeviationMeter deviation((*ref)->source(), m.path_tolerance_mm, xyz_rounding_mm(m));
   // under TCP the tool tip, held to the program as written
@@ -195,10 +193,8 @@ void check_one(const std::string& path, const std::string& text, const MachineCo
   ASSERT_TRUE(static_cast<bool>(tips));
   DeviationMeter tip((reader_source(**tips)), m.path_tolerance_mm, tip_rounding_mm(m), m.tcp.tip_tolerance_mm);
   const FiveAxisKinematics kin = kinematics_from(m);
-  PeriodSample sample, last;
   std::uint64_t k = 0;
   auto take = [&](const PeriodIncrement& inc) {
-    ASSERT_TRUE(guard.admit(inc)) << guard.error().to_string() << "\n" << text;
     ++k;
     for (int i = 0; i < kAxisCount; ++i) at[i] += inc.steps[i];
     motion.add(static_cast<std::int64_t>(k) * m.period_ns, at, inc.line);
@@ -209,18 +205,15 @@ void check_one(const std::string& path, const std::string& text, const MachineCo
     deviation.add(p.head<3>(), inc.segment);
     if (tcp) tip.add_at_line(kin.forward(p).tip_mm, inc.line);
   };
-  SourceStatus st;
-  while ((st = planner.next(sample)) == SourceStatus::Item) {
-    take(quant.quantize(sample));
+  PeriodIncrement inc;
+  EntryStream::Next got;
+  while ((got = stream.next(inc)) == EntryStream::Next::Entry) {
+    take(inc);
     if (::testing::Test::HasFatalFailure()) return;
-    last = sample;
     ASSERT_LT(k, kMaxPeriods) << "a program that does not end\n" << text;
   }
-  ASSERT_EQ(st, SourceStatus::End) << text;
-  while (quant.owed()) {
-    take(quant.pay_owed(last));
-    if (::testing::Test::HasFatalFailure()) return;
-  }
+  ASSERT_NE(got, EntryStream::Next::Limit) << stream.limit_error().to_string() << "\n" << text;
+  ASSERT_EQ(got, EntryStream::Next::End) << text;
   motion.finish();
   ASSERT_TRUE(motion.ok()) << motion.breaches().front() << "\n" << text;
   ASSERT_EQ(deviation.excess_mm(), 0.0) << "deviation beyond " << deviation.excess_tolerance_mm()
