@@ -11,15 +11,13 @@
 
 #include "drivers/sim_machine.h"
 #include "rt/dda.h"
+#include "support/test_scale.h"
 
 namespace lcnc::rt {
 namespace {
 
-// Size of the randomized tests; LCNC_FUZZ_SCALE multiplies it for long runs.
-int fuzz_scale() {
-  const char* s = std::getenv("LCNC_FUZZ_SCALE");
-  return s != nullptr && std::atoi(s) > 0 ? std::atoi(s) : 1;
-}
+// Size of the randomized tests; LCNC_TEST_SCALE multiplies it for long runs.
+int fuzz_scale() { return static_cast<int>(testing::test_scale()); }
 
 AxisConfig axis_with(PitchTable table, double steps_per_unit = 1000.0) {
   AxisConfig a;

@@ -8,6 +8,8 @@
 #include <thread>
 #include <type_traits>
 
+#include "support/test_scale.h"
+
 namespace lcnc::rt {
 namespace {
 
@@ -48,13 +50,11 @@ TEST(Seqlock, ReadsWhatWasWritten) {
 }
 
 // A writer stores as fast as it can while a reader copies: no copy is ever
-// torn, and the values seen never go backwards. LCNC_FUZZ_SCALE scales it.
+// torn, and the values seen never go backwards. LCNC_TEST_SCALE scales it.
 TEST(Seqlock, ConcurrentReadsAreNeverTorn) {
   auto s = std::make_unique<Seqlock<Block>>();
   s->store(make(0));
-  std::uint64_t scale = 1;
-  if (const char* e = std::getenv("LCNC_FUZZ_SCALE")) scale = std::strtoull(e, nullptr, 10);
-  const std::uint64_t writes = 2'000'000 * scale;
+  const std::uint64_t writes = testing::scaled<std::uint64_t>(2'000'000);
   std::atomic<bool> done{false};
   std::thread writer([&] {
     for (std::uint64_t n = 1; n <= writes; ++n) s->store(make(n));

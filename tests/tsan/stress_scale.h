@@ -1,18 +1,16 @@
 // Sizes of the TSan stress tests: a default that keeps the CI pass short
-// under TSan's 5–15× slowdown, multiplied by LCNC_FUZZ_SCALE for long runs
-// (as in tests/rt/).
+// under TSan's 5–15× slowdown, multiplied by LCNC_TEST_SCALE for long runs
+// (support/test_scale.h).
 #pragma once
 
 #include <cstdint>
 #include <cstdlib>
 
+#include "../support/test_scale.h"
+
 namespace lcnc::rt::tsan {
 
-inline std::uint64_t scaled(std::uint64_t n) {
-  std::uint64_t scale = 1;
-  if (const char* s = std::getenv("LCNC_FUZZ_SCALE")) scale = std::strtoull(s, nullptr, 10);
-  return n * (scale ? scale : 1);
-}
+inline std::uint64_t scaled(std::uint64_t n) { return lcnc::testing::scaled(n); }
 
 // A value every field of a test item derives from, so a wrong or torn item
 // is detectable (splitmix64's finalizer).

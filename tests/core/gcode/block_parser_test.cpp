@@ -8,6 +8,8 @@
 #include <random>
 #include <string>
 
+#include "support/test_scale.h"
+
 namespace lcnc::gcode {
 namespace {
 
@@ -83,8 +85,7 @@ TEST(GcodeBlockParser, AbsentAxisIsRejectedWithItsColumn) {
 // Fixed-seed property test: every number form reads as strtod reads it.
 // LCNC_TEST_SCALE multiplies the case count for long runs.
 TEST(GcodeBlockParser, NumbersReadExactlyAsStrtod) {
-  const char* scale_env = std::getenv("LCNC_TEST_SCALE");
-  const int cases = 20000 * (scale_env != nullptr ? std::max(1, std::atoi(scale_env)) : 1);
+  const int cases = testing::scaled(20000);
   std::mt19937_64 rng(20240611);
   std::uniform_int_distribution<int> digit(0, 9);
   std::uniform_int_distribution<int> count(0, 20);

@@ -9,15 +9,13 @@
 
 #include "kinematics/tcp_path.h"
 #include "path/segment_geometry.h"
+#include "support/test_scale.h"
 
 namespace lcnc {
 namespace {
 
 // Property-test size: LCNC_TEST_SCALE multiplies it for long runs.
-int scaled(int n) {
-  const char* s = std::getenv("LCNC_TEST_SCALE");
-  return s != nullptr ? n * std::max(1, std::atoi(s)) : n;
-}
+int scaled(int n) { return testing::scaled(n); }
 
 Pose joints(double x, double y, double z, double a, double c) {
   Pose p = Pose::Zero();

@@ -7,6 +7,8 @@
 #include <numbers>
 #include <random>
 
+#include "support/test_scale.h"
+
 namespace lcnc {
 namespace {
 
@@ -133,8 +135,7 @@ TEST(OrientationInterpolation, PoleSmoothedPropertiesNearThePole) {
   std::mt19937 rng(88);
   std::uniform_real_distribution<double> delta(0.0, 0.0099), psi(0.0, 360.0),
       before(2.0, 80.0), after(2.0, 80.0), c_prev(-400.0, 400.0);
-  const char* scale = std::getenv("LCNC_TEST_SCALE");
-  const int n = 60 * (scale != nullptr ? std::max(1, std::atoi(scale)) : 1);
+  const int n = testing::scaled(60);
   for (int i = 0; i < n; ++i) {
     const double d = delta(rng) * kDeg, p = psi(rng) * kDeg;
     const Vec3 m(std::sin(d) * std::cos(p), std::sin(d) * std::sin(p), std::cos(d));

@@ -11,6 +11,7 @@
 #include "plan/coarse_interpolator.h"
 #include "plan/motion_stats.h"
 #include "plan/path_blender.h"
+#include "support/test_scale.h"
 
 namespace lcnc {
 namespace {
@@ -143,15 +144,14 @@ TEST(Lookahead, PlansAtTheMachinesFullLimits) {
   EXPECT_GT(o.peak_a[0], 2000.0 * 0.99);
 }
 
-// Random polylines (fixed seed; LCNC_FUZZ_SCALE scales the count): never
+// Random polylines (fixed seed; LCNC_TEST_SCALE scales the count): never
 // beyond the axis limits, never beyond P, every step delivered, speeds
 // continuous from segment to segment.
 TEST(Lookahead, RandomPolylinesStayWithinLimitsAndTolerance) {
   const auto m = testing::test_machine(150.0, 3000.0);
   std::mt19937_64 rng(99);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  int programs = 12;
-  if (const char* s = std::getenv("LCNC_FUZZ_SCALE")) programs *= std::atoi(s);
+  const int programs = testing::scaled(12);
   for (int p = 0; p < programs; ++p) {
     std::vector<Segment> segs;
     Pose at = xyz(100 + 50 * u(rng), 100 + 50 * u(rng), 50);
@@ -185,8 +185,7 @@ TEST(Lookahead, RandomLinesAndArcsStayWithinLimitsAndTolerance) {
   const auto m = testing::test_machine(150.0, 3000.0);
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  int programs = 8;
-  if (const char* s = std::getenv("LCNC_FUZZ_SCALE")) programs *= std::atoi(s);
+  const int programs = testing::scaled(8);
   for (int p = 0; p < programs; ++p) {
     std::vector<Segment> segs;
     Pose at = xyz(200, 200, 50);

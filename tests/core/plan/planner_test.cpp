@@ -10,6 +10,7 @@
 
 #include "core/plan/test_machine.h"
 #include "path/deviation_meter.h"
+#include "support/test_scale.h"
 
 namespace lcnc {
 namespace {
@@ -181,15 +182,14 @@ double steps_allowance(const MachineConfig& m) {
   return 4.0 * 0.001 / (h * h * h);
 }
 
-// Random polylines (fixed seed; LCNC_FUZZ_SCALE scales the count), blended at
+// Random polylines (fixed seed; LCNC_TEST_SCALE scales the count), blended at
 // P, C turning along; J at which the acceleration must be lowered, and one at
 // which it need not; on machines whose operator may set 100 % or 150 % (no
 // difference: the plan is at the limits, the RT only slows it).
 TEST(Planner, JerkLimitKeepsJerkAccelerationVelocityAndTolerance) {
   std::mt19937_64 rng(2024);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  int programs = 8;
-  if (const char* s = std::getenv("LCNC_FUZZ_SCALE")) programs *= std::atoi(s);
+  const int programs = testing::scaled(8);
   for (int p = 0; p < programs; ++p) {
     auto m = testing::test_machine(150.0, 3000.0);
     m.max_jerk = p % 2 == 0 ? 1e5 : 2e6;
@@ -239,8 +239,7 @@ TEST(Planner, WithoutJerkLimitTheQuantizedJerkIsFarAboveJ) {
 TEST(Planner, JerkLimitStaysWithinPOnArcsAndFillets) {
   std::mt19937_64 rng(8);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  int programs = 4;
-  if (const char* s = std::getenv("LCNC_FUZZ_SCALE")) programs *= std::atoi(s);
+  const int programs = testing::scaled(4);
   auto m = testing::test_machine(150.0, 3000.0);
   m.max_jerk = 2e5;
   for (int p = 0; p < programs; ++p) {

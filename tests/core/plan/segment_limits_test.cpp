@@ -13,6 +13,7 @@
 #include "plan/arc_transition.h"
 #include "plan/coarse_interpolator.h"
 #include "plan/tolerances.h"
+#include "support/test_scale.h"
 
 namespace lcnc {
 namespace {
@@ -224,8 +225,7 @@ TEST(SegmentLimits, BlendArcsMatchTheReferenceModel) {
   const MachineConfig m = testing::test_machine(100.0, 2000.0);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> coord(-20.0, 20.0), turn(-1.0, 1.0);
-  int corners = 3000;
-  if (const char* s = std::getenv("LCNC_FUZZ_SCALE")) corners *= std::atoi(s);
+  const int corners = testing::scaled(3000);
   for (int k = 0; k < corners; ++k) {
     // corners from nearly straight (tiny sweeps, the quick decision) to sharp
     const Vec3 p0(coord(rng), coord(rng), coord(rng));
