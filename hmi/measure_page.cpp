@@ -42,6 +42,9 @@ QString face_text(const std::string& face) {
 MeasurePage::MeasurePage(ProcessDatabase& db, std::string shm_name, std::string probe_serial, QWidget* parent)
     : QWidget(parent), ui_(std::make_unique<Ui::MeasurePage>()), db_(db), shm_name_(std::move(shm_name)),
       probe_serial_(std::move(probe_serial)),
+      confirm_([](QWidget* parent, const QString& title, const QString& text) {
+        return QMessageBox::question(parent, title, text) == QMessageBox::Yes;
+      }),
       measuring_(
           this, [this](const TaskProgress& p) { ui_->progressBar->setValue(p.done); },
           [this](const MeasureOutcome& o) { present(o); }) {
@@ -56,10 +59,9 @@ MeasurePage::MeasurePage(ProcessDatabase& db, std::string shm_name, std::string 
   connect(ui_->measureButton, &QPushButton::clicked, this, [this] { measure(); });
   connect(ui_->cancelButton, &QPushButton::clicked, this, [this] { measuring_.cancel(); });
   connect(ui_->applyButton, &QPushButton::clicked, this, [this] {
-    if (QMessageBox::question(this, tr("Apply the measured placement"),
-                              tr("Move every hole of the process database onto the measured placement? "
-                                 "Their X, Y, Z, A and C are read as drawing coordinates.")) ==
-        QMessageBox::Yes)
+    if (confirm_(this, tr("Apply the measured placement"),
+                 tr("Move every hole of the process database onto the measured placement? "
+                    "Their X, Y, Z, A and C are read as drawing coordinates.")))
       apply();
   });
   connect(ui_->bestFitCheck, &QCheckBox::toggled, this, [this] { show_plan(); });

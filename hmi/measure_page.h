@@ -10,6 +10,7 @@
 
 #include <QWidget>
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -47,6 +48,10 @@ class MeasurePage : public QWidget {
   [[nodiscard]] QTableWidget* table() const;
   // How long the probe's answer is waited for (SerialPointProbe::open).
   void set_probe_timeout(std::chrono::milliseconds t) { probe_timeout_ = t; }
+  // The operator's yes or no before the placement is applied (a question
+  // box by default; a test answers it in code).
+  using Confirm = std::function<bool(QWidget* parent, const QString& title, const QString& text)>;
+  void set_confirm(Confirm confirm) { confirm_ = std::move(confirm); }
 
  signals:
   void finished(bool ok);
@@ -61,6 +66,7 @@ class MeasurePage : public QWidget {
   std::string shm_name_, probe_serial_;
   std::chrono::milliseconds probe_timeout_ = SerialPointProbe::kAnswerTimeout;
   std::optional<MeasureOutcome> outcome_;
+  Confirm confirm_;
   BackgroundTask<MeasureOutcome> measuring_;
 };
 

@@ -191,9 +191,21 @@ TEST(MeasureScreen, MeasuresShowsThePlacementAndMovesTheHoles) {
   EXPECT_NEAR(m.captured(3).toDouble(), 60.0, 0.01);
   EXPECT_NEAR(m.captured(4).toDouble(), 1.5, 0.01);
   EXPECT_FALSE(page.table()->item(5, 2)->text().isEmpty());
-  ASSERT_TRUE(page.findChild<QPushButton*>("applyButton")->isEnabled());
-  ASSERT_TRUE(page.apply());
-  EXPECT_FALSE(page.findChild<QPushButton*>("applyButton")->isEnabled());  // once
+  // the button asks first: a no leaves the holes where they are, a yes moves them
+  auto* apply = page.findChild<QPushButton*>("applyButton");
+  ASSERT_TRUE(apply->isEnabled());
+  QString asked;
+  page.set_confirm([&](QWidget*, const QString&, const QString& text) {
+    asked = text;
+    return false;
+  });
+  apply->click();
+  EXPECT_TRUE(asked.contains("Move every hole")) << asked.toStdString();
+  EXPECT_LT(((*(*db)->hole(1))->params.position.head<3>() - Vec3(100.0, 50.0, 0.0)).norm(), 1e-9);
+  EXPECT_TRUE(apply->isEnabled());
+  page.set_confirm([](QWidget*, const QString&, const QString&) { return true; });
+  apply->click();
+  EXPECT_FALSE(apply->isEnabled());  // once
   const Vec3 truth = (*sims)->block().work_to_machine * Vec3(100.0, 50.0, 0.0);
   EXPECT_LT(((*(*db)->hole(1))->params.position.head<3>() - truth).norm(), 0.01);
 }
