@@ -1,4 +1,4 @@
-// lasercncd: the controller as a service (issue "RT kernel"). It hosts the
+// lasercncd: the controller as a service. It hosts the
 // planner and RT threads on the simulated machine and publishes them in
 // POSIX shared memory (rt/shm_interface.h): the RT kernel writes the status,
 // this control thread takes the commands of the HMI and `lasercnc send`,

@@ -30,7 +30,7 @@ constexpr const char* kUsage =
     "usage: lasercnc drill HOLES.csv [--machine FILE] [--devices] [--clearance MM] [--settle S]\n"
     "                      [--feed-override PCT] [--trace FILE.csv] [--json] [--[no-]progress]\n"
     "                      [--fast | --no-realtime]\n"
-    "  HOLES.csv      the process database's rows, one hole a row (README: hole tables)\n"
+    "  HOLES.csv      the process database's rows, one hole a row (docs/process_guide.md: drilling)\n"
     "  --devices      scanning head, laser source and power meter as simulated Modbus devices\n"
     "  --fast         the simulated clock, as `lasercnc run --fast` (not with --devices)\n"
     "  --clearance    approach and retract height above each hole, mm along the tool axis (5)\n"

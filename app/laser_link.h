@@ -1,5 +1,5 @@
 // The job's link to the laser source and the power meter over Modbus
-// (issue "Peripherals"; register map devices laser_source and power_meter),
+// (register map devices laser_source and power_meter),
 // as `lasercnc run --devices` (in-process simulators, drivers/devices/) or
 // `--laser ENDPOINT [--power-meter ENDPOINT]` (real devices, or
 // lasercnc-devices) use it.

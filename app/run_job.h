@@ -34,7 +34,7 @@ struct RunOptions {
   // --fast`: the same job, periods and report, as fast as the computer runs;
   // rt/rt_kernel.h RtClock).
   rt::RtClock clock = rt::RtClock::Wall;
-  // Feed override for the whole run, % (README, rt/feed_override.h): 1 ≤ pct
+  // Feed override for the whole run, % (docs/operator_guide.md, rt/feed_override.h): 1 ≤ pct
   // ≤ 100·machine.max_feed_override, else a Usage error. Set before the RT
   // thread starts, so the run begins at it with no ramp.
   double feed_override_pct = 100.0;

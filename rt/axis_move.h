@@ -1,5 +1,5 @@
-// One axis moved by the kernel itself, not by the planner (jog and homing,
-// issue "RT kernel"): a trapezoidal velocity profile in steps, produced one
+// One axis moved by the kernel itself, not by the planner (jog and homing):
+// a trapezoidal velocity profile in steps, produced one
 // period at a time on the RT thread. Whole steps go out each period; the
 // fraction is carried, so a move of D steps emits exactly D steps.
 //

@@ -1,4 +1,4 @@
-// The real-time kernel (docs/design.md §2, §5.3–5.5; issue "RT kernel"): one thread
+// The real-time kernel (docs/design.md §2, §5.3–5.5): one thread
 // that, every period, takes the operator's commands, reads the machine's
 // inputs, makes the period's motion (a position-buffer entry, or its own jog
 // or homing move), guards the limits, runs the DDA for every axis, emits the

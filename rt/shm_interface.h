@@ -1,5 +1,4 @@
-// The kernel ↔ HMI interface in POSIX shared memory (docs/design.md §2; issue "RT
-// kernel"): the one header of rt/ the HMI includes. Fixed size, no pointers
+// The kernel ↔ HMI interface in POSIX shared memory (docs/design.md §2): the one header of rt/ the HMI includes. Fixed size, no pointers
 // (offsets only), versioned; mode 0660.
 //
 //   ShmHeader   magic, version, size, owner pid, heartbeat (stale detection)

@@ -1,4 +1,4 @@
-# Who may include whom (README, "Layout"), checked over every source:
+# Who may include whom (docs/design.md §3.1), checked over every source:
 #   cmake -DSOURCE_DIR=<repo> -P tests/layout/include_rules.cmake
 # Fails with file:line and the rule for each include that breaks one.
 cmake_minimum_required(VERSION 3.20)

@@ -1,4 +1,4 @@
-// The kernel's states and commands (issue "RT kernel"): e-stop, stop, feed
+// The kernel's states and commands: e-stop, stop, feed
 // hold, the braking reserve of a streaming job, soft and hard limits, jog and
 // homing — on the real RT thread driving the simulated machine.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Watching a thread for the RT rules (issue "RT kernel"): the allocations and
+// Watching a thread for the RT rules: the allocations and
 // the locks a thread takes while it has set t_count_allocations are counted,
 // so a test can prove that the RT loop (or an RT-path call) takes none.
 //
