@@ -596,9 +596,9 @@ TEST(Lasercncd, LoadsOnlyProgramsTheSenderMayReadAndNeverEchoesOtherFiles) {
 // Every file a daemon job or MDI command reads passes the load's policy —
 // inside the program folders, readable by the sender — subroutine files as
 // much as the program: a less-privileged sender runs no file it may not
-// read, and no message shows what such a file holds. The property: random
-// subroutine names and callers from uid 65534, each refused, the machine
-// still.
+// read, and no message shows what such a file holds. The property:
+// subroutine names by MDI and by a loaded caller from uid 65534 (each name
+// by both routes, then 16 random), each refused, the machine still.
 TEST(Lasercncd, ASubroutineFileIsReadOnlyUnderTheLoadsPolicy) {
   const e2e::ShmGuard shm(shm_name());
   const fs::path dir = temp_dir() / "programs";
@@ -607,14 +607,19 @@ TEST(Lasercncd, ASubroutineFileIsReadOnlyUnderTheLoadsPolicy) {
   fs::create_directories(out);
   Daemon d(shm, {"--programs", dir.string()});
   ASSERT_TRUE(d.ready()) << d.log();
-  const auto sub_text = [](const std::string& name) {
-    return "(s3cr3t of " + name + ")\no<" + name + "> sub\nG1 X7 F600\no<" + name + "> endsub\nM2\n";
+  // each file defines its sub under every name a call may give it (a path
+  // included), so only the policy, never the name's lookup, keeps it from
+  // running
+  const auto sub_text = [](const std::vector<std::string>& names) {
+    std::string text = "(s3cr3t of " + names.front() + ")\n";
+    for (const std::string& n : names) text += "o<" + n + "> sub\nG1 X7 F600\no<" + n + "> endsub\n";
+    return text + "M2\n";
   };
-  std::ofstream(dir / "root_only.ngc") << sub_text("root_only");
+  std::ofstream(dir / "root_only.ngc") << sub_text({"root_only", "../programs/root_only"});
   fs::permissions(dir / "root_only.ngc", fs::perms::owner_read | fs::perms::owner_write);
-  std::ofstream(out / "outer.ngc") << sub_text("outer");
+  std::ofstream(out / "outer.ngc") << sub_text({"outer", (out / "outer").string(), "../outside/outer"});
   fs::create_symlink(out / "outer.ngc", dir / "link_out.ngc");
-  std::ofstream(dir / "shared.ngc") << sub_text("shared");
+  std::ofstream(dir / "shared.ngc") << sub_text({"shared"});
   auto c = client(shm);
   const auto as_nobody = [&](lcnc::shm::CommandType t, const std::string& text) {
     return wait_answer(c, send_frame(c, t, text, 0.0, 0, 0, 65534));
@@ -632,9 +637,11 @@ TEST(Lasercncd, ASubroutineFileIsReadOnlyUnderTheLoadsPolicy) {
   const std::vector<std::string> names{(out / "outer").string(), "../outside/outer", "../programs/root_only",
                                        "root_only", "link_out", "/etc/passwd"};
   std::mt19937 rng(7);
-  for (int k = 0; k < 16; ++k) {
-    const std::string& name = names[rng() % names.size()];
-    const bool mdi = rng() % 2 == 0;
+  for (std::size_t k = 0; k < 2 * names.size() + 16; ++k) {
+    // every name by either route, then 16 random ones
+    const bool every = k < 2 * names.size();
+    const std::string& name = every ? names[k / 2] : names[rng() % names.size()];
+    const bool mdi = every ? k % 2 == 0 : rng() % 2 == 0;
     SCOPED_TRACE((mdi ? "mdi o<" : "load of a call of o<") + name + ">");
     a = mdi ? as_nobody(lcnc::shm::CommandType::Mdi, "o<" + name + "> call")
             : as_nobody(lcnc::shm::CommandType::Load, caller(name).string());
