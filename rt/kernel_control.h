@@ -85,20 +85,21 @@ class KernelControl {
     return port_.last_job_completed.load(std::memory_order_relaxed);
   }
 
-  // Feed override E (1 = 100 %), from any thread, lock-free. Clamped to
-  // 0 … machine.max_feed_override (FeedOverrideRamp::clamp_target); 0 is a
-  // feed hold. The RT thread scales the periods of what is planned (at
-  // K = min(1, E / the override an entry is planned at), ramped); the
-  // planner plans for E above 1 (app/planner_feed.h). Set before start(),
-  // the run begins at it with no ramp. Default 1.
-  void set_feed_override(double k) noexcept {
-    // relaxed: a lone value, read by the RT thread's relaxed load in run();
-    // nothing else is published with it.
-    port_.target_k.store(ramp_.clamp_target(k), std::memory_order_relaxed);
+  // The operator's feed override E, a fraction (1 = 100 %), from any
+  // thread, lock-free. Clamped to 0 … machine.max_feed_override
+  // (FeedOverrideRamp::clamp_target); 0 is a feed hold. The RT thread scales
+  // the periods of what is planned (at K = min(1, E / the override an entry
+  // is planned at), ramped: rt/feed_override.h); the planner plans for E
+  // above 1 (app/planner_feed.h). Set before start(), the run begins at it
+  // with no ramp. Default 1.
+  void set_feed_override(double e) noexcept {
+    // relaxed: a lone value, read by the RT thread's relaxed load in
+    // period(); nothing else is published with it.
+    port_.override_target.store(ramp_.clamp_target(e), std::memory_order_relaxed);
   }
   // The override asked for (clamped), which the planner plans for.
   [[nodiscard]] double feed_override_target() const noexcept {
-    return port_.target_k.load(std::memory_order_relaxed);
+    return port_.override_target.load(std::memory_order_relaxed);
   }
   // The override the machine runs at now: the period scale times the
   // override the running entries are planned at.

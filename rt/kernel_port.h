@@ -76,9 +76,9 @@ struct KernelPort {
   std::atomic<std::uint64_t> log_drops{0};
   std::atomic<std::uint32_t> segment{0};  // of the last path entry taken
   std::atomic<std::uint32_t> line{0};     // its program line
-  // The operator's target K: set_feed_override()'s relaxed store pairs with
+  // The operator's override E, a fraction: set_feed_override()'s relaxed store pairs with
   // the RT's relaxed load (a lone value, nothing published with it).
-  std::atomic<double> target_k{1.0};
+  std::atomic<double> override_target{1.0};
   // Like the counters: written by the RT side only, relaxed snapshots.
   std::atomic<double> k_now{1.0};
   std::atomic<std::int64_t> machine_time_ns{0};

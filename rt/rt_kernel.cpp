@@ -1,28 +1,12 @@
+// The RT kernel's period step: commands, inputs, the period's motion, limits,
+// DDA and emit, accounting and status (steps 2–9 of rt/rt_kernel.h).
 #include "rt/rt_kernel.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <ctime>
-#include <limits>
-
-#include <pthread.h>
-#include <sched.h>
-#include <sys/mman.h>
-#include <sys/prctl.h>
 
 namespace lcnc::rt {
-namespace {
-
-constexpr std::int64_t kNsPerS = 1'000'000'000;
-
-inline std::int64_t to_ns(const timespec& t) noexcept { return t.tv_sec * kNsPerS + t.tv_nsec; }
-inline timespec to_timespec(std::int64_t ns) noexcept {
-  return timespec{static_cast<time_t>(ns / kNsPerS), static_cast<long>(ns % kNsPerS)};
-}
-
-}  // namespace
 
 RtKernel::RtKernel(const MachineConfig& machine, PositionBuffer& buffer, PulseSink& sink,
                    TraceRing* trace, const std::array<std::int64_t, kAxisCount>& start_steps,
@@ -35,7 +19,7 @@ RtKernel::RtKernel(const MachineConfig& machine, PositionBuffer& buffer, PulseSi
       trace_(trace),
       dda_(machine.dda),
       pos_steps_(start_steps) {
-  port_.target_k.store(ramp_.clamp_target(1.0), std::memory_order_relaxed);
+  port_.override_target.store(ramp_.clamp_target(1.0), std::memory_order_relaxed);
   max_pulses_ = machine.dda.max_pulses();
   comp_.reserve(kAxisCount);
   for (int i = 0; i < kAxisCount; ++i) {
@@ -68,88 +52,6 @@ void RtKernel::begin(const RtOptions& options) noexcept {
   if (!options.start_homed) port_.homed.store(0, std::memory_order_relaxed);
   // requests made before the kernel ran are not this run's
   if (estop_word_ != nullptr) estop_seen_ = estop_word_->load(std::memory_order_acquire);
-}
-
-void RtKernel::start(const RtOptions& options) {
-  warning_.clear();
-  schedule_ = RtSchedule::Normal;
-  // The thread's creation below orders begin()'s writes before its first read.
-  begin(options);
-  if (!options.try_realtime) {
-    warning_ = "real-time scheduling not requested: normal scheduling";
-  } else if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
-    warning_ = std::string("mlockall failed (") + std::strerror(errno) + "): memory may page; ";
-  }
-  thread_ = std::thread([this] { run(options_); });
-  // From here the RT thread runs: the warning string may still grow below
-  // (on this thread, before anyone reads it), nothing else is touched.
-  if (options.try_realtime) {
-    sched_param sp{};
-    sp.sched_priority = options.fifo_priority;
-    const int rc = pthread_setschedparam(thread_.native_handle(), SCHED_FIFO, &sp);
-    if (rc == 0) {
-      schedule_ = RtSchedule::Fifo;
-    } else {
-      warning_ += std::string("SCHED_FIFO not permitted (") + std::strerror(rc) +
-                  "): the RT thread runs with normal scheduling and its latency is not bounded";
-    }
-  }
-}
-
-void RtKernel::join() {
-  if (thread_.joinable()) thread_.join();
-}
-
-void RtKernel::run(const RtOptions& options) noexcept {
-  // Timer slack (50 µs by default for normal threads) would delay every
-  // wake-up; SCHED_FIFO threads have none, the fallback should not either.
-  prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
-  if (options.on_loop_enter) options.on_loop_enter();
-  timespec now{};
-  clock_gettime(CLOCK_MONOTONIC, &now);
-  // The first period starts one nominal period from now (or at the epoch
-  // given); after that each deadline is t0 + machine time so far, rounded
-  // once (no drift).
-  std::int64_t t0 = options.epoch_ns > 0 ? options.epoch_ns : to_ns(now) + period_ns_;
-  publish_status(true);
-  const bool simulated = is_simulated(options.clock);
-  const bool paced = options.clock != RtClock::Simulated;  // sleeps to its deadlines
-  while (!port_.shutdown_requested.load(std::memory_order_relaxed)) {
-    // 1. sleep to the absolute deadline
-    if (simulated) wait_simulated();
-    std::int64_t deadline = t0 + std::llround(machine_ns_);
-    // a period already due (catching up after a stall) starts at once: on a
-    // VM the sleep call alone can cost ~20 µs, which a 25 µs period cannot
-    // afford while it catches up
-    clock_gettime(CLOCK_MONOTONIC, &now);
-    if (options.clock == RtClock::SimulatedPaced && to_ns(now) > deadline) {
-      // late: the later deadlines move by as much (no catching up)
-      t0 += to_ns(now) - deadline;
-      deadline = to_ns(now);
-    }
-    const bool slept = paced && to_ns(now) < deadline;
-    if (slept) {
-      const timespec until = to_timespec(deadline);
-      while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &until, nullptr) == EINTR) {
-      }
-      clock_gettime(CLOCK_MONOTONIC, &now);
-    }
-    // 2. wake-up latency: how late the scheduler woke the thread after its
-    // deadline (as cyclictest measures it). A period that was already due
-    // — the machine catching up after a stall — is no wake-up: it is counted
-    // apart, and the stall once, in the wake-up that ended it. The simulated
-    // clock measures none (-1: not measured).
-    const std::int64_t late = simulated ? -1 : to_ns(now) - deadline;
-    if (!simulated) {
-      if (slept) {
-        latency_.add(late);
-      } else {
-        port_.catch_up.fetch_add(1, std::memory_order_relaxed);
-      }
-    }
-    if (!period(to_ns(now), late)) break;
-  }
-  end_periods();
 }
 
 void RtKernel::end_periods() noexcept {
@@ -192,12 +94,13 @@ bool RtKernel::period(std::int64_t wake_ns, std::int64_t late) noexcept {
   timespec done{};
   clock_gettime(CLOCK_MONOTONIC, &done);
   compute_.add(to_ns(done) - wake_ns);
-  if (end_seen_) {
-    end_seen_ = false;
-    port_.last_job_completed.store(true, std::memory_order_relaxed);
-    port_.jobs_ended.fetch_add(1, std::memory_order_release);
-    if (options.exit_at_end) return false;
-    set_state(MachineState::Idle);
+  if (job_end_pending_) {
+    // a one-shot run ends in the mode its last entry left (Running)
+    if (options.exit_at_end) {
+      job_ended(true);
+      return false;
+    }
+    transition(KernelEvent::JobEnd);
   }
   // a one-shot run ends once a stop or an e-stop has settled
   if (options.exit_at_end && job_aborted_ && !flushing_) return false;
@@ -205,7 +108,7 @@ bool RtKernel::period(std::int64_t wake_ns, std::int64_t late) noexcept {
   // over what the next entry is planned at, eq. (0) of feed_override.h,
   // as fast as that entry's room allows. relaxed pairs with
   // set_feed_override()'s relaxed store: only the value is read.
-  double target = port_.target_k.load(std::memory_order_relaxed);
+  double target = port_.override_target.load(std::memory_order_relaxed);
   RampRoom room;  // jogs, homing: the ramp's own rate
   if (on_path_state()) {
     if (const PeriodIncrement* next = buffer_.front()) {
@@ -219,7 +122,8 @@ bool RtKernel::period(std::int64_t wake_ns, std::int64_t late) noexcept {
   } else {
     k_plan_ = 1.0f;  // jogs and homing are not planned
   }
-  if (hold_ || stopping_ || starving_) target = 0.0;
+  if (state_now_ == MachineState::FeedHold || state_now_ == MachineState::Stopping || starving_)
+    target = 0.0;
   k_ = ramp_.step(k_, ramp_.period_scale(target, k_plan_), length_ns * 1e-9, room);
   port_.k_now.store(k_ * k_plan_, std::memory_order_relaxed);
   return true;
@@ -242,58 +146,16 @@ double RtKernel::path_target(double e, std::uint8_t feed_control) const noexcept
 void RtKernel::begin_at_override() noexcept {
   const PeriodIncrement* first = buffer_.front();
   k_plan_ = first != nullptr ? first->k_plan : 1.0f;
-  double e = port_.target_k.load(std::memory_order_relaxed);
+  double e = port_.override_target.load(std::memory_order_relaxed);
   if (first != nullptr) e = path_target(e, first->feed_control);
   k_ = e > 0.0 ? ramp_.period_scale(e, k_plan_) : 0.0;
   port_.k_now.store(k_ * k_plan_, std::memory_order_relaxed);
-}
-
-std::size_t RtKernel::refill_level() const noexcept {
-  return std::min(kPositionBufferCapacity - 1, 2 * braking_reserve(1.0));
-}
-
-void RtKernel::wait_simulated() const noexcept {
-  const std::size_t enough = refill_level();
-  // Room a period may need: one trace record; a few log records (a state
-  // change, an underrun, a fault) — kLogRoom is far more than one period logs.
-  constexpr std::size_t kLogRoom = 16;
-  const auto behind = [&] {
-    if (port_.streaming.load(std::memory_order_acquire) && buffer_.size() < enough) return true;
-    if (trace_ != nullptr && trace_->size() >= TraceRing::kCapacity) return true;
-    return log_ != nullptr && log_->size() + kLogRoom > RtLogRing::kCapacity;
-  };
-  // A planner that keeps up refills within a few yields; one that needs
-  // longer (a dense program, a loaded computer) is waited for with short
-  // clock sleeps, so the simulated machine never holds a core spinning while
-  // the threads it waits for want it.
-  constexpr int kYields = 64;
-  constexpr timespec kNap{0, 50'000};
-  for (int n = 0; !port_.shutdown_requested.load(std::memory_order_relaxed) && behind(); ++n) {
-    if (n < kYields) {
-      sched_yield();
-    } else {
-      clock_nanosleep(CLOCK_MONOTONIC, 0, &kNap, nullptr);
-    }
-  }
 }
 
 void RtKernel::log(RtLogCode code, std::int64_t value, int axis, std::uint32_t line) noexcept {
   if (log_ == nullptr) return;
   if (!log_->try_push(RtLogRecord{period_, code, static_cast<std::int8_t>(axis), line, value}))
     port_.log_drops.fetch_add(1, std::memory_order_relaxed);
-}
-
-void RtKernel::set_state(MachineState s) noexcept {
-  if (s == state_now_) return;
-  if (s != MachineState::FeedHold && program_pause_) {  // resumed, stopped or e-stopped
-    program_pause_ = false;
-    port_.program_pause.store(false, std::memory_order_relaxed);
-  }
-  if (s != MachineState::FeedHold) waiting_ = false;  // an M66 ended: the input, a stop
-  state_now_ = s;
-  port_.state.store(s, std::memory_order_release);
-  log(RtLogCode::StateChange, static_cast<std::int64_t>(s));
-  publish_status(true);
 }
 
 void RtKernel::take_commands() noexcept {
@@ -318,79 +180,57 @@ void RtKernel::take_commands() noexcept {
   }
   // release: what the commands changed (state, status) is seen with the count
   if (taken != 0) port_.commands_taken.fetch_add(taken, std::memory_order_release);
-  if (reset_asked_ && !flushing_ && state_now_ == MachineState::EStop) {
-    reset_asked_ = false;
-    port_.fault_code.store(0, std::memory_order_release);
-    set_state(MachineState::Idle);
-  }
+  // a Reset leaves the e-stop once the aborted job's entries are flushed
+  if (reset_pending_ && transition(KernelEvent::Reset)) reset_pending_ = false;
 }
 
 bool RtKernel::take_command(const RtCommand& c, MachineState s) noexcept {
-  // a motion command needs Idle, at the period's start and still now
-  const bool may_move = s == MachineState::Idle && state_now_ != MachineState::EStop && !flushing_;
+  // Every command but the e-stop and the stop needs the mode the period
+  // began in: none acts on a change made earlier in the same period.
+  const bool unchanged = s == state_now_;
   switch (c.type) {
     case RtCommandType::EStop:
       enter_estop(ErrorCode::RtEstop, -1, line_);
       return true;
-    case RtCommandType::Reset:
-      if (s == MachineState::EStop) reset_asked_ = true;
+    case RtCommandType::Stop:
+      begin_stop(ErrorCode::Ok, -1, 0);  // the operator's: no fault
       return true;
-    case RtCommandType::StartJob:
-      return may_move && start_job();
+    case RtCommandType::Reset:
+      if (unchanged && s == MachineState::EStop) reset_pending_ = true;
+      return true;
     case RtCommandType::Hold:
-      if (s == MachineState::Running) {
-        hold_ = true;
-        set_state(MachineState::FeedHold);
-      }
+      if (unchanged) transition(KernelEvent::Hold);
       return true;
     case RtCommandType::Resume:
-      if (s == MachineState::FeedHold && !waiting_) {  // an M66 waits for its input
-        hold_ = false;
-        set_state(MachineState::Running);  // (ends a program pause)
-      }
+      if (unchanged) transition(KernelEvent::Resume);  // an M66 waits for its input
       return true;
-    case RtCommandType::Stop:
-      if (on_path_state()) {
-        begin_stop(ErrorCode::Ok, -1, 0);  // the operator's: no fault
-      } else if (s == MachineState::Jog || s == MachineState::Homing) {
-        mover_.stop();
-      }
-      return true;
+    case RtCommandType::StartJob:
+      return unchanged && transition(KernelEvent::Start);
     case RtCommandType::Jog:
-      return may_move && start_jog(c.axis, c.value);
+      return unchanged && start_jog(c.axis, c.value);
     case RtCommandType::Home:
-      return may_move && start_home(c.axis);
+      return unchanged && start_home(c.axis);
   }
   return true;
 }
 
-bool RtKernel::start_job() noexcept {
-  port_.fault_code.store(0, std::memory_order_release);
-  hold_ = stopping_ = starving_ = job_aborted_ = false;
-  end_seen_ = false;
-  // a job starts at rest: at the operator's override, no ramp
-  begin_at_override();
-  set_state(MachineState::Running);
-  return true;
-}
-
 bool RtKernel::start_jog(int axis, double distance) noexcept {
-  if (axis < 0 || axis >= kAxisCount || !mover_.limits(axis).present) return false;
+  if (!takes(KernelEvent::Jog) || axis < 0 || axis >= kAxisCount || !mover_.limits(axis).present)
+    return false;
   const std::int64_t target = pos_steps_[axis] + std::llround(distance / units_per_step_[axis]);
   const bool homed = ((port_.homed.load(std::memory_order_relaxed) >> axis) & 1u) != 0;
   const std::int64_t short_by = mover_.start_jog(axis, pos_steps_[axis], target, homed, period_s_);
   if (short_by != 0) log(RtLogCode::JogShort, short_by, axis);
-  set_state(MachineState::Jog);
-  return true;
+  return transition(KernelEvent::Jog);
 }
 
 bool RtKernel::start_home(int axis) noexcept {
-  if (axis < 0 || axis >= kAxisCount || !mover_.limits(axis).present || !mover_.can_home(axis))
+  if (!takes(KernelEvent::Home) || axis < 0 || axis >= kAxisCount || !mover_.limits(axis).present ||
+      !mover_.can_home(axis))
     return false;
   port_.homed.fetch_and(~(1u << axis), std::memory_order_relaxed);
   mover_.start_home(axis, inputs_.home[axis], period_s_);
-  set_state(MachineState::Homing);
-  return true;
+  return transition(KernelEvent::Home);
 }
 
 void RtKernel::take_inputs() noexcept {
@@ -402,68 +242,24 @@ void RtKernel::take_inputs() noexcept {
     enter_estop(ErrorCode::RtAmpFault, -1, line_);
   } else if (inputs_.following_error_axis >= 0) {
     enter_estop(ErrorCode::RtFollowingError, inputs_.following_error_axis, line_);
-  } else if (waiting_) {
-    check_wait();
-  } else if (program_pause_ && pause_left_ > 0 && --pause_left_ == 0 &&
-             state_now_ == MachineState::FeedHold) {
+  } else if (wait_.active()) {
+    // M66: the input came (the job goes on), or the time is up (a stop, at
+    // rest already, with the fault)
+    switch (wait_.check(inputs_.digital_in)) {
+      case InputWait::Outcome::Waiting:
+        break;
+      case InputWait::Outcome::Met:
+        log(RtLogCode::InputWaitEnd, static_cast<std::int64_t>(wait_.periods()), -1, line_);
+        transition(KernelEvent::InputCame);
+        break;
+      case InputWait::Outcome::TimedOut:
+        begin_stop(ErrorCode::RtInputTimeout, -1, line_);
+        break;
+    }
+  } else if (hold_cause_ == HoldCause::ProgramPause && pause_left_ > 0 && --pause_left_ == 0) {
     // an unattended pause's time is up: as a resume
-    hold_ = false;
-    set_state(MachineState::Running);
+    transition(KernelEvent::PauseUp);
   }
-}
-
-// M66: the input came (the job goes on), or the time is up (a stop, at rest
-// already, with the fault).
-void RtKernel::check_wait() noexcept {
-  const bool level = ((inputs_.digital_in >> wait_input_) & 1u) != 0;
-  bool met = false;
-  switch (wait_mode_) {
-    case 1: met = !wait_prev_ && level; break;
-    case 2: met = wait_prev_ && !level; break;
-    case 3: met = level; break;
-    default: met = !level; break;
-  }
-  wait_prev_ = level;
-  ++wait_periods_;
-  if (met) {
-    waiting_ = hold_ = false;
-    log(RtLogCode::InputWaitEnd, static_cast<std::int64_t>(wait_periods_), -1, line_);
-    set_state(MachineState::Running);
-  } else if (--wait_left_ == 0) {
-    waiting_ = false;
-    begin_stop(ErrorCode::RtInputTimeout, -1, line_);
-  }
-}
-
-void RtKernel::set_fault(ErrorCode code, int axis, std::uint32_t line) noexcept {
-  // the first fault stands until Reset or StartJob
-  if (port_.fault_code.load(std::memory_order_relaxed) != 0) return;
-  port_.fault_axis.store(static_cast<std::int8_t>(axis), std::memory_order_relaxed);
-  port_.fault_line.store(line, std::memory_order_relaxed);
-  port_.fault_code.store(static_cast<std::uint16_t>(code), std::memory_order_release);
-  log(RtLogCode::Fault, static_cast<std::int64_t>(code), axis, line);
-}
-
-void RtKernel::enter_estop(ErrorCode code, int axis, std::uint32_t line) noexcept {
-  // The job's remaining entries are discarded; nothing moves from this
-  // period on.
-  set_fault(code, axis, line);
-  if (on_path_state() || stopping_) {
-    flushing_ = true;
-    job_aborted_ = true;
-    port_.last_job_completed.store(false, std::memory_order_relaxed);
-    port_.jobs_ended.fetch_add(1, std::memory_order_release);
-  }
-  hold_ = stopping_ = starving_ = false;
-  mover_.cancel();
-  reset_asked_ = false;
-  set_state(MachineState::EStop);
-}
-
-void RtKernel::begin_stop(ErrorCode code, int axis, std::uint32_t line) noexcept {
-  if (code != ErrorCode::Ok) set_fault(code, axis, line);
-  stopping_ = true;
-  set_state(MachineState::Stopping);
 }
 
 void RtKernel::path_motion(Motion& m) noexcept {
@@ -471,7 +267,8 @@ void RtKernel::path_motion(Motion& m) noexcept {
   // the buffer's braking reserve while a producer streams
   const bool streaming = port_.streaming.load(std::memory_order_acquire);
   const std::size_t fill = buffer_.size();
-  if (!stopping_ && streaming && !starving_ && fill < braking_reserve(k_)) {
+  const bool stopping = state_now_ == MachineState::Stopping;
+  if (!stopping && streaming && !starving_ && fill < braking_reserve(k_)) {
     starving_ = true;
     port_.starvations.fetch_add(1, std::memory_order_relaxed);
     log(RtLogCode::StarveBegin, static_cast<std::int64_t>(fill), -1, line_);
@@ -484,47 +281,15 @@ void RtKernel::path_motion(Motion& m) noexcept {
   m.held = ramp_.holds(k_);
   if (m.held) {
     port_.held_periods.fetch_add(1, std::memory_order_relaxed);
-    if (stopping_) {
-      // at rest on the path: discard the rest of the job
-      stopping_ = false;
-      flushing_ = true;
-      job_aborted_ = true;
-      port_.last_job_completed.store(false, std::memory_order_relaxed);
-      port_.jobs_ended.fetch_add(1, std::memory_order_release);
-      set_state(MachineState::Idle);
-    }
+    // at rest on the path while stopping: discard the rest of the job
+    transition(KernelEvent::AtRest);
   } else if (buffer_.try_pop(m.inc)) {
     port_.motion_periods.fetch_add(1, std::memory_order_relaxed);
     port_.segment.store(m.inc.segment, std::memory_order_relaxed);
     port_.line.store(m.inc.line, std::memory_order_relaxed);
     line_ = m.inc.line;
-    end_seen_ = m.inc.end_of_program;
-    // M0/M1/M60: the job is at rest here (a dwell's entry): held at once —
-    // K to 0, not ramped, so the next entry's motion never starts — until
-    // a resume
-    if (m.inc.pause && !stopping_) {
-      hold_ = program_pause_ = true;
-      pause_left_ = options_.program_pause_periods;
-      port_.program_pause.store(true, std::memory_order_relaxed);
-      port_.program_pauses.fetch_add(1, std::memory_order_relaxed);
-      k_ = 0.0;
-      set_state(MachineState::FeedHold);
-      log(RtLogCode::ProgramPause, 0, -1, line_);
-    }
-    // M66: the same hold, until the input does as asked or the time is up
-    if (m.inc.wait_input >= 0 && !stopping_) {
-      hold_ = waiting_ = true;
-      wait_input_ = m.inc.wait_input;
-      wait_mode_ = m.inc.wait_mode;
-      wait_prev_ = ((inputs_.digital_in >> wait_input_) & 1u) != 0;
-      const double periods = std::ceil(static_cast<double>(m.inc.wait_timeout_s) * 1e9 /
-                                       static_cast<double>(period_ns_));
-      wait_left_ = periods < 1.0 ? 1 : static_cast<std::uint64_t>(periods);
-      wait_periods_ = 0;
-      k_ = 0.0;
-      set_state(MachineState::FeedHold);
-      log(RtLogCode::InputWait, wait_input_, wait_mode_, line_);
-    }
+    job_end_pending_ = m.inc.end_of_program;
+    take_entry_holds(m.inc);
   } else {
     m.underrun = true;
     port_.underruns.fetch_add(1, std::memory_order_relaxed);
@@ -544,6 +309,17 @@ void RtKernel::path_motion(Motion& m) noexcept {
   was_held_ = m.held;
 }
 
+void RtKernel::take_entry_holds(const PeriodIncrement& inc) noexcept {
+  // M0/M1/M60: the job is at rest here (a dwell's entry): held until a resume
+  if (inc.pause && transition(KernelEvent::ProgramPause)) log(RtLogCode::ProgramPause, 0, -1, line_);
+  // M66: the same hold, until the input does as asked or the time is up
+  if (inc.wait_input >= 0 && transition(KernelEvent::InputWait)) {
+    wait_.arm(inc.wait_input, inc.wait_mode, static_cast<double>(inc.wait_timeout_s), period_ns_,
+              inputs_.digital_in);
+    log(RtLogCode::InputWait, wait_.input(), wait_.mode(), line_);
+  }
+}
+
 void RtKernel::axis_motion(Motion& m) noexcept {
   const int a = mover_.axis();
   if (a < 0) return;
@@ -561,10 +337,10 @@ void RtKernel::axis_motion(Motion& m) noexcept {
       comp_now_[a] = comp_[a].correction_steps(pos_steps_[a]);  // a coordinate, not a move
       port_.homed.fetch_or(1u << a, std::memory_order_relaxed);
       log(RtLogCode::Homed, mover_.limits(a).home_steps, a);
-      set_state(MachineState::Idle);
+      transition(KernelEvent::MoveDone);
       break;
     case AxisMover::Event::Done:
-      set_state(MachineState::Idle);
+      transition(KernelEvent::MoveDone);
       break;
   }
 }
@@ -683,13 +459,13 @@ void RtKernel::publish_status(bool force) noexcept {
     st.pos[i] = static_cast<double>(pos_steps_[i]) * units_per_step_[i];
   }
   st.feed_override = k_ * k_plan_;
-  st.feed_override_target = port_.target_k.load(std::memory_order_relaxed);
+  st.feed_override_target = port_.override_target.load(std::memory_order_relaxed);
   st.machine_time_s = static_cast<double>(port_.machine_time_ns.load(std::memory_order_relaxed)) * 1e-9;
   st.buffer_fill = static_cast<std::uint32_t>(buffer_.size());
   st.power_pct = power_now_;
   st.outputs = frame_.outputs;
-  st.program_pause = program_pause_;
-  st.input_wait = waiting_ ? wait_input_ : std::int8_t{-1};
+  st.program_pause = port_.program_pause.load(std::memory_order_relaxed);
+  st.input_wait = wait_.active() ? wait_.input() : std::int8_t{-1};
   status_.publish(st, latency_, period_, force);
 }
 

@@ -36,6 +36,35 @@
 // other state). Deadlines follow machine time: deadline(i) = t0 + Σ lengths.
 // The RT path never allocates, locks, throws, logs or makes a syscall but the
 // clock sleep (clock_gettime goes through the vDSO).
+//
+// Modes. The kernel is in one MachineState at a time, and a FeedHold has one
+// cause (HoldCause). Every change goes through RtKernel::transition(), which
+// refuses an event its mode does not take (rt/rt_kernel_modes.cpp):
+//
+//   event         from                              to
+//   Start         Idle, no flush pending            Running    fault cleared; K at the override
+//   Jog, Home     Idle, no flush pending            Jog, Homing
+//   Hold          Running                           FeedHold(Operator)
+//   ProgramPause  Running, FeedHold                 FeedHold(ProgramPause)  K = 0 at once
+//   InputWait     Running, FeedHold                 FeedHold(InputWait)     K = 0 at once
+//   Resume        FeedHold(Operator, ProgramPause)  Running
+//   InputCame     FeedHold(InputWait)               Running
+//   PauseUp       FeedHold(ProgramPause)            Running    (an unattended pause's time)
+//   Stop          Running, FeedHold                 Stopping   ramps K to 0 along the path
+//   Stop          Jog, Homing                       (same)     the axis move decelerates
+//   AtRest        Stopping, K at 0                  Idle       job aborted, its entries flushed
+//   JobEnd        Running, FeedHold, Stopping       Idle       job completed
+//   MoveDone      Jog, Homing                       Idle
+//   EStop         any                               EStop      on the path: job aborted, flushed
+//   Reset         EStop, no flush pending           Idle       fault cleared
+//
+// Beside the mode, two conditions of the path: starving (the buffer below
+// its braking reserve while a producer streams: K ramps to 0 until it is
+// refilled) and flushing (an aborted job's entries being discarded, a
+// bounded number a period, until the producer has ended its stream).
+// Commands from the control thread are taken at a period's start in the
+// mode it began in; one that finds the mode already changed in the same
+// period (by an e-stop or another command) is not taken.
 #pragma once
 
 #include <array>
@@ -55,6 +84,7 @@
 #include "rt/kernel_control.h"
 #include "rt/kernel_port.h"
 #include "rt/axis_mover.h"
+#include "rt/input_wait.h"
 #include "rt/rt_clock.h"
 #include "rt/latency_histogram.h"
 #include "rt/pitch_compensation.h"
@@ -87,7 +117,15 @@ using TraceRing = SpscRing<TraceRecord, kTraceRingCapacity>;
 
 enum class RtSchedule : std::uint8_t { Fifo, Normal };
 
+// Why a FeedHold holds: the operator's hold, the program's pause (M0, M1,
+// M60) or its input wait (M66).
+enum class HoldCause : std::uint8_t { None, Operator, ProgramPause, InputWait };
 
+// What changes the kernel's mode (the table above).
+enum class KernelEvent : std::uint8_t {
+  Start, Jog, Home, Hold, ProgramPause, InputWait, Resume, InputCame, PauseUp,
+  Stop, AtRest, JobEnd, MoveDone, EStop, Reset,
+};
 
 struct RtOptions {
   bool try_realtime = true;  // SCHED_FIFO + mlockall when permitted
@@ -185,9 +223,9 @@ class RtKernel : private OwnKernelPort, public KernelControl {
     bool nominal = true;    // the period lasts T, not T/K
   };
 
+  // The thread driver (rt/rt_kernel_thread.cpp): the clock loop around
+  // period().
   void run(const RtOptions& options) noexcept;
-  void log(RtLogCode code, std::int64_t value, int axis = -1, std::uint32_t line = 0) noexcept;
-  void set_state(MachineState s) noexcept;
   // The fill at which a starving kernel runs on: twice the braking reserve
   // at K = 1 (or the whole buffer).
   [[nodiscard]] std::size_t refill_level() const noexcept;
@@ -195,34 +233,45 @@ class RtKernel : private OwnKernelPort, public KernelControl {
   // refill_level() (or ended its stream) and the trace and log rings have
   // room for a period's records.
   void wait_simulated() const noexcept;
-  void take_commands() noexcept;
-  // One command of the control thread's, `s` the state the period began
-  // in; false: refused.
-  [[nodiscard]] bool take_command(const RtCommand& c, MachineState s) noexcept;
-  // The motion commands, from Idle.
-  [[nodiscard]] bool start_job() noexcept;
-  [[nodiscard]] bool start_jog(int axis, double distance) noexcept;
-  [[nodiscard]] bool start_home(int axis) noexcept;
-  void take_inputs() noexcept;
+
+  // The modes (rt/rt_kernel_modes.cpp, the table atop this file).
+  [[nodiscard]] bool takes(KernelEvent e) const noexcept;
+  // Makes the transition if the mode takes the event; false if not.
+  bool transition(KernelEvent e) noexcept;
+  void enter(MachineState s) noexcept;
+  // The job left the path: ended (completed) or aborted (flushed).
+  void job_ended(bool completed) noexcept;
   void set_fault(ErrorCode code, int axis, std::uint32_t line) noexcept;
   void enter_estop(ErrorCode code, int axis, std::uint32_t line) noexcept;
   // A controlled stop along the path; code Ok: the operator's, no fault.
   void begin_stop(ErrorCode code, int axis, std::uint32_t line) noexcept;
+  [[nodiscard]] bool on_path_state() const noexcept {
+    return state_now_ == MachineState::Running || state_now_ == MachineState::FeedHold ||
+           state_now_ == MachineState::Stopping;
+  }
+
+  // The period step (rt/rt_kernel.cpp).
+  void log(RtLogCode code, std::int64_t value, int axis = -1, std::uint32_t line = 0) noexcept;
+  void take_commands() noexcept;
+  // One command of the control thread's, `s` the mode the period began in;
+  // false: refused.
+  [[nodiscard]] bool take_command(const RtCommand& c, MachineState s) noexcept;
+  [[nodiscard]] bool start_jog(int axis, double distance) noexcept;
+  [[nodiscard]] bool start_home(int axis) noexcept;
+  void take_inputs() noexcept;
   // K for a start from rest: the operator's override over what the first
   // queued entry is planned at, no ramp.
   void begin_at_override() noexcept;
   [[nodiscard]] double path_target(double e, std::uint8_t feed_control) const noexcept;
   void path_motion(Motion& m) noexcept;
+  // An entry's M0/M1/M60 or M66: the job holds here.
+  void take_entry_holds(const PeriodIncrement& inc) noexcept;
   void axis_motion(Motion& m) noexcept;
   void flush_some() noexcept;
   void guard_limits(Motion& m) noexcept;
   // Steps 7–8 for a period of length_ns ending at machine time end_ns.
   void cycle(const Motion& m, double length_ns, std::int64_t end_ns) noexcept;
   void publish_status(bool force) noexcept;
-  [[nodiscard]] bool on_path_state() const noexcept {
-    return state_now_ == MachineState::Running || state_now_ == MachineState::FeedHold ||
-           state_now_ == MachineState::Stopping;
-  }
 
   std::uint32_t period_ns_;
   AxisMover mover_;  // jog and homing; and the axes' soft limits
@@ -232,25 +281,16 @@ class RtKernel : private OwnKernelPort, public KernelControl {
   const std::atomic<std::uint32_t>* estop_word_ = nullptr;
   std::uint32_t estop_seen_ = 0;  // the word's count at start or at the last e-stop taken
   RtOptions options_;
-  // RT thread's state (the atomics below publish it).
+  // The mode (the atomics of the port publish it).
   MachineState state_now_ = MachineState::Idle;
-  bool hold_ = false;         // operator's feed hold (or the program's pause)
-  bool program_pause_ = false;  // held by M0/M1/M60 until a resume
+  HoldCause hold_cause_ = HoldCause::None;  // in FeedHold
   std::uint64_t pause_left_ = 0;  // periods an unattended program pause still holds; 0: until a resume
-  // M66: held until input wait_input_ does as wait_mode_ asks (1 rise,
-  // 2 fall, 3 high, 4 low), for at most wait_left_ more periods
-  bool waiting_ = false;
-  std::int8_t wait_input_ = -1;
-  std::uint8_t wait_mode_ = 0;
-  bool wait_prev_ = false;  // the input's level the period before
-  std::uint64_t wait_left_ = 0;
-  std::uint64_t wait_periods_ = 0;
-  void check_wait() noexcept;
-  bool stopping_ = false;     // a stop (operator's or a fault's) ramps down
-  bool starving_ = false;     // below the braking reserve while streaming
-  bool flushing_ = false;     // discarding an aborted job's entries
-  bool reset_asked_ = false;  // EStop → Idle once the flush is done
-  bool job_aborted_ = false;  // the job ended by a stop or an e-stop
+  InputWait wait_;                // M66, in FeedHold(InputWait)
+  bool starving_ = false;         // below the braking reserve while streaming
+  bool flushing_ = false;         // discarding an aborted job's entries
+  bool reset_pending_ = false;    // a Reset taken in EStop, done once the flush is
+  bool job_aborted_ = false;      // the last job ended by a stop or an e-stop
+  bool job_end_pending_ = false;  // the job's end entry ran this period
   std::uint32_t line_ = 0;        // line of the last entry executed
   std::uint64_t period_ = 0;      // index of the period being executed
   MachineInputs inputs_{};
@@ -267,20 +307,19 @@ class RtKernel : private OwnKernelPort, public KernelControl {
   PulseSink& sink_;
   TraceRing* trace_;
   RtLogRing* log_ = nullptr;
+  // edges worth a log line
   std::uint64_t underrun_since_ = 0;  // first period of the running underrun, 0 if none
-  bool was_held_ = false;
-  bool late_streak_ = false;  // the last period woke after its end
+  bool was_held_ = false;             // the last period was held (K < K_min)
+  bool late_streak_ = false;          // the last period woke after its end
   Dda dda_;
   PulseFrame frame_{};
   LatencyHistogram latency_{};
   LatencyHistogram compute_{10};
   std::array<std::int64_t, kAxisCount> pos_steps_{};
-  bool end_seen_ = false;
   double k_ = 1.0;                  // RT thread's period scale K ≤ 1 (feed_override.h)
   float k_plan_ = 1.0f;             // the override the entries now running are planned at
-  double machine_ns_ = 0.0;  // Σ lengths of the periods executed
+  double machine_ns_ = 0.0;         // Σ lengths of the periods executed
   double laser_on_exact_ns_ = 0.0;  // RT thread's laser-on time, unrounded
-
 
   RtSchedule schedule_ = RtSchedule::Normal;
   std::string warning_;

@@ -6,26 +6,13 @@
 
 #include <gtest/gtest.h>
 
+#include "support/rt_rig.h"
+
 namespace lcnc::rt {
 namespace {
 
-// X of 0–100 mm at 1 µm a step; homing toward a switch at the minimum.
-MachineConfig machine() {
-  MachineConfig m;
-  m.period_ns = 75'000;
-  AxisConfig& a = m.axes[0];
-  a.present = true;
-  a.axis = Axis::X;
-  a.min = 0;
-  a.max = 100;
-  a.max_velocity = 500;
-  a.max_acceleration = 50000;
-  a.steps_per_unit = 1000;
-  a.home_position = 0.0;
-  a.home_search_velocity = -50.0;
-  a.home_latch_velocity = 5.0;
-  return m;
-}
+// X (Y, Z) of 0–100 mm at 1 µm a step; homing toward a switch at the minimum.
+MachineConfig machine() { return test::rt_machine(); }
 
 constexpr double kT = 75e-6;
 

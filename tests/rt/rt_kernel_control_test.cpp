@@ -15,140 +15,24 @@
 
 #include "drivers/sim_machine.h"
 #include "rt/rt_kernel.h"
+#include "support/rt_rig.h"
 
 namespace lcnc::rt {
 namespace {
 
 using namespace std::chrono_literals;
 
-// X, Y, Z of 0–100 mm, 1 µm steps; amax/vmax = 100 /s: the override ramps
-// at ρ_max = 50 /s (100 % ↔ hold in 20 ms).
-MachineConfig machine() {
-  MachineConfig m;
-  m.period_ns = 75'000;
-  m.max_feed_override = 1.5;
-  m.dda = DdaConfig{8, 300};
-  for (int i = 0; i < 3; ++i) {
-    AxisConfig& a = m.axes[i];
-    a.present = true;
-    a.axis = static_cast<Axis>(i);
-    a.min = 0;
-    a.max = 100;
-    a.max_velocity = 500;
-    a.max_acceleration = 50000;
-    a.steps_per_unit = 1000;
-    a.home_position = 0.0;
-    a.home_search_velocity = -50.0;
-    a.home_latch_velocity = 5.0;
-  }
-  return m;
-}
+using test::rt_machine;
+using test::step_x;
+using test::wait_for;
 
-bool wait_for(const std::function<bool()>& pred, std::chrono::milliseconds timeout = 5000ms) {
-  const auto until = std::chrono::steady_clock::now() + timeout;
-  while (!pred()) {
-    if (std::chrono::steady_clock::now() > until) return false;
-    std::this_thread::sleep_for(200us);
-  }
-  return true;
-}
-
-PeriodIncrement step_x(std::int32_t n, std::uint32_t line = 1, float power = 50.0f) {
-  PeriodIncrement inc;
-  inc.steps[0] = n;
-  inc.line = line;
-  inc.power_pct = power;
-  return inc;
-}
-
-struct Rig {
-  MachineConfig m;
-  std::array<std::int64_t, kAxisCount> start{};
-  std::unique_ptr<PositionBuffer> buffer = std::make_unique<PositionBuffer>();
-  std::unique_ptr<TraceRing> trace = std::make_unique<TraceRing>();
-  std::unique_ptr<RtLogRing> log = std::make_unique<RtLogRing>();
-  std::unique_ptr<drivers::SimMachine> sim;
-  std::unique_ptr<RtKernel> kernel;
-  std::vector<TraceRecord> records;
-  std::mutex drained_mutex;
-  std::vector<TraceRecord> drained_trace;
-  std::vector<RtLogRecord> drained_log;
-  std::atomic<bool> stop_draining{false};
-  std::thread drainer;
-
-  // raw: where the simulated machine's switches sit off the positions the
-  // kernel believes (steps, per axis): a machine just switched on.
-  explicit Rig(std::array<std::int64_t, kAxisCount> at = {}, MachineConfig config = machine(),
+// The rig with its rings read in the background, as a daemon reads them.
+struct Rig : test::KernelRig {
+  explicit Rig(std::array<std::int64_t, kAxisCount> at = {}, MachineConfig config = rt_machine(),
                std::array<std::int64_t, kAxisCount> raw = {},
                std::array<PitchTable, kAxisCount> pitch_error = {})
-      : m(std::move(config)), start(at) {
-    sim = std::make_unique<drivers::SimMachine>(start, drivers::wired_switches(m, raw), pitch_error);
-    kernel = std::make_unique<RtKernel>(m, *buffer, *sim, trace.get(), start);
-    kernel->set_log(log.get());
-    // The trace and log readers, as a daemon has them: the rings never fill
-    // however long a loaded computer keeps the test from reading them.
-    drainer = std::thread([this] {
-      while (!stop_draining.load()) {
-        {
-          std::lock_guard lock(drained_mutex);
-          pull();
-        }
-        std::this_thread::sleep_for(1ms);
-      }
-    });
-  }
-  ~Rig() {
-    stop_draining = true;
-    drainer.join();
-  }
-  Rig(const Rig&) = delete;
-  Rig& operator=(const Rig&) = delete;
-  // The daemon's way: the thread stays, Idle between jobs.
-  void start_idle() {
-    RtOptions o;
-    o.try_realtime = false;
-    o.exit_at_end = false;
-    o.start_running = false;
-    kernel->start(o);
-  }
-  void send(RtCommandType t, int axis = 0, double value = 0.0) {
-    ASSERT_TRUE(kernel->command(RtCommand{t, static_cast<std::int8_t>(axis), value}));
-  }
-  // The rings' records so far into `records` and the log kept (the drainer
-  // and the test take turns under drained_mutex: one consumer at a time).
-  void pull() {
-    TraceRecord t;
-    while (trace->try_pop(t)) drained_trace.push_back(t);
-    RtLogRecord l;
-    while (log->try_pop(l)) drained_log.push_back(l);
-  }
-  void drain() {
-    std::lock_guard lock(drained_mutex);
-    pull();
-    records.insert(records.end(), drained_trace.begin(), drained_trace.end());
-    drained_trace.clear();
-  }
-  std::vector<RtLogRecord> logs() {
-    std::lock_guard lock(drained_mutex);
-    pull();
-    std::vector<RtLogRecord> out;
-    out.swap(drained_log);
-    return out;
-  }
-  // Length of the i-th traced period, s.
-  double length(std::size_t i) const {
-    const TraceRecord& r = records[i];
-    return r.held ? m.period_s() : m.period_s() / r.feed_override;
-  }
-  // Speed of axis 0 in each period of the trace, steps per second.
-  std::vector<double> speeds() const {
-    std::vector<double> v;
-    std::int64_t prev = start[0];
-    for (std::size_t i = 0; i < records.size(); ++i) {
-      v.push_back(static_cast<double>(records[i].pos_steps[0] - prev) / length(i));
-      prev = records[i].pos_steps[0];
-    }
-    return v;
+      : KernelRig(at, std::move(config), raw, pitch_error) {
+    read_in_background();
   }
 };
 
@@ -659,6 +543,7 @@ TEST(RtKernelControl, JogMovesExactlyAndStopsShortAtTheSoftLimit) {
   EXPECT_EQ(r.kernel->position_steps(0), 62'345);
   EXPECT_EQ(r.sim->position_steps(0), 62'345);
   r.send(RtCommandType::Jog, 1, -5.0);  // Y at 0: the soft limit — no move
+  ASSERT_TRUE(wait_for([&] { return r.kernel->commands_taken() && r.kernel->state() == MachineState::Idle; }));
   r.send(RtCommandType::Jog, 0, 1000.0);  // far past X max
   ASSERT_TRUE(wait_for([&] { return r.kernel->position_steps(0) == 100'000; }));
   ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::Idle; }));
@@ -704,19 +589,11 @@ TEST(RtKernelControl, CommandsOutsideTheirStatesAreRefused) {
 // moves the machine after an e-stop among them: a jog after an e-stop once
 // read "Idle" and moved the machine out of its e-stop.
 TEST(RtKernelControl, NoCommandOfThePeriodMovesTheMachineAfterAnEStop) {
-  const auto now_ns = [] {
-    return std::chrono::duration_cast<std::chrono::nanoseconds>(
-               std::chrono::steady_clock::now().time_since_epoch()).count();
-  };
   Rig r;
-  RtOptions o;
-  o.try_realtime = false;
-  o.exit_at_end = false;
-  o.start_running = false;
-  r.kernel->begin(o);
+  r.begin_stepped();
   r.send(RtCommandType::EStop);
   r.send(RtCommandType::Jog, 0, 1.0);
-  for (int i = 0; i < 200; ++i) ASSERT_TRUE(r.kernel->period(now_ns(), -1));
+  r.step(200);
   EXPECT_EQ(r.kernel->state(), MachineState::EStop);
   EXPECT_EQ(r.kernel->position_steps(0), 0);
   int refused = 0;
@@ -725,23 +602,81 @@ TEST(RtKernelControl, NoCommandOfThePeriodMovesTheMachineAfterAnEStop) {
 
   // nor a start or a homing
   r.send(RtCommandType::Reset);
-  ASSERT_TRUE(r.kernel->period(now_ns(), -1));
+  r.step();
   ASSERT_EQ(r.kernel->state(), MachineState::Idle);
   for (int i = 0; i < 100; ++i) ASSERT_TRUE(r.buffer->try_push(step_x(5)));
   r.send(RtCommandType::EStop);
   r.send(RtCommandType::StartJob);
   r.send(RtCommandType::Home, 1);
-  for (int i = 0; i < 200; ++i) ASSERT_TRUE(r.kernel->period(now_ns(), -1));
+  r.step(200);
   EXPECT_EQ(r.kernel->state(), MachineState::EStop);
   EXPECT_EQ(r.kernel->position_steps(0), 0);
   EXPECT_EQ(r.kernel->position_steps(1), 0);
   r.kernel->end_periods();
 }
 
+// Every command but the e-stop and the stop needs the mode its period began
+// in: a jog taken in the period a job started in once put the machine into
+// Jog with the job's entries queued, and a hold and a resume in one period
+// undid each other.
+TEST(RtKernelControl, NoCommandActsOnAModeChangedEarlierInItsPeriod) {
+  Rig r;
+  r.begin_stepped();
+  for (int i = 0; i < 4000; ++i) ASSERT_TRUE(r.buffer->try_push(step_x(5)));
+  r.send(RtCommandType::StartJob);
+  r.send(RtCommandType::Jog, 1, 1.0);
+  r.step();
+  EXPECT_EQ(r.kernel->state(), MachineState::Running);
+  r.step(10);
+  EXPECT_EQ(r.kernel->position_steps(1), 0);  // no jog of Y
+  EXPECT_EQ(r.kernel->position_steps(0), 11 * 5);
+  r.send(RtCommandType::Hold);
+  r.send(RtCommandType::Resume);
+  r.step();
+  EXPECT_EQ(r.kernel->state(), MachineState::FeedHold);  // held: the resume came in the hold's period
+  int refused = 0;
+  for (const RtLogRecord& l : r.logs()) refused += l.code == RtLogCode::Refused;
+  EXPECT_EQ(refused, 1);  // the jog
+  r.send(RtCommandType::Resume);
+  r.step();
+  EXPECT_EQ(r.kernel->state(), MachineState::Running);
+  r.kernel->end_periods();
+}
+
+// A job whose last entry runs while it is being stopped ends there, once:
+// the stop it was in once outlived it, and an e-stop in the Idle that
+// followed counted the job as ended (and aborted) a second time.
+TEST(RtKernelControl, AJobThatEndsWhileStoppingEndsOnce) {
+  Rig r;
+  r.begin_stepped();
+  for (int i = 0; i < 100; ++i) {
+    PeriodIncrement inc = step_x(5);
+    inc.end_of_program = i == 99;
+    ASSERT_TRUE(r.buffer->try_push(inc));
+  }
+  r.send(RtCommandType::StartJob);
+  r.step();
+  r.send(RtCommandType::Stop);  // the ramp to rest outlasts the 99 entries left
+  for (int i = 0; i < 200 && r.kernel->state() != MachineState::Idle; ++i) r.step();
+  ASSERT_EQ(r.kernel->state(), MachineState::Idle);
+  EXPECT_EQ(r.kernel->jobs_ended(), 1u);
+  EXPECT_TRUE(r.kernel->last_job_completed());
+  EXPECT_EQ(r.kernel->position_steps(0), 500);
+  r.send(RtCommandType::EStop);
+  r.step();
+  EXPECT_EQ(r.kernel->state(), MachineState::EStop);
+  EXPECT_EQ(r.kernel->jobs_ended(), 1u);
+  EXPECT_TRUE(r.kernel->last_job_completed());
+  r.send(RtCommandType::Reset);
+  r.step();
+  EXPECT_EQ(r.kernel->state(), MachineState::Idle);  // nothing to flush: reset at once
+  r.kernel->end_periods();
+}
+
 TEST(RtKernelControl, HomingFindsTheSwitchAndRebasesTheAxis) {
   // The kernel believes X is at 50 mm; the switches sit 3 mm lower than it
   // thinks: the home switch trips where it would count −3 mm.
-  Rig r({50'000, 20'000, 0, 0, 0, 0}, machine(), {-3'000, 0, 0, 0, 0, 0});
+  Rig r({50'000, 20'000, 0, 0, 0, 0}, rt_machine(), {-3'000, 0, 0, 0, 0, 0});
   r.start_idle();
   r.send(RtCommandType::Home, 0);
   ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::Homing; }));
@@ -767,7 +702,7 @@ TEST(RtKernelControl, HomingFindsTheSwitchAndRebasesTheAxis) {
 TEST(RtKernelControl, HardLimitSwitchIsAnEStopNamingTheAxis) {
   // The switches sit 5 mm lower than the kernel thinks: X's max hard limit
   // (2 mm beyond the 100 mm soft limit) trips where it counts 97 mm.
-  Rig r({90'000, 0, 0, 0, 0, 0}, machine(), {-5'000, 0, 0, 0, 0, 0});
+  Rig r({90'000, 0, 0, 0, 0, 0}, rt_machine(), {-5'000, 0, 0, 0, 0, 0});
   r.start_idle();
   r.send(RtCommandType::Jog, 0, 9.0);
   ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::EStop; }));
@@ -812,7 +747,7 @@ TEST(RtKernelControl, EStopInputStopsTheJobInThePeriodItIsSeen) {
 // machine's pitch error) and the config's compensation table, its negative:
 // the carriage lands where it was commanded, to the step.
 TEST(RtKernelControl, PitchCompensationPutsTheCarriageWhereCommanded) {
-  MachineConfig m = machine();
+  MachineConfig m = rt_machine();
   PitchTable comp;
   comp.start = 0.0;
   comp.interval = 25.0;

@@ -27,47 +27,21 @@
 
 #include "drivers/sim_machine.h"
 
+#include "support/rt_rig.h"
 #include "support/rt_watch.h"
 
 namespace lcnc::rt {
 namespace {
 
-// amax/vmax = 100 /s: the override ramps at ρ_max = 50 /s
-// (rt/feed_override.h), 100 % ↔ hold in 20 ms, so a short run sees many
-// ramps and holds.
-MachineConfig machine() {
-  MachineConfig m;
-  m.period_ns = 75'000;
-  m.max_feed_override = 1.5;
-  m.dda = DdaConfig{8, 300};
-  for (int i = 0; i < 3; ++i) {
-    m.axes[i].present = true;
-    m.axes[i].axis = static_cast<Axis>(i);
-    m.axes[i].min = -1000;  // the random walks stay well inside the soft limits
-    m.axes[i].max = 1000;
-    m.axes[i].max_velocity = 500;
-    m.axes[i].max_acceleration = 50000;
-  }
-  return m;
-}
+using test::drain_log;
 
-struct Rig {
-  MachineConfig m = machine();
-  std::unique_ptr<PositionBuffer> buffer = std::make_unique<PositionBuffer>();
-  std::unique_ptr<TraceRing> trace = std::make_unique<TraceRing>();
-  std::array<std::int64_t, kAxisCount> start{};
-  drivers::SimMachine sim{start};
-  std::unique_ptr<RtLogRing> log = std::make_unique<RtLogRing>();
-  RtKernel kernel{m, *buffer, sim, trace.get(), start};
-  Rig() { kernel.set_log(log.get()); }  // every test runs with the RT log on
+// The random walks stay well inside the soft limits.
+MachineConfig machine() { return test::rt_machine(-1000.0, 1000.0); }
+
+// The rig with the rings the test's to read.
+struct Rig : test::KernelRig {
+  Rig() : KernelRig({}, machine()) {}
 };
-
-std::vector<RtLogRecord> drain_log(RtLogRing& ring) {
-  std::vector<RtLogRecord> out;
-  RtLogRecord r;
-  while (ring.try_pop(r)) out.push_back(r);
-  return out;
-}
 
 // Fills the buffer with random increments; returns their per-axis sum.
 std::array<std::int64_t, kAxisCount> fill(PositionBuffer& buf, std::size_t n, std::uint32_t seed,
@@ -139,23 +113,23 @@ class OverrideChanger {
 TEST(RtKernel, ExecutesEveryEntryAndSumOfPulsesEqualsCommandedSteps) {
   Rig r;
   const auto sum = fill(*r.buffer, 4000, 1);
-  r.kernel.start(RtOptions{false, 0, {}, {}});
-  r.kernel.join();
-  EXPECT_EQ(r.kernel.motion_periods(), 4000u);
-  EXPECT_EQ(r.kernel.underruns(), 0u);
+  r.kernel->start(RtOptions{false, 0, {}, {}});
+  r.kernel->join();
+  EXPECT_EQ(r.kernel->motion_periods(), 4000u);
+  EXPECT_EQ(r.kernel->underruns(), 0u);
   for (int a = 0; a < 3; ++a) {
-    EXPECT_EQ(r.sim.position_steps(a), sum[a]);
-    EXPECT_EQ(r.kernel.position_steps(a), sum[a]);
+    EXPECT_EQ(r.sim->position_steps(a), sum[a]);
+    EXPECT_EQ(r.kernel->position_steps(a), sum[a]);
   }
-  EXPECT_EQ(r.sim.bad_frames(), 0u);
+  EXPECT_EQ(r.sim->bad_frames(), 0u);
   // every period either woke from its sleep or was already due (catching up)
-  EXPECT_EQ(r.kernel.latency().total() + r.kernel.catch_up_periods(), r.kernel.periods());
-  EXPECT_GT(r.kernel.latency().total(), r.kernel.periods() / 2);
+  EXPECT_EQ(r.kernel->latency().total() + r.kernel->catch_up_periods(), r.kernel->periods());
+  EXPECT_GT(r.kernel->latency().total(), r.kernel->periods() / 2);
   // every period left a trace record, in order
   TraceRecord rec;
   std::uint64_t expect = 0;
   while (r.trace->try_pop(rec)) EXPECT_EQ(rec.period, expect++);
-  EXPECT_EQ(expect, r.kernel.periods());
+  EXPECT_EQ(expect, r.kernel->periods());
 }
 
 // Two kernels given one epoch (two axis groups on one time base): neither
@@ -172,20 +146,20 @@ TEST(RtKernel, KernelsGivenOneEpochStartOnItTogether) {
   };
   RtOptions o{false, 0, {}, {}};
   o.epoch_ns = mono_ns() + 200'000'000;  // 200 ms from now
-  a.kernel.start(o);
+  a.kernel->start(o);
   std::this_thread::sleep_for(std::chrono::milliseconds(60));
-  b.kernel.start(o);
+  b.kernel->start(o);
   std::this_thread::sleep_for(std::chrono::milliseconds(60));
-  EXPECT_EQ(a.kernel.periods(), 0u);  // not before the epoch
-  EXPECT_EQ(b.kernel.periods(), 0u);
+  EXPECT_EQ(a.kernel->periods(), 0u);  // not before the epoch
+  EXPECT_EQ(b.kernel->periods(), 0u);
   std::int64_t a_end = 0, b_end = 0;
   while (a_end == 0 || b_end == 0) {
-    if (a_end == 0 && a.kernel.finished()) a_end = mono_ns();
-    if (b_end == 0 && b.kernel.finished()) b_end = mono_ns();
+    if (a_end == 0 && a.kernel->finished()) a_end = mono_ns();
+    if (b_end == 0 && b.kernel->finished()) b_end = mono_ns();
     std::this_thread::sleep_for(std::chrono::microseconds(200));
   }
-  a.kernel.join();
-  b.kernel.join();
+  a.kernel->join();
+  b.kernel->join();
   // the first period runs at the epoch, the 2000th 1999 periods after it:
   // neither ends before that
   EXPECT_GE(std::min(a_end, b_end) - o.epoch_ns, 1999 * 75'000);
@@ -197,7 +171,7 @@ TEST(RtKernel, EmptyBufferWhileRunningIsAnUnderrunThatHoldsPosition) {
   PeriodIncrement inc;
   inc.steps[0] = 10;
   ASSERT_TRUE(r.buffer->try_push(inc));
-  r.kernel.start(RtOptions{false, 0, {}, {}});
+  r.kernel->start(RtOptions{false, 0, {}, {}});
   // let the buffer run dry for a while, then finish the job
   std::this_thread::sleep_for(std::chrono::milliseconds(30));
   PeriodIncrement last;
@@ -205,9 +179,9 @@ TEST(RtKernel, EmptyBufferWhileRunningIsAnUnderrunThatHoldsPosition) {
   last.end_of_program = true;
   while (!r.buffer->try_push(last)) {
   }
-  r.kernel.join();
-  EXPECT_GT(r.kernel.underruns(), 10u);
-  EXPECT_EQ(r.sim.position_steps(0), 15);  // held, no jump, nothing lost
+  r.kernel->join();
+  EXPECT_GT(r.kernel->underruns(), 10u);
+  EXPECT_EQ(r.sim->position_steps(0), 15);  // held, no jump, nothing lost
   TraceRecord rec;
   std::int64_t prev = 0;
   while (r.trace->try_pop(rec)) {
@@ -223,12 +197,12 @@ TEST(RtKernel, UnderrunsAndHoldsAreLoggedThroughTheRing) {
   PeriodIncrement inc;
   inc.steps[0] = 3;
   ASSERT_TRUE(r.buffer->try_push(inc));
-  r.kernel.start(RtOptions{false, 0, {}, {}});
+  r.kernel->start(RtOptions{false, 0, {}, {}});
   std::this_thread::sleep_for(std::chrono::milliseconds(20));  // runs dry
   inc.end_of_program = true;
   while (!r.buffer->try_push(inc)) {
   }
-  r.kernel.join();
+  r.kernel->join();
   const auto log = drain_log(*r.log);
   std::size_t begins = 0, ends = 0;
   std::int64_t lasted = 0;
@@ -241,19 +215,19 @@ TEST(RtKernel, UnderrunsAndHoldsAreLoggedThroughTheRing) {
   }
   EXPECT_EQ(begins, 1u);
   EXPECT_EQ(ends, 1u);
-  EXPECT_EQ(static_cast<std::uint64_t>(lasted), r.kernel.underruns());  // the whole streak
-  EXPECT_EQ(r.kernel.log_drops(), 0u);
+  EXPECT_EQ(static_cast<std::uint64_t>(lasted), r.kernel->underruns());  // the whole streak
+  EXPECT_EQ(r.kernel->log_drops(), 0u);
   EXPECT_STREQ(rt_log_text(RtLogCode::UnderrunBegin), "position buffer underrun: holding position");
 }
 
 TEST(RtKernel, FeedHoldIsLoggedWhereItBeginsAndEnds) {
   Rig r;
   fill(*r.buffer, 500, 9);
-  r.kernel.set_feed_override(0.0);  // held from the start
-  r.kernel.start(RtOptions{false, 0, {}, {}});
+  r.kernel->set_feed_override(0.0);  // held from the start
+  r.kernel->start(RtOptions{false, 0, {}, {}});
   std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  r.kernel.set_feed_override(1.0);
-  r.kernel.join();
+  r.kernel->set_feed_override(1.0);
+  r.kernel->join();
   const auto log = drain_log(*r.log);
   ASSERT_GE(log.size(), 2u);
   EXPECT_EQ(log[0].code, RtLogCode::HoldBegin);
@@ -265,12 +239,12 @@ TEST(RtKernel, FeedHoldIsLoggedWhereItBeginsAndEnds) {
 
 TEST(RtKernel, StopEndsTheLoopWithinAFewPeriods) {
   Rig r;
-  r.kernel.start(RtOptions{false, 0, {}, {}});  // empty buffer: holds forever
+  r.kernel->start(RtOptions{false, 0, {}, {}});  // empty buffer: holds forever
   std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  r.kernel.shutdown();
-  r.kernel.join();
-  EXPECT_TRUE(r.kernel.finished());
-  EXPECT_EQ(r.sim.position_steps(0), 0);
+  r.kernel->shutdown();
+  r.kernel->join();
+  EXPECT_TRUE(r.kernel->finished());
+  EXPECT_EQ(r.sim->position_steps(0), 0);
 }
 
 std::vector<TraceRecord> drain(TraceRing& trace) {
@@ -327,24 +301,24 @@ int check_override_trace(const std::vector<TraceRecord>& recs, const RtKernel& k
 TEST(RtKernel, RandomOverrideChangesAndHoldsLoseNoStep) {
   Rig r;
   const auto sum = fill(*r.buffer, 8000, 21);
-  r.kernel.start(RtOptions{false, 0, {}, {}});
+  r.kernel->start(RtOptions{false, 0, {}, {}});
   {
-    OverrideChanger changer(r.kernel, 22);
-    r.kernel.join();
+    OverrideChanger changer(*r.kernel, 22);
+    r.kernel->join();
     EXPECT_GT(changer.changes(), 10);
   }
   for (int a = 0; a < 3; ++a) {
-    EXPECT_EQ(r.sim.position_steps(a), sum[a]) << "axis " << a;
-    EXPECT_EQ(r.kernel.position_steps(a), sum[a]) << "axis " << a;
+    EXPECT_EQ(r.sim->position_steps(a), sum[a]) << "axis " << a;
+    EXPECT_EQ(r.kernel->position_steps(a), sum[a]) << "axis " << a;
   }
-  EXPECT_EQ(r.kernel.motion_periods(), 8000u);
-  EXPECT_EQ(r.kernel.underruns(), 0u);
-  EXPECT_EQ(r.sim.bad_frames(), 0u);
-  EXPECT_EQ(r.kernel.trace_drops(), 0u);
-  EXPECT_EQ(r.kernel.periods(), r.kernel.motion_periods() + r.kernel.held_periods());
+  EXPECT_EQ(r.kernel->motion_periods(), 8000u);
+  EXPECT_EQ(r.kernel->underruns(), 0u);
+  EXPECT_EQ(r.sim->bad_frames(), 0u);
+  EXPECT_EQ(r.kernel->trace_drops(), 0u);
+  EXPECT_EQ(r.kernel->periods(), r.kernel->motion_periods() + r.kernel->held_periods());
   const std::vector<TraceRecord> recs = drain(*r.trace);
-  ASSERT_EQ(recs.size(), r.kernel.periods());
-  const int ramping = check_override_trace(recs, r.kernel, r.m.period_ns);
+  ASSERT_EQ(recs.size(), r.kernel->periods());
+  const int ramping = check_override_trace(recs, *r.kernel, r.m.period_ns);
   EXPECT_GT(ramping, 100);
   // the opening's hold and its 150 % were reached
   std::size_t held = 0;
@@ -353,41 +327,41 @@ TEST(RtKernel, RandomOverrideChangesAndHoldsLoseNoStep) {
     held += rec.held;
     k_top = std::max(k_top, rec.feed_override);
   }
-  EXPECT_EQ(held, r.kernel.held_periods());
+  EXPECT_EQ(held, r.kernel->held_periods());
   EXPECT_GT(held, 100u);
   EXPECT_EQ(k_top, 1.0);  // 150 % over entries planned at 100 %: as planned, no faster
   // the laser is on exactly in the moving periods (every entry has power)
-  const double moving_ns = static_cast<double>(r.kernel.machine_time_ns()) -
+  const double moving_ns = static_cast<double>(r.kernel->machine_time_ns()) -
                           static_cast<double>(held) * r.m.period_ns;
-  EXPECT_NEAR(static_cast<double>(r.kernel.laser_on_ns()), moving_ns, 2.0);
+  EXPECT_NEAR(static_cast<double>(r.kernel->laser_on_ns()), moving_ns, 2.0);
 }
 
 TEST(RtKernel, FeedHoldAtStartPopsNothingThenResumesWithARamp) {
   Rig r;
   const auto sum = fill(*r.buffer, 2000, 31);
-  r.kernel.set_feed_override(0.0);  // before start: the run begins held
-  r.kernel.start(RtOptions{false, 0, {}, {}});
+  r.kernel->set_feed_override(0.0);  // before start: the run begins held
+  r.kernel->start(RtOptions{false, 0, {}, {}});
   std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  EXPECT_EQ(r.kernel.motion_periods(), 0u);
-  EXPECT_EQ(r.kernel.underruns(), 0u);
-  EXPECT_GT(r.kernel.held_periods(), 20u);
+  EXPECT_EQ(r.kernel->motion_periods(), 0u);
+  EXPECT_EQ(r.kernel->underruns(), 0u);
+  EXPECT_GT(r.kernel->held_periods(), 20u);
   EXPECT_EQ(r.buffer->size(), 2000u);
-  EXPECT_EQ(r.sim.position_steps(0), 0);
-  EXPECT_EQ(r.sim.power_pct(), 0.0f);
-  EXPECT_EQ(r.kernel.feed_override(), 0.0);
-  r.kernel.set_feed_override(1.0);
-  r.kernel.join();
-  for (int a = 0; a < 3; ++a) EXPECT_EQ(r.sim.position_steps(a), sum[a]);
-  EXPECT_EQ(r.kernel.motion_periods(), 2000u);
-  EXPECT_EQ(r.kernel.underruns(), 0u);
+  EXPECT_EQ(r.sim->position_steps(0), 0);
+  EXPECT_EQ(r.sim->power_pct(), 0.0f);
+  EXPECT_EQ(r.kernel->feed_override(), 0.0);
+  r.kernel->set_feed_override(1.0);
+  r.kernel->join();
+  for (int a = 0; a < 3; ++a) EXPECT_EQ(r.sim->position_steps(a), sum[a]);
+  EXPECT_EQ(r.kernel->motion_periods(), 2000u);
+  EXPECT_EQ(r.kernel->underruns(), 0u);
   const std::vector<TraceRecord> recs = drain(*r.trace);
-  check_override_trace(recs, r.kernel, r.m.period_ns);
+  check_override_trace(recs, *r.kernel, r.m.period_ns);
   // held first, then K rises monotonically from K_min to 1: no jump to 100 %
   std::size_t i = 0;
   while (i < recs.size() && recs[i].held) ++i;
   ASSERT_LT(i, recs.size());
   EXPECT_GE(i, 20u);
-  const FeedOverrideRamp& ramp = r.kernel.override_ramp();
+  const FeedOverrideRamp& ramp = r.kernel->override_ramp();
   EXPECT_GE(recs[i].feed_override, ramp.k_min());
   EXPECT_LT(recs[i].feed_override, ramp.k_min() + ramp.rate_per_s() * r.m.period_s());
   for (++i; i < recs.size() && recs[i].feed_override < 1.0; ++i)
@@ -399,34 +373,34 @@ TEST(RtKernel, FeedHoldAtStartPopsNothingThenResumesWithARamp) {
 TEST(RtKernel, HoldMidRunDeceleratesHoldsAndResumesFromTheHeldPosition) {
   Rig r;
   const auto sum = fill(*r.buffer, 8000, 41);
-  r.kernel.start(RtOptions{false, 0, {}, {}});
+  r.kernel->start(RtOptions{false, 0, {}, {}});
   std::this_thread::sleep_for(std::chrono::milliseconds(60));
-  r.kernel.set_feed_override(0.0);
+  r.kernel->set_feed_override(0.0);
   const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(5);
-  while (r.kernel.feed_override() > 0.0 && std::chrono::steady_clock::now() < give_up)
+  while (r.kernel->feed_override() > 0.0 && std::chrono::steady_clock::now() < give_up)
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  ASSERT_EQ(r.kernel.feed_override(), 0.0);
-  ASSERT_FALSE(r.kernel.finished());
-  const std::uint64_t popped = r.kernel.motion_periods();
+  ASSERT_EQ(r.kernel->feed_override(), 0.0);
+  ASSERT_FALSE(r.kernel->finished());
+  const std::uint64_t popped = r.kernel->motion_periods();
   const std::size_t left = r.buffer->size();
-  const std::int64_t x = r.sim.position_steps(0);
+  const std::int64_t x = r.sim->position_steps(0);
   std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  EXPECT_EQ(r.kernel.motion_periods(), popped);  // nothing popped while held
+  EXPECT_EQ(r.kernel->motion_periods(), popped);  // nothing popped while held
   EXPECT_EQ(r.buffer->size(), left);
-  EXPECT_EQ(r.sim.position_steps(0), x);
-  EXPECT_EQ(r.sim.power_pct(), 0.0f);
-  EXPECT_EQ(r.kernel.underruns(), 0u);
-  r.kernel.set_feed_override(1.0);
-  r.kernel.join();
-  for (int a = 0; a < 3; ++a) EXPECT_EQ(r.sim.position_steps(a), sum[a]);
-  EXPECT_EQ(r.kernel.underruns(), 0u);
+  EXPECT_EQ(r.sim->position_steps(0), x);
+  EXPECT_EQ(r.sim->power_pct(), 0.0f);
+  EXPECT_EQ(r.kernel->underruns(), 0u);
+  r.kernel->set_feed_override(1.0);
+  r.kernel->join();
+  for (int a = 0; a < 3; ++a) EXPECT_EQ(r.sim->position_steps(a), sum[a]);
+  EXPECT_EQ(r.kernel->underruns(), 0u);
   const std::vector<TraceRecord> recs = drain(*r.trace);
-  check_override_trace(recs, r.kernel, r.m.period_ns);
+  check_override_trace(recs, *r.kernel, r.m.period_ns);
   // the way down: from 1 to K_min in steps, the last moving period at K_min
   std::size_t first_held = 0;
   while (first_held < recs.size() && !recs[first_held].held) ++first_held;
   ASSERT_LT(first_held, recs.size());
-  EXPECT_EQ(recs[first_held - 1].feed_override, r.kernel.override_ramp().k_min());
+  EXPECT_EQ(recs[first_held - 1].feed_override, r.kernel->override_ramp().k_min());
   std::size_t down = first_held - 1;
   while (down > 0 && recs[down - 1].feed_override < 1.0) --down;
   EXPECT_GT(first_held - down, 10u) << "a ramp, not a step";
@@ -453,9 +427,9 @@ TEST(RtKernel, OverrideLeavesDwellsAloneAndScalesDynamicPower) {
     inc.end_of_program = k + 1 == n_move + n_dwell;
     ASSERT_TRUE(r.buffer->try_push(inc));
   }
-  r.kernel.set_feed_override(1.2);
-  r.kernel.start(RtOptions{false, 0, {}, {}});
-  r.kernel.join();
+  r.kernel->set_feed_override(1.2);
+  r.kernel->start(RtOptions{false, 0, {}, {}});
+  r.kernel->join();
   const std::vector<TraceRecord> recs = drain(*r.trace);
   ASSERT_EQ(recs.size(), n_move + n_dwell);
   const double T = r.m.period_ns;
@@ -472,7 +446,7 @@ TEST(RtKernel, OverrideLeavesDwellsAloneAndScalesDynamicPower) {
       EXPECT_FLOAT_EQ(recs[k].power_pct, 30.0f) << k;
     }
   }
-  EXPECT_NEAR(static_cast<double>(r.kernel.machine_time_ns()), n_move * T / 0.8 + n_dwell * T, 2.0);
+  EXPECT_NEAR(static_cast<double>(r.kernel->machine_time_ns()), n_move * T / 0.8 + n_dwell * T, 2.0);
 }
 
 // A sink that keeps each period's outputs (room reserved before the run:
@@ -534,21 +508,21 @@ TEST(RtKernel, ConstantOverrideRunsEveryEntryInTOverK) {
     const double k = c.k;
     const std::size_t n = 2000;
     const auto sum = fill(*r.buffer, n, 51, c.k_plan);
-    r.kernel.set_feed_override(c.override_k);  // before start: no ramp
+    r.kernel->set_feed_override(c.override_k);  // before start: no ramp
     const auto t0 = std::chrono::steady_clock::now();
-    r.kernel.start(RtOptions{false, 0, {}, {}});
-    r.kernel.join();
+    r.kernel->start(RtOptions{false, 0, {}, {}});
+    r.kernel->join();
     const double wall_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    for (int a = 0; a < 3; ++a) EXPECT_EQ(r.sim.position_steps(a), sum[a]);
-    EXPECT_NEAR(r.kernel.feed_override(), k * c.k_plan, 1e-6);  // what the machine runs at
-    EXPECT_EQ(r.kernel.held_periods(), 0u);
+    for (int a = 0; a < 3; ++a) EXPECT_EQ(r.sim->position_steps(a), sum[a]);
+    EXPECT_NEAR(r.kernel->feed_override(), k * c.k_plan, 1e-6);  // what the machine runs at
+    EXPECT_EQ(r.kernel->held_periods(), 0u);
     const double machine_s = static_cast<double>(n) * r.m.period_s() / k;
-    EXPECT_NEAR(static_cast<double>(r.kernel.machine_time_ns()), machine_s * 1e9, 1.0) << k;
+    EXPECT_NEAR(static_cast<double>(r.kernel->machine_time_ns()), machine_s * 1e9, 1.0) << k;
     const std::vector<TraceRecord> recs = drain(*r.trace);
     ASSERT_EQ(recs.size(), n);
     for (const TraceRecord& rec : recs) ASSERT_NEAR(rec.feed_override, k, 1e-9);
-    EXPECT_EQ(check_override_trace(recs, r.kernel, r.m.period_ns), 0);
+    EXPECT_EQ(check_override_trace(recs, *r.kernel, r.m.period_ns), 0);
     // wall time follows machine time (absolute deadlines): loosely, as the
     // machine is shared — but well apart from the n·T the run takes at 100 %
     EXPECT_GE(wall_s, machine_s - r.m.period_s() / k) << k;
@@ -571,14 +545,14 @@ TEST(RtKernel, LoopNeverAllocates) {
                   t_count_allocations = false;
                   at_exit = g_allocations.load();
                 }};
-  r.kernel.start(opt);
+  r.kernel->start(opt);
   {
-    OverrideChanger changer(r.kernel, 12);  // ramps and holds while the loop runs
-    r.kernel.join();
+    OverrideChanger changer(*r.kernel, 12);  // ramps and holds while the loop runs
+    r.kernel->join();
     EXPECT_GT(changer.changes(), 3);
   }
-  EXPECT_GT(r.kernel.held_periods(), 0u);
-  EXPECT_EQ(r.kernel.motion_periods(), 3000u);
+  EXPECT_GT(r.kernel->held_periods(), 0u);
+  EXPECT_EQ(r.kernel->motion_periods(), 3000u);
   EXPECT_EQ(at_exit.load() - at_enter.load(), 0u);
 }
 
@@ -736,7 +710,7 @@ TEST(RtKernel, LoopMakesNoSyscallButTheClockSleep) {
   Rig r;
   fill(*r.buffer, 3000, 3);
   std::atomic<std::uint32_t> estop_word{0};  // polled every period: an atomic load, no syscall
-  r.kernel.set_estop_word(&estop_word);
+  r.kernel->set_estop_word(&estop_word);
   std::atomic<bool> filtered{false};
   std::atomic<int> bad_at_exit{-1};
   RtOptions opt{false, 0,
@@ -745,15 +719,15 @@ TEST(RtKernel, LoopMakesNoSyscallButTheClockSleep) {
                   filtered = true;
                 },
                 [&] { bad_at_exit = g_bad_syscalls.load(); }};
-  r.kernel.start(opt);
+  r.kernel->start(opt);
   {
-    OverrideChanger changer(r.kernel, 13);  // ramps and holds while the loop runs
-    r.kernel.join();
+    OverrideChanger changer(*r.kernel, 13);  // ramps and holds while the loop runs
+    r.kernel->join();
     EXPECT_GT(changer.changes(), 3);
   }
-  EXPECT_GT(r.kernel.held_periods(), 0u);
+  EXPECT_GT(r.kernel->held_periods(), 0u);
   ASSERT_TRUE(filtered.load());
-  EXPECT_EQ(r.kernel.motion_periods(), 3000u);
+  EXPECT_EQ(r.kernel->motion_periods(), 3000u);
   EXPECT_EQ(bad_at_exit.load(), 0) << "first forbidden syscall: " << g_first_bad_syscall.load();
   signal(SIGSYS, SIG_DFL);
 }
