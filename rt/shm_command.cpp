@@ -43,11 +43,10 @@ lcnc::Status check_command_frame(const Command& c, const CommandLimits& limits) 
       if ((c.axis & ~kStartFlags) != 0) return refused("bad command frame: unknown start flags");
       return {};
     case CommandType::Override:
-      if (const Result<double> k = override_from_percent(c.value * 100.0, kMinLiveOverridePct,
-                                                         limits.max_override, ErrorCode::RtRefused,
-                                                         "override");
-          !k)
-        return k.error();
+      if (const Result<double> e = check_override(c.value, kMinLiveOverridePct, limits.max_override,
+                                                  ErrorCode::RtRefused, "override");
+          !e)
+        return e.error();
       return {};
     case CommandType::Jog:
       if (!has_axis(c.axis, limits.axes_mask)) return refused("jog refused: no axis " + axis_text(c.axis));

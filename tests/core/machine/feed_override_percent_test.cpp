@@ -33,5 +33,18 @@ TEST(OverrideFromPercent, OneRuleWithEachUsesLowestValue) {
   }
 }
 
+// The fraction on the wire (the shm command) by the same rule, its message in
+// percent as a person reads it.
+TEST(CheckOverride, TakesTheFractionAndNamesTheRangeInPercent) {
+  EXPECT_DOUBLE_EQ(*check_override(1.5, kMinLiveOverridePct, 1.5, ErrorCode::RtRefused, "override"), 1.5);
+  EXPECT_DOUBLE_EQ(*check_override(0.0, kMinLiveOverridePct, 1.5, ErrorCode::RtRefused, "override"), 0.0);
+  const Result<double> high = check_override(2.0, kMinLiveOverridePct, 1.5, ErrorCode::RtRefused, "override");
+  ASSERT_FALSE(high);
+  EXPECT_NE(high.error().message.find("override 200 refused: allowed 0 <= PCT <= 150"), std::string::npos)
+      << high.error().message;
+  EXPECT_FALSE(check_override(0.005, kMinRunOverridePct, 1.5, ErrorCode::Usage, "run"));
+  EXPECT_FALSE(check_override(std::nan(""), kMinLiveOverridePct, 1.5, ErrorCode::RtRefused, "override"));
+}
+
 }  // namespace
 }  // namespace lcnc
