@@ -14,8 +14,12 @@
 #include <spdlog/spdlog.h>
 
 #include "app/cnc_modbus_host.h"
+#include "app/framing.h"
+#include "app/job_outcome.h"
 #include "app/planner_feed.h"
+#include "app/program_loader.h"
 #include "app/program_snapshot.h"
+#include "app/recent_requests.h"
 #include "app/job_session.h"
 #include "app/machine_files.h"
 #include "app/rt_text.h"
@@ -218,32 +222,11 @@ struct Daemon::Impl {
     shm.block().job.store(job);
     shm.block().answers[c.seq % shm::kAnswerSlots].store(ans);
     log_ack(a);
-    remember(c, a);
+    recent.remember(c.request_id, a);
   }
 
-  // The requests executed lately, by their sender's id: a sender that sends
-  // one again (a retry after no answer) gets the first answer, and the
-  // request is not executed twice.
-  struct Recent {
-    std::uint64_t id = 0;
-    Ack ack;
-  };
-  static constexpr std::size_t kRecentRequests = 256;
-  std::array<Recent, kRecentRequests> recent{};
-  std::size_t recent_next = 0;
-  void remember(const shm::Command& c, const Ack& a) {
-    if (c.request_id == 0) return;
-    for (const Recent& r : recent)
-      if (r.id == c.request_id) return;
-    recent[recent_next] = Recent{c.request_id, a};
-    recent_next = (recent_next + 1) % kRecentRequests;
-  }
-  const Ack* already_answered(const shm::Command& c) const {
-    if (c.request_id == 0) return nullptr;
-    for (const Recent& r : recent)
-      if (r.id == c.request_id) return &r.ack;
-    return nullptr;
-  }
+  // Requests answered lately: a retry gets the first answer, not a second run.
+  RecentRequests recent;
   static void log_ack(const Ack& a) {
     if (a.ok) {
       logger()->info("{}", a.message);
@@ -267,123 +250,44 @@ struct Daemon::Impl {
     (void)shm.block().events.try_push(e);
   }
 
-  // A hole table (.csv: the process database's rows, holes/hole_table.h)
-  // is a drilling job; anything else a G-code program.
-  static bool is_hole_table(const std::string& path) {
-    return path.size() > 4 && path.compare(path.size() - 4, 4, ".csv") == 0;
-  }
-  // A program checked from where the machine stands: its summary, and for
-  // a drilling job the segments built from its table.
-  struct CheckedJob {
-    ProgramSummary summary;
-    std::shared_ptr<const std::vector<Segment>> drill_segments;  // empty for G-code
-  };
   CheckedJob loaded;  // the program loaded (`program`), as last checked
   Pose loaded_from = Pose::Zero();  // where the machine stood for that check
 
-  // Checks the program's copy (or builds and checks the drilling job) from
-  // `start`; changes nothing of what is loaded. Any thread: reads only the
-  // machine.
   // Who a command's files are read for: its sender, in the program folders.
   FileAccess access_for(const shm::Command& c) const {
     return FileAccess{c.sender_uid, c.sender_gid, program_dirs};
   }
 
-  // How `p` is read: its subroutines from the folder of the file it was
-  // copied from (an MDI command's or the framing's: from
-  // machine.subroutine_path alone), each file passing may_read() for whom it
-  // was loaded — the one policy of every file a job reads.
-  static ReaderOptions reading_of(const ProgramSnapshot& p, ReaderOptions ropt) {
-    ropt.program_dir = std::filesystem::path(p.name()).parent_path().string();  // not the copy's
-    ropt.file_policy = [access = p.access()](const std::string& path) { return may_read(path, access); };
-    return ropt;
-  }
-
-  // Checks the program's copy (or builds and checks the drilling job) from
-  // `start`; changes nothing of what is loaded. Any thread: reads only the
-  // machine.
-  Result<CheckedJob> check(const ProgramSnapshot& p, ReaderOptions ropt) const {
-    ropt = reading_of(p, std::move(ropt));
-    CheckedJob out;
-    if (!is_hole_table(p.name())) {
-      Result<ProgramSummary> s = check_job_program(p.path(), machine, ropt);
-      if (!s) return p.rename(s.error());
-      out.summary = *s;
-      return out;
-    }
-    Result<PreparedDrill> d = prepare_drill_job(p.path(), machine, ropt.start);
-    if (!d) return p.rename(d.error());
-    out.summary = d->summary;
-    out.drill_segments = std::make_shared<const std::vector<Segment>>(std::move(d->job.segments));
-    return out;
-  }
-
-  // A load in progress on the loader thread: the file copied, then checked.
-  // At most one; the command thread answers it once done (finish_load).
-  struct PendingLoad {
-    shm::Command cmd;
-    std::vector<shm::Command> repeats;  // the same request sent again meanwhile
-    Pose start = Pose::Zero();
-    std::uint64_t params_gen = 0;  // the offsets it is checked with
-    std::shared_ptr<const ProgramSnapshot> snapshot;  // valid once done
-    std::optional<Result<CheckedJob>> checked;        // valid once done
-    std::atomic<bool> done{false};  // release by the loader, acquire by the command thread
-    // Set by stop, e-stop, reset and shutdown: the copy and the check end at
-    // their next chunk or line, the load answered as cancelled.
-    std::atomic<bool> cancel{false};
-    std::thread thread;
-  };
-  std::unique_ptr<PendingLoad> pending;
+  // A load in progress on the loader thread: at most one; the command
+  // thread answers it once done (finish_load).
+  std::unique_ptr<ProgramLoad> pending;
 
   // A load in progress is given up (the operator stops, or the daemon ends):
   // however long its program's loops would run, the loader ends at once.
   void cancel_load() {
-    if (pending) pending->cancel.store(true, std::memory_order_relaxed);
+    if (pending) pending->cancel();
   }
 
   void begin_load(const shm::Command& c) {
-    auto p = std::make_unique<PendingLoad>();
-    p->cmd = c;
-    p->start = position();
-    p->params_gen = params_gen;
-    SnapshotRequest req;
-    req.path = c.text;
-    req.access = access_for(c);
-    req.hole_table = is_hole_table(req.path);
-    req.cancel = &p->cancel;
-    PendingLoad& l = *p;
-    l.thread = std::thread([this, &l, req = std::move(req)] {
-      Result<std::shared_ptr<const ProgramSnapshot>> snap = ProgramSnapshot::take(req);
-      if (!snap) {
-        l.checked.emplace(snap.error());
-      } else {
-        l.snapshot = *snap;
-        ReaderOptions ropt;
-        ropt.start = l.start;
-        ropt.cancel = &l.cancel;
-        l.checked.emplace(check(*l.snapshot, ropt));
-      }
-      l.done.store(true, std::memory_order_release);
-    });
-    pending = std::move(p);
+    pending = std::make_unique<ProgramLoad>(c, machine, position(), params_gen, access_for(c));
   }
 
   // The load done: what it checked becomes the program (or, refused, what
   // was loaded before stays loaded); its sender gets the answer.
   void finish_load(bool wait) {
     if (!pending) return;
-    if (!wait && !pending->done.load(std::memory_order_acquire)) return;
-    pending->thread.join();
-    std::unique_ptr<PendingLoad> l = std::move(pending);
+    if (!wait && !pending->done()) return;
+    pending->join();
+    std::unique_ptr<ProgramLoad> l = std::move(pending);
     Ack a;
-    Result<CheckedJob>& checked = *l->checked;
+    Result<CheckedJob>& checked = l->checked();
     if (!checked) {
       a = Ack{false, checked.error().code, "load: " + checked.error().to_string()};
     } else {
-      program = l->snapshot;
+      program = l->snapshot();
       loaded = std::move(checked).value();
-      loaded_from = l->start;
-      loaded_gen = l->params_gen;
+      loaded_from = l->start();
+      loaded_gen = l->params_gen();
       const ProgramSummary& s = loaded.summary;
       copy_text(job.program, program->name());
       job.lines = s.lines;
@@ -395,7 +299,7 @@ struct Daemon::Impl {
                     s.path_length_mm);
       a = Ack{true, ErrorCode::Ok, msg};
     }
-    ack(l->cmd, a);
+    ack(l->command(), a);
     for (const shm::Command& r : l->repeats) ack(r, a);
   }
 
@@ -447,7 +351,7 @@ struct Daemon::Impl {
         // machine has moved (jog, home) or the offsets may have changed since,
         // or with the options asked for
         if (ropt.start != loaded_from || loaded_gen != params_gen || !plain) {
-          Result<CheckedJob> checked = check(*program, ropt);
+          Result<CheckedJob> checked = check_job(*program, machine, ropt);
           if (!checked) return Ack{false, checked.error().code, "start: " + checked.error().to_string()};
           if (!plain) return begin_job(program, *checked, ropt, false);
           loaded = std::move(checked).value();
@@ -580,7 +484,7 @@ struct Daemon::Impl {
     ropt.start = position();
     ropt.modes = mdi_modes;
     ropt.keep_parameters = true;  // a G10 that does not move is kept by this reading
-    Result<CheckedJob> checked = check(**snap, ropt);
+    Result<CheckedJob> checked = check_job(**snap, machine, ropt);
     ++params_gen;
     if (!checked) return Ack{false, checked.error().code, "mdi: " + checked.error().to_string()};
     const std::string shown = text.substr(b);
@@ -601,38 +505,21 @@ struct Daemon::Impl {
   Ack frame(shm::MachineState st) {
     if (std::optional<Ack> no = refuse_motion("frame", st)) return *no;
     if (!program) return Ack{false, ErrorCode::RtRefused, "frame refused: no program loaded"};
-    const ProgramSummary& sum = loaded.summary;
-    const bool cuts = sum.feed_min[0] <= sum.feed_max[0];
-    const Pose lo = cuts ? sum.feed_min : sum.min;
-    const Pose hi = cuts ? sum.feed_max : sum.max;
     const Pose here = position();
-    const double feed_mm_min =
-        30.0 * std::min(machine.axes[0].max_velocity, machine.axes[1].max_velocity);
-    char text[512];
-    std::snprintf(text, sizeof text,
-                  "(framing %s: X %.4f … %.4f, Y %.4f … %.4f)\n"
-                  "G90 G21 G61 M5\n"
-                  "G53 G0 X%.6f Y%.6f\n"
-                  "G53 G1 X%.6f F%.3f\n"
-                  "G53 G1 Y%.6f\n"
-                  "G53 G1 X%.6f\n"
-                  "G53 G1 Y%.6f\n"
-                  "G53 G0 X%.6f Y%.6f\n",
-                  program->name().c_str(), lo[0], hi[0], lo[1], hi[1], lo[0], lo[1], hi[0],
-                  feed_mm_min, hi[1], lo[0], lo[1], here[0], here[1]);
-    Result<std::shared_ptr<const ProgramSnapshot>> snap = ProgramSnapshot::from_text("framing", text, FileAccess{});
+    const Framing f = framing_program(loaded.summary, program->name(), here, machine);
+    Result<std::shared_ptr<const ProgramSnapshot>> snap = ProgramSnapshot::from_text("framing", f.program, FileAccess{});
     if (!snap) return Ack{false, snap.error().code, "frame: " + snap.error().to_string()};
     ReaderOptions ropt;
     ropt.start = here;
     ropt.laser_off = true;
-    Result<CheckedJob> checked = check(**snap, ropt);
+    Result<CheckedJob> checked = check_job(**snap, machine, ropt);
     if (!checked) return Ack{false, checked.error().code, "frame: " + checked.error().to_string()};
     mdi_end_modes = mdi_modes;  // framing leaves the MDI modes as they are
     Ack a = begin_job(*snap, *checked, ropt, true);
     if (a.ok) {
       char msg[200];
       std::snprintf(msg, sizeof msg, "framing %s: X %.3f … %.3f, Y %.3f … %.3f mm, beam off",
-                    program->name().c_str(), lo[0], hi[0], lo[1], hi[1]);
+                    program->name().c_str(), f.lo[0], f.hi[0], f.lo[1], f.hi[1]);
       a.message = msg;
     }
     return a;
@@ -663,7 +550,7 @@ struct Daemon::Impl {
     const auto refuse = [](const std::string& why) { return Ack{false, ErrorCode::RtRefused, why}; };
     if (lcnc::Status f = shm::check_command_frame(c, limits); !f) return refuse(f.error().message);
     if (job_active) return refuse("load refused: a job is running (stop it first)");
-    if (pending) return refuse("load refused: another load is in progress (" + std::string(pending->cmd.text) + ")");
+    if (pending) return refuse("load refused: another load is in progress (" + std::string(pending->command().text) + ")");
     return std::nullopt;
   }
 
@@ -675,11 +562,11 @@ struct Daemon::Impl {
     auto& ring = shm.block().commands;
     shm::Command c;
     for (std::size_t n = 0; n < ring.kCapacity && ring.try_pop(c); ++n) {
-      if (pending && c.request_id != 0 && c.request_id == pending->cmd.request_id) {
+      if (pending && c.request_id != 0 && c.request_id == pending->command().request_id) {
         pending->repeats.push_back(c);  // answered with the load it repeats
         continue;
       }
-      if (const Ack* first = already_answered(c)) {  // a retry: answered, not executed again
+      if (const Ack* first = recent.find(c.request_id)) {  // a retry: answered, not executed again
         ack(c, *first);
         continue;
       }
@@ -795,7 +682,7 @@ struct Daemon::Impl {
     if (start_pending && feed->prefilled()) {
       start_pending = !push({rt::RtCommandType::StartJob, 0, 0.0});  // a full ring: again next tick
     }
-    if (feed->stopped_short() && !stop_sent) stop_sent = kernel->command({rt::RtCommandType::Stop, 0, 0.0});
+    if (feed->stopped_short() && !stop_sent) stop_sent = push({rt::RtCommandType::Stop, 0, 0.0});
     if (running_segments > 0)
       job.progress = std::min(1.0, kernel->current_segment() / static_cast<double>(running_segments));
     const std::uint32_t ended = kernel->jobs_ended();
@@ -822,45 +709,28 @@ struct Daemon::Impl {
     job.jobs_ended = ended;
     job.last_cycle_time_s = static_cast<double>(kernel->machine_time_ns() - job_time_start_ns) * 1e-9;
     job.last_underruns = kernel->underruns() - job_underruns_start;
-    job.last_fault = f.active ? static_cast<std::uint16_t>(f.code) : 0;
     shm::Status rt_status;
     job.last_line = f.active && f.line != 0 ? f.line
                     : shm.block().status.load(rt_status) ? rt_status.line
                                                           : 0;
-    // where it stopped: "at line 12, 37 %"
-    char where[64];
-    std::snprintf(where, sizeof where, "at line %u, %.0f %%", job.last_line, job.progress * 100.0);
-    char msg[256];
-    if (planned.failed) {
-      job.last_outcome = shm::JobOutcome::Failed;
-      job.last_fault = static_cast<std::uint16_t>(planned.error.code);
-      std::snprintf(msg, sizeof msg, "job failed %s: %s", where,
-                    running->rename(planned.error).to_string().c_str());
-    } else if (planned.limit) {
-      job.last_outcome = shm::JobOutcome::Stopped;
-      job.last_fault = static_cast<std::uint16_t>(planned.limit_error.code);
-      std::snprintf(msg, sizeof msg, "job stopped %s: %s", where,
-                    running->rename(planned.limit_error).to_string().c_str());
-    } else if (f.active) {
-      job.last_outcome = estopped ? shm::JobOutcome::EStopped : shm::JobOutcome::Stopped;
-      std::snprintf(msg, sizeof msg, "job %s %s: %s", estopped ? "e-stopped" : "stopped", where,
-                    describe_fault(f, machine).c_str());
-    } else if (!kernel->last_job_completed()) {
-      job.last_outcome = shm::JobOutcome::Stopped;
-      std::snprintf(msg, sizeof msg, "job stopped %s: the operator's stop", where);
-    } else if (!breaches.empty()) {
-      job.last_outcome = shm::JobOutcome::Failed;
-      job.last_fault = static_cast<std::uint16_t>(ErrorCode::PlanBeyondLimit);
-      std::snprintf(msg, sizeof msg, "job failed its check: %s%s", breaches.front().c_str(),
-                    breaches.size() > 1 ? " (and more, in the log)" : "");
-      for (const std::string& b : breaches) logger()->error("job check: {}", b);
-    } else {
-      job.last_outcome = shm::JobOutcome::Done;
-      job.progress = 1.0;
-      std::snprintf(msg, sizeof msg, "job done: %s, cycle %.3f s, %llu underruns, every axis within its limits, the path within its tolerance",
-                    running->name().c_str(), job.last_cycle_time_s,
-                    static_cast<unsigned long long>(job.last_underruns));
-    }
+    JobEnd end;
+    end.planned = &planned;
+    end.running = running.get();
+    end.fault = f;
+    end.estopped = estopped;
+    end.completed = kernel->last_job_completed();
+    end.breaches = std::move(breaches);
+    end.line = job.last_line;
+    end.progress = job.progress;
+    end.cycle_time_s = job.last_cycle_time_s;
+    end.underruns = job.last_underruns;
+    const JobOutcomeText out = job_outcome(end, machine);
+    job.last_outcome = out.outcome;
+    job.last_fault = out.fault;
+    job.progress = out.progress;
+    if (out.outcome == shm::JobOutcome::Failed && !end.breaches.empty() && !planned.failed)
+      for (const std::string& b : end.breaches) logger()->error("job check: {}", b);
+    const char* msg = out.message.c_str();
     copy_text(job.message, msg);
     logger()->info("{}", msg);
     event(job.last_outcome == shm::JobOutcome::Done ? shm::Severity::Info
