@@ -1,13 +1,20 @@
-// The G-code front end: RS274NGC as LinuxCNC reads it, for a subset (G0 G1
-// G2 G3 G4 G17-19 G20/21 G90/91 G90.1/91.1 G54-59.3 G61 G61.1 G64 G93 G94,
-// G10 G28 G30 G52 G53 G92, tools T M6 M61 G43 G49, canned cycles G73 G81
-// G82 G83 G85 G89 G98 G99, polar @ ^, cutter compensation G40 G41 G42
-// G41.1 G42.1, G80, F S, M2 M3 M4 M5 M7 M8 M9 M30, X Y Z A B C, N numbers,
-// comments, '/' block delete, parameters and expressions, O-word
-// subroutines and control flow). Streams: one Segment at a time, so a program of
-// millions of lines runs in bounded memory. check_program() reads a whole
-// program once before motion starts, so an error on line 10,000 never stops a
-// part half-cut.
+// The G-code front end: RS274NGC as LinuxCNC reads it, for a subset:
+//   motion   G0 G1 G2 G3 (helices, P turns) G4, canned cycles G73 G81 G82
+//            G83 G85 G86 G89 with G98 G99 and G80, polar @ ^
+//   modes    G17-19, G20/21, G90/91, G90.1/91.1, G93/94, G61 G61.1 G64 P Q,
+//            G54-59.3, G10 L1 L2 L10 L11 L20, G28 G30 G52 G53 G92, tools T M6
+//            M61 G43 G49, cutter compensation G40 G41 G42 G41.1 G42.1
+//   machine  M3 M4 M5 (the laser; S its power), M7 M8 M9 (assist gas), M0
+//            M1 M60 (a pause until resumed), M48-M53 (override, adaptive
+//            feed and feed-hold switches), M62-M65 and M67 M68 (digital and
+//            analog outputs with the next move or at once), M66 (wait on an
+//            input), M70-M73 (modal state save and restore), M2 M30
+//   words    X Y Z A B C, F S, N numbers, comments, '/' block delete,
+//            parameters and expressions, O-word subroutines and control flow
+// Streams: one Segment at a time, so a program of millions of lines runs in
+// bounded memory. check_program() reads a whole program once before motion
+// starts, so an error on line 10,000 never stops a part half-cut. An
+// unsupported word is an error at its file:line:col, never skipped.
 #pragma once
 
 #include <atomic>
