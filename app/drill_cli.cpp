@@ -76,18 +76,18 @@ class HeadLink {
   }
   void begin_hole(const DrillStep& step, std::size_t k) {
     const ScanHeadParams& p = step.head;
-    master_->write_async("run", 0, [this, k](Status s) { note(k, s); });
+    master_->write_async("run", 0, [this, k](const Status& s) { note(k, s); });
     master_->write_block_async(
         scan_head_block(p),
-        [this, k](Status s) {
+        [this, k](const Status& s) {
           note(k, s);
           std::lock_guard lock(mutex_);
           if (s) records_[k].head_written = true;
         });
-    master_->write_async("run", 1, [this, k](Status s) { note(k, s); });
+    master_->write_async("run", 1, [this, k](const Status& s) { note(k, s); });
   }
   void end_hole(std::size_t k) {
-    master_->write_async("run", 0, [this, k](Status s) { note(k, s); });
+    master_->write_async("run", 0, [this, k](const Status& s) { note(k, s); });
   }
   // Waits for the queued requests; the counters.
   drivers::MasterCounters finish() {

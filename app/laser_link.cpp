@@ -130,7 +130,7 @@ void LaserLink::follow(double commanded_pct) {
     next_setpoint_ = now + kSetpointInterval;
     sent_pct_ = commanded_pct_;
     ++report_.setpoint_writes;
-    laser_->write_async("power_setpoint_pct", sent_pct_, [this](Status s) { note_result(s); });
+    laser_->write_async("power_setpoint_pct", sent_pct_, [this](const Status& s) { note_result(s); });
   }
   if (now >= next_health_) {
     next_health_ = now + kHealthInterval;

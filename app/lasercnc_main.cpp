@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <exception>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -110,7 +111,7 @@ int usage_error(const std::string& msg) { return lcnc::app::usage_error("lasercn
 
 void draw_progress(double f) {
   constexpr int kWidth = 40;
-  const int filled = static_cast<int>(f * kWidth + 0.5);
+  const int filled = static_cast<int>(std::lround(f * kWidth));
   std::string bar(static_cast<std::size_t>(filled), '#');
   bar.resize(kWidth, '.');
   std::fprintf(stderr, "\r  [%s] %5.1f %%", bar.c_str(), f * 100.0);
@@ -118,9 +119,7 @@ void draw_progress(double f) {
   std::fflush(stderr);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   if (argc < 2) return usage_error("missing command");
   const std::string_view cmd = argv[1];
   if (cmd == "--help" || cmd == "-h" || cmd == "help") {
@@ -305,4 +304,18 @@ int main(int argc, char** argv) {
     std::fputs(lcnc::app::format_report(*report).c_str(), stdout);
   }
   return lcnc::app::run_succeeded(*report) ? 0 : 3;
+}
+
+}  // namespace
+
+// Nothing escapes as an abort: what the commands do not turn into a
+// diagnostic themselves (the computer out of memory) ends with its message
+// and exit code 1.
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "lasercnc: error: %s\n", e.what());
+    return 1;
+  }
 }

@@ -38,7 +38,7 @@ void PlannerFeed::start(const std::string& program, const ReaderOptions& options
   });
 }
 
-void PlannerFeed::start(std::shared_ptr<const std::vector<Segment>> segments, const Pose& start,
+void PlannerFeed::start(const std::shared_ptr<const std::vector<Segment>>& segments, const Pose& start,
                         const std::string& name) {
   launch(name, start, [segments](SegmentSource& source, Diagnostic&) {
     source = [segments, i = std::size_t{0}](Segment& out) mutable {
@@ -50,7 +50,7 @@ void PlannerFeed::start(std::shared_ptr<const std::vector<Segment>> segments, co
   });
 }
 
-void PlannerFeed::launch(std::string name, Pose start, OpenSource open) {
+void PlannerFeed::launch(std::string name, const Pose& start, OpenSource open) {
   abort();
   abort_ = false;
   done_ = false;

@@ -54,7 +54,7 @@ class PlannerFeed {
   void start(const std::string& program, const ReaderOptions& options);
   // The same on segments built in code (a drilling job, holes/drill_job.h),
   // from `start`; `name` stands for the program in messages.
-  void start(std::shared_ptr<const std::vector<Segment>> segments, const Pose& start,
+  void start(const std::shared_ptr<const std::vector<Segment>>& segments, const Pose& start,
              const std::string& name);
   // True once half the buffer is filled, or the whole job is in it, or the
   // planner stopped short: the moment to start the kernel on the job.
@@ -98,7 +98,7 @@ class PlannerFeed {
   // Opens the job's segment source on the planner thread; false (and the
   // error set) if it cannot.
   using OpenSource = std::function<bool(SegmentSource& source, Diagnostic& error)>;
-  void launch(std::string name, Pose start, OpenSource open);
+  void launch(std::string name, const Pose& start, OpenSource open);
   void run(const std::string& name, const Pose& start, const OpenSource& open);
   bool push(const PeriodIncrement& inc);
 

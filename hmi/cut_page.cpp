@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <utility>
 
 #include "dxf/dxf_reader.h"
 #include "hmi/page_support.h"
@@ -25,7 +26,7 @@ class CutView : public QWidget {
   }
   void set_plan(const cut::CutPlan* plan, cut::Vec2 origin) {
     plan_ = plan;
-    origin_ = origin;
+    origin_ = std::move(origin);
     update();
   }
 
@@ -52,7 +53,7 @@ class CutView : public QWidget {
     const double k = std::min(area.width() / (x1 - x0), area.height() / (y1 - y0));
     const double ox = area.center().x() - 0.5 * (x0 + x1) * k, oy = area.center().y() + 0.5 * (y0 + y1) * k;
     const auto px = [&](const cut::Vec2& p) { return QPointF(ox + p.x() * k, oy - p.y() * k); };
-    const auto polyline = [&](const std::vector<cut::Vec2>& pts, bool closed, cut::Vec2 shift) {
+    const auto polyline = [&](const std::vector<cut::Vec2>& pts, bool closed, const cut::Vec2& shift) {
       QPolygonF poly;
       for (const cut::Vec2& p : pts) poly << px(p + shift);
       if (closed && !poly.isEmpty()) poly << poly.front();

@@ -86,18 +86,18 @@ void DevicePoller::write(const std::string& name, double value) {
     std::lock_guard lock(mutex_);
     snap_.last_write.clear();
   }
-  master_->write_async(name, value, [this, name](Status s) {
+  master_->write_async(name, value, [this, name](const Status& s) {
     std::lock_guard lock(mutex_);
     snap_.last_write = s ? std::string() : name + ": " + s.error().message;
   });
 }
 
-void DevicePoller::write_block(std::vector<std::pair<std::string, double>> values) {
+void DevicePoller::write_block(const std::vector<std::pair<std::string, double>>& values) {
   {
     std::lock_guard lock(mutex_);
     snap_.last_write.clear();
   }
-  master_->write_block_async(std::move(values), [this](Status s) {
+  master_->write_block_async(values, [this](const Status& s) {
     std::lock_guard lock(mutex_);
     snap_.last_write = s ? std::string() : s.error().message;
   });

@@ -55,7 +55,7 @@ class DevicePoller {
 
   // Queued, not waited for; the outcome shows in snapshot().last_write.
   void write(const std::string& name, double value);
-  void write_block(std::vector<std::pair<std::string, double>> values);
+  void write_block(const std::vector<std::pair<std::string, double>>& values);
 
  private:
   DevicePoller(std::unique_ptr<drivers::ModbusMaster> m, std::vector<std::string> history,

@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
          a == "--sensor" || a == "--probe" || a == "--laser" || a == "--meter" || a == "--head" ||
          a == "--lang" || a == "--machine" || a == "--program" || a == "--cut") &&
         i + 1 < args.size()) {
-      const QString v = args[++i];
+      const QString& v = args[++i];
       if (a == "--db") db_path = v.toStdString();
       else if (a == "--shm") shm_name = v.toStdString();
       else if (a == "--import") import_path = v.toStdString();

@@ -46,9 +46,15 @@ HoleTableModel::HoleTableModel(ProcessDatabase& db, QObject* parent) : QAbstract
 void HoleTableModel::reload() {
   beginResetModel();
   Result<std::vector<HoleRecord>> all = db_.holes();
-  rows_ = all ? std::move(all).value() : std::vector<HoleRecord>{};
+  QString refusal;
+  if (all) {
+    rows_ = std::move(all).value();
+  } else {
+    rows_.clear();
+    refusal = QString::fromStdString(all.error().to_string());
+  }
   endResetModel();
-  if (!all) emit refused(QString::fromStdString(all.error().to_string()));
+  if (!refusal.isEmpty()) emit refused(refusal);
 }
 
 int HoleTableModel::rowCount(const QModelIndex& parent) const {

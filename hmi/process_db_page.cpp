@@ -187,7 +187,7 @@ std::string ProcessDbPage::send_to_controller() {
                                     ("lasercnc_hmi_" + std::to_string(QCoreApplication::applicationPid()));
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
-  const std::string path = (dir / "holes_run.csv").string();
+  std::string path = (dir / "holes_run.csv").string();
   // replaced whole: the controller may still be reading the last one sent
   if (const Status s = write_output(path, {db_.path()}, [&](std::ostream& out) { out << write_hole_table(rows); });
       !s) {

@@ -30,7 +30,7 @@ void ToolpathView::set_toolpath(const Toolpath* path) {
   update();
 }
 
-void ToolpathView::set_position(std::optional<Vec3> at) {
+void ToolpathView::set_position(const std::optional<Vec3>& at) {
   if (at == at_) return;
   at_ = at;
   update();

@@ -24,7 +24,7 @@ class ToolpathView : public QWidget {
  public:
   explicit ToolpathView(QWidget* parent = nullptr);
   void set_toolpath(const Toolpath* path);  // kept by the caller; null: none
-  void set_position(std::optional<Vec3> at);
+  void set_position(const std::optional<Vec3>& at);
   // The view's angles; zoom and pan back to the framed cut.
   void set_view(const ViewAngles& v);
   [[nodiscard]] const ViewAngles& view() const noexcept { return view_; }

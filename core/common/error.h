@@ -11,7 +11,7 @@ namespace lcnc {
 
 enum class ErrorCode : std::uint16_t {
   Ok = 0,
-#define LCNC_ERROR(name, number, summary) name = number,
+#define LCNC_ERROR(name, number, summary) name = number,  // NOLINT(bugprone-macro-parentheses): an enumerator
 #include "errors.def"
 #undef LCNC_ERROR
 };

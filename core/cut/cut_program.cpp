@@ -182,7 +182,7 @@ Result<CutPlan> plan_cut(const dxf::Drawing& d, const CutOptions& opt) {
     plan.time_s += (c.path_mm + overcut + c.entry.lead_in_mm) / (c.process.feed_mm_min / 60.0) +
                    c.process.pierce_s + (c.entry.pierce - from).norm() / kEstimateRapidMmS;
     (c.hole ? plan.holes : plan.parts) += 1;
-    const Vec2 end = c.entry.overcut.empty() ? c.entry.path.front() : c.entry.overcut.back();
+    Vec2 end = c.entry.overcut.empty() ? c.entry.path.front() : c.entry.overcut.back();
     plan.contours.push_back(std::move(c));
     return end;
   });

@@ -139,7 +139,7 @@ Result<std::vector<Contour>> chain_contours(const Drawing& d) {
       const std::size_t next = found[0] / 2;
       const bool at_start = found[0] % 2 == 0;
       used[next] = true;
-      const Vec2 join = end;
+      const Vec2& join = end;
       if (at_start) {
         for (const Edge& e : es[next].edges) c.edges.push_back(e);
       } else {

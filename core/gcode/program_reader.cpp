@@ -1128,7 +1128,7 @@ ProgramReader::~ProgramReader() = default;
 
 Result<std::unique_ptr<ProgramReader>> ProgramReader::open(const std::string& path,
                                                            const MachineConfig& machine,
-                                                           ReaderOptions options) {
+                                                           const ReaderOptions& options) {
   std::string why;
   auto src = gcode::LineSource::open_file(path, why);
   if (!src) {
@@ -1143,7 +1143,7 @@ Result<std::unique_ptr<ProgramReader>> ProgramReader::open(const std::string& pa
 
 std::unique_ptr<ProgramReader> ProgramReader::from_string(std::string text, std::string name,
                                                           const MachineConfig& machine,
-                                                          ReaderOptions options) {
+                                                          const ReaderOptions& options) {
   auto src = std::make_unique<gcode::LineSource>(std::move(text));
   auto impl = std::make_unique<Impl>(std::move(src), std::move(name), machine, options);
   impl->from_memory = true;
@@ -1171,7 +1171,7 @@ ReaderModes ProgramReader::modes() const {
 }
 
 Result<ProgramSummary> check_program(const std::string& path, const MachineConfig& machine,
-                                     ReaderOptions options) {
+                                     const ReaderOptions& options) {
   auto opened = ProgramReader::open(path, machine, options);
   if (!opened) return opened.error();
   ProgramReader& reader = **opened;

@@ -89,11 +89,11 @@ class ProgramReader {
 
   // Opens a program file. FileNotFound when it cannot be read.
   [[nodiscard]] static Result<std::unique_ptr<ProgramReader>> open(
-      const std::string& path, const MachineConfig& machine, ReaderOptions options = {});
+      const std::string& path, const MachineConfig& machine, const ReaderOptions& options = {});
   // Reads a program held in memory; `name` stands for the file in diagnostics.
   [[nodiscard]] static std::unique_ptr<ProgramReader> from_string(
       std::string text, std::string name, const MachineConfig& machine,
-      ReaderOptions options = {});
+      const ReaderOptions& options = {});
 
   ~ProgramReader();
   ProgramReader(const ProgramReader&) = delete;
@@ -135,6 +135,6 @@ struct ProgramSummary : MotionSummary {
 // travel. The first error is returned; nothing is run.
 [[nodiscard]] Result<ProgramSummary> check_program(const std::string& path,
                                                    const MachineConfig& machine,
-                                                   ReaderOptions options = {});
+                                                   const ReaderOptions& options = {});
 
 }  // namespace lcnc

@@ -215,7 +215,7 @@ double OrientationMove::pole_weight(double alpha_rad) const noexcept {
 }
 
 Vec3 OrientationMove::smoothed_axis_at(double u) const {
-  const Vec3 k = ideal_axis_at(u);
+  Vec3 k = ideal_axis_at(u);
   if (!snapped_) return k;
   const double angle = pole_dist_rad_ * pole_weight(std::clamp(u, 0.0, 1.0) * theta_rad_);
   return Eigen::AngleAxisd(angle, snap_axis_) * k;

@@ -56,10 +56,21 @@ MachineConfig planned_machine(const MachineConfig& machine, const JerkLimit& lim
   return m;
 }
 
+namespace {
+
+// Periods a stop holds on each side: half the filter's taps, rounded down,
+// and one.
+double hold_periods(const JerkLimit& limit) {
+  const std::uint32_t periods = (limit.taps + 1) / 2 + 1;
+  return static_cast<double>(periods);
+}
+
+}  // namespace
+
 StopHolds::StopHolds(PlannedSource source, const JerkLimit& limit, double period_s)
     : source_(std::move(source)),
       enabled_(limit.enabled()),
-      half_s_(((limit.taps + 1) / 2 + 1) * period_s) {}
+      half_s_(hold_periods(limit) * period_s) {}
 
 PlannedSegment StopHolds::half(const PlannedSegment& neighbour, bool stand, const Pose& at) const {
   PlannedSegment h = neighbour;

@@ -78,7 +78,7 @@ class Lookahead {
   // (some 600 bytes each, touched only when they come in and go out): the
   // passes sweep the window several times, and a compact one stays in cache.
   struct Node {
-    Node() {}  // user-provided: the vector does not zero the whole node first
+    Node() {}  // NOLINT(modernize-use-equals-default): user-provided, so the vector does not zero the whole node first
     // Speeds as their squares (x = v², the phase plane): the passes chain
     // reaches with no square root between segments.
     double length = 0.0;

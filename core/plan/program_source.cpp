@@ -58,7 +58,7 @@ Diagnostic ProgramSource::error() const {
 }
 
 Result<ProgramSummary> check_job_program(const std::string& path, const MachineConfig& machine,
-                                         ReaderOptions options) {
+                                         const ReaderOptions& options) {
   if (!machine.tcp.enabled) return check_program(path, machine, options);
   ReaderOptions tip = options;
   tip.start = TcpExpander::tip_start(kinematics_from(machine), options.start);

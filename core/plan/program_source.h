@@ -51,7 +51,7 @@ class ProgramSource {
 // joints'.
 [[nodiscard]] Result<ProgramSummary> check_job_program(const std::string& path,
                                                        const MachineConfig& machine,
-                                                       ReaderOptions options = {});
+                                                       const ReaderOptions& options = {});
 
 // Under tool-centre-point control, the program as written: the tool tip's
 // path, read from joints options.start. A run measures the executed tip

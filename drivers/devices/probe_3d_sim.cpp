@@ -129,7 +129,7 @@ std::string Probe3dSim::answer(const std::string& line) {
   return probe::encode(probe::ErrorReply{0, probe::ProbeError::BadRequest, "not a request"});
 }
 
-void Probe3dSim::serial_loop() noexcept {
+void Probe3dSim::serial_loop() {
   std::string pending;
   while (serial_running_.load()) {
     pollfd fds[2] = {{pty_.master_fd, POLLIN, 0}, {wake_fd_, POLLIN, 0}};

@@ -76,7 +76,7 @@ class Probe3dSim final : public VirtualDevice {
   void tick(double dt_s, RegisterBank& bank) override;
   // One measurement at the current position: the point, or empty.
   std::optional<probe::PointReply> measure(std::uint16_t id);
-  void serial_loop() noexcept;
+  void serial_loop();
   std::string answer(const std::string& line);
 
   Probe3dParams p_;

@@ -394,7 +394,7 @@ void ModbusMaster::write_async(std::string_view name, double value, std::functio
                  : r->words() == 1       ? Function::WriteSingleRegister
                                          : Function::WriteMultipleRegisters;
   req.what = "write " + r->name + " = " + format_number(value);
-  submit(std::move(req), [done = std::move(done)](Result<RawReply> res) {
+  submit(std::move(req), [done = std::move(done)](const Result<RawReply>& res) {
     done(res ? Status{} : Status{res.error()});
   });
 }
@@ -403,12 +403,12 @@ std::future<Status> ModbusMaster::write(std::string_view name, double value) {
   return as_future<Status>([&](auto done) { write_async(name, value, std::move(done)); });
 }
 
-std::future<Result<std::vector<double>>> ModbusMaster::read_block(std::vector<std::string> names) {
+std::future<Result<std::vector<double>>> ModbusMaster::read_block(const std::vector<std::string>& names) {
   return as_future<Result<std::vector<double>>>(
-      [&](auto done) { read_block_async(std::move(names), std::move(done)); });
+      [&](auto done) { read_block_async(names, std::move(done)); });
 }
 
-void ModbusMaster::read_block_async(std::vector<std::string> names,
+void ModbusMaster::read_block_async(const std::vector<std::string>& names,
                                     std::function<void(Result<std::vector<double>>)> done) {
   auto refuse = [&](ErrorCode c, const std::string& why) {
     impl_->n.refused.fetch_add(1, std::memory_order_relaxed);
@@ -463,11 +463,11 @@ void ModbusMaster::read_block_async(std::vector<std::string> names,
   });
 }
 
-std::future<Status> ModbusMaster::write_block(std::vector<std::pair<std::string, double>> values) {
-  return as_future<Status>([&](auto done) { write_block_async(std::move(values), std::move(done)); });
+std::future<Status> ModbusMaster::write_block(const std::vector<std::pair<std::string, double>>& values) {
+  return as_future<Status>([&](auto done) { write_block_async(values, std::move(done)); });
 }
 
-void ModbusMaster::write_block_async(std::vector<std::pair<std::string, double>> values,
+void ModbusMaster::write_block_async(const std::vector<std::pair<std::string, double>>& values,
                                      std::function<void(Status)> done) {
   auto refuse = [&](ErrorCode c, const std::string& why) {
     impl_->n.refused.fetch_add(1, std::memory_order_relaxed);
@@ -524,7 +524,7 @@ void ModbusMaster::write_block_async(std::vector<std::pair<std::string, double>>
     next += r.words();
   }
   req.what = "write block " + items.front().reg->name + " … " + items.back().reg->name;
-  submit(std::move(req), [done = std::move(done)](Result<RawReply> res) {
+  submit(std::move(req), [done = std::move(done)](const Result<RawReply>& res) {
     done(res ? Status{} : Status{res.error()});
   });
 }

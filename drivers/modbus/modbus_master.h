@@ -101,14 +101,15 @@ class ModbusMaster {
   void write_async(std::string_view name, double value, std::function<void(Status)> done);
   // Several registers of one table in one request (FC1/2/3/4 over the span
   // from the lowest to the highest address; every address of it mapped).
-  [[nodiscard]] std::future<Result<std::vector<double>>> read_block(std::vector<std::string> names);
-  void read_block_async(std::vector<std::string> names,
+  [[nodiscard]] std::future<Result<std::vector<double>>> read_block(const std::vector<std::string>& names);
+  void read_block_async(const std::vector<std::string>& names,
                         std::function<void(Result<std::vector<double>>)> done);
   // A parameter block: registers of one writable table that are contiguous
   // once sorted by address, written with one FC16 (holding) or FC15 (coils).
   // All values are range-checked first; one bad value sends nothing.
-  [[nodiscard]] std::future<Status> write_block(std::vector<std::pair<std::string, double>> values);
-  void write_block_async(std::vector<std::pair<std::string, double>> values,
+  [[nodiscard]] std::future<Status> write_block(
+      const std::vector<std::pair<std::string, double>>& values);
+  void write_block_async(const std::vector<std::pair<std::string, double>>& values,
                          std::function<void(Status)> done);
 
   [[nodiscard]] MasterCounters counters() const noexcept;
