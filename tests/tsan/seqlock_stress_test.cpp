@@ -116,14 +116,14 @@ void run(Seqlock<Block>& lock, int readers, int tries, std::uint64_t writes) {
 
 TEST(SeqlockStress, ThreeReadersNeverSeeATornBlock) {
   auto lock = std::make_unique<Seqlock<Block>>();
-  run(*lock, 3, 1000, scaled(1'000'000));
+  run(*lock, 3, 1000, scaled(std::uint64_t{1'000'000}));
 }
 
 // tries = 1: a load that meets a write returns false at once, so the
 // readers' copies overlap writes as often as possible.
 TEST(SeqlockStress, SingleTryReadersNeverSeeATornBlock) {
   auto lock = std::make_unique<Seqlock<Block>>();
-  run(*lock, 2, 1, scaled(500'000));
+  run(*lock, 2, 1, scaled(std::uint64_t{500'000}));
 }
 
 }  // namespace

@@ -68,8 +68,8 @@ TEST(ShmBlockStress, KernelHmiAndViewersShareTheBlock) {
   ASSERT_NE(mem, MAP_FAILED);
   ShmBlock* block = new (mem) ShmBlock();
 
-  const std::uint64_t iterations = scaled(100'000);
-  const std::uint32_t commands = static_cast<std::uint32_t>(scaled(20'000));
+  const std::uint64_t iterations = scaled(std::uint64_t{100'000});
+  const std::uint32_t commands = static_cast<std::uint32_t>(scaled(std::uint64_t{20'000}));
   std::atomic<bool> kernel_done{false};
 
   // kernel

@@ -142,7 +142,7 @@ class SharedMapping {
 TEST(SpscRingStress, MillionsOfItemsArriveInOrderAndIntact) {
   using Ring = SpscRing<Item, 64>;
   auto ring = std::make_unique<Ring>();
-  const std::uint64_t n = scaled(2'000'000);
+  const std::uint64_t n = scaled(std::uint64_t{2'000'000});
   expect_clean(run_pair(*ring, *ring, n), n);
 }
 
@@ -151,7 +151,7 @@ TEST(SpscRingStress, MillionsOfItemsArriveInOrderAndIntact) {
 TEST(SpscRingStress, SmallestRingStaysInOrder) {
   using Ring = SpscRing<Item, 2>;
   auto ring = std::make_unique<Ring>();
-  const std::uint64_t n = scaled(500'000);
+  const std::uint64_t n = scaled(std::uint64_t{500'000});
   expect_clean(run_pair(*ring, *ring, n), n);
 }
 
@@ -163,7 +163,7 @@ TEST(SpscRingStress, RingInASharedByteBufferStaysInOrder) {
   SharedMapping map(sizeof(Ring));
   ASSERT_NE(map.addr(), nullptr);
   Ring* ring = new (map.addr()) Ring();
-  const std::uint64_t n = scaled(2'000'000);
+  const std::uint64_t n = scaled(std::uint64_t{2'000'000});
   expect_clean(run_pair(*ring, *ring, n), n);
   ring->~Ring();
 }
@@ -184,7 +184,7 @@ TEST(SpscRingStress, RingSeenThroughTwoMappingsStaysInOrder) {
   ASSERT_NE(a, b);
   Ring* producer_view = new (a) Ring();
   Ring* consumer_view = std::launder(static_cast<Ring*>(b));
-  const std::uint64_t n = scaled(1'000'000);
+  const std::uint64_t n = scaled(std::uint64_t{1'000'000});
   expect_clean(run_pair(*producer_view, *consumer_view, n), n);
   munmap(a, sizeof(Ring));
   munmap(b, sizeof(Ring));

@@ -10,7 +10,7 @@
 
 namespace lcnc::rt::tsan {
 
-inline std::uint64_t scaled(std::uint64_t n) { return lcnc::testing::scaled(n); }
+using lcnc::testing::scaled;
 
 // A value every field of a test item derives from, so a wrong or torn item
 // is detectable (splitmix64's finalizer).

@@ -15,7 +15,7 @@ namespace lcnc {
 namespace {
 
 // Property-test size: LCNC_TEST_SCALE multiplies it for long runs.
-int scaled(int n) { return testing::scaled(n); }
+using testing::scaled;
 
 Pose joints(double x, double y, double z, double a, double c) {
   Pose p = Pose::Zero();
