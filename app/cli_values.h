@@ -16,8 +16,7 @@ namespace lcnc::app {
 // "COMMAND: MSG", then the command's usage, on standard error; returns the
 // exit code of a usage error, 2.
 inline int usage_error(std::string_view command, const std::string& msg, const char* usage) {
-  std::fprintf(stderr, "%.*s: %s\n%s", static_cast<int>(command.size()), command.data(), msg.c_str(),
-               usage);
+  std::fprintf(stderr, "%.*s: %s\n%s", static_cast<int>(command.size()), command.data(), msg.c_str(), usage);
   return 2;
 }
 
@@ -27,9 +26,9 @@ inline int usage_error(std::string_view command, const std::string& msg, const c
 // error); anything else is an option, whose value follows (i moves on to
 // it). The exit code when the command ends here, else nothing, with
 // `option` and `value` set — both empty for the file.
-inline std::optional<int> file_or_option(std::string_view command, const char* usage, int argc,
-                                         char** argv, int& i, std::string& file,
-                                         std::string_view& option, std::string_view& value) {
+inline std::optional<int> file_or_option(std::string_view command, const char* usage, int argc, char** argv,
+                                         int& i, std::string& file, std::string_view& option,
+                                         std::string_view& value) {
   const std::string_view a = argv[i];
   option = value = {};
   if (a == "--help" || a == "-h") {

@@ -36,7 +36,7 @@ drivers::CncStatusSnapshot to_snapshot(const shm::Status& st, std::uint32_t axes
 }
 
 Result<std::unique_ptr<CncModbusHost>> CncModbusHost::start(const drivers::Endpoint& endpoint,
-                                                           std::shared_ptr<spdlog::logger> log) {
+                                                            std::shared_ptr<spdlog::logger> log) {
   Result<drivers::DeviceMap> map = drivers::shipped_device("cnc");
   if (!map) return map.error();
   drivers::SlaveConfig config;
@@ -57,7 +57,8 @@ CncModbusHost::~CncModbusHost() {
   if (slave_) slave_->stop();
   // a command still queued gets its answer (the master's exception 04)
   std::lock_guard lock(mutex_);
-  for (auto& p : inbox_) p->answer.set_value(Ack{false, ErrorCode::RtRefused, "the controller is shutting down"});
+  for (auto& p : inbox_)
+    p->answer.set_value(Ack{false, ErrorCode::RtRefused, "the controller is shutting down"});
   inbox_.clear();
 }
 

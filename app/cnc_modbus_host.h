@@ -60,8 +60,8 @@ class CncModbusHost {
 
   // Binds (TCP) or opens (RTU) the endpoint and starts serving; refusals
   // and publishing problems are logged to `log`.
-  [[nodiscard]] static Result<std::unique_ptr<CncModbusHost>> start(
-      const drivers::Endpoint& endpoint, std::shared_ptr<spdlog::logger> log);
+  [[nodiscard]] static Result<std::unique_ptr<CncModbusHost>> start(const drivers::Endpoint& endpoint,
+                                                                    std::shared_ptr<spdlog::logger> log);
   ~CncModbusHost();
 
   [[nodiscard]] drivers::Endpoint endpoint() const { return slave_->endpoint(); }

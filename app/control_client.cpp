@@ -16,12 +16,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "common/error.h"
-#include "geom/pose.h"
-#include "machine/machine_config.h"
 #include "app/cli_values.h"
 #include "app/json_text.h"
 #include "app/rt_text.h"
+#include "common/error.h"
+#include "geom/pose.h"
+#include "machine/machine_config.h"
 #include "rt/shm_interface.h"
 
 namespace lcnc::app {
@@ -166,11 +166,11 @@ std::string format_status(const shm::Status& st, const shm::JobStatus& job, bool
          (st.program_pause && job.job_active && job.single_block
               ? " — single block: stopped after line " + std::to_string(st.line) +
                     ": send resume to run the next block"
-          : st.program_pause ? " — program pause (M0/M1/M60) at line " + std::to_string(st.line) +
-                                   ": send resume to go on"
-                             : std::string()) +
-         (st.input_wait >= 0 ? " — waiting for input P" + std::to_string(st.input_wait) +
-                                   " (M66) at line " + std::to_string(st.line)
+          : st.program_pause
+              ? " — program pause (M0/M1/M60) at line " + std::to_string(st.line) + ": send resume to go on"
+              : std::string()) +
+         (st.input_wait >= 0 ? " — waiting for input P" + std::to_string(st.input_wait) + " (M66) at line " +
+                                   std::to_string(st.line)
                              : std::string()) +
          fault + "\n";
   out += "position  ";
@@ -251,8 +251,8 @@ int client_send(const std::vector<std::string>& args, const ClientOptions& optio
   } else if (cmd == "frame") {
     if (!need(0, "no argument")) return 2;
     c.type = shm::CommandType::Frame;
-  } else if (cmd == "start" || cmd == "hold" || cmd == "resume" || cmd == "stop" ||
-             cmd == "estop" || cmd == "reset") {
+  } else if (cmd == "start" || cmd == "hold" || cmd == "resume" || cmd == "stop" || cmd == "estop" ||
+             cmd == "reset") {
     if (!need(0, "no argument")) return 2;
     c.type = cmd == "start"    ? shm::CommandType::Start
              : cmd == "hold"   ? shm::CommandType::Hold
@@ -304,9 +304,9 @@ int client_send(const std::vector<std::string>& args, const ClientOptions& optio
   auto client = connect(options);
   if (!client) return 1;
   shm::ShmBlock& b = client->block();
-  const auto deadline = std::chrono::steady_clock::now() +
-                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                            std::chrono::duration<double>(options.timeout_s));
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                             std::chrono::duration<double>(options.timeout_s));
   const auto left = [&] {
     return std::max(std::chrono::steady_clock::duration::zero(), deadline - std::chrono::steady_clock::now());
   };
@@ -334,7 +334,8 @@ int client_send(const std::vector<std::string>& args, const ClientOptions& optio
   c.sender_gid = static_cast<std::uint32_t>(getgid());
   // a full queue or a busy lock: tried again with the same request id until
   // the deadline (a request that got through is not executed twice)
-  while ((c.seq = client->send(c, std::min<std::chrono::nanoseconds>(left(), shm::ShmClient::kDefaultLockTimeout))) == 0) {
+  while ((c.seq = client->send(
+              c, std::min<std::chrono::nanoseconds>(left(), shm::ShmClient::kDefaultLockTimeout))) == 0) {
     if (left() == std::chrono::steady_clock::duration::zero()) {
       std::fprintf(stderr,
                    "lasercnc send %s: not sent within %g s: the daemon's command queue is full or "

@@ -17,10 +17,10 @@ namespace lcnc::app {
 inline constexpr double kMaxTimeoutS = 3600.0;
 
 struct ClientOptions {
-  std::string shm_name;  // empty: shm::kDefaultName
-  bool json = false;     // status as one JSON object
+  std::string shm_name;    // empty: shm::kDefaultName
+  bool json = false;       // status as one JSON object
   double timeout_s = 5.0;  // 0 < t ≤ kMaxTimeoutS: the wait for the lock and for the answer
-  bool wait = false;     // send start / mdi / frame: wait for the job to end, print its result
+  bool wait = false;       // send start / mdi / frame: wait for the job to end, print its result
   // send start: how the program runs
   std::uint32_t from_line = 0;  // run from this line (0: the start)
   bool single_block = false;    // a pause after each block (send resume runs the next)

@@ -53,25 +53,24 @@ int usage_error(const std::string& msg) { return lcnc::app::usage_error("lasercn
 
 void print_summary(std::FILE* out, const std::string& part, const cut::CutPlan& plan,
                    const std::vector<std::string>& notes) {
-  std::fprintf(out, "%s: %zu contours: %zu outlines, %zu holes\n", part.c_str(),
-               plan.contours.size(), plan.parts, plan.holes);
+  std::fprintf(out, "%s: %zu contours: %zu outlines, %zu holes\n", part.c_str(), plan.contours.size(),
+               plan.parts, plan.holes);
   for (const std::string& n : notes) std::fprintf(out, "  %s\n", n.c_str());
-  std::fprintf(out, "%5s %-7s %-48s %-10s %7s %8s %9s %7s\n", "order", "kind", "contour", "layer",
-               "kerf", "lead-in", "feed", "power");
+  std::fprintf(out, "%5s %-7s %-48s %-10s %7s %8s %9s %7s\n", "order", "kind", "contour", "layer", "kerf",
+               "lead-in", "feed", "power");
   for (std::size_t k = 0; k < plan.contours.size(); ++k) {
     const cut::CutContour& c = plan.contours[k];
     std::string name = c.name.substr(0, c.name.find(", layer"));
     if (name.back() != ')') name += ")";
-    std::fprintf(out, "%5zu %-7s %-48s %-10s %7.3f %8.3f %9.0f %6.1f%%\n", k + 1,
-                 c.hole ? "hole" : "outline", name.c_str(), c.layer.c_str(), c.process.kerf_mm,
-                 c.entry.lead_in_mm, c.process.feed_mm_min, c.process.power_pct);
+    std::fprintf(out, "%5zu %-7s %-48s %-10s %7.3f %8.3f %9.0f %6.1f%%\n", k + 1, c.hole ? "hole" : "outline",
+                 name.c_str(), c.layer.c_str(), c.process.kerf_mm, c.entry.lead_in_mm, c.process.feed_mm_min,
+                 c.process.power_pct);
   }
   for (const std::string& w : plan.warnings) std::fprintf(out, "  warning: %s\n", w.c_str());
   std::fprintf(out,
                "cut %.3f mm, lead-ins %.3f mm, rapids %.3f mm; estimated time %.1f s (feeds, "
                "pierces, rapids at %.0f m/min)\n",
-               plan.cut_mm, plan.lead_mm, plan.rapid_mm, plan.time_s,
-               cut::kEstimateRapidMmS * 0.06);
+               plan.cut_mm, plan.lead_mm, plan.rapid_mm, plan.time_s, cut::kEstimateRapidMmS * 0.06);
 }
 
 }  // namespace
@@ -112,9 +111,12 @@ int cut_main(int argc, char** argv) {
       if (!(x >= 0.0 && x <= 100.0)) return bad("a length in mm, 0 to 100");
       (a == "--lead-in" ? opt.lead_in_mm : opt.lead_out_mm) = x;
     } else if (a == "--direction") {
-      if (v == "cw") opt.outer = cut::Direction::Cw;
-      else if (v == "ccw") opt.outer = cut::Direction::Ccw;
-      else return bad("cw or ccw (the outlines' direction; holes the other way)");
+      if (v == "cw")
+        opt.outer = cut::Direction::Cw;
+      else if (v == "ccw")
+        opt.outer = cut::Direction::Ccw;
+      else
+        return bad("cw or ccw (the outlines' direction; holes the other way)");
     } else if (a == "--units") {
       const std::optional<double> u = parse_unit_mm(v);
       if (!u) return bad("mm, inch, cm or m");
@@ -163,12 +165,10 @@ int cut_main(int argc, char** argv) {
   std::FILE* report = to_stdout ? stderr : stdout;
   print_summary(report, part, *plan, read->notes);
   OutputSet outputs(inputs);
-  if (!outputs.add(out_path, [&](OutputFile& f) { f.write(cut::cut_gcode(*plan, opt, part)); }))
-    return 1;
+  if (!outputs.add(out_path, [&](OutputFile& f) { f.write(cut::cut_gcode(*plan, opt, part)); })) return 1;
   if (!svg_path.empty()) {
-    if (!outputs.add(svg_path, [&](OutputFile& f) {
-          f.write(cut::plan_svg(*plan, part + " — lasercnc cut"));
-        }))
+    if (!outputs.add(svg_path,
+                     [&](OutputFile& f) { f.write(cut::plan_svg(*plan, part + " — lasercnc cut")); }))
       return 1;
   }
   if (!outputs.commit_all()) return 1;

@@ -1,5 +1,6 @@
 #include "app/daemon.h"
 
+#include <unistd.h>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -8,7 +9,6 @@
 #include <filesystem>
 #include <optional>
 #include <thread>
-#include <unistd.h>
 
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
@@ -16,12 +16,12 @@
 #include "app/cnc_modbus_host.h"
 #include "app/framing.h"
 #include "app/job_outcome.h"
+#include "app/job_session.h"
+#include "app/machine_files.h"
 #include "app/planner_feed.h"
 #include "app/program_loader.h"
 #include "app/program_snapshot.h"
 #include "app/recent_requests.h"
-#include "app/job_session.h"
-#include "app/machine_files.h"
 #include "app/rt_text.h"
 #include "app/run_job.h"
 #include "drivers/sim_machine.h"
@@ -39,7 +39,7 @@
 namespace lcnc::app {
 namespace {
 
-constexpr auto kTick = std::chrono::microseconds(500);  // control loop period
+constexpr auto kTick = std::chrono::microseconds(500);         // control loop period
 constexpr auto kModbusPublish = std::chrono::milliseconds(5);  // status to the Modbus slave
 constexpr auto kKernelSettle = std::chrono::seconds(1);  // longest wait for the kernel to take a command
 
@@ -84,11 +84,10 @@ std::string default_parameter_file(std::string& warning) {
   }
   const std::filesystem::path tmp =
       std::filesystem::temp_directory_path(ec) / ("lasercncd-" + std::to_string(getpid()) + ".var");
-  warning = "no folder for the work offsets (" +
-            (dir.empty() ? std::string("neither XDG_DATA_HOME nor HOME is set")
-                         : "cannot make " + dir.string()) +
-            "): they are kept in " + tmp.string() +
-            " for this run only; give --parameter-file FILE to keep them";
+  warning =
+      "no folder for the work offsets (" +
+      (dir.empty() ? std::string("neither XDG_DATA_HOME nor HOME is set") : "cannot make " + dir.string()) +
+      "): they are kept in " + tmp.string() + " for this run only; give --parameter-file FILE to keep them";
   return tmp.string();
 }
 
@@ -104,7 +103,7 @@ Status parameter_file_writable(const std::string& path) {
   if ((exists || fs::is_directory(dir, ec)) && ::access(target.c_str(), W_OK) == 0) return {};
   return make_error(ErrorCode::ParameterFileBad,
                     std::string("the parameter file cannot be written: ") +
-                        (exists ? "it is not writable"
+                        (exists                      ? "it is not writable"
                          : fs::is_directory(dir, ec) ? "its folder " + dir.string() + " is not writable"
                                                      : "its folder " + dir.string() + " does not exist") +
                         "; expected a file lasercncd may write (--parameter-file FILE), so that the work "
@@ -146,7 +145,7 @@ struct Daemon::Impl {
   rt::RtLogRing* rt_log = nullptr;
   rt::TraceRing* trace = nullptr;
   std::unique_ptr<drivers::SimMachine> sim;
-  std::unique_ptr<rt::RtKernel> rt_kernel;       // the simulated machine's
+  std::unique_ptr<rt::RtKernel> rt_kernel;        // the simulated machine's
   std::unique_ptr<rt::KernelControl> hal_kernel;  // --hal: the component's, through the port
   rt::KernelControl* kernel = nullptr;
   bool hal_attached_seen = false;
@@ -250,7 +249,7 @@ struct Daemon::Impl {
     (void)shm.block().events.try_push(e);
   }
 
-  CheckedJob loaded;  // the program loaded (`program`), as last checked
+  CheckedJob loaded;                // the program loaded (`program`), as last checked
   Pose loaded_from = Pose::Zero();  // where the machine stood for that check
 
   // Who a command's files are read for: its sender, in the program folders.
@@ -345,8 +344,10 @@ struct Daemon::Impl {
         ropt.laser_off = (c.axis & shm::kStartDryRun) != 0;
         const bool plain = ropt.start_line == 0 && !ropt.single_block && !ropt.laser_off;
         if (loaded.drill_segments && !plain)
-          return refuse("start refused: run from line, single block and dry run are for G-code "
-                        "programs; " + program->name() + " is a hole table");
+          return refuse(
+              "start refused: run from line, single block and dry run are for G-code "
+              "programs; " +
+              program->name() + " is a hole table");
         // the copy that was checked runs; checked again from here if the
         // machine has moved (jog, home) or the offsets may have changed since,
         // or with the options asked for
@@ -374,7 +375,8 @@ struct Daemon::Impl {
         cancel_load();
         // a full ring: the e-stop's own word, one atomic add the kernel
         // reads every period (never refused)
-        if (!push({rt::RtCommandType::EStop, 0, 0.0})) shm.block().estop.requests.fetch_add(1, std::memory_order_release);
+        if (!push({rt::RtCommandType::EStop, 0, 0.0}))
+          shm.block().estop.requests.fetch_add(1, std::memory_order_release);
         return Ack{true, ErrorCode::RtEstop, "e-stop"};
       case shm::CommandType::Reset:
         cancel_load();
@@ -390,7 +392,8 @@ struct Daemon::Impl {
       case shm::CommandType::Jog: {
         if (st != shm::MachineState::Idle || job_active)
           return refuse(std::string("jog refused: the machine is ") + state_name(st));
-        if (!push({rt::RtCommandType::Jog, static_cast<std::int8_t>(c.axis), c.value})) return ring_full("jog");
+        if (!push({rt::RtCommandType::Jog, static_cast<std::int8_t>(c.axis), c.value}))
+          return ring_full("jog");
         char msg[96];
         std::snprintf(msg, sizeof msg, "jog %s %+g", axis_text.c_str(), c.value);
         return Ack{true, ErrorCode::Ok, msg};
@@ -413,8 +416,9 @@ struct Daemon::Impl {
   bool push(const rt::RtCommand& c) { return kernel->command(c); }
   static Ack ring_full(const char* what) {
     return Ack{false, ErrorCode::RtRefused,
-               std::string(what) + " refused: the kernel has not taken the 16 commands before it (is its "
-               "thread running?)"};
+               std::string(what) +
+                   " refused: the kernel has not taken the 16 commands before it (is its "
+                   "thread running?)"};
   }
 
   // Why `what` may not move the machine now; nothing if it may.
@@ -461,8 +465,8 @@ struct Daemon::Impl {
     {
       std::array<std::int64_t, kAxisCount> at{};
       for (int i = 0; i < kAxisCount; ++i) at[i] = kernel->position_steps(i);
-      job_check = std::make_unique<JobCheck>(machine, std::move(path).value(), at, job_time_start_ns,
-                                             next_period);
+      job_check =
+          std::make_unique<JobCheck>(machine, std::move(path).value(), at, job_time_start_ns, next_period);
     }
     std::string how;
     if (ropt.start_line > 0) how += ", from line " + std::to_string(ropt.start_line);
@@ -478,7 +482,8 @@ struct Daemon::Impl {
     std::size_t b = text.find_first_not_of(" \t");
     if (b == std::string::npos) return Ack{false, ErrorCode::RtRefused, "mdi refused: no G-code"};
     if (std::optional<Ack> no = refuse_motion("mdi", st)) return *no;
-    Result<std::shared_ptr<const ProgramSnapshot>> snap = ProgramSnapshot::from_text("MDI", text + "\n", access_for(c));
+    Result<std::shared_ptr<const ProgramSnapshot>> snap =
+        ProgramSnapshot::from_text("MDI", text + "\n", access_for(c));
     if (!snap) return Ack{false, snap.error().code, "mdi: " + snap.error().to_string()};
     ReaderOptions ropt;
     ropt.start = position();
@@ -507,7 +512,8 @@ struct Daemon::Impl {
     if (!program) return Ack{false, ErrorCode::RtRefused, "frame refused: no program loaded"};
     const Pose here = position();
     const Framing f = framing_program(loaded.summary, program->name(), here, machine);
-    Result<std::shared_ptr<const ProgramSnapshot>> snap = ProgramSnapshot::from_text("framing", f.program, FileAccess{});
+    Result<std::shared_ptr<const ProgramSnapshot>> snap =
+        ProgramSnapshot::from_text("framing", f.program, FileAccess{});
     if (!snap) return Ack{false, snap.error().code, "frame: " + snap.error().to_string()};
     ReaderOptions ropt;
     ropt.start = here;
@@ -550,7 +556,9 @@ struct Daemon::Impl {
     const auto refuse = [](const std::string& why) { return Ack{false, ErrorCode::RtRefused, why}; };
     if (lcnc::Status f = shm::check_command_frame(c, limits); !f) return refuse(f.error().message);
     if (job_active) return refuse("load refused: a job is running (stop it first)");
-    if (pending) return refuse("load refused: another load is in progress (" + std::string(pending->command().text) + ")");
+    if (pending)
+      return refuse("load refused: another load is in progress (" + std::string(pending->command().text) +
+                    ")");
     return std::nullopt;
   }
 
@@ -582,8 +590,10 @@ struct Daemon::Impl {
     }
     if (ring.resyncs() != command_resyncs) {
       command_resyncs = ring.resyncs();
-      const std::string why = "the command ring's indices were corrupt (a sender wrote past its turn): "
-                              "its contents dropped, " + std::to_string(command_resyncs) + " so far";
+      const std::string why =
+          "the command ring's indices were corrupt (a sender wrote past its turn): "
+          "its contents dropped, " +
+          std::to_string(command_resyncs) + " so far";
       logger()->error("lasercncd: {}", why);
       event(shm::Severity::Error, static_cast<std::uint16_t>(ErrorCode::RtRefused), 0, 0, why);
     }
@@ -646,7 +656,8 @@ struct Daemon::Impl {
     if (!end) return;
     for (int i = 0; i < 3; ++i)
       if (machine.axes[i].present)
-        job.distance_to_go[i] = (*end)[i] - static_cast<double>(trace_last.pos_steps[i]) / machine.axes[i].steps_per_unit;
+        job.distance_to_go[i] =
+            (*end)[i] - static_cast<double>(trace_last.pos_steps[i]) / machine.axes[i].steps_per_unit;
   }
 
   // --hal: says when the component attaches and when its process goes.
@@ -694,8 +705,10 @@ struct Daemon::Impl {
     if (job_check) {
       job_check->finish();
       breaches = job_check->breaches();
-      if (job_check->motion().gaps() > 0)  // the control thread starved of the CPU: the guard still held every entry
-        logger()->warn("job check: the RT trace lost records; those periods were held to the increment guard only");
+      if (job_check->motion().gaps() >
+          0)  // the control thread starved of the CPU: the guard still held every entry
+        logger()->warn(
+            "job check: the RT trace lost records; those periods were held to the increment guard only");
       job_check.reset();
     }
     feed->abort();  // a stopped job: the planner stops; a finished one has
@@ -710,9 +723,9 @@ struct Daemon::Impl {
     job.last_cycle_time_s = static_cast<double>(kernel->machine_time_ns() - job_time_start_ns) * 1e-9;
     job.last_underruns = kernel->underruns() - job_underruns_start;
     shm::Status rt_status;
-    job.last_line = f.active && f.line != 0 ? f.line
+    job.last_line = f.active && f.line != 0              ? f.line
                     : shm.block().status.load(rt_status) ? rt_status.line
-                                                          : 0;
+                                                         : 0;
     JobEnd end;
     end.planned = &planned;
     end.running = running.get();
@@ -734,8 +747,8 @@ struct Daemon::Impl {
     copy_text(job.message, msg);
     logger()->info("{}", msg);
     event(job.last_outcome == shm::JobOutcome::Done ? shm::Severity::Info
-          : job.last_fault != 0                      ? shm::Severity::Error
-                                                     : shm::Severity::Warning,
+          : job.last_fault != 0                     ? shm::Severity::Error
+                                                    : shm::Severity::Warning,
           job.last_fault, f.line, 0, msg);
     // the offsets as the job left them: an MDI command's modes go on to
     // the next; a program's end starts the MDI afresh
@@ -838,14 +851,17 @@ int Daemon::run(const std::atomic<bool>& quit) {
   if (d.rt_kernel) {
     d.rt_kernel->start(o);
     if (!d.rt_kernel->warning().empty()) logger()->warn("{}", d.rt_kernel->warning());
-    logger()->info("lasercncd: machine '{}', period {} us, ready", d.machine.name, d.machine.period_ns / 1000);
+    logger()->info("lasercncd: machine '{}', period {} us, ready", d.machine.name,
+                   d.machine.period_ns / 1000);
   } else {
-    logger()->info("lasercncd: machine '{}', period {} us; the kernel runs in LinuxCNC's HAL: "
-                   "loadrt lasercnc segment={}, then addf lasercnc.update to a thread of that period",
-                   d.machine.name, d.machine.period_ns / 1000, d.shm.name());
+    logger()->info(
+        "lasercncd: machine '{}', period {} us; the kernel runs in LinuxCNC's HAL: "
+        "loadrt lasercnc segment={}, then addf lasercnc.update to a thread of that period",
+        d.machine.name, d.machine.period_ns / 1000, d.shm.name());
     if (d.machine.allow_unhomed)
-      logger()->warn("lasercncd: [machine] allow_unhomed = true: jobs run from wherever the axes stood at "
-                     "power-on, without homing; soft limits are only as good as that position");
+      logger()->warn(
+          "lasercncd: [machine] allow_unhomed = true: jobs run from wherever the axes stood at "
+          "power-on, without homing; soft limits are only as good as that position");
   }
   shm::ShmBlock& block = d.shm.block();
   while (!quit.load()) {
@@ -867,8 +883,8 @@ int Daemon::run(const std::atomic<bool>& quit) {
     const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(3);
     while (!d.push({rt::RtCommandType::Stop, 0, 0.0}) && std::chrono::steady_clock::now() < until)
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    while (d.kernel->state() != shm::MachineState::Idle &&
-           d.kernel->state() != shm::MachineState::EStop && std::chrono::steady_clock::now() < until)
+    while (d.kernel->state() != shm::MachineState::Idle && d.kernel->state() != shm::MachineState::EStop &&
+           std::chrono::steady_clock::now() < until)
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
   d.cancel_load();

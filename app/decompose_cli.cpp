@@ -3,16 +3,16 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <ostream>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "app/cli_values.h"
 #include "app/decompose_run.h"
-#include "app/output_set.h"
 #include "app/machine_files.h"
+#include "app/output_set.h"
 #include "app/run_job.h"
 #include "decompose/decompose_svg.h"
 #include "decompose/part_decomposition.h"
@@ -90,16 +90,16 @@ std::optional<double> parse_accel(std::string_view s) {
 // `simulated`: the run was on the simulated clock, which measures no wake-up.
 void print_group(const GroupReport& g, bool simulated) {
   const bool exact = g.steps_sent == g.steps_commanded;
-  std::printf("  %-4s %c %lld / %lld, %c %lld / %lld steps sent / commanded%s; %llu underruns%s\n"
-              "       peak %.1f mm/s (limit %.1f, +-%.1f quantization), %.1f mm/s2 (%.3f g; limit "
-              "%.1f, +-%.1f quantization); while cutting %.1f mm/s, %.1f mm/s2 (%.3f g)\n",
-              g.name.c_str(), g.letters[0], static_cast<long long>(g.steps_sent[0]),
-              static_cast<long long>(g.steps_commanded[0]), g.letters[1],
-              static_cast<long long>(g.steps_sent[1]), static_cast<long long>(g.steps_commanded[1]),
-              exact ? " (exact)" : " (NOT EXACT)", static_cast<unsigned long long>(g.underruns),
-              g.fault ? ", FAULT" : "", g.peak_speed, g.speed_limit, g.speed_resolution,
-              g.peak_accel, g.peak_accel / kG_mm_s2, g.accel_limit, g.accel_resolution,
-              g.cutting_speed, g.cutting_accel, g.cutting_accel / kG_mm_s2);
+  std::printf(
+      "  %-4s %c %lld / %lld, %c %lld / %lld steps sent / commanded%s; %llu underruns%s\n"
+      "       peak %.1f mm/s (limit %.1f, +-%.1f quantization), %.1f mm/s2 (%.3f g; limit "
+      "%.1f, +-%.1f quantization); while cutting %.1f mm/s, %.1f mm/s2 (%.3f g)\n",
+      g.name.c_str(), g.letters[0], static_cast<long long>(g.steps_sent[0]),
+      static_cast<long long>(g.steps_commanded[0]), g.letters[1], static_cast<long long>(g.steps_sent[1]),
+      static_cast<long long>(g.steps_commanded[1]), exact ? " (exact)" : " (NOT EXACT)",
+      static_cast<unsigned long long>(g.underruns), g.fault ? ", FAULT" : "", g.peak_speed, g.speed_limit,
+      g.speed_resolution, g.peak_accel, g.peak_accel / kG_mm_s2, g.accel_limit, g.accel_resolution,
+      g.cutting_speed, g.cutting_accel, g.cutting_accel / kG_mm_s2);
   if (simulated)
     std::printf("       simulated clock: no RT wake-up measured\n");
   else
@@ -110,12 +110,12 @@ void print_group(const GroupReport& g, bool simulated) {
 // cannot be written, else whether it passed its own checks.
 std::optional<bool> run_part(const decompose::PartResult& res, const MachineConfig& main_m,
                              const MachineConfig& aux_m, const DecomposeRunOptions& run_opt,
-                             const std::string& part, const std::string& svg_path,
-                             OutputSet& outputs) {
-  std::printf("running on the simulated machine: main X, Y ('%s'), auxiliary P, Q ('%s'), "
-              "period %u us, origin %.3f, %.3f mm\n",
-              main_m.name.c_str(), aux_m.name.c_str(), main_m.period_ns / 1000, run_opt.origin_x_mm,
-              run_opt.origin_y_mm);
+                             const std::string& part, const std::string& svg_path, OutputSet& outputs) {
+  std::printf(
+      "running on the simulated machine: main X, Y ('%s'), auxiliary P, Q ('%s'), "
+      "period %u us, origin %.3f, %.3f mm\n",
+      main_m.name.c_str(), aux_m.name.c_str(), main_m.period_ns / 1000, run_opt.origin_x_mm,
+      run_opt.origin_y_mm);
   std::fflush(stdout);
   Result<DecomposeRunReport> r = run_decomposition(res, main_m, aux_m, run_opt);
   if (!r) {
@@ -125,10 +125,10 @@ std::optional<bool> run_part(const decompose::PartResult& res, const MachineConf
     return std::nullopt;
   }
   if (!r->warning.empty()) std::printf("  warning: %s\n", r->warning.c_str());
-  std::printf("  %llu periods, cycle %.4f s, cutting %.4f s; beam X+P, Y+Q vs the contour at "
-              "the same instant: max %.4f mm\n",
-              static_cast<unsigned long long>(r->periods), r->cycle_time_s, r->cutting_time_s,
-              r->beam_deviation_mm);
+  std::printf(
+      "  %llu periods, cycle %.4f s, cutting %.4f s; beam X+P, Y+Q vs the contour at "
+      "the same instant: max %.4f mm\n",
+      static_cast<unsigned long long>(r->periods), r->cycle_time_s, r->cutting_time_s, r->beam_deviation_mm);
   const bool simulated = rt::is_simulated(run_opt.clock);
   print_group(r->main, simulated);
   print_group(r->aux, simulated);
@@ -150,9 +150,10 @@ std::optional<bool> run_part(const decompose::PartResult& res, const MachineConf
       within = false;
     }
     if (g->peak_accel > g->accel_limit + g->accel_resolution) {
-      std::printf("  CHECK FAILED     %s acceleration %.1f mm/s2 above its limit %.1f (+%.1f "
-                  "quantization)\n",
-                  g->name.c_str(), g->peak_accel, g->accel_limit, g->accel_resolution);
+      std::printf(
+          "  CHECK FAILED     %s acceleration %.1f mm/s2 above its limit %.1f (+%.1f "
+          "quantization)\n",
+          g->name.c_str(), g->peak_accel, g->accel_limit, g->accel_resolution);
       within = false;
     }
   }
@@ -175,8 +176,7 @@ int decompose_main(int argc, char** argv) {
   bool run = false;
   DecomposeRunOptions run_opt;
   std::string main_file, aux_file;
-  bool main_speed_given = false, main_accel_given = false, aux_speed_given = false,
-       field_given = false;
+  bool main_speed_given = false, main_accel_given = false, aux_speed_given = false, field_given = false;
   for (int i = 1; i < argc; ++i) {
     const std::string_view flag = argv[i];  // the options without a value
     if (flag == "--run") {
@@ -201,8 +201,7 @@ int decompose_main(int argc, char** argv) {
     if (a == "--speed" || a == "--main-speed" || a == "--aux-speed") {
       const std::optional<double> s = parse_speed(v);
       if (!s || !(*s > 0.0)) return bad("a positive speed (e.g. 6m/min, 100mm/s)");
-      (a == "--speed" ? opt.speed_mm_s : a == "--main-speed" ? opt.main_speed_mm_s
-                                                             : opt.aux_speed_mm_s) = *s;
+      (a == "--speed" ? opt.speed_mm_s : a == "--main-speed" ? opt.main_speed_mm_s : opt.aux_speed_mm_s) = *s;
       main_speed_given |= a == "--main-speed";
       aux_speed_given |= a == "--aux-speed";
     } else if (a == "--main-accel") {
@@ -224,13 +223,19 @@ int decompose_main(int argc, char** argv) {
       if (!s || !(*s > 0.0 && *s < 180.0)) return bad("an angle in degrees, 0 < angle < 180");
       opt.critical_angle_deg = *s;
     } else if (a == "--mode") {
-      if (v == "sync") opt.mode = decompose::Mode::Sync;
-      else if (v == "seed") opt.mode = decompose::Mode::Seed;
-      else return bad("sync or seed");
+      if (v == "sync")
+        opt.mode = decompose::Mode::Sync;
+      else if (v == "seed")
+        opt.mode = decompose::Mode::Seed;
+      else
+        return bad("sync or seed");
     } else if (a == "--goal") {
-      if (v == "smooth") opt.goal = decompose::SyncGoal::SmoothestMain;
-      else if (v == "short") opt.goal = decompose::SyncGoal::ShortestLeadIn;
-      else return bad("smooth or short");
+      if (v == "smooth")
+        opt.goal = decompose::SyncGoal::SmoothestMain;
+      else if (v == "short")
+        opt.goal = decompose::SyncGoal::ShortestLeadIn;
+      else
+        return bad("smooth or short");
     } else if (a == "--units") {
       const std::optional<double> u = v == "auto" ? 0.0 : parse_unit_mm(v);
       if (!u) return bad("auto, mm, cm, m or inch");
@@ -311,26 +316,25 @@ int decompose_main(int argc, char** argv) {
   }
 
   const bool seed = opt.mode == decompose::Mode::Seed;
-  std::printf("%s: %zu contours, %zu points, step %.4f mm, mode %s\n", part.c_str(),
-              res->contours.size(), res->points, step_mm, seed ? "seed (Kondratenko et al. 2015 eq. 1-13)" : "sync");
+  std::printf("%s: %zu contours, %zu points, step %.4f mm, mode %s\n", part.c_str(), res->contours.size(),
+              res->points, step_mm, seed ? "seed (Kondratenko et al. 2015 eq. 1-13)" : "sync");
   for (const std::string& n : read->notes) std::printf("  %s\n", n.c_str());
-  std::printf("contour speed %.1f mm/s (%.2f m/min); main axes <= %.1f mm/s2 (%.2f g), "
-              "<= %.1f mm/s; aux <= %.1f mm/s, field +-%.3f mm\n",
-              opt.speed_mm_s, opt.speed_mm_s * 0.06, opt.main_accel_mm_s2,
-              opt.main_accel_mm_s2 / kG_mm_s2, opt.main_speed_mm_s, opt.aux_speed_mm_s,
-              opt.aux_half_field_mm);
-  std::printf("%3s %-26s %10s %9s %9s %8s %11s %9s %9s %9s %11s\n", "#", "first entity",
-              "length mm", "points", "time s", "tau s", "main a", "main v", "aux v", "aux max",
-              "a_eff");
+  std::printf(
+      "contour speed %.1f mm/s (%.2f m/min); main axes <= %.1f mm/s2 (%.2f g), "
+      "<= %.1f mm/s; aux <= %.1f mm/s, field +-%.3f mm\n",
+      opt.speed_mm_s, opt.speed_mm_s * 0.06, opt.main_accel_mm_s2, opt.main_accel_mm_s2 / kG_mm_s2,
+      opt.main_speed_mm_s, opt.aux_speed_mm_s, opt.aux_half_field_mm);
+  std::printf("%3s %-26s %10s %9s %9s %8s %11s %9s %9s %9s %11s\n", "#", "first entity", "length mm",
+              "points", "time s", "tau s", "main a", "main v", "aux v", "aux max", "a_eff");
   double total_t = 0, a_main = 0, a_eff = 0, aux_max = 0, exact = 0;
   int warnings = 0;
   for (const decompose::ContourResult& c : res->contours) {
     const decompose::Peaks& p = c.peaks;
-    const std::string first = std::string(dxf::entity_name(c.contour.first_kind)) + " line " +
-                              std::to_string(c.contour.first_line);
-    std::printf("%3u %-26s %10.3f %9zu %9.4f %8.4f %11.1f %9.1f %9.1f %9.4f %11.1f\n",
-                c.contour.index, first.c_str(), c.polyline.length_mm, c.polyline.size(),
-                p.duration_s, c.tau_s, p.a_main, p.v_main, p.v_aux, p.aux_excursion, p.a_eff);
+    const std::string first =
+        std::string(dxf::entity_name(c.contour.first_kind)) + " line " + std::to_string(c.contour.first_line);
+    std::printf("%3u %-26s %10.3f %9zu %9.4f %8.4f %11.1f %9.1f %9.1f %9.4f %11.1f\n", c.contour.index,
+                first.c_str(), c.polyline.length_mm, c.polyline.size(), p.duration_s, c.tau_s, p.a_main,
+                p.v_main, p.v_aux, p.aux_excursion, p.a_eff);
     total_t += p.duration_s;
     a_main = std::max(a_main, p.a_main);
     a_eff = std::max(a_eff, p.a_eff);
@@ -341,14 +345,17 @@ int decompose_main(int argc, char** argv) {
       ++warnings;
     }
   }
-  std::printf("total time %.4f s; peak main-axis acceleration %.1f mm/s2 (%.3f g); peak "
-              "effective acceleration %.1f mm/s2 (%.3f g) = a main-axes-only machine's, %.1fx "
-              "the main axes'; aux excursion %.4f mm; |S1 + S2 - S| <= %.1e mm\n",
-              total_t, a_main, a_main / kG_mm_s2, a_eff, a_eff / kG_mm_s2,
-              a_main > 0 ? a_eff / a_main : 0.0, aux_max, exact);
+  std::printf(
+      "total time %.4f s; peak main-axis acceleration %.1f mm/s2 (%.3f g); peak "
+      "effective acceleration %.1f mm/s2 (%.3f g) = a main-axes-only machine's, %.1fx "
+      "the main axes'; aux excursion %.4f mm; |S1 + S2 - S| <= %.1e mm\n",
+      total_t, a_main, a_main / kG_mm_s2, a_eff, a_eff / kG_mm_s2, a_main > 0 ? a_eff / a_main : 0.0, aux_max,
+      exact);
   if (seed && warnings > 0) {
-    std::printf("the published algorithm does not guarantee the limits: %d exceeded "
-                "(--mode sync does)\n", warnings);
+    std::printf(
+        "the published algorithm does not guarantee the limits: %d exceeded "
+        "(--mode sync does)\n",
+        warnings);
   }
 
   const std::string title = part + " — " + (seed ? "seed mode" : "sync mode") + ", " +
@@ -370,8 +377,7 @@ int decompose_main(int argc, char** argv) {
     std::printf("picture: %s\n", svg_path.c_str());
   }
   if (!accel_svg_path.empty()) {
-    if (!outputs.add(accel_svg_path,
-                     [&](OutputFile& f) { f.write(decompose::accel_svg(*res, opt, title)); }))
+    if (!outputs.add(accel_svg_path, [&](OutputFile& f) { f.write(decompose::accel_svg(*res, opt, title)); }))
       return 1;
     std::printf("acceleration plot: %s\n", accel_svg_path.c_str());
   }
@@ -379,8 +385,7 @@ int decompose_main(int argc, char** argv) {
   // are kept (they show what went wrong); a refused run keeps none.
   bool checks_passed = true;
   if (run) {
-    const std::optional<bool> ran =
-        run_part(*res, main_m, aux_m, run_opt, part, run_svg_path, outputs);
+    const std::optional<bool> ran = run_part(*res, main_m, aux_m, run_opt, part, run_svg_path, outputs);
     if (!ran) return 1;
     checks_passed = *ran;
   }

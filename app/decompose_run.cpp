@@ -115,8 +115,7 @@ Status within_travel(const MachineConfig& m, const Vec2& p, const char* group,
     const double v = p[i];
     if (v < ax.min - 1e-9 || v > ax.max + 1e-9) {
       char msg[320];
-      std::snprintf(msg, sizeof msg,
-                    "%s: the %s axes reach %c = %.4f mm, outside the travel %g … %g mm%s",
+      std::snprintf(msg, sizeof msg, "%s: the %s axes reach %c = %.4f mm, outside the travel %g … %g mm%s",
                     where.c_str(), group, letters[i], v, ax.min, ax.max,
                     group[0] == 'm' ? " (move the part's origin)" : " (lower the field)");
       return make_error(ErrorCode::DecomposeBeyondTravel, msg);
@@ -204,8 +203,7 @@ struct PeakMeter {
     }
     if (n == 2 * kAccelWindow + 1) {
       const double w = kAccelWindow * T;
-      const double an =
-          (hist[n - 1].first - 2.0 * hist[kAccelWindow].first + hist[0].first).norm() / (w * w);
+      const double an = (hist[n - 1].first - 2.0 * hist[kAccelWindow].first + hist[0].first).norm() / (w * w);
       a = std::max(a, an);
       if (hist[0].second && hist[n - 1].second) a_cut = std::max(a_cut, an);
     }
@@ -234,9 +232,8 @@ Result<decompose::Options> group_limits(const MachineConfig& main, const Machine
   return opt;
 }
 
-Result<DecomposeRunReport> run_decomposition(const decompose::PartResult& part,
-                                             const MachineConfig& main, const MachineConfig& aux,
-                                             const DecomposeRunOptions& options) {
+Result<DecomposeRunReport> run_decomposition(const decompose::PartResult& part, const MachineConfig& main,
+                                             const MachineConfig& aux, const DecomposeRunOptions& options) {
   if (main.period_ns != aux.period_ns) {
     return make_error(ErrorCode::DecomposeBadOption,
                       "the axis groups need one period: main " + std::to_string(main.period_ns / 1000) +
@@ -298,8 +295,8 @@ Result<DecomposeRunReport> run_decomposition(const decompose::PartResult& part,
     const KinematicsTable& tab = c.table;
     if (tab.size() < 2) continue;
     for (std::size_t i = 0; i < tab.size(); ++i) {
-      const std::string where = c.contour.name() + " at (" + std::to_string(tab.beam[i].x()) +
-                                ", " + std::to_string(tab.beam[i].y()) + ")";
+      const std::string where = c.contour.name() + " at (" + std::to_string(tab.beam[i].x()) + ", " +
+                                std::to_string(tab.beam[i].y()) + ")";
       if (Status s = within_travel(main, origin + tab.main[i], "main", rep.main.letters, where); !s)
         return s.error();
       if (Status s = within_travel(aux, tab.aux(i), "auxiliary", rep.aux.letters, where); !s)

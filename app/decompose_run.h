@@ -41,11 +41,11 @@ inline constexpr int kAccelWindow = 64;  // periods: 4.8 ms at 75 µs
 inline constexpr std::uint64_t kMaxRunPeriods = 4'000'000;
 
 struct GroupReport {
-  std::string name;                      // "main" / "aux"
-  std::array<char, 2> letters{};         // X Y / P Q
+  std::string name;               // "main" / "aux"
+  std::array<char, 2> letters{};  // X Y / P Q
   std::array<std::int64_t, 2> steps_sent{}, steps_commanded{};
-  double peak_speed = 0.0;               // mm/s, vector
-  double peak_accel = 0.0;               // mm/s², vector, over kAccelWindow
+  double peak_speed = 0.0;  // mm/s, vector
+  double peak_accel = 0.0;  // mm/s², vector, over kAccelWindow
   // The same while cutting (the window wholly within laser-on periods): what
   // the decomposition promised, without the traverses between contours.
   double cutting_speed = 0.0, cutting_accel = 0.0;
@@ -84,8 +84,7 @@ struct DecomposeRunOptions {
 // and acceleration limits (the lower of X, Y), the auxiliary group's speed
 // and half field (the smaller of P, Q's travel about the centre). Fails with
 // DecomposeBadOption when the aux stage's travel does not contain its centre.
-[[nodiscard]] Result<decompose::Options> group_limits(const MachineConfig& main,
-                                                      const MachineConfig& aux,
+[[nodiscard]] Result<decompose::Options> group_limits(const MachineConfig& main, const MachineConfig& aux,
                                                       decompose::Options opt);
 
 // Runs the part. Fails before anything moves when the groups' periods differ,

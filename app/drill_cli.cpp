@@ -77,13 +77,11 @@ class HeadLink {
   void begin_hole(const DrillStep& step, std::size_t k) {
     const ScanHeadParams& p = step.head;
     master_->write_async("run", 0, [this, k](const Status& s) { note(k, s); });
-    master_->write_block_async(
-        scan_head_block(p),
-        [this, k](const Status& s) {
-          note(k, s);
-          std::lock_guard lock(mutex_);
-          if (s) records_[k].head_written = true;
-        });
+    master_->write_block_async(scan_head_block(p), [this, k](const Status& s) {
+      note(k, s);
+      std::lock_guard lock(mutex_);
+      if (s) records_[k].head_written = true;
+    });
     master_->write_async("run", 1, [this, k](const Status& s) { note(k, s); });
   }
   void end_hole(std::size_t k) {
@@ -135,9 +133,12 @@ int drill_main(int argc, char** argv) {
       auto v = value();
       const std::optional<double> x = v ? parse_number(*v) : std::nullopt;
       if (!x || *x < 0.0) return usage_error(std::string(a) + " needs a number ≥ 0");
-      if (a == "--clearance") dopt.clearance_mm = *x;
-      else if (a == "--settle") dopt.head_settle_s = *x;
-      else opt.feed_override_pct = *x;
+      if (a == "--clearance")
+        dopt.clearance_mm = *x;
+      else if (a == "--settle")
+        dopt.head_settle_s = *x;
+      else
+        opt.feed_override_pct = *x;
     } else if (a == "--devices") {
       opt.devices = true;
     } else if (a == "--json") {
@@ -194,7 +195,9 @@ int drill_main(int argc, char** argv) {
     for (const DrillMoment& m : ms) {
       switch (m.kind) {
         case DrillMoment::Kind::Start: records[m.hole].start_s = t; break;
-        case DrillMoment::Kind::Head: if (head) head->begin_hole(job->holes[m.hole], m.hole); break;
+        case DrillMoment::Kind::Head:
+          if (head) head->begin_hole(job->holes[m.hole], m.hole);
+          break;
         case DrillMoment::Kind::End:
           records[m.hole].end_s = t;
           if (head) head->end_hole(m.hole);
@@ -234,13 +237,16 @@ int drill_main(int argc, char** argv) {
     nlohmann::json j = nlohmann::json::parse(report_json(*report));
     nlohmann::json holes = nlohmann::json::array();
     for (const HoleRecord& r : records)
-      holes.push_back({{"hole", r.hole}, {"process", r.process}, {"start_s", r.start_s},
-                       {"time_s", r.end_s - r.start_s}, {"head_written", r.head_written},
+      holes.push_back({{"hole", r.hole},
+                       {"process", r.process},
+                       {"start_s", r.start_s},
+                       {"time_s", r.end_s - r.start_s},
+                       {"head_written", r.head_written},
                        {"head_error", r.head_error}});
     j["holes"] = holes;
     if (head)
-      j["scan_head"] = {{"device", head_who}, {"requests", head_counters.requests},
-                        {"failed", head_counters.failed}};
+      j["scan_head"] = {
+          {"device", head_who}, {"requests", head_counters.requests}, {"failed", head_counters.failed}};
     std::printf("%s\n", json_text(j).c_str());
   } else {
     std::fputs(format_report(*report).c_str(), stdout);
@@ -248,8 +254,9 @@ int drill_main(int argc, char** argv) {
     std::printf("    hole  process      start s    time s  head block\n");
     for (const HoleRecord& r : records)
       std::printf("    %4u  %-10s %9.3f %9.3f  %s\n", r.hole, r.process, r.start_s, r.end_s - r.start_s,
-                  !head ? "-" : r.head_error.empty() ? (r.head_written ? "written" : "not written")
-                                                     : r.head_error.c_str());
+                  !head                  ? "-"
+                  : r.head_error.empty() ? (r.head_written ? "written" : "not written")
+                                         : r.head_error.c_str());
     if (head)
       std::printf("  scan head        %s (simulator): %llu requests, %llu failed\n", head_who.c_str(),
                   static_cast<unsigned long long>(head_counters.requests),

@@ -12,7 +12,7 @@
 namespace lcnc::app {
 
 struct Framing {
-  std::string program;  // the G-code the daemon runs, in machine coordinates (G53)
+  std::string program;     // the G-code the daemon runs, in machine coordinates (G53)
   Pose lo = Pose::Zero();  // the rectangle traced: X, Y of lo and hi
   Pose hi = Pose::Zero();
 };

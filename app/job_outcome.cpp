@@ -43,7 +43,8 @@ JobOutcomeText job_outcome(const JobEnd& end, const MachineConfig& machine) {
     std::snprintf(msg, sizeof msg,
                   "job done: %s, cycle %.3f s, %llu underruns, every axis within its limits, the path "
                   "within its tolerance",
-                  end.running->name().c_str(), end.cycle_time_s, static_cast<unsigned long long>(end.underruns));
+                  end.running->name().c_str(), end.cycle_time_s,
+                  static_cast<unsigned long long>(end.underruns));
   }
   out.message = msg;
   return out;

@@ -21,14 +21,14 @@ namespace lcnc::app {
 
 // What is known when the kernel says a job has ended.
 struct JobEnd {
-  const PlannedJob* planned = nullptr;  // the planner's result
+  const PlannedJob* planned = nullptr;       // the planner's result
   const ProgramSnapshot* running = nullptr;  // what ran (names the file in messages)
-  rt::RtFault fault;                    // the kernel's
-  bool estopped = false;                // the kernel is in e-stop
-  bool completed = false;               // the kernel ran its last entry
-  std::vector<std::string> breaches;    // the job's check
-  std::uint32_t line = 0;               // where it stopped
-  double progress = 0.0;                // 0 … 1, of its segments
+  rt::RtFault fault;                         // the kernel's
+  bool estopped = false;                     // the kernel is in e-stop
+  bool completed = false;                    // the kernel ran its last entry
+  std::vector<std::string> breaches;         // the job's check
+  std::uint32_t line = 0;                    // where it stopped
+  double progress = 0.0;                     // 0 … 1, of its segments
   double cycle_time_s = 0.0;
   std::uint64_t underruns = 0;
 };

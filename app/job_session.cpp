@@ -38,7 +38,10 @@ Result<std::unique_ptr<PathCheck>> JobSource::path_check(const MachineConfig& ma
 JobCheck::JobCheck(const MachineConfig& machine, std::unique_ptr<PathCheck> path,
                    const std::array<std::int64_t, kAxisCount>& at, std::int64_t t0_ns,
                    std::uint64_t next_period)
-    : machine_(machine), path_(std::move(path)), motion_(machine, at), t0_ns_(t0_ns),
+    : machine_(machine),
+      path_(std::move(path)),
+      motion_(machine, at),
+      t0_ns_(t0_ns),
       next_period_(next_period) {}
 
 void JobCheck::add(const rt::TraceRecord& r) {

@@ -94,8 +94,8 @@ void LaserLink::note_result(const Status& s) {
   if (s.error().code == ErrorCode::PeripheralValueOutOfRange)
     set_fault(s.error().message + ": taken as a failed sensor");
   if (++failures_in_row_ >= kFailuresToFault)
-    set_fault(laser_->who() + " lost: " + std::to_string(failures_in_row_) +
-              " requests in a row failed (" + s.error().message + ")");
+    set_fault(laser_->who() + " lost: " + std::to_string(failures_in_row_) + " requests in a row failed (" +
+              s.error().message + ")");
 }
 
 void LaserLink::set_fault(std::string why) {

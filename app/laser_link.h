@@ -33,19 +33,19 @@ namespace lcnc::app {
 
 struct PeripheralReport {
   bool used = false;
-  bool simulated = false;          // in-process simulators (--devices)
-  std::string laser;               // "laser_source (unit 2, tcp 127.0.0.1:40123)"
-  std::string meter;               // empty: none
+  bool simulated = false;  // in-process simulators (--devices)
+  std::string laser;       // "laser_source (unit 2, tcp 127.0.0.1:40123)"
+  std::string meter;       // empty: none
   double rated_power_w = 0.0;
   std::uint64_t setpoint_writes = 0;
   std::uint64_t meter_samples = 0;
   double meter_peak_w = 0.0;
-  double meter_mean_lasing_w = 0.0;   // mean of the readings taken while the job lased
+  double meter_mean_lasing_w = 0.0;      // mean of the readings taken while the job lased
   double commanded_mean_lasing_w = 0.0;  // the commanded power at those readings, W
   double peak_temperature_c = 0.0;
   std::uint64_t requests = 0, failed = 0;  // Modbus, both devices
-  std::string alarm;               // what the source reported at the end; empty: none
-  std::string error;               // the first failed request; empty: none
+  std::string alarm;                       // what the source reported at the end; empty: none
+  std::string error;                       // the first failed request; empty: none
 };
 
 class LaserLink {
@@ -98,8 +98,8 @@ class LaserLink {
   std::chrono::steady_clock::time_point next_setpoint_{}, next_meter_{}, next_health_{};
   int failures_in_row_ = 0;  // guarded by mutex_
   std::string fault_;        // guarded by mutex_
-  bool enabled_ = false;   // enable() wrote enable = 1
-  bool finished_ = false;  // finish() has switched it off (guarded by mutex_)
+  bool enabled_ = false;     // enable() wrote enable = 1
+  bool finished_ = false;    // finish() has switched it off (guarded by mutex_)
   bool meter_busy_ = false;  // one read outstanding at a time (guarded by mutex_)
   std::mutex mutex_;         // the callbacks (master's worker) ↔ the drain loop
   double meter_sum_w_ = 0.0, commanded_sum_w_ = 0.0;

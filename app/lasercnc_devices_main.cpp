@@ -70,10 +70,14 @@ int main(int argc, char** argv) {
     if (a == "--map" || a == "--host" || a == "--base-port" || a == "--seconds") {
       const char* v = next();
       if (v == nullptr) return usage_error(a + " needs a value");
-      if (a == "--map") map_path = v;
-      else if (a == "--host") host = v;
-      else if (a == "--base-port") base_port = std::atoi(v);
-      else seconds = std::atof(v);
+      if (a == "--map")
+        map_path = v;
+      else if (a == "--host")
+        host = v;
+      else if (a == "--base-port")
+        base_port = std::atoi(v);
+      else
+        seconds = std::atof(v);
       if (a == "--base-port" && (base_port < 1 || base_port > 65531))
         return usage_error("--base-port must be 1 … 65531");
     } else if (a == "--rtu") {
@@ -143,19 +147,20 @@ int main(int argc, char** argv) {
       return 1;
     }
 
-  std::printf("lasercnc-devices: virtual devices (simulators) running, register map %s\n",
-              map_path.c_str());
+  std::printf("lasercnc-devices: virtual devices (simulators) running, register map %s\n", map_path.c_str());
   for (std::size_t i = 0; i < all.size(); ++i) {
     const Endpoint ep = all[i]->endpoint();
-    const std::string where = rtu ? "rtu " + links[i]->a_path() + " @" + std::to_string(ep.baud)
-                                  : ep.to_string();
+    const std::string where =
+        rtu ? "rtu " + links[i]->a_path() + " @" + std::to_string(ep.baud) : ep.to_string();
     std::printf("  %-20s unit %u  %s\n", all[i]->name().c_str(),
                 static_cast<unsigned>(all[i]->slave().map().unit_id), where.c_str());
   }
-  std::printf("  %-20s serial %s (RS-232 line protocol, drivers/serial/probe_protocol.h)\n",
-              "probe_3d", probe->serial_path().c_str());
-  if (seconds > 0) std::printf("lasercnc-devices: stopping after %g s\n", seconds);
-  else std::printf("lasercnc-devices: Ctrl-C (SIGINT) or SIGTERM stops them\n");
+  std::printf("  %-20s serial %s (RS-232 line protocol, drivers/serial/probe_protocol.h)\n", "probe_3d",
+              probe->serial_path().c_str());
+  if (seconds > 0)
+    std::printf("lasercnc-devices: stopping after %g s\n", seconds);
+  else
+    std::printf("lasercnc-devices: Ctrl-C (SIGINT) or SIGTERM stops them\n");
   std::fflush(stdout);
 
   const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);

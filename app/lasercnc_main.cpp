@@ -7,10 +7,10 @@
 #include <unistd.h>
 
 #include <cmath>
-#include <exception>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -276,17 +276,16 @@ int run(int argc, char** argv) {
     for (const auto& w : summary->warnings) std::fprintf(stderr, "%s\n", w.to_string().c_str());
     if (!moves_file.empty()) {
       std::fflush(stdout);
-      if (lcnc::Status st = lcnc::app::write_moves(opt.program, *machine, moves_file,
-                                                              lcnc::app::job_inputs(opt, *summary));
+      if (lcnc::Status st =
+              lcnc::app::write_moves(opt.program, *machine, moves_file, lcnc::app::job_inputs(opt, *summary));
           !st) {
         std::fprintf(stderr, "%s\n", st.error().to_string().c_str());
         return st.error().code == lcnc::ErrorCode::OutputIsInput ? 2 : 1;
       }
       if (moves_file == "/dev/stdout") return 0;
     }
-    std::printf("%s: OK, %u lines, %llu segments, path %.3f mm\n", opt.program.c_str(),
-                summary->lines, static_cast<unsigned long long>(summary->segments),
-                summary->path_length_mm);
+    std::printf("%s: OK, %u lines, %llu segments, path %.3f mm\n", opt.program.c_str(), summary->lines,
+                static_cast<unsigned long long>(summary->segments), summary->path_length_mm);
     return 0;
   }
 

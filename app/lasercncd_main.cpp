@@ -85,8 +85,10 @@ int main(int argc, char** argv) {
     }
   }
   if (opt.hal && opt.simulated_clock) {
-    std::fprintf(stderr, "lasercncd: --simulated-clock is the simulated machine's; with --hal, "
-                         "HAL's thread keeps the time\n%s", kUsage);
+    std::fprintf(stderr,
+                 "lasercncd: --simulated-clock is the simulated machine's; with --hal, "
+                 "HAL's thread keeps the time\n%s",
+                 kUsage);
     return 2;
   }
   auto daemon = lcnc::app::Daemon::create(opt);

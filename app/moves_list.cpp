@@ -5,8 +5,8 @@
 
 namespace lcnc::app {
 
-Status write_moves(const std::string& program, const MachineConfig& machine,
-                   const std::string& out_path, const std::vector<std::string>& inputs) {
+Status write_moves(const std::string& program, const MachineConfig& machine, const std::string& out_path,
+                   const std::vector<std::string>& inputs) {
   auto reader = ProgramReader::open(program, machine);
   if (!reader) return reader.error();
   auto out = OutputFile::open(out_path, inputs);
@@ -25,10 +25,13 @@ Status write_moves(const std::string& program, const MachineConfig& machine,
       continue;
     }
     const char* kind = s.kind == MotionKind::Rapid ? "rapid" : s.kind == MotionKind::Arc ? "arc" : "feed";
-    out->printf("%u %s %.17g %.17g %.17g %.17g %.17g %.17g", s.line, kind, s.end[0], s.end[1],
-                s.end[2], s.end[3], s.end[4], s.end[5]);
+    out->printf("%u %s %.17g %.17g %.17g %.17g %.17g %.17g", s.line, kind, s.end[0], s.end[1], s.end[2],
+                s.end[3], s.end[4], s.end[5]);
     if (s.kind == MotionKind::Arc) {
-      const char* plane = s.plane == Plane::XY ? "XY" : s.plane == Plane::ZX ? "ZX" : s.plane == Plane::YZ ? "YZ" : "free";
+      const char* plane = s.plane == Plane::XY   ? "XY"
+                          : s.plane == Plane::ZX ? "ZX"
+                          : s.plane == Plane::YZ ? "YZ"
+                                                 : "free";
       const long turns = static_cast<long>(s.extra_turns) + 1;
       out->printf(" %.17g %.17g %.17g %s %ld", s.center[0], s.center[1], s.center[2], plane,
                   s.clockwise ? -turns : turns);

@@ -13,8 +13,7 @@
 
 namespace lcnc::app {
 
-PlannerFeed::PlannerFeed(const MachineConfig& machine, rt::PositionBuffer& buffer,
-                         rt::KernelControl& kernel)
+PlannerFeed::PlannerFeed(const MachineConfig& machine, rt::PositionBuffer& buffer, rt::KernelControl& kernel)
     : machine_(machine), buffer_(buffer), kernel_(kernel) {}
 
 PlannerFeed::~PlannerFeed() { abort(); }
@@ -57,9 +56,8 @@ void PlannerFeed::launch(std::string name, const Pose& start, OpenSource open) {
   stopped_short_ = false;
   result_ = PlannedJob{};
   kernel_.stream_begin();
-  thread_ = std::thread([this, name = std::move(name), start, open = std::move(open)] {
-    run(name, start, open);
-  });
+  thread_ =
+      std::thread([this, name = std::move(name), start, open = std::move(open)] { run(name, start, open); });
 }
 
 bool PlannerFeed::prefilled() const noexcept {

@@ -28,9 +28,9 @@ struct PlannedJob {
   Diagnostic error;
   std::array<std::int64_t, kAxisCount> start_steps{};  // where the job began
   std::array<std::int64_t, kAxisCount> commanded{};    // where the plan ends
-  std::array<double, kAxisCount> peak_v{};              // per axis, at the nominal period
+  std::array<double, kAxisCount> peak_v{};             // per axis, at the nominal period
   std::array<double, kAxisCount> peak_a{};
-  std::uint64_t increments = 0;                         // entries pushed
+  std::uint64_t increments = 0;  // entries pushed
   // An increment that would have crossed a soft limit (code RtSoftLimit) or
   // broken an axis' velocity or acceleration limit (PlanBeyondLimit;
   // plan/increment_guard.h): the planner stopped queueing before it
@@ -76,9 +76,7 @@ class PlannerFeed {
   // the path, short of the limit. A read error mid-way needs no stop: the
   // motion before it is planned to rest and ends as a job does, and
   // result().failed says why.
-  [[nodiscard]] bool stopped_short() const noexcept {
-    return stopped_short_.load(std::memory_order_acquire);
-  }
+  [[nodiscard]] bool stopped_short() const noexcept { return stopped_short_.load(std::memory_order_acquire); }
   [[nodiscard]] bool running() const noexcept { return thread_.joinable(); }
 
   // Fault injection (the reliability tests, RELIABILITY.md): while on, the
@@ -113,7 +111,7 @@ class PlannerFeed {
   std::atomic<std::uint64_t> stall_after_{kNever};
   std::string program_;
   std::unique_ptr<ProgramSource> program_source_;  // a program job's source (planner thread)
-  Diagnostic source_error_;  // why the source failed
+  Diagnostic source_error_;                        // why the source failed
   std::thread thread_;
 };
 

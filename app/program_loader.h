@@ -76,7 +76,7 @@ class ProgramLoad {
   std::uint64_t params_gen_ = 0;
   std::shared_ptr<const ProgramSnapshot> snapshot_;  // valid once done
   std::optional<Result<CheckedJob>> checked_;        // valid once done
-  std::atomic<bool> done_{false};    // release by the thread, acquire by done()
+  std::atomic<bool> done_{false};                    // release by the thread, acquire by done()
   std::atomic<bool> cancel_{false};
   std::thread thread_;
 };

@@ -174,7 +174,8 @@ Result<std::shared_ptr<const ProgramSnapshot>> ProgramSnapshot::take(const Snaps
     if (head.size() < kSniffBytes) head.append(buf.data(), std::min(got, kSniffBytes - head.size()));
     total += got;
     if (total > kMaxProgramBytes)  // it grew while being read
-      return refused(path, "longer than " + std::to_string(kMaxProgramBytes) + " bytes, the most a program may have");
+      return refused(
+          path, "longer than " + std::to_string(kMaxProgramBytes) + " bytes, the most a program may have");
     if (!write_all(copy.fd, buf.data(), got))
       return refused(path, std::string("no room for its copy: ") + std::strerror(errno));
   }
@@ -195,7 +196,7 @@ Status may_read(const std::string& path, const FileAccess& access) {
   Fd in(open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC));
   struct stat st {};
   std::string why = in.fd < 0 || fstat(in.fd, &st) != 0 ? std::string(std::strerror(errno))
-                                                         : access_of(st, real_path_of(in.fd), access);
+                                                        : access_of(st, real_path_of(in.fd), access);
   if (why.empty()) return {};
   return make_error(ErrorCode::FileNotFound, why, path);
 }
@@ -205,7 +206,8 @@ Result<std::shared_ptr<const ProgramSnapshot>> ProgramSnapshot::from_text(std::s
                                                                           FileAccess access) {
   Fd copy(open_copy());
   if (copy.fd < 0 || !write_all(copy.fd, text.data(), text.size()))
-    return make_error(ErrorCode::FileNotFound, std::string("no room for its copy: ") + std::strerror(errno), name);
+    return make_error(ErrorCode::FileNotFound, std::string("no room for its copy: ") + std::strerror(errno),
+                      name);
   return std::shared_ptr<const ProgramSnapshot>(
       new ProgramSnapshot(std::move(name), copy.release(), text.size(), std::move(access)));
 }
@@ -223,7 +225,8 @@ ProgramSnapshot::~ProgramSnapshot() {
 
 Diagnostic ProgramSnapshot::rename(Diagnostic d) const {
   if (d.file == path_) d.file = name_;
-  for (std::size_t at = d.message.find(path_); at != std::string::npos; at = d.message.find(path_, at + name_.size()))
+  for (std::size_t at = d.message.find(path_); at != std::string::npos;
+       at = d.message.find(path_, at + name_.size()))
     d.message.replace(at, path_.size(), name_);
   return d;
 }

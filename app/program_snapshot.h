@@ -49,9 +49,9 @@ struct FileAccess {
 [[nodiscard]] Status may_read(const std::string& path, const FileAccess& access);
 
 struct SnapshotRequest {
-  std::string path;            // absolute, as the sender named it
+  std::string path;  // absolute, as the sender named it
   FileAccess access;
-  bool hole_table = false;     // a .csv hole table, not G-code
+  bool hole_table = false;  // a .csv hole table, not G-code
   // Set by another thread: the copy ends at its next chunk, refused as
   // cancelled. Null: never.
   const std::atomic<bool>* cancel = nullptr;
@@ -65,8 +65,8 @@ class ProgramSnapshot {
   // A program the daemon writes itself (an MDI command, framing), read like
   // a loaded one; `name` stands for it in messages ("MDI:1:7: …").
   [[nodiscard]] static Result<std::shared_ptr<const ProgramSnapshot>> from_text(std::string name,
-                                                                               const std::string& text,
-                                                                               FileAccess access);
+                                                                                const std::string& text,
+                                                                                FileAccess access);
   ~ProgramSnapshot();
   ProgramSnapshot(const ProgramSnapshot&) = delete;
   ProgramSnapshot& operator=(const ProgramSnapshot&) = delete;

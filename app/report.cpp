@@ -21,17 +21,15 @@ std::string printf_string(const char* fmt, auto... args) {
 std::string format_report(const RunReport& r) {
   std::string s;
   s += "LaserCNC run report (simulated machine)\n";
-  s += printf_string("  program          %s (%u %s, %llu segments)\n", r.program.c_str(), r.lines, r.line_unit.c_str(),
-                     static_cast<unsigned long long>(r.segments));
+  s += printf_string("  program          %s (%u %s, %llu segments)\n", r.program.c_str(), r.lines,
+                     r.line_unit.c_str(), static_cast<unsigned long long>(r.segments));
   s += printf_string("  machine          %s, RT period %.1f us\n", r.machine.c_str(), r.period_s * 1e6);
   s += printf_string("  feed override    %.1f %% (a period lasts %.1f us)\n", r.feed_override * 100.0,
                      r.feed_override > 0.0 ? r.period_s * 1e6 / r.feed_override : 0.0);
   s += printf_string("  cycle time       %.6f s (%llu periods)\n", r.cycle_time_s,
                      static_cast<unsigned long long>(r.periods));
-  s += printf_string("  path length      %.3f mm (%.3f mm at feed)\n", r.path_length_mm,
-                     r.feed_length_mm);
-  s += printf_string("  max deviation    %.4f mm (executed vs programmed path)\n",
-                     r.max_deviation_mm);
+  s += printf_string("  path length      %.3f mm (%.3f mm at feed)\n", r.path_length_mm, r.feed_length_mm);
+  s += printf_string("  max deviation    %.4f mm (executed vs programmed path)\n", r.max_deviation_mm);
   s += printf_string("  laser on         %.4f s\n", r.laser_on_s);
   s += "  axis  peak velocity     peak acceleration      steps sent   steps commanded\n";
   for (int i = 0; i < kAxisCount; ++i) {
@@ -39,16 +37,16 @@ std::string format_report(const RunReport& r) {
     if (!a.present) continue;
     const bool rot = is_rotary(static_cast<Axis>(i));
     s += printf_string("  %c     %10.3f %-6s %12.1f %-7s %12lld %14lld %s\n", kAxisLetters[i],
-                       a.peak_velocity, rot ? "deg/s" : "mm/s", a.peak_acceleration,
-                       rot ? "deg/s2" : "mm/s2", static_cast<long long>(a.steps_sent),
-                       static_cast<long long>(a.steps_commanded),
+                       a.peak_velocity, rot ? "deg/s" : "mm/s", a.peak_acceleration, rot ? "deg/s2" : "mm/s2",
+                       static_cast<long long>(a.steps_sent), static_cast<long long>(a.steps_commanded),
                        a.steps_sent == a.steps_commanded ? "=" : "MISMATCH");
   }
   const double window_ms = r.period_s * 1e3;
-  s += printf_string("  measured from the RT trace: velocity over %d periods (%.2f ms), "
-                     "acceleration over %d (%.2f ms)\n",
-                     r.velocity_window, r.velocity_window * window_ms, r.acceleration_window,
-                     r.acceleration_window * window_ms);
+  s += printf_string(
+      "  measured from the RT trace: velocity over %d periods (%.2f ms), "
+      "acceleration over %d (%.2f ms)\n",
+      r.velocity_window, r.velocity_window * window_ms, r.acceleration_window,
+      r.acceleration_window * window_ms);
   for (int i = 0; i < kAxisCount; ++i) {
     const AxisReport& a = r.axes[i];
     if (!a.present) continue;
@@ -60,11 +58,10 @@ std::string format_report(const RunReport& r) {
   }
   s += printf_string("  steps            %s\n", r.steps_match ? "sent = commanded on every axis"
                                                               : "MISMATCH between sent and commanded");
-  s += printf_string("  underruns        %llu   overruns %llu   trace drops %llu   bad frames %llu\n",
-                     static_cast<unsigned long long>(r.underruns),
-                     static_cast<unsigned long long>(r.overruns),
-                     static_cast<unsigned long long>(r.trace_drops),
-                     static_cast<unsigned long long>(r.bad_frames));
+  s += printf_string(
+      "  underruns        %llu   overruns %llu   trace drops %llu   bad frames %llu\n",
+      static_cast<unsigned long long>(r.underruns), static_cast<unsigned long long>(r.overruns),
+      static_cast<unsigned long long>(r.trace_drops), static_cast<unsigned long long>(r.bad_frames));
   if (r.starvations > 0)
     s += printf_string("  planner behind   %llu times: decelerated along the path to refill the buffer\n",
                        static_cast<unsigned long long>(r.starvations));
@@ -78,13 +75,13 @@ std::string format_report(const RunReport& r) {
     s += "  warning          the RT trace lost records: those periods were held to the increment "
          "guard only, not measured\n";
   if (rt::is_simulated(r.clock)) {
-    s += printf_string("  clock            simulated: %.3f s of machine time run in %.3f s (x%.0f), "
-                       "RT latency not measured\n",
-                       r.cycle_time_s, r.wall_time_s,
-                       r.wall_time_s > 0.0 ? r.cycle_time_s / r.wall_time_s : 0.0);
+    s += printf_string(
+        "  clock            simulated: %.3f s of machine time run in %.3f s (x%.0f), "
+        "RT latency not measured\n",
+        r.cycle_time_s, r.wall_time_s, r.wall_time_s > 0.0 ? r.cycle_time_s / r.wall_time_s : 0.0);
   } else {
-    s += printf_string("  RT latency       p50 %.0f us, p99 %.0f us, max %.1f us (%s)\n",
-                       r.latency_p50_us, r.latency_p99_us, r.latency_max_us, r.schedule.c_str());
+    s += printf_string("  RT latency       p50 %.0f us, p99 %.0f us, max %.1f us (%s)\n", r.latency_p50_us,
+                       r.latency_p99_us, r.latency_max_us, r.schedule.c_str());
     if (!r.rt_warning.empty()) s += "  warning          " + r.rt_warning + "\n";
   }
   for (const std::string& w : r.program_warnings) s += "  warning          " + w + "\n";
@@ -98,9 +95,11 @@ std::string format_report(const RunReport& r) {
                        p.peak_temperature_c, p.alarm.empty() ? "none" : p.alarm.c_str());
     if (!p.meter.empty()) {
       s += "  power meter      " + p.meter + (p.simulated ? " (simulator)" : "") + "\n";
-      s += printf_string("                   %llu readings; while lasing mean %.2f W measured, %.2f W commanded; peak %.2f W\n",
-                         static_cast<unsigned long long>(p.meter_samples), p.meter_mean_lasing_w,
-                         p.commanded_mean_lasing_w, p.meter_peak_w);
+      s += printf_string(
+          "                   %llu readings; while lasing mean %.2f W measured, %.2f W commanded; peak %.2f "
+          "W\n",
+          static_cast<unsigned long long>(p.meter_samples), p.meter_mean_lasing_w, p.commanded_mean_lasing_w,
+          p.meter_peak_w);
     }
     s += printf_string("  Modbus           %llu requests, %llu failed%s%s\n",
                        static_cast<unsigned long long>(p.requests), static_cast<unsigned long long>(p.failed),

@@ -23,8 +23,8 @@ std::string describe_fault(const rt::RtFault& f, const MachineConfig& machine) {
 RtLogLine describe_rt_log(const rt::RtLogRecord& r, const MachineConfig& machine) {
   RtLogLine out;
   out.text = rt::rt_log_text(r.code);
-  const std::string axis = r.axis >= 0 && r.axis < kAxisCount
-                               ? std::string(": axis ") + kAxisLetters[r.axis] : std::string();
+  const std::string axis =
+      r.axis >= 0 && r.axis < kAxisCount ? std::string(": axis ") + kAxisLetters[r.axis] : std::string();
   switch (r.code) {
     case rt::RtLogCode::UnderrunBegin:
       out.code = static_cast<std::uint16_t>(ErrorCode::RtUnderrun);
@@ -37,9 +37,7 @@ RtLogLine describe_rt_log(const rt::RtLogRecord& r, const MachineConfig& machine
     case rt::RtLogCode::HoldBegin:
     case rt::RtLogCode::HoldEnd:
     case rt::RtLogCode::StarveBegin:
-    case rt::RtLogCode::StarveEnd:
-      out.warning = true;
-      break;
+    case rt::RtLogCode::StarveEnd: out.warning = true; break;
     case rt::RtLogCode::LateWakeup: {
       char ms[64];
       std::snprintf(ms, sizeof ms, " by %.3f ms", static_cast<double>(r.value) * 1e-6);
@@ -61,24 +59,17 @@ RtLogLine describe_rt_log(const rt::RtLogRecord& r, const MachineConfig& machine
       out.warning = true;
       break;
     }
-    case rt::RtLogCode::JogShort:
-      out.text += axis + " (" + std::to_string(r.value) + " steps short)";
-      break;
-    case rt::RtLogCode::Homed:
-      out.text += axis;
-      break;
-    case rt::RtLogCode::ProgramPause:
-      out.text += " at line " + std::to_string(r.line);
-      break;
+    case rt::RtLogCode::JogShort: out.text += axis + " (" + std::to_string(r.value) + " steps short)"; break;
+    case rt::RtLogCode::Homed: out.text += axis; break;
+    case rt::RtLogCode::ProgramPause: out.text += " at line " + std::to_string(r.line); break;
     case rt::RtLogCode::InputWait: {
       static constexpr const char* kMode[] = {"", "to rise", "to fall", "high", "low"};
-      out.text += " P" + std::to_string(r.value) + " " + kMode[std::clamp<int>(r.axis, 0, 4)] +
-                  " at line " + std::to_string(r.line);
+      out.text += " P" + std::to_string(r.value) + " " + kMode[std::clamp<int>(r.axis, 0, 4)] + " at line " +
+                  std::to_string(r.line);
       break;
     }
     case rt::RtLogCode::InputWaitEnd:
-      out.text += " (line " + std::to_string(r.line) + ", after " + std::to_string(r.value) +
-                  " periods)";
+      out.text += " (line " + std::to_string(r.line) + ", after " + std::to_string(r.value) + " periods)";
       break;
     case rt::RtLogCode::Refused:
       out.text += std::string(": ") + rt_command_name(static_cast<rt::RtCommandType>(r.value)) + axis;

@@ -12,6 +12,11 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include "app/job_session.h"
+#include "app/machine_files.h"
+#include "app/planner_feed.h"
+#include "app/rt_text.h"
+#include "common/output_file.h"
 #include "common/share_path.h"
 #include "drivers/sim_machine.h"
 #include "gcode/program_reader.h"
@@ -20,11 +25,6 @@
 #include "plan/path_check.h"
 #include "plan/program_source.h"
 #include "plan/tolerances.h"
-#include "app/machine_files.h"
-#include "app/job_session.h"
-#include "common/output_file.h"
-#include "app/rt_text.h"
-#include "app/planner_feed.h"
 #include "rt/rt_kernel.h"
 #include "rt/rt_log.h"
 
@@ -48,8 +48,8 @@ class TraceWriter {
   // deg); power: laser output (% of rated).
   void write(double t, const Pose& p, double power_pct) {
     if (!file_ || file_->failed()) return;
-    file_->printf("%.9f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.3f\n", t, p[0], p[1], p[2], p[3], p[4],
-                  p[5], power_pct);
+    file_->printf("%.9f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.3f\n", t, p[0], p[1], p[2], p[3], p[4], p[5],
+                  power_pct);
   }
   [[nodiscard]] Status commit() { return file_ ? file_->commit() : Status{}; }
 
@@ -68,7 +68,8 @@ void drain_rt_log(rt::RtLogRing& ring, const MachineConfig& machine) {
   while (ring.try_pop(r)) {
     const RtLogLine line = describe_rt_log(r, machine);
     if (line.warning) {
-      logger->warn("period {} (t ≈ {:.4f} s): {}", r.period, static_cast<double>(r.period) * machine.period_s(), line.text);
+      logger->warn("period {} (t ≈ {:.4f} s): {}", r.period,
+                   static_cast<double>(r.period) * machine.period_s(), line.text);
     } else {
       logger->info("period {}: {}", r.period, line.text);
     }
@@ -78,8 +79,7 @@ void drain_rt_log(rt::RtLogRing& ring, const MachineConfig& machine) {
 }  // namespace
 
 Result<MachineConfig> load_machine(const RunOptions& options) {
-  const std::string file =
-      options.machine_file.empty() ? default_machine_file() : options.machine_file;
+  const std::string file = options.machine_file.empty() ? default_machine_file() : options.machine_file;
   Result<MachineConfig> loaded = load_machine_config(file);
   if (!loaded) return loaded;
   MachineConfig m = std::move(loaded).value();
@@ -98,8 +98,7 @@ Result<MachineConfig> load_machine(const RunOptions& options) {
 }
 
 bool run_succeeded(const RunReport& report) {
-  return report.steps_match && report.bad_frames == 0 && report.fault.empty() &&
-         report.breaches.empty();
+  return report.steps_match && report.bad_frames == 0 && report.fault.empty() && report.breaches.empty();
 }
 
 namespace {
@@ -134,14 +133,13 @@ void check_run(RunReport& report, const JobCheck& check) {
     const bool rot = is_rotary(static_cast<Axis>(i));
     char msg[200];
     if (a.peak_velocity > a.velocity_limit * (1.0 + kPlannedPeakSlack)) {
-      std::snprintf(msg, sizeof msg, "axis %c planned velocity %.3f %s, above its limit %g",
-                    kAxisLetters[i], a.peak_velocity, rot ? "deg/s" : "mm/s", a.velocity_limit);
+      std::snprintf(msg, sizeof msg, "axis %c planned velocity %.3f %s, above its limit %g", kAxisLetters[i],
+                    a.peak_velocity, rot ? "deg/s" : "mm/s", a.velocity_limit);
       report.breaches.emplace_back(msg);
     }
     if (a.peak_acceleration > a.acceleration_limit * (1.0 + kPlannedAccelSlack)) {
       std::snprintf(msg, sizeof msg, "axis %c planned acceleration %.1f %s, above its limit %g",
-                    kAxisLetters[i], a.peak_acceleration, rot ? "deg/s2" : "mm/s2",
-                    a.acceleration_limit);
+                    kAxisLetters[i], a.peak_acceleration, rot ? "deg/s2" : "mm/s2", a.acceleration_limit);
       report.breaches.emplace_back(msg);
     }
   }
@@ -175,11 +173,10 @@ void fill_run_figures(RunReport& report, const rt::RtKernel& kernel, const drive
     // correction between the start and the end (rt/pitch_compensation.h)
     const rt::PitchCompensation comp(machine.axes[i]);
     a.steps_sent = sim.position_steps(i) - start_steps[i];
-    a.steps_commanded = planned.commanded[i] - start_steps[i] +
-                        comp.correction_steps(planned.commanded[i]) -
+    a.steps_commanded = planned.commanded[i] - start_steps[i] + comp.correction_steps(planned.commanded[i]) -
                         comp.correction_steps(start_steps[i]);
-    report.steps_match = report.steps_match && a.steps_sent == a.steps_commanded &&
-                         kernel.pulses_emitted(i) == a.steps_sent;
+    report.steps_match =
+        report.steps_match && a.steps_sent == a.steps_commanded && kernel.pulses_emitted(i) == a.steps_sent;
   }
   report.underruns = kernel.underruns();
   report.starvations = kernel.starvations();
@@ -215,18 +212,19 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   Result<MachineConfig> loaded = load_machine(options);
   if (!loaded) return loaded.error();
   const MachineConfig machine = std::move(loaded).value();
-  const Result<double> k_start = override_from_percent(options.feed_override_pct, kMinRunOverridePct,
-                                                       machine.max_feed_override, ErrorCode::Usage,
-                                                       "--feed-override");
+  const Result<double> k_start =
+      override_from_percent(options.feed_override_pct, kMinRunOverridePct, machine.max_feed_override,
+                            ErrorCode::Usage, "--feed-override");
   if (!k_start) return k_start.error();
 
   // The whole program is checked before anything moves.
   const ReaderOptions ropt;
   Result<ProgramSummary> summary =
-      options.segments ? (options.summary ? Result<ProgramSummary>(*options.summary)
-                                          : Result<ProgramSummary>(make_error(
-                                                ErrorCode::Internal, "a segment job needs its summary")))
-                       : check_job_program(options.program, machine, ropt);
+      options.segments
+          ? (options.summary
+                 ? Result<ProgramSummary>(*options.summary)
+                 : Result<ProgramSummary>(make_error(ErrorCode::Internal, "a segment job needs its summary")))
+          : check_job_program(options.program, machine, ropt);
   if (!summary) return summary.error();
   const JobSource source = options.segments
                                ? JobSource::segments(options.segments, options.program, ropt.start)
@@ -279,8 +277,8 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   // full; the RT thread starts once half the buffer (or the whole job) is in.
   // M0/M1/M60: unattended, each pause ends after options.pause_s of machine
   // time, counted by the kernel (at least one period)
-  const auto pause_periods = static_cast<std::uint64_t>(
-      std::max(1.0, std::round(options.pause_s / machine.period_s())));
+  const auto pause_periods =
+      static_cast<std::uint64_t>(std::max(1.0, std::round(options.pause_s / machine.period_s())));
   session.start(source, *k_start, options.realtime, options.clock, pause_periods);
   const auto started = std::chrono::steady_clock::now();
 
@@ -292,7 +290,7 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
   rt::TraceRecord rec;
   bool stop_sent = false;
   std::string laser_fault;  // why the laser source failed during the job
-  float power_now = 0.0f;  // the commanded laser power of the latest period, %
+  float power_now = 0.0f;   // the commanded laser power of the latest period, %
   for (;;) {
     bool got = false;
     drain_rt_log(session.rt_log(), machine);
@@ -331,14 +329,14 @@ Result<RunReport> run_job(const RunOptions& options, const ProgressFn& progress)
     // short of a soft limit: stop along the path with what is queued
     if (feed.stopped_short() && !stop_sent) stop_sent = kernel.command({rt::RtCommandType::Stop, 0, 0.0});
     // a fault (an e-stop, a limit) or a stop ends the job: the planner stops pushing
-    if (kernel.state() == rt::MachineState::EStop || kernel.fault().active ||
-        kernel.jobs_ended() > 0)
+    if (kernel.state() == rt::MachineState::EStop || kernel.fault().active || kernel.jobs_ended() > 0)
       feed.abort();
     if (kernel.finished() && trace.empty()) break;
     if (!got) std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
   kernel.join();
-  const double wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  const double wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   drain_rt_log(session.rt_log(), machine);
   feed.abort();
   if (laser) report.peripherals = laser->finish();

@@ -24,12 +24,12 @@ namespace lcnc::app {
 
 struct RunOptions {
   std::string program;
-  std::string machine_file;             // empty: the default machine
-  std::optional<double> vmax;           // every linear axis, mm/s
-  std::optional<double> amax;           // every linear axis, mm/s²
-  std::optional<double> tolerance_mm;   // path tolerance
-  std::string trace_file;               // CSV t,x,y,z,a,b,c,power per RT period; empty: none
-  bool realtime = true;                 // try SCHED_FIFO + mlockall (wall clock only)
+  std::string machine_file;            // empty: the default machine
+  std::optional<double> vmax;          // every linear axis, mm/s
+  std::optional<double> amax;          // every linear axis, mm/s²
+  std::optional<double> tolerance_mm;  // path tolerance
+  std::string trace_file;              // CSV t,x,y,z,a,b,c,power per RT period; empty: none
+  bool realtime = true;                // try SCHED_FIFO + mlockall (wall clock only)
   // The wall clock (the machine's real time) or the simulated clock (`run
   // --fast`: the same job, periods and report, as fast as the computer runs;
   // rt/rt_kernel.h RtClock).
@@ -74,7 +74,7 @@ struct AxisReport {
   // (plan/motion_check.h), and the limits they are held to.
   double measured_velocity = 0.0, measured_acceleration = 0.0;
   double velocity_limit = 0.0, acceleration_limit = 0.0;
-  std::int64_t steps_sent = 0;     // net pulses the machine received
+  std::int64_t steps_sent = 0;  // net pulses the machine received
   std::int64_t steps_commanded = 0;
 };
 
@@ -84,10 +84,10 @@ struct RunReport {
   std::uint32_t lines = 0;
   std::string line_unit = "lines";  // "holes" for a drilling job
   std::uint64_t segments = 0;
-  double period_s = 0.0;            // nominal period T; at override K a period lasts T/K
+  double period_s = 0.0;  // nominal period T; at override K a period lasts T/K
   std::uint64_t periods = 0;
-  double cycle_time_s = 0.0;        // machine time taken: Σ of the periods' lengths
-  double feed_override = 1.0;       // K at the end of the run (1 = 100 %)
+  double cycle_time_s = 0.0;   // machine time taken: Σ of the periods' lengths
+  double feed_override = 1.0;  // K at the end of the run (1 = 100 %)
   double path_length_mm = 0.0;
   double feed_length_mm = 0.0;
   double max_deviation_mm = 0.0;
@@ -102,17 +102,17 @@ struct RunReport {
   std::uint64_t overruns = 0;
   std::uint64_t trace_drops = 0;
   std::uint64_t bad_frames = 0;
-  double laser_on_s = 0.0;          // machine time with the laser on
+  double laser_on_s = 0.0;  // machine time with the laser on
   double latency_p50_us = 0.0, latency_p99_us = 0.0, latency_max_us = 0.0;
-  std::uint64_t starvations = 0;    // decelerations for a low buffer (planner behind)
-  std::string fault;       // what stopped the job early (soft/hard limit, e-stop); empty if none
-  std::string schedule;    // "SCHED_FIFO" or "normal"
+  std::uint64_t starvations = 0;  // decelerations for a low buffer (planner behind)
+  std::string fault;              // what stopped the job early (soft/hard limit, e-stop); empty if none
+  std::string schedule;           // "SCHED_FIFO" or "normal"
   rt::RtClock clock = rt::RtClock::Wall;  // what the periods followed
-  double wall_time_s = 0.0;  // how long the run took on the computer (from the RT thread's start)
-  std::string rt_warning;  // why real-time scheduling was not had
+  double wall_time_s = 0.0;          // how long the run took on the computer (from the RT thread's start)
+  std::string rt_warning;            // why real-time scheduling was not had
   std::uint32_t program_pauses = 0;  // M0/M1/M60 held, each resumed after RunOptions::pause_s
   std::vector<std::string> program_warnings;  // the reader's (lines after the end, the parameter file)
-  PeripheralReport peripherals;  // used: the laser source was linked
+  PeripheralReport peripherals;               // used: the laser source was linked
 };
 
 // Fraction of the job done (0 … 1), called from the caller's thread.

@@ -71,10 +71,14 @@ int main(int argc, char** argv) {
   std::string csv_dir, png_dir;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (i + 1 < argc && a == "--part") part = argv[++i];
-    else if (i + 1 < argc && a == "--runs") runs = std::max(1, std::atoi(argv[++i]));
-    else if (i + 1 < argc && a == "--csv") csv_dir = argv[++i];
-    else if (i + 1 < argc && a == "--png") png_dir = argv[++i];
+    if (i + 1 < argc && a == "--part")
+      part = argv[++i];
+    else if (i + 1 < argc && a == "--runs")
+      runs = std::max(1, std::atoi(argv[++i]));
+    else if (i + 1 < argc && a == "--csv")
+      csv_dir = argv[++i];
+    else if (i + 1 < argc && a == "--png")
+      png_dir = argv[++i];
     else {
       std::fprintf(stderr, "usage: decompose_bench [--part FILE.dxf] [--runs N] [--csv DIR] [--png DIR]\n");
       return 2;
@@ -99,8 +103,8 @@ int main(int argc, char** argv) {
 
   // --- 1. throughput ---------------------------------------------------------
   std::printf("throughput: %s, %d runs each, median\n", part.c_str(), runs);
-  std::printf("%-7s %-5s %10s %12s %12s %14s %14s\n", "step", "mode", "points", "prepare s",
-              "decompose s", "prepare pts/s", "end-to-end pts/s");
+  std::printf("%-7s %-5s %10s %12s %12s %14s %14s\n", "step", "mode", "points", "prepare s", "decompose s",
+              "prepare pts/s", "end-to-end pts/s");
   for (const double step : {0.01, 0.001}) {
     for (const decompose::Mode mode : {decompose::Mode::Sync, decompose::Mode::Seed}) {
       decompose::Options opt;
@@ -133,18 +137,21 @@ int main(int argc, char** argv) {
   }
 
   // --- 2. main axes against a main-axes-only machine --------------------------
-  std::printf("\nmain-axis peak acceleration vs a main-axes-only machine (same part, same "
-              "constant contour speed; sync mode, limits 0.5 g, aux 300 m/min, field +-5 mm, "
-              "step 0.01 mm)\n");
-  std::printf("%-6s %-10s %14s %14s %8s %10s %9s %10s\n", "part", "speed", "main-only a",
-              "main axes a", "ratio", "aux max", "tau max", "time s");
+  std::printf(
+      "\nmain-axis peak acceleration vs a main-axes-only machine (same part, same "
+      "constant contour speed; sync mode, limits 0.5 g, aux 300 m/min, field +-5 mm, "
+      "step 0.01 mm)\n");
+  std::printf("%-6s %-10s %14s %14s %8s %10s %9s %10s\n", "part", "speed", "main-only a", "main axes a",
+              "ratio", "aux max", "tau max", "time s");
   struct Case {
     const char* name;
     const dxf::Drawing* d;
     double m_min;
   };
-  const Case cases[] = {{"plate", &drawing, 3.0},  {"plate", &drawing, 6.0},
-                        {"plate", &drawing, 10.0}, {"plate", &drawing, 15.0},
+  const Case cases[] = {{"plate", &drawing, 3.0},
+                        {"plate", &drawing, 6.0},
+                        {"plate", &drawing, 10.0},
+                        {"plate", &drawing, 15.0},
                         {"star", &star, 6.0}};
   for (const Case& k : cases) {
     decompose::Options opt;
@@ -155,9 +162,8 @@ int main(int argc, char** argv) {
       continue;
     }
     const Peak p = peak_of(*res);
-    std::printf("%-6s %4.1f m/min %8.0f mm/s2 %8.0f mm/s2 %7.1fx %7.3f mm %7.3f s %10.4f\n",
-                k.name, k.m_min, p.a_eff, p.a_main, p.a_eff / p.a_main, p.aux, p.tau_max,
-                p.time_s);
+    std::printf("%-6s %4.1f m/min %8.0f mm/s2 %8.0f mm/s2 %7.1fx %7.3f mm %7.3f s %10.4f\n", k.name, k.m_min,
+                p.a_eff, p.a_main, p.a_eff / p.a_main, p.aux, p.tau_max, p.time_s);
   }
 
   // --- pictures ----------------------------------------------------------------
@@ -177,8 +183,7 @@ int main(int argc, char** argv) {
       opt.speed_mm_s = 100.0;
       Result<decompose::PartResult> res = decompose::decompose_part(*k.d, 0.01, opt);
       if (!res) continue;
-      const std::string tag =
-          std::string(k.name) + (k.mode == decompose::Mode::Sync ? "_sync" : "_seed");
+      const std::string tag = std::string(k.name) + (k.mode == decompose::Mode::Sync ? "_sync" : "_seed");
       const std::string base = csv_dir + "/decompose_" + tag;
       std::ofstream csv(base + ".csv", std::ios::binary);
       std::vector<const decompose::KinematicsTable*> tables;
@@ -196,15 +201,17 @@ int main(int argc, char** argv) {
       if (png_dir.empty()) continue;
       const std::string script = std::string(LCNC_SHARE_DIR) + "/../bench/plot_decompose.py";
       const std::string png = png_dir + "/decompose_" + tag + ".png";
-      const std::string cmd = "python3 '" + script + "' '" + base + ".csv' '" + png +
-                              "' --title '" + title + "'";
+      const std::string cmd =
+          "python3 '" + script + "' '" + base + ".csv' '" + png + "' --title '" + title + "'";
       std::fflush(stdout);
       const int rc = std::system(cmd.c_str());
       if (rc == 0) {
         std::printf("picture: %s\n", png.c_str());
       } else {
-        std::printf("no PNG (plot_decompose.py exit status %d: python3 or matplotlib "
-                    "missing?); the CSV and SVG pictures above are written\n", rc);
+        std::printf(
+            "no PNG (plot_decompose.py exit status %d: python3 or matplotlib "
+            "missing?); the CSV and SVG pictures above are written\n",
+            rc);
       }
     }
   }

@@ -144,17 +144,17 @@ int main(int argc, char** argv) {
   // 5 + 2·10 = 25. FC16 ×25: request 9 + 50 = 59, answer 8.
   const double w3 = wire_ms(8, 25, 115200), w16 = wire_ms(59, 8, 115200);
   std::printf("modbus_bench: %d runs; medians over runs\n", runs);
-  std::printf("RTU over pty @115200 (no baud timing), FC3 x10 regs: median %.0f us, p99 %.0f us "
-              "(%d requests/run)\n",
-              median(rtu3_med), median(rtu3_p99), kRtuN);
-  std::printf("RTU over pty @115200 (no baud timing), FC16 x25 regs: median %.0f us\n",
-              median(rtu16_med));
-  std::printf("RTU on a real 115200 8N1 line, theoretical: FC3 x10 %.2f ms wire (+3.50 ms t3.5 "
-              "silences = %.2f ms); FC16 x25 %.2f ms wire (%.2f ms)\n",
-              w3, w3 + 3.5, w16, w16 + 3.5);
+  std::printf(
+      "RTU over pty @115200 (no baud timing), FC3 x10 regs: median %.0f us, p99 %.0f us "
+      "(%d requests/run)\n",
+      median(rtu3_med), median(rtu3_p99), kRtuN);
+  std::printf("RTU over pty @115200 (no baud timing), FC16 x25 regs: median %.0f us\n", median(rtu16_med));
+  std::printf(
+      "RTU on a real 115200 8N1 line, theoretical: FC3 x10 %.2f ms wire (+3.50 ms t3.5 "
+      "silences = %.2f ms); FC16 x25 %.2f ms wire (%.2f ms)\n",
+      w3, w3 + 3.5, w16, w16 + 3.5);
   std::printf("TCP loopback, FC3 x10 regs, 1 master: %.0f requests/s (median round trip %.0f us)\n",
               median(tcp1_rps), median(tcp1_med));
-  std::printf("TCP loopback, FC3 x10 regs, 4 masters on 4 connections: %.0f requests/s\n",
-              median(tcp4_rps));
+  std::printf("TCP loopback, FC3 x10 regs, 4 masters on 4 connections: %.0f requests/s\n", median(tcp4_rps));
   return 0;
 }

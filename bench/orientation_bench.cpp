@@ -47,12 +47,10 @@ void write_csv(const std::string& path, const OrientationReport& r) {
     std::fprintf(stderr, "cannot write %s\n", path.c_str());
     return;
   }
-  std::fprintf(f,
-               "t_s,u,a_deg,c_deg,a_vel_deg_s,c_vel_deg_s,a_acc_deg_s2,c_acc_deg_s2,error_deg\n");
+  std::fprintf(f, "t_s,u,a_deg,c_deg,a_vel_deg_s,c_vel_deg_s,a_acc_deg_s2,c_acc_deg_s2,error_deg\n");
   for (const OrientationSample& s : r.samples)
-    std::fprintf(f, "%.5f,%.7f,%.7f,%.7f,%.5f,%.5f,%.4f,%.4f,%.9f\n", s.t_s, s.u, s.a_deg,
-                 s.c_deg, s.a_vel_deg_s, s.c_vel_deg_s, s.a_acc_deg_s2, s.c_acc_deg_s2,
-                 s.error_deg);
+    std::fprintf(f, "%.5f,%.7f,%.7f,%.7f,%.5f,%.5f,%.4f,%.4f,%.9f\n", s.t_s, s.u, s.a_deg, s.c_deg,
+                 s.a_vel_deg_s, s.c_vel_deg_s, s.a_acc_deg_s2, s.c_acc_deg_s2, s.error_deg);
   std::fclose(f);
 }
 
@@ -70,18 +68,20 @@ int main(int argc, char** argv) {
   std::printf("limits: A %.0f °/s, %.0f °/s²; C %.0f °/s, %.0f °/s²; tolerance %.3f°\n",
               lim.a_max_velocity_deg_s, lim.a_max_accel_deg_s2, lim.c_max_velocity_deg_s,
               lim.c_max_accel_deg_s2, kin::kOrientationToleranceDeg);
-  std::printf("move (30°, 0°) → (30°, C1), 1 s rest to rest, 0.25 s ramps, "
-              "sampled every %.0f µs\n\n",
-              kSampleDt * 1e6);
-  std::printf("| pole distance δ | interpolator | max orientation error | peak A speed "
-              "| peak A accel | peak C speed | peak C accel | within A/C limits | re-timed: duration "
-              "| re-timed: peak C speed, accel |\n");
+  std::printf(
+      "move (30°, 0°) → (30°, C1), 1 s rest to rest, 0.25 s ramps, "
+      "sampled every %.0f µs\n\n",
+      kSampleDt * 1e6);
+  std::printf(
+      "| pole distance δ | interpolator | max orientation error | peak A speed "
+      "| peak A accel | peak C speed | peak C accel | within A/C limits | re-timed: duration "
+      "| re-timed: peak C speed, accel |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
 
   for (double delta : {0.005, 0.0, 0.5}) {
     const RotaryJoints a{30.0, 0.0}, b{30.0, end_c(delta)};
-    for (OrientationMethod m : {OrientationMethod::JointLinear, OrientationMethod::Vector,
-                                OrientationMethod::PoleSmoothed}) {
+    for (OrientationMethod m :
+         {OrientationMethod::JointLinear, OrientationMethod::Vector, OrientationMethod::PoleSmoothed}) {
       const Result<OrientationMove> move = OrientationMove::between_joints(m, a, b, lim);
       if (!move) {
         std::fprintf(stderr, "%s\n", move.error().to_string().c_str());
@@ -92,12 +92,12 @@ int main(int argc, char** argv) {
       // and d²u/dt² (orientation_retiming.h).
       const RetimedLaw slow = retime(*move, lim, kPeakURate, kPeakUAccel);
       const OrientationReport rs = evaluate(*move, slow, kSampleDt);
-      std::printf("| %.3f° | %s%s | %.4g° | %.0f °/s | %.4g °/s² | %.4g °/s | %.4g °/s² | %s "
-                  "| %.3g s | %.4g °/s, %.4g °/s² |\n",
-                  delta, method_name(m), move->pole_snapped() ? " (snapped)" : "",
-                  r.max_error_deg, r.peak_a_vel_deg_s, r.peak_a_acc_deg_s2, r.peak_c_vel_deg_s,
-                  r.peak_c_acc_deg_s2, r.within(lim) ? "yes" : "**no**", slow.duration_s(),
-                  rs.peak_c_vel_deg_s, rs.peak_c_acc_deg_s2);
+      std::printf(
+          "| %.3f° | %s%s | %.4g° | %.0f °/s | %.4g °/s² | %.4g °/s | %.4g °/s² | %s "
+          "| %.3g s | %.4g °/s, %.4g °/s² |\n",
+          delta, method_name(m), move->pole_snapped() ? " (snapped)" : "", r.max_error_deg,
+          r.peak_a_vel_deg_s, r.peak_a_acc_deg_s2, r.peak_c_vel_deg_s, r.peak_c_acc_deg_s2,
+          r.within(lim) ? "yes" : "**no**", slow.duration_s(), rs.peak_c_vel_deg_s, rs.peak_c_acc_deg_s2);
       if (delta == 0.005) {
         std::string name = method_name(m);
         for (char& ch : name)
@@ -106,7 +106,6 @@ int main(int argc, char** argv) {
       }
     }
   }
-  std::printf("\nCSV (δ = 0.005°) in %s/: joint_linear.csv vector.csv pole_smoothed.csv\n",
-              csv_dir.c_str());
+  std::printf("\nCSV (δ = 0.005°) in %s/: joint_linear.csv vector.csv pole_smoothed.csv\n", csv_dir.c_str());
   return 0;
 }

@@ -58,7 +58,7 @@ int main(int argc, char** argv) {
   std::sort(rates.begin(), rates.end());
   std::sort(baseline.begin(), baseline.end());
   const double med = rates[rates.size() / 2], base = baseline[baseline.size() / 2];
-  std::printf("median: %.0f lines/s over %d runs (line reading alone: %.0f lines/s, ratio %.2f)\n",
-              med, runs, base, med / base);
+  std::printf("median: %.0f lines/s over %d runs (line reading alone: %.0f lines/s, ratio %.2f)\n", med, runs,
+              base, med / base);
   return 0;
 }

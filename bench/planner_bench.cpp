@@ -44,9 +44,9 @@ using namespace lcnc;
 
 namespace {
 
-constexpr double kVmax = 100.0;     // mm/s per axis
-constexpr double kAmax = 2000.0;    // mm/s² per axis
-constexpr double kTolerance = 0.01; // G64 P, mm
+constexpr double kVmax = 100.0;      // mm/s per axis
+constexpr double kAmax = 2000.0;     // mm/s² per axis
+constexpr double kTolerance = 0.01;  // G64 P, mm
 
 MachineConfig bench_machine() {
   MachineConfig m;
@@ -76,8 +76,7 @@ std::string fmt_xy(double x, double y) {
 // --- the four programs -------------------------------------------------------
 std::string square_program() {
   std::string g = "G21 G90 G64 P0.01\nG1 F6000\n";
-  for (int lap = 0; lap < 3; ++lap)
-    g += "G1 X150 Y100\nG1 X150 Y150\nG1 X100 Y150\nG1 X100 Y100\n";
+  for (int lap = 0; lap < 3; ++lap) g += "G1 X150 Y100\nG1 X150 Y150\nG1 X100 Y150\nG1 X100 Y100\n";
   return g + "M2\n";
 }
 
@@ -106,7 +105,9 @@ std::string zigzag_program() {
 // A spur-gear-like outline, 20 teeth, r(φ) = 30 + 2.5·tanh(3 sin 20φ)/tanh 3,
 // as CAM output: chords of 0.05 mm.
 std::string gear_program(std::size_t* segments = nullptr) {
-  auto radius = [](double phi) { return 30.0 + 2.5 * std::tanh(3.0 * std::sin(20.0 * phi)) / std::tanh(3.0); };
+  auto radius = [](double phi) {
+    return 30.0 + 2.5 * std::tanh(3.0 * std::sin(20.0 * phi)) / std::tanh(3.0);
+  };
   std::string g = "G21 G90 G64 P0.01\n";
   double phi = 0.0;
   const double cx = 200, cy = 200;
@@ -135,8 +136,8 @@ std::string gear_program(std::size_t* segments = nullptr) {
 struct PlannerRun {
   double cycle_s = 0.0;
   double max_dev_mm = 0.0;
-  double peak_jerk = 0.0;  // mm/s³, largest |third difference|/T³ of a linear axis' poses
-  JerkLimit jerk;          // the filter the planner used
+  double peak_jerk = 0.0;               // mm/s³, largest |third difference|/T³ of a linear axis' poses
+  JerkLimit jerk;                       // the filter the planner used
   std::vector<PlannedSegment> planned;  // the blended path, for the reference
   std::uint64_t segments = 0;
 };
@@ -215,8 +216,8 @@ double planned_speed(const Trapezoid& p, double s) {
 
 // Time-optimal traversal time; with `csv`, also writes s, v_optimal, v_ours
 // every `csv_every` grid cells.
-double optimal_time(const std::vector<PlannedSegment>& path, double ds_target,
-                    std::FILE* csv = nullptr, int csv_every = 20) {
+double optimal_time(const std::vector<PlannedSegment>& path, double ds_target, std::FILE* csv = nullptr,
+                    int csv_every = 20) {
   std::vector<GridPoint> grid;
   std::vector<double> ours;  // our speed at each cell
   for (const PlannedSegment& p : path) {
@@ -313,19 +314,21 @@ bool throughput(const std::string& file, const MachineConfig& m, int runs) {
       }
       const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       rates[steps].push_back(segs / sec);
-      std::printf("  run %d%s: %llu segments, %llu periods (%.0f s of motion) in %.3f s = %.0f "
-                  "segments/s (window max %zu, %s %lld)\n",
-                  r + 1, steps == 1 ? " with steps" : "", static_cast<unsigned long long>(segs),
-                  static_cast<unsigned long long>(ci.periods()), ci.periods() * m.period_s(), sec,
-                  segs / sec, ci.max_window(), steps == 1 ? "checksum" : "last X [µm]",
-                  steps == 1 ? static_cast<long long>(checksum)
-                             : static_cast<long long>(std::llround(last_x * 1000.0)));
+      std::printf(
+          "  run %d%s: %llu segments, %llu periods (%.0f s of motion) in %.3f s = %.0f "
+          "segments/s (window max %zu, %s %lld)\n",
+          r + 1, steps == 1 ? " with steps" : "", static_cast<unsigned long long>(segs),
+          static_cast<unsigned long long>(ci.periods()), ci.periods() * m.period_s(), sec, segs / sec,
+          ci.max_window(), steps == 1 ? "checksum" : "last X [µm]",
+          steps == 1 ? static_cast<long long>(checksum)
+                     : static_cast<long long>(std::llround(last_x * 1000.0)));
     }
   }
   for (auto& v : rates) std::sort(v.begin(), v.end());
-  std::printf("  median: %.0f segments/s through coarse interpolation; as RT entries (steps, ramp room, guard) "
-              "%.0f segments/s; peak memory (max RSS) %ld MB\n",
-              rates[0][rates[0].size() / 2], rates[1][rates[1].size() / 2], peak_rss_mb());
+  std::printf(
+      "  median: %.0f segments/s through coarse interpolation; as RT entries (steps, ramp room, guard) "
+      "%.0f segments/s; peak memory (max RSS) %ld MB\n",
+      rates[0][rates[0].size() / 2], rates[1][rates[1].size() / 2], peak_rss_mb());
   return true;
 }
 
@@ -380,8 +383,8 @@ bool stages(const std::string& file, const MachineConfig& m, int runs) {
     }
     std::sort(secs.begin(), secs.end());
     const double med = secs[secs.size() / 2];
-    std::printf("%-24s %10llu %12.3f %10.3f\n", kNames[stage], static_cast<unsigned long long>(items),
-                med, med - before);
+    std::printf("%-24s %10llu %12.3f %10.3f\n", kNames[stage], static_cast<unsigned long long>(items), med,
+                med - before);
     before = med;
   }
   return true;
@@ -429,8 +432,7 @@ int main(int argc, char** argv) {
     if (csv_dir != nullptr) csv = std::fopen((std::string(csv_dir) + "/" + c.key + ".csv").c_str(), "w");
     const double opt = optimal_time(r.planned, 0.0005, csv);
     if (csv != nullptr) std::fclose(csv);
-    std::printf("%-46s %10.4f %10.4f %7.4f %10.5f\n", c.name, r.cycle_s, opt, r.cycle_s / opt,
-                r.max_dev_mm);
+    std::printf("%-46s %10.4f %10.4f %7.4f %10.5f\n", c.name, r.cycle_s, opt, r.cycle_s / opt, r.max_dev_mm);
   }
   // The shipped machine at 100 %: share/machines/default.toml (its feed
   // override up to 150 %, its startup modes, its P) with the limits above
@@ -449,9 +451,10 @@ int main(int argc, char** argv) {
       ms.axes[i].max_velocity = kVmax;
       ms.axes[i].max_acceleration = kAmax;
     }
-    std::printf("\nshipped machine at 100 %% (default.toml: startup \"%s\", P %.3f mm, override up "
-                "to %.0f %%), programs without G64\n",
-                ms.startup_code.c_str(), ms.path_tolerance_mm, 100 * ms.max_feed_override);
+    std::printf(
+        "\nshipped machine at 100 %% (default.toml: startup \"%s\", P %.3f mm, override up "
+        "to %.0f %%), programs without G64\n",
+        ms.startup_code.c_str(), ms.path_tolerance_mm, 100 * ms.max_feed_override);
     std::printf("%-46s %10s %10s %7s %10s\n", "case", "ours [s]", "optimum", "ratio", "dev [mm]");
     for (const Case& c : cases) {
       std::string program = c.program;
@@ -466,8 +469,8 @@ int main(int argc, char** argv) {
   // Jerk limit (machine.max_jerk, plan/jerk_filter.h): the same programs at
   // J = 50 and 500 m/s³, against the plan without it.
   std::printf("\njerk limit: cycle time against the same plan without it\n");
-  std::printf("%-46s %6s %5s %7s %9s %8s %9s %7s %9s %10s\n", "case", "J m/s3", "taps", "tau ms",
-              "a mm/s2", "e_f mm", "ours [s]", "ratio", "dev [mm]", "jerk m/s3");
+  std::printf("%-46s %6s %5s %7s %9s %8s %9s %7s %9s %10s\n", "case", "J m/s3", "taps", "tau ms", "a mm/s2",
+              "e_f mm", "ours [s]", "ratio", "dev [mm]", "jerk m/s3");
   for (const Case& c : cases) {
     if (std::strcmp(c.key, "square") != 0 && std::strcmp(c.key, "gear") != 0) continue;
     const PlannerRun plain = run_planner(c.program, c.start, m);
@@ -476,9 +479,8 @@ int main(int argc, char** argv) {
       mj.max_jerk = jerk_m_s3 * 1000.0;
       const PlannerRun r = run_planner(c.program, c.start, mj);
       std::printf("%-46s %6.0f %5u %7.2f %9.1f %8.5f %9.4f %7.3f %9.5f %10.2f\n", c.name, jerk_m_s3,
-                  r.jerk.taps, r.jerk.taps * m.period_s() * 1e3, r.jerk.accel_scale * kAmax,
-                  r.jerk.error_mm, r.cycle_s, r.cycle_s / plain.cycle_s, r.max_dev_mm,
-                  r.peak_jerk / 1000.0);
+                  r.jerk.taps, r.jerk.taps * m.period_s() * 1e3, r.jerk.accel_scale * kAmax, r.jerk.error_mm,
+                  r.cycle_s, r.cycle_s / plain.cycle_s, r.max_dev_mm, r.peak_jerk / 1000.0);
     }
   }
   if (argc >= 2) {

@@ -24,8 +24,7 @@ namespace lcnc::bench {
 
 // share/machines/default.toml (or `file`) at the given period.
 inline std::optional<MachineConfig> load_machine(const std::string& file, std::uint32_t period_ns) {
-  auto m = load_machine_config(file.empty() ? std::string(LCNC_SHARE_DIR) + "/machines/default.toml"
-                                            : file);
+  auto m = load_machine_config(file.empty() ? std::string(LCNC_SHARE_DIR) + "/machines/default.toml" : file);
   if (!m) {
     std::fprintf(stderr, "%s\n", m.error().to_string().c_str());
     return std::nullopt;
@@ -73,10 +72,10 @@ class DmaLatencyHold {
 // "name: p50 … p99 … p99.9 … max … µs (N samples)". Quantiles are the upper
 // edge of their bucket (LatencyHistogram::quantile_us).
 inline void print_quantiles(const char* name, const rt::LatencyHistogram& h) {
-  std::printf("%s: p50 %.2f  p99 %.2f  p99.9 %.2f  max %.2f us  (%llu samples, %u ns buckets)\n",
-              name, h.quantile_us(0.5), h.quantile_us(0.99), h.quantile_us(0.999),
-              static_cast<double>(h.max_ns()) / 1000.0,
-              static_cast<unsigned long long>(h.total()), h.bucket_ns());
+  std::printf("%s: p50 %.2f  p99 %.2f  p99.9 %.2f  max %.2f us  (%llu samples, %u ns buckets)\n", name,
+              h.quantile_us(0.5), h.quantile_us(0.99), h.quantile_us(0.999),
+              static_cast<double>(h.max_ns()) / 1000.0, static_cast<unsigned long long>(h.total()),
+              h.bucket_ns());
 }
 
 // The histogram in cyclictest's -h format: "%06d %06llu" per bucket (the

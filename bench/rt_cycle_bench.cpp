@@ -42,8 +42,7 @@ using lcnc::PeriodIncrement;
 // The increments of the run, one call per period, in order.
 class IncrementSource {
  public:
-  IncrementSource(std::uint64_t periods, std::int32_t min_steps, std::int32_t max_steps,
-                  std::uint32_t seed)
+  IncrementSource(std::uint64_t periods, std::int32_t min_steps, std::int32_t max_steps, std::uint32_t seed)
       : periods_(periods), rng_(seed), mag_(min_steps, max_steps) {
     for (auto& axis : mags_)
       for (auto& m : axis) m = mag_(rng_);
@@ -122,8 +121,7 @@ int main(int argc, char** argv) {
     steps_min = std::max(0, max_pulses - 55);
   }
   if (periods < 1 || steps_min < 0 || steps_min > steps_max || steps_max > max_pulses) {
-    std::fprintf(stderr, "rt_cycle_bench: need 0 ≤ MIN ≤ MAX ≤ %d (the DDA's max pulses)\n",
-                 max_pulses);
+    std::fprintf(stderr, "rt_cycle_bench: need 0 ≤ MIN ≤ MAX ≤ %d (the DDA's max pulses)\n", max_pulses);
     return 2;
   }
   // All six axes present, travel wide enough that no soft limit is near.
@@ -177,12 +175,12 @@ int main(int argc, char** argv) {
   lcnc::rt::TraceRecord rec;
   while (trace->try_pop(rec)) ++traced;
 
-  std::printf("rt_cycle_bench: period %.1f us, %s priority %d, %llu periods in %.1f s, "
-              "steps per axis and period %d..%d (DDA max %d, capacity %u)\n",
-              period_us,
-              kernel->schedule() == lcnc::rt::RtSchedule::Fifo ? "SCHED_FIFO" : "NOT real-time,",
-              priority, static_cast<unsigned long long>(kernel->periods()), wall_s, steps_min,
-              steps_max, max_pulses, machine->dda.capacity);
+  std::printf(
+      "rt_cycle_bench: period %.1f us, %s priority %d, %llu periods in %.1f s, "
+      "steps per axis and period %d..%d (DDA max %d, capacity %u)\n",
+      period_us, kernel->schedule() == lcnc::rt::RtSchedule::Fifo ? "SCHED_FIFO" : "NOT real-time,", priority,
+      static_cast<unsigned long long>(kernel->periods()), wall_s, steps_min, steps_max, max_pulses,
+      machine->dda.capacity);
   if (!kernel->warning().empty()) std::printf("warning: %s\n", kernel->warning().c_str());
   lcnc::bench::print_quantiles("compute time", kernel->compute_time());
   lcnc::bench::print_quantiles("wake-up latency", kernel->latency());
@@ -192,16 +190,15 @@ int main(int argc, char** argv) {
     pulses += sim.pulses(a);
     exact = exact && sim.pulses(a) == source.commanded()[static_cast<std::size_t>(a)];
   }
-  std::printf("pulses: %llu on 6 axes (%.0f per period), %s the steps commanded; bad frames %llu, "
-              "underruns %llu, overruns %llu, trace %llu records (%llu dropped)\n",
-              static_cast<unsigned long long>(pulses),
-              static_cast<double>(pulses) / static_cast<double>(std::max<std::uint64_t>(1, kernel->periods())),
-              exact ? "equal to" : "NOT EQUAL to",
-              static_cast<unsigned long long>(sim.bad_frames()),
-              static_cast<unsigned long long>(kernel->underruns()),
-              static_cast<unsigned long long>(kernel->overruns()),
-              static_cast<unsigned long long>(traced),
-              static_cast<unsigned long long>(kernel->trace_drops()));
+  std::printf(
+      "pulses: %llu on 6 axes (%.0f per period), %s the steps commanded; bad frames %llu, "
+      "underruns %llu, overruns %llu, trace %llu records (%llu dropped)\n",
+      static_cast<unsigned long long>(pulses),
+      static_cast<double>(pulses) / static_cast<double>(std::max<std::uint64_t>(1, kernel->periods())),
+      exact ? "equal to" : "NOT EQUAL to", static_cast<unsigned long long>(sim.bad_frames()),
+      static_cast<unsigned long long>(kernel->underruns()),
+      static_cast<unsigned long long>(kernel->overruns()), static_cast<unsigned long long>(traced),
+      static_cast<unsigned long long>(kernel->trace_drops()));
   if (!exact || sim.bad_frames() != 0 || kernel->periods() != periods) return 3;
   return kernel->schedule() == lcnc::rt::RtSchedule::Fifo ? 0 : 3;
 }

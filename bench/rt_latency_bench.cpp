@@ -81,17 +81,15 @@ int main(int argc, char** argv) {
   kernel->join();
 
   const auto& lat = kernel->latency();
-  std::printf("rt_latency_bench: period %.1f us, %.1f s, %s priority %d, dma_latency %s, %llu periods "
-              "(%llu expected), %llu overruns\n"
-              "  %llu wake-ups, %llu catch-up periods (already due after a stall: no sleep, no wake-up)\n",
-              period_us, seconds,
-              kernel->schedule() == lcnc::rt::RtSchedule::Fifo ? "SCHED_FIFO" : "NOT real-time,",
-              priority, dma.held() ? "0 us" : "not set",
-              static_cast<unsigned long long>(kernel->periods()),
-              static_cast<unsigned long long>(seconds * 1e6 / period_us),
-              static_cast<unsigned long long>(kernel->overruns()),
-              static_cast<unsigned long long>(lat.total()),
-              static_cast<unsigned long long>(kernel->catch_up_periods()));
+  std::printf(
+      "rt_latency_bench: period %.1f us, %.1f s, %s priority %d, dma_latency %s, %llu periods "
+      "(%llu expected), %llu overruns\n"
+      "  %llu wake-ups, %llu catch-up periods (already due after a stall: no sleep, no wake-up)\n",
+      period_us, seconds, kernel->schedule() == lcnc::rt::RtSchedule::Fifo ? "SCHED_FIFO" : "NOT real-time,",
+      priority, dma.held() ? "0 us" : "not set", static_cast<unsigned long long>(kernel->periods()),
+      static_cast<unsigned long long>(seconds * 1e6 / period_us),
+      static_cast<unsigned long long>(kernel->overruns()), static_cast<unsigned long long>(lat.total()),
+      static_cast<unsigned long long>(kernel->catch_up_periods()));
   if (!kernel->warning().empty()) std::printf("warning: %s\n", kernel->warning().c_str());
   lcnc::bench::print_quantiles("wake-up latency", lat);
   lcnc::bench::print_quantiles("compute time", kernel->compute_time());

@@ -10,9 +10,7 @@ std::array<SimSwitches, kAxisCount> wired_switches(
   for (int i = 0; i < kAxisCount; ++i) {
     const AxisConfig& a = machine.axes[i];
     if (!a.present) continue;
-    auto count = [&](double pos) {
-      return std::llround(pos * a.steps_per_unit) + raw_offset_steps[i];
-    };
+    auto count = [&](double pos) { return std::llround(pos * a.steps_per_unit) + raw_offset_steps[i]; };
     SimSwitches& s = out[i];
     // A wrapping axis turns without end: no hard limits to hit.
     if (!a.wrap) {
@@ -20,8 +18,7 @@ std::array<SimSwitches, kAxisCount> wired_switches(
       s.limit_max_steps = count(a.max + kHardLimitBeyondSoft);
     }
     s.home = HomeSwitch{count(a.home_position_or_default()),
-                        a.home_search_velocity_or_default() < 0.0 ? SwitchSide::Below
-                                                                  : SwitchSide::Above};
+                        a.home_search_velocity_or_default() < 0.0 ? SwitchSide::Below : SwitchSide::Above};
   }
   return out;
 }
@@ -67,8 +64,7 @@ void SimMachine::emit(const PulseFrame& frame) noexcept {
     const auto n = static_cast<std::int64_t>(ax.count);
     pos_[i].store(pos_[i].load(std::memory_order_relaxed) + (ax.negative ? -n : n),
                   std::memory_order_relaxed);
-    pulses_[i].store(pulses_[i].load(std::memory_order_relaxed) + ax.count,
-                     std::memory_order_relaxed);
+    pulses_[i].store(pulses_[i].load(std::memory_order_relaxed) + ax.count, std::memory_order_relaxed);
   }
   if (bad) bad_frames_.fetch_add(1, std::memory_order_relaxed);
   frames_.fetch_add(1, std::memory_order_relaxed);
@@ -82,8 +78,8 @@ MachineInputs SimMachine::read_inputs() noexcept {
     const SimSwitches& s = switches_[i];
     const std::int64_t pos = position_steps(i);
     if (s.home) {
-      in.home[i] = s.home->active == SwitchSide::Below ? pos <= s.home->trip_steps
-                                                       : pos >= s.home->trip_steps;
+      in.home[i] =
+          s.home->active == SwitchSide::Below ? pos <= s.home->trip_steps : pos >= s.home->trip_steps;
     }
     in.limit_min[i] = s.limit_min_steps && pos <= *s.limit_min_steps;
     in.limit_max[i] = s.limit_max_steps && pos >= *s.limit_max_steps;

@@ -53,8 +53,7 @@ inline constexpr double kHardLimitBeyondSoft = 2.0;
 // the kernel does not expect it, as on a machine just switched on.
 // Axes not present get no switches.
 [[nodiscard]] std::array<SimSwitches, kAxisCount> wired_switches(
-    const MachineConfig& machine,
-    const std::array<std::int64_t, kAxisCount>& raw_offset_steps = {});
+    const MachineConfig& machine, const std::array<std::int64_t, kAxisCount>& raw_offset_steps = {});
 
 class SimMachine final : public PulseSink {
  public:
@@ -77,9 +76,7 @@ class SimMachine final : public PulseSink {
   void set_estop_input(bool pressed) noexcept { estop_.store(pressed, std::memory_order_relaxed); }
   // The program's digital inputs (M66), bit n: P n; from any thread (relaxed,
   // as the e-stop).
-  void set_digital_inputs(std::uint8_t bits) noexcept {
-    digital_in_.store(bits, std::memory_order_relaxed);
-  }
+  void set_digital_inputs(std::uint8_t bits) noexcept { digital_in_.store(bits, std::memory_order_relaxed); }
   // The feed inputs (M52 adaptive feed, 0 … 1; M53 feed hold); from any
   // thread (relaxed, as the e-stop).
   void set_adaptive_feed(float factor) noexcept { adaptive_feed_.store(factor, std::memory_order_relaxed); }

@@ -10,8 +10,8 @@
 
 #include <algorithm>
 
-#include "holes/hole_fields.h"
 #include "hmi/page_support.h"
+#include "holes/hole_fields.h"
 #include "ui_adjust_page.h"
 
 namespace lcnc::hmi {
@@ -46,7 +46,8 @@ class PowerPlot : public QWidget {
     const double t1 = samples_.empty() ? 60.0 : samples_.back().t, t0 = t1 - 60.0;
     for (int k = 0; k <= 4; ++k) {
       const double y = area.bottom() - area.height() * k / 4.0;
-      g.drawText(QRectF(0, y - 8, 42, 16), Qt::AlignRight | Qt::AlignVCenter, QString::number(top * k / 4.0, 'f', 1));
+      g.drawText(QRectF(0, y - 8, 42, 16), Qt::AlignRight | Qt::AlignVCenter,
+                 QString::number(top * k / 4.0, 'f', 1));
     }
     QFont small = g.font();
     small.setPointSizeF(small.pointSizeF() * 0.8);
@@ -57,8 +58,12 @@ class PowerPlot : public QWidget {
       QPainterPath p;
       bool first = true;
       for (const Sample& s : samples_) {
-        const QPointF q(area.left() + (s.t - t0) / 60.0 * area.width(), area.bottom() - value(s) / top * area.height());
-        if (first) p.moveTo(q); else p.lineTo(q);
+        const QPointF q(area.left() + (s.t - t0) / 60.0 * area.width(),
+                        area.bottom() - value(s) / top * area.height());
+        if (first)
+          p.moveTo(q);
+        else
+          p.lineTo(q);
         first = false;
       }
       g.setPen(QPen(color, 1.5));
@@ -120,7 +125,8 @@ AdjustPage::AdjustPage(const AdjustEndpoints& at, QWidget* parent)
   if (!errors.isEmpty()) show_message(errors.join("; "), true);
   QTableWidget* t = ui_->linkTable;
   t->setColumnCount(6);
-  t->setHorizontalHeaderLabels({tr("Device"), tr("Link"), tr("Requests"), tr("Failed"), tr("Retries"), tr("Last error")});
+  t->setHorizontalHeaderLabels(
+      {tr("Device"), tr("Link"), tr("Requests"), tr("Failed"), tr("Retries"), tr("Last error")});
   t->verticalHeader()->hide();
   t->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
   t->horizontalHeader()->setStretchLastSection(true);
@@ -170,24 +176,26 @@ void AdjustPage::refresh() {
     ui_->laserPowerLabel->setText(QString::number(value(s, "output_power_w"), 'f', 2));
     // the setpoint in W too, as the plot shows it
     const double rated_w = value(s, "rated_power_w");
-    ui_->setpointWattLabel->setText(s.linked && rated_w > 0.0
-                                        ? tr("= %1 W").arg(ui_->setpointSpin->value() / 100.0 * rated_w, 0, 'f', 1)
-                                        : QString());
+    ui_->setpointWattLabel->setText(
+        s.linked && rated_w > 0.0 ? tr("= %1 W").arg(ui_->setpointSpin->value() / 100.0 * rated_w, 0, 'f', 1)
+                                  : QString());
     ui_->laserTempLabel->setText(QString::number(value(s, "temperature_c"), 'f', 1));
     const int alarm = static_cast<int>(value(s, "alarm_code"));
-    ui_->laserAlarmLabel->setText(alarm == 0 ? tr("none") : (alarm & 1 ? tr("over-temperature") : QString::number(alarm)));
+    ui_->laserAlarmLabel->setText(alarm == 0 ? tr("none")
+                                             : (alarm & 1 ? tr("over-temperature") : QString::number(alarm)));
     if (!s.last_write.empty()) write_errors << tr("laser: %1").arg(QString::fromStdString(s.last_write));
   }
   if (meter_) {
     const PollSnapshot s = meter_->snapshot();
-    ui_->meterPowerLabel->setText(s.linked ? QString::number(value(s, "power_w"), 'f', 3) +
-                                                 (value(s, "over_range") != 0.0 ? tr(" (over range)") : QString())
-                                           : tr("no link"));
+    ui_->meterPowerLabel->setText(s.linked
+                                      ? QString::number(value(s, "power_w"), 'f', 3) +
+                                            (value(s, "over_range") != 0.0 ? tr(" (over range)") : QString())
+                                      : tr("no link"));
   }
   if (head_) {
     const PollSnapshot s = head_->snapshot();
-    ui_->headStateLabel->setText(s.linked ? (value(s, "fault") != 0.0 ? tr("FAULT") : head_state(value(s, "status")))
-                                          : tr("no link"));
+    ui_->headStateLabel->setText(
+        s.linked ? (value(s, "fault") != 0.0 ? tr("FAULT") : head_state(value(s, "status"))) : tr("no link"));
     ui_->headRpmLabel->setText(QString::number(value(s, "actual_wedge_rpm"), 'f', 0));
     ui_->headRadiusLabel->setText(QString::number(value(s, "current_radius_mm"), 'f', 3));
     ui_->headTurnsLabel->setText(QString::number(value(s, "turns_done"), 'f', 0));
@@ -214,9 +222,14 @@ void AdjustPage::refresh() {
   for (const auto& [name, p] : devices) {
     const PollSnapshot s = p ? p->snapshot() : PollSnapshot{};
     const QString cells[] = {QString::fromLatin1(name),
-                             !p ? tr("not configured") : s.polls == 0 ? tr("connecting…") : s.linked ? tr("up") : tr("down"),
-                             QString::number(s.counters.requests), QString::number(s.counters.failed),
-                             QString::number(s.counters.retries), QString::fromStdString(s.error)};
+                             !p             ? tr("not configured")
+                             : s.polls == 0 ? tr("connecting…")
+                             : s.linked     ? tr("up")
+                                            : tr("down"),
+                             QString::number(s.counters.requests),
+                             QString::number(s.counters.failed),
+                             QString::number(s.counters.retries),
+                             QString::fromStdString(s.error)};
     for (int c = 0; c < 6; ++c) {
       QTableWidgetItem* item = t->item(row, c);
       if (item == nullptr) t->setItem(row, c, item = new QTableWidgetItem());
@@ -241,7 +254,9 @@ bool AdjustPage::wait_polled(int timeout_ms) {
 }
 
 std::size_t AdjustPage::plot_samples() const { return plot_->size(); }
-void AdjustPage::show_message(const QString& text, bool error) { set_message(ui_->messageLabel, text, error); }
+void AdjustPage::show_message(const QString& text, bool error) {
+  set_message(ui_->messageLabel, text, error);
+}
 QString AdjustPage::message() const { return ui_->messageLabel->text(); }
 QTableWidget* AdjustPage::links() const { return ui_->linkTable; }
 

@@ -11,9 +11,9 @@
 #include <limits>
 #include <utility>
 
+#include "common/output_file.h"
 #include "dxf/dxf_reader.h"
 #include "hmi/page_support.h"
-#include "common/output_file.h"
 #include "ui_cut_page.h"
 
 namespace lcnc::hmi {
@@ -21,9 +21,7 @@ namespace lcnc::hmi {
 // The plan drawn, framed on the drawing, y up.
 class CutView : public QWidget {
  public:
-  explicit CutView(QWidget* parent) : QWidget(parent) {
-    make_canvas(this, "cutView", 400, 300);
-  }
+  explicit CutView(QWidget* parent) : QWidget(parent) { make_canvas(this, "cutView", 400, 300); }
   void set_plan(const cut::CutPlan* plan, cut::Vec2 origin) {
     plan_ = plan;
     origin_ = std::move(origin);
@@ -99,7 +97,8 @@ CutPage::CutPage(std::string shm_name, QWidget* parent)
   });
   connect(ui_->planButton, &QPushButton::clicked, this, [this] { plan(); });
   connect(ui_->saveButton, &QPushButton::clicked, this, [this] {
-    const QString p = QFileDialog::getSaveFileName(this, tr("Save the cutting program"), {}, tr("G-code (*.ngc)"));
+    const QString p =
+        QFileDialog::getSaveFileName(this, tr("Save the cutting program"), {}, tr("G-code (*.ngc)"));
     if (!p.isEmpty()) save(p);
   });
   connect(ui_->loadButton, &QPushButton::clicked, this, [this] { load(); });

@@ -11,12 +11,12 @@
 
 #include <algorithm>
 
+#include "common/output_file.h"
 #include "decompose/decompose_tolerances.h"
 #include "decompose/kinematics_table.h"
 #include "dxf/dxf_reader.h"
 #include "hmi/decomposition_view.h"
 #include "hmi/page_support.h"
-#include "common/output_file.h"
 #include "ui_decomposition_page.h"
 
 namespace lcnc::hmi {
@@ -24,18 +24,17 @@ namespace {
 
 using decompose::kG_mm_s2;
 
-const char* const kColumns[] = {
-    "#",
-    QT_TRANSLATE_NOOP("DecompositionPage", "first entity"),
-    QT_TRANSLATE_NOOP("DecompositionPage", "length mm"),
-    QT_TRANSLATE_NOOP("DecompositionPage", "points"),
-    QT_TRANSLATE_NOOP("DecompositionPage", "time s"),
-    QT_TRANSLATE_NOOP("DecompositionPage", "τ s"),
-    QT_TRANSLATE_NOOP("DecompositionPage", "main a mm/s²"),
-    QT_TRANSLATE_NOOP("DecompositionPage", "main v mm/s"),
-    QT_TRANSLATE_NOOP("DecompositionPage", "aux v mm/s"),
-    QT_TRANSLATE_NOOP("DecompositionPage", "aux max mm"),
-    QT_TRANSLATE_NOOP("DecompositionPage", "a_eff mm/s²")};
+const char* const kColumns[] = {"#",
+                                QT_TRANSLATE_NOOP("DecompositionPage", "first entity"),
+                                QT_TRANSLATE_NOOP("DecompositionPage", "length mm"),
+                                QT_TRANSLATE_NOOP("DecompositionPage", "points"),
+                                QT_TRANSLATE_NOOP("DecompositionPage", "time s"),
+                                QT_TRANSLATE_NOOP("DecompositionPage", "τ s"),
+                                QT_TRANSLATE_NOOP("DecompositionPage", "main a mm/s²"),
+                                QT_TRANSLATE_NOOP("DecompositionPage", "main v mm/s"),
+                                QT_TRANSLATE_NOOP("DecompositionPage", "aux v mm/s"),
+                                QT_TRANSLATE_NOOP("DecompositionPage", "aux max mm"),
+                                QT_TRANSLATE_NOOP("DecompositionPage", "a_eff mm/s²")};
 
 }  // namespace
 
@@ -68,7 +67,8 @@ DecompositionPage::DecompositionPage(QWidget* parent)
   });
   connect(ui_->decomposeButton, &QPushButton::clicked, this, [this] { decompose(); });
   connect(ui_->exportButton, &QPushButton::clicked, this, [this] {
-    const QString p = QFileDialog::getSaveFileName(this, tr("Export kinematics table"), {}, tr("CSV (*.csv)"));
+    const QString p =
+        QFileDialog::getSaveFileName(this, tr("Export kinematics table"), {}, tr("CSV (*.csv)"));
     if (!p.isEmpty()) export_table(p);
   });
 }
@@ -176,8 +176,11 @@ void DecompositionPage::present(const Outcome& o) {
   ui_->summaryLabel->setText(s);
   ui_->exportButton->setEnabled(true);
   QString msg = tr("Decomposed.");
-  if (exceeded > 0) msg = tr("The published algorithm breaks %n limit(s) (see the table's tooltips); "
-                             "the synchronous mode guarantees them.", nullptr, exceeded);
+  if (exceeded > 0)
+    msg =
+        tr("The published algorithm breaks %n limit(s) (see the table's tooltips); "
+           "the synchronous mode guarantees them.",
+           nullptr, exceeded);
   for (const std::string& n : o.notes) msg += "\n" + QString::fromStdString(n);
   show_message(msg, exceeded > 0);
   emit finished(true);
@@ -189,14 +192,19 @@ void DecompositionPage::fill_table() {
   int row = 0;
   for (const decompose::ContourResult& c : part_->contours) {
     const decompose::Peaks& p = c.peaks;
-    const QString first = QString::fromUtf8(dxf::entity_name(c.contour.first_kind)) +
-                          tr(" line %1").arg(c.contour.first_line);
-    const QString cells[] = {QString::number(c.contour.index), first,
+    const QString first =
+        QString::fromUtf8(dxf::entity_name(c.contour.first_kind)) + tr(" line %1").arg(c.contour.first_line);
+    const QString cells[] = {QString::number(c.contour.index),
+                             first,
                              QString::number(c.polyline.length_mm, 'f', 3),
-                             QString::number(c.polyline.size()), QString::number(p.duration_s, 'f', 4),
-                             QString::number(c.tau_s, 'f', 4), QString::number(p.a_main, 'f', 1),
-                             QString::number(p.v_main, 'f', 1), QString::number(p.v_aux, 'f', 1),
-                             QString::number(p.aux_excursion, 'f', 4), QString::number(p.a_eff, 'f', 1)};
+                             QString::number(c.polyline.size()),
+                             QString::number(p.duration_s, 'f', 4),
+                             QString::number(c.tau_s, 'f', 4),
+                             QString::number(p.a_main, 'f', 1),
+                             QString::number(p.v_main, 'f', 1),
+                             QString::number(p.v_aux, 'f', 1),
+                             QString::number(p.aux_excursion, 'f', 4),
+                             QString::number(p.a_eff, 'f', 1)};
     QString tip;
     for (const std::string& e : c.exceeded) tip += QString::fromStdString(e) + "\n";
     for (int col = 0; col < static_cast<int>(std::size(cells)); ++col) {
@@ -222,7 +230,8 @@ bool DecompositionPage::export_table(const QString& path) {
   if (const Status s = write_output(path.toStdString(), {path_.toStdString()},
                                     [&](std::ostream& f) { decompose::write_csv(f, tables); });
       !s) {
-    show_message(tr("Cannot write %1.").arg(path) + " " + QString::fromStdString(s.error().to_string()), true);
+    show_message(tr("Cannot write %1.").arg(path) + " " + QString::fromStdString(s.error().to_string()),
+                 true);
     return false;
   }
   show_message(tr("Exported %1.").arg(path), false);
@@ -231,7 +240,9 @@ bool DecompositionPage::export_table(const QString& path) {
 
 bool DecompositionPage::wait_done(int timeout_ms) { return decomposing_.wait(timeout_ms); }
 
-void DecompositionPage::show_message(const QString& text, bool error) { set_message(ui_->messageLabel, text, error); }
+void DecompositionPage::show_message(const QString& text, bool error) {
+  set_message(ui_->messageLabel, text, error);
+}
 
 QString DecompositionPage::message() const { return ui_->messageLabel->text(); }
 QString DecompositionPage::summary() const { return ui_->summaryLabel->text(); }

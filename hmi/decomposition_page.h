@@ -46,9 +46,7 @@ class DecompositionPage : public QWidget {
   bool wait_done(int timeout_ms = 30000);
   [[nodiscard]] bool busy() const noexcept { return decomposing_.running(); }
 
-  [[nodiscard]] const decompose::PartResult* result() const noexcept {
-    return part_ ? &*part_ : nullptr;
-  }
+  [[nodiscard]] const decompose::PartResult* result() const noexcept { return part_ ? &*part_ : nullptr; }
   [[nodiscard]] QString message() const;
   [[nodiscard]] QString summary() const;
   [[nodiscard]] QTableWidget* table() const;

@@ -89,9 +89,12 @@ void DecompositionView::paintEvent(QPaintEvent*) {
   g.drawRect(QRectF(fa.at(Vec2(-f, f)), fa.at(Vec2(f, -f))));
   for (const decompose::ContourResult& c : part_->contours) {
     const decompose::KinematicsTable& t = c.table;
-    draw(g, t.size(), [&](std::size_t i) { return t.beam[i]; }, fp, QColor("green"), 2.0);
-    draw(g, t.size(), [&](std::size_t i) { return t.main[i]; }, fp, QColor("blue"), 1.5);
-    draw(g, t.size(), [&](std::size_t i) { return t.aux(i); }, fa, QColor("red"), 1.2);
+    draw(
+        g, t.size(), [&](std::size_t i) { return t.beam[i]; }, fp, QColor("green"), 2.0);
+    draw(
+        g, t.size(), [&](std::size_t i) { return t.main[i]; }, fp, QColor("blue"), 1.5);
+    draw(
+        g, t.size(), [&](std::size_t i) { return t.aux(i); }, fa, QColor("red"), 1.2);
   }
   g.setPen(Qt::black);
   g.drawText(QRectF(left.left(), left.bottom() + 2, left.width(), label), Qt::AlignLeft,

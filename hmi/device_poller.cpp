@@ -4,9 +4,11 @@
 
 namespace lcnc::hmi {
 
-Result<std::unique_ptr<DevicePoller>> DevicePoller::start(const std::string& device, const drivers::Endpoint& at,
+Result<std::unique_ptr<DevicePoller>> DevicePoller::start(const std::string& device,
+                                                          const drivers::Endpoint& at,
                                                           std::vector<std::string> history,
-                                                          std::chrono::milliseconds period, double history_s) {
+                                                          std::chrono::milliseconds period,
+                                                          double history_s) {
   Result<drivers::DeviceMap> map = drivers::shipped_device(device);
   if (!map) return map.error();
   for (const std::string& h : history)
@@ -23,8 +25,8 @@ Result<std::unique_ptr<DevicePoller>> DevicePoller::start(const std::string& dev
 DevicePoller::DevicePoller(std::unique_ptr<drivers::ModbusMaster> m, std::vector<std::string> history,
                            std::chrono::milliseconds period, double history_s)
     : master_(std::move(m)), history_names_(std::move(history)), period_(period), history_s_(history_s) {
-  for (drivers::Table t : {drivers::Table::Coil, drivers::Table::Discrete, drivers::Table::Holding,
-                           drivers::Table::Input}) {
+  for (drivers::Table t :
+       {drivers::Table::Coil, drivers::Table::Discrete, drivers::Table::Holding, drivers::Table::Input}) {
     std::vector<std::string> names;
     for (const drivers::RegisterDef& r : master_->map().registers)
       if (r.table == t) names.push_back(r.name);
@@ -63,7 +65,8 @@ void DevicePoller::run() noexcept {
         h.t_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
         for (const std::string& n : history_names_) h.values.push_back(got[n]);
         history_.push_back(std::move(h));
-        while (!history_.empty() && history_.back().t_s - history_.front().t_s > history_s_) history_.pop_front();
+        while (!history_.empty() && history_.back().t_s - history_.front().t_s > history_s_)
+          history_.pop_front();
       }
     }
     while (running_.load() && std::chrono::steady_clock::now() < next)

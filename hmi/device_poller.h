@@ -33,7 +33,7 @@ struct PollSnapshot {
 };
 
 struct HistorySample {
-  double t_s = 0;  // since the poller started
+  double t_s = 0;              // since the poller started
   std::vector<double> values;  // of history_names, in order
 };
 
@@ -41,10 +41,9 @@ class DevicePoller {
  public:
   // `device`: a device of the shipped register map. `history`: the registers
   // whose values are also kept over time (up to `history_s`).
-  static Result<std::unique_ptr<DevicePoller>> start(const std::string& device, const drivers::Endpoint& at,
-                                                     std::vector<std::string> history = {},
-                                                     std::chrono::milliseconds period = std::chrono::milliseconds(100),
-                                                     double history_s = 60.0);
+  static Result<std::unique_ptr<DevicePoller>> start(
+      const std::string& device, const drivers::Endpoint& at, std::vector<std::string> history = {},
+      std::chrono::milliseconds period = std::chrono::milliseconds(100), double history_s = 60.0);
   ~DevicePoller();
   DevicePoller(const DevicePoller&) = delete;
   DevicePoller& operator=(const DevicePoller&) = delete;

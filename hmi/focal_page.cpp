@@ -20,7 +20,10 @@ enum Column { kHole, kX, kY, kZ, kStored, kDistance, kOffset, kStatus, kColumns 
 
 FocalPage::FocalPage(ProcessDatabase& db, std::string shm_name, std::optional<drivers::Endpoint> sensor,
                      QWidget* parent)
-    : QWidget(parent), ui_(std::make_unique<Ui::FocalPage>()), db_(db), shm_name_(std::move(shm_name)),
+    : QWidget(parent),
+      ui_(std::make_unique<Ui::FocalPage>()),
+      db_(db),
+      shm_name_(std::move(shm_name)),
       sensor_(std::move(sensor)),
       measuring_(
           this,
@@ -39,7 +42,8 @@ FocalPage::FocalPage(ProcessDatabase& db, std::string shm_name, std::optional<dr
   t->horizontalHeader()->setStretchLastSection(true);
   connect(ui_->reloadButton, &QPushButton::clicked, this, [this] { reload(); });
   connect(ui_->selectAllButton, &QPushButton::clicked, this, [this] {
-    for (int r = 0; r < ui_->holeTable->rowCount(); ++r) ui_->holeTable->item(r, kHole)->setCheckState(Qt::Checked);
+    for (int r = 0; r < ui_->holeTable->rowCount(); ++r)
+      ui_->holeTable->item(r, kHole)->setCheckState(Qt::Checked);
   });
   connect(ui_->measureButton, &QPushButton::clicked, this, [this] { measure(); });
   connect(ui_->cancelButton, &QPushButton::clicked, this, [this] { measuring_.cancel(); });
@@ -69,8 +73,9 @@ void FocalPage::reload() {
       i->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);
       t->setItem(r, c, i);
     }
-    t->setItem(r, kStored, new QTableWidgetItem(h.focus_offset_mm ? QString::number(*h.focus_offset_mm, 'f', 4)
-                                                                  : QStringLiteral("—")));
+    t->setItem(r, kStored,
+               new QTableWidgetItem(h.focus_offset_mm ? QString::number(*h.focus_offset_mm, 'f', 4)
+                                                      : QStringLiteral("—")));
     for (int c : {kDistance, kOffset, kStatus}) t->setItem(r, c, new QTableWidgetItem());
   }
   readings_.clear();
@@ -116,23 +121,26 @@ void FocalPage::measure() {
   show_message(tr("Measuring %n hole(s)…", nullptr, static_cast<int>(holes.size())), false);
   FocalConfig config;
   config.standoff_mm = ui_->standoffSpin->value();
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("lasercnc_hmi_" + std::to_string(QCoreApplication::applicationPid()));
-  measuring_.start([holes, config, dir, shm = shm_name_, ep = *sensor_](TaskProgress& p) {
-    Result<std::unique_ptr<ModbusDistanceSensor>> sensor = ModbusDistanceSensor::connect(ep, 16);
-    if (!sensor) {
-      std::vector<FocalReading> none;
-      for (const HoleRecord& h : holes) {
-        FocalReading r;
-        r.hole = h.params.hole_number;
-        r.error = "displacement sensor: " + sensor.error().message;
-        none.push_back(r);
-      }
-      return none;
-    }
-    MachineMover mover(shm, dir);
-    return run_focal(holes, mover, **sensor, config, [&p](int done, int) { p.done = done; }, &p.cancel);
-  }, static_cast<int>(holes.size()));
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                    ("lasercnc_hmi_" + std::to_string(QCoreApplication::applicationPid()));
+  measuring_.start(
+      [holes, config, dir, shm = shm_name_, ep = *sensor_](TaskProgress& p) {
+        Result<std::unique_ptr<ModbusDistanceSensor>> sensor = ModbusDistanceSensor::connect(ep, 16);
+        if (!sensor) {
+          std::vector<FocalReading> none;
+          for (const HoleRecord& h : holes) {
+            FocalReading r;
+            r.hole = h.params.hole_number;
+            r.error = "displacement sensor: " + sensor.error().message;
+            none.push_back(r);
+          }
+          return none;
+        }
+        MachineMover mover(shm, dir);
+        return run_focal(
+            holes, mover, **sensor, config, [&p](int done, int) { p.done = done; }, &p.cancel);
+      },
+      static_cast<int>(holes.size()));
 }
 
 void FocalPage::present(const std::vector<FocalReading>& readings) {
@@ -154,11 +162,11 @@ void FocalPage::present(const std::vector<FocalReading>& readings) {
   }
   const int failed = static_cast<int>(readings_.size()) - measured;
   ui_->saveButton->setEnabled(measured > 0);
-  show_message(failed == 0 ? tr("%n hole(s) measured; save to store the offsets.", nullptr, measured)
-                           : tr("%1 measured, %2 not (see Status); save stores the measured ones.")
-                                 .arg(measured)
-                                 .arg(failed),
-               failed > 0);
+  show_message(
+      failed == 0
+          ? tr("%n hole(s) measured; save to store the offsets.", nullptr, measured)
+          : tr("%1 measured, %2 not (see Status); save stores the measured ones.").arg(measured).arg(failed),
+      failed > 0);
   emit finished();
 }
 
@@ -173,7 +181,8 @@ bool FocalPage::save() {
     return false;
   }
   reload();
-  show_message(tr("Stored the focus offsets of %n hole(s).", nullptr, static_cast<int>(offsets.size())), false);
+  show_message(tr("Stored the focus offsets of %n hole(s).", nullptr, static_cast<int>(offsets.size())),
+               false);
   return true;
 }
 

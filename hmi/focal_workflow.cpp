@@ -70,7 +70,9 @@ std::vector<FocalReading> run_focal(const std::vector<HoleRecord>& holes, Machin
     } else if (Status s = mover.move_to(r.at, config.move_timeout); !s) {
       char where[96];
       std::snprintf(where, sizeof where, "the sensor's point X%.3f Y%.3f Z%.3f: ", r.at[0], r.at[1], r.at[2]);
-      r.error = (s.error().code == ErrorCode::GcodeBeyondTravel ? std::string(where) + "beyond the machine's travel (" : std::string()) +
+      r.error = (s.error().code == ErrorCode::GcodeBeyondTravel
+                     ? std::string(where) + "beyond the machine's travel ("
+                     : std::string()) +
                 s.error().message + (s.error().code == ErrorCode::GcodeBeyondTravel ? ")" : "");
       // a refused point (beyond the travel) is this hole's; anything else ends the run
       if (s.error().code != ErrorCode::GcodeBeyondTravel) fatal = "not measured: " + r.error;

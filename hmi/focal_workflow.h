@@ -53,19 +53,18 @@ struct FocalConfig {
 
 struct FocalReading {
   std::uint32_t hole = 0;
-  Pose at = Pose::Zero();               // where the sensor read (machine)
-  std::optional<double> distance_mm;    // what it read
-  std::optional<double> offset_mm;      // the focus offset, when measured
-  std::string error;                    // why not, when not
+  Pose at = Pose::Zero();             // where the sensor read (machine)
+  std::optional<double> distance_mm;  // what it read
+  std::optional<double> offset_mm;    // the focus offset, when measured
+  std::string error;                  // why not, when not
 };
 
 // Measures each hole in turn; `progress(done, total)` after each (any
 // thread), `cancel` checked between holes. A lost link or a machine fault
 // ends the run (the rest have that error); a hole out of the sensor's range
 // is one error and the run goes on.
-[[nodiscard]] std::vector<FocalReading> run_focal(const std::vector<HoleRecord>& holes,
-                                                  MachineMover& mover, DistanceSensor& sensor,
-                                                  const FocalConfig& config,
+[[nodiscard]] std::vector<FocalReading> run_focal(const std::vector<HoleRecord>& holes, MachineMover& mover,
+                                                  DistanceSensor& sensor, const FocalConfig& config,
                                                   const std::function<void(int, int)>& progress = {},
                                                   const std::atomic<bool>* cancel = nullptr);
 

@@ -28,19 +28,19 @@
 
 #include <cstdio>
 #include <memory>
-#include <tuple>
 #include <string>
+#include <tuple>
 
 #include "drivers/modbus/endpoint_spec.h"
 #include "hmi/adjust_page.h"
+#include "hmi/cut_page.h"
 #include "hmi/decomposition_page.h"
 #include "hmi/hmi_font.h"
-#include "hmi/cut_page.h"
 #include "hmi/main_window.h"
+#include "hmi/process_db.h"
 #include "hmi/program_page.h"
 #include "hmi/sim_peripherals.h"
 #include "hmi/translations.h"
-#include "hmi/process_db.h"
 #include "rt/shm_interface.h"
 
 namespace {
@@ -105,20 +105,34 @@ int main(int argc, char** argv) {
          a == "--lang" || a == "--machine" || a == "--program" || a == "--cut") &&
         i + 1 < args.size()) {
       const QString& v = args[++i];
-      if (a == "--db") db_path = v.toStdString();
-      else if (a == "--shm") shm_name = v.toStdString();
-      else if (a == "--import") import_path = v.toStdString();
-      else if (a == "--dxf") dxf_path = v;
-      else if (a == "--program") program_path = v;
-      else if (a == "--cut") cut_path = v;
-      else if (a == "--sensor") sensor_spec = v.toStdString();
-      else if (a == "--probe") probe_device = v.toStdString();
-      else if (a == "--laser") laser_spec = v.toStdString();
-      else if (a == "--meter") meter_spec = v.toStdString();
-      else if (a == "--head") head_spec = v.toStdString();
-      else if (a == "--lang") language = v;
-      else if (a == "--machine") machine_file = v.toStdString();
-      else screenshot_dir = v;
+      if (a == "--db")
+        db_path = v.toStdString();
+      else if (a == "--shm")
+        shm_name = v.toStdString();
+      else if (a == "--import")
+        import_path = v.toStdString();
+      else if (a == "--dxf")
+        dxf_path = v;
+      else if (a == "--program")
+        program_path = v;
+      else if (a == "--cut")
+        cut_path = v;
+      else if (a == "--sensor")
+        sensor_spec = v.toStdString();
+      else if (a == "--probe")
+        probe_device = v.toStdString();
+      else if (a == "--laser")
+        laser_spec = v.toStdString();
+      else if (a == "--meter")
+        meter_spec = v.toStdString();
+      else if (a == "--head")
+        head_spec = v.toStdString();
+      else if (a == "--lang")
+        language = v;
+      else if (a == "--machine")
+        machine_file = v.toStdString();
+      else
+        screenshot_dir = v;
     } else {
       std::fputs(kUsage, stderr);
       return 2;
@@ -171,7 +185,8 @@ int main(int argc, char** argv) {
   } else {
     auto started = lcnc::hmi::SimPeripherals::start(shm_name);
     if (!started) {
-      std::fprintf(stderr, "lasercnc-hmi: the simulated peripherals: %s\n", started.error().to_string().c_str());
+      std::fprintf(stderr, "lasercnc-hmi: the simulated peripherals: %s\n",
+                   started.error().to_string().c_str());
       return 1;
     }
     sims = std::move(started).value();
@@ -200,7 +215,8 @@ int main(int argc, char** argv) {
   }
   if (!screenshot_dir.isEmpty()) {
     window.adjust()->wait_polled();
-    for (const QString& f : window.screenshot_all(screenshot_dir)) std::printf("%s\n", f.toUtf8().constData());
+    for (const QString& f : window.screenshot_all(screenshot_dir))
+      std::printf("%s\n", f.toUtf8().constData());
     return 0;
   }
   window.show();

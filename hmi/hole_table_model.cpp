@@ -61,7 +61,9 @@ int HoleTableModel::rowCount(const QModelIndex& parent) const {
   return parent.isValid() ? 0 : static_cast<int>(rows_.size());
 }
 
-int HoleTableModel::columnCount(const QModelIndex& parent) const { return parent.isValid() ? 0 : kColumnCount; }
+int HoleTableModel::columnCount(const QModelIndex& parent) const {
+  return parent.isValid() ? 0 : kColumnCount;
+}
 
 QVariant HoleTableModel::data(const QModelIndex& index, int role) const {
   if (!index.isValid() || index.row() >= rowCount() || index.column() >= kColumnCount) return {};
@@ -118,14 +120,18 @@ bool HoleTableModel::setData(const QModelIndex& index, const QVariant& value, in
   } else if (const HoleField& f = kHoleFields[static_cast<std::size_t>(c)]; f.type == HoleFieldType::Count) {
     const uint v = value.toUInt(&ok);
     if (!ok) {
-      emit refused(tr("hole %1: %2 must be a whole number").arg(r.params.hole_number).arg(headerData(c, Qt::Horizontal).toString()));
+      emit refused(tr("hole %1: %2 must be a whole number")
+                       .arg(r.params.hole_number)
+                       .arg(headerData(c, Qt::Horizontal).toString()));
       return false;
     }
     f.set(r.params, v);
   } else {
     const double v = value.toDouble(&ok);
     if (!ok) {
-      emit refused(tr("hole %1: %2 must be a number").arg(r.params.hole_number).arg(headerData(c, Qt::Horizontal).toString()));
+      emit refused(tr("hole %1: %2 must be a number")
+                       .arg(r.params.hole_number)
+                       .arg(headerData(c, Qt::Horizontal).toString()));
       return false;
     }
     f.set(r.params, v);

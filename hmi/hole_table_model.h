@@ -19,8 +19,26 @@ class HoleTableModel : public QAbstractTableModel {
 
  public:
   enum Column : int {
-    kHole, kX, kY, kZ, kA, kC, kFeed, kLayerFeed, kLayers, kDepth, kPower, kStartRadius,
-    kEndRadius, kTurns, kScanSpeed, kWedgeSpeed, kBeamOffset, kProcess, kFocus, kColumnCount
+    kHole,
+    kX,
+    kY,
+    kZ,
+    kA,
+    kC,
+    kFeed,
+    kLayerFeed,
+    kLayers,
+    kDepth,
+    kPower,
+    kStartRadius,
+    kEndRadius,
+    kTurns,
+    kScanSpeed,
+    kWedgeSpeed,
+    kBeamOffset,
+    kProcess,
+    kFocus,
+    kColumnCount
   };
 
   explicit HoleTableModel(ProcessDatabase& db, QObject* parent = nullptr);

@@ -19,9 +19,9 @@ namespace lcnc::hmi {
 struct ControlView {
   bool linked = false;
   shm::MachineState state = shm::MachineState::Idle;
-  bool job_active = false;      // a job (program, MDI, framing) is planned or running
+  bool job_active = false;  // a job (program, MDI, framing) is planned or running
   bool program_loaded = false;
-  bool program_pause = false;   // held at M0/M1/M60 or a single-block stop
+  bool program_pause = false;  // held at M0/M1/M60 or a single-block stop
 };
 
 // The controls the state allows. E-stop is always allowed.
@@ -45,7 +45,7 @@ class AlarmLog {
     std::uint16_t code = 0;
     shm::Severity severity = shm::Severity::Info;
     std::uint32_t line = 0;
-    std::string text;               // the latest's
+    std::string text;  // the latest's
     std::uint32_t count = 1;
     bool acknowledged = false;
     std::string key;

@@ -42,7 +42,8 @@ bool MachineLink::poll() {
 std::optional<shm::Status> MachineLink::status() const {
   if (!linked()) return std::nullopt;
   shm::Status s;
-  if (!const_cast<shm::ShmClient&>(*client_).block().status.load_patiently(s, kReadPatience)) return std::nullopt;
+  if (!const_cast<shm::ShmClient&>(*client_).block().status.load_patiently(s, kReadPatience))
+    return std::nullopt;
   shm::sanitize(s);
   return s;
 }
@@ -50,7 +51,8 @@ std::optional<shm::Status> MachineLink::status() const {
 std::optional<shm::JobStatus> MachineLink::job() const {
   if (!linked()) return std::nullopt;
   shm::JobStatus j;
-  if (!const_cast<shm::ShmClient&>(*client_).block().job.load_patiently(j, kReadPatience)) return std::nullopt;
+  if (!const_cast<shm::ShmClient&>(*client_).block().job.load_patiently(j, kReadPatience))
+    return std::nullopt;
   shm::sanitize(j);
   return j;
 }
@@ -67,7 +69,8 @@ bool MachineLink::next_event(shm::Event& out) {
   return true;
 }
 
-std::uint32_t MachineLink::send(shm::CommandType type, double value, std::uint8_t axis, const std::string& text) {
+std::uint32_t MachineLink::send(shm::CommandType type, double value, std::uint8_t axis,
+                                const std::string& text) {
   if (!linked()) return 0;
   shm::Command c;
   c.type = type;

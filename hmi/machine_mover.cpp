@@ -60,14 +60,15 @@ Status MachineMover::move_to(const Pose& target, std::chrono::milliseconds timeo
   {
     std::ofstream f(prog, std::ios::binary | std::ios::trunc);
     char line[256];
-    std::snprintf(line, sizeof line, "G21 G90 G0 X%.4f Y%.4f Z%.4f A%.4f C%.4f\n", target[0],
-                  target[1], target[2], target[3], target[5]);
+    std::snprintf(line, sizeof line, "G21 G90 G0 X%.4f Y%.4f Z%.4f A%.4f C%.4f\n", target[0], target[1],
+                  target[2], target[3], target[5]);
     f << "(an HMI workflow's move)\n" << line << "M2\n";
     if (!f) return fail("cannot write " + prog.string());
   }
   const std::optional<shm::JobStatus> before = link_.job();
   if (!before) return fail("no job status from lasercncd");
-  if (Result<shm::JobStatus> r = command(shm::CommandType::Load, prog.string(), deadline); !r) return r.error();
+  if (Result<shm::JobStatus> r = command(shm::CommandType::Load, prog.string(), deadline); !r)
+    return r.error();
   if (Result<shm::JobStatus> r = command(shm::CommandType::Start, {}, deadline); !r) return r.error();
   for (;;) {
     if (!link_.poll()) return fail("link to lasercncd lost during the move: " + link_.why());

@@ -25,7 +25,8 @@ class MachineMover {
   // its answer: a point beyond the travel, the machine busy), the move ends
   // in a fault, the link is lost or the time is up; a timeout stops the
   // machine first.
-  [[nodiscard]] Status move_to(const Pose& target, std::chrono::milliseconds timeout = std::chrono::seconds(60));
+  [[nodiscard]] Status move_to(const Pose& target,
+                               std::chrono::milliseconds timeout = std::chrono::seconds(60));
   // Where the machine is (its DRO), or an error when not linked.
   [[nodiscard]] Result<Pose> position();
 

@@ -50,7 +50,10 @@ constexpr int kDroAxes[5] = {0, 1, 2, 3, 5};  // X Y Z A C, as the DRO rows and 
 
 QString format_seconds(double s) {
   const long total = std::lround(s);
-  return total >= 3600 ? QString("%1:%2:%3").arg(total / 3600).arg(total / 60 % 60, 2, 10, QChar('0')).arg(total % 60, 2, 10, QChar('0'))
+  return total >= 3600 ? QString("%1:%2:%3")
+                             .arg(total / 3600)
+                             .arg(total / 60 % 60, 2, 10, QChar('0'))
+                             .arg(total % 60, 2, 10, QChar('0'))
                        : QString("%1:%2").arg(total / 60).arg(total % 60, 2, 10, QChar('0'));
 }
 
@@ -77,7 +80,8 @@ MachinePage::MachinePage(const std::string& shm_name, QWidget* parent)
   connect(ui_->mdiSendButton, &QPushButton::clicked, this, [this] { send_mdi(ui_->mdiEdit->text()); });
   connect(ui_->mdiEdit, &QLineEdit::returnPressed, this, [this] { send_mdi(ui_->mdiEdit->text()); });
   connect(ui_->touchOffButton, &QPushButton::clicked, this, [this] {
-    send_mdi(QString::fromStdString(touch_off_gcode(ui_->touchOffAxisCombo->currentIndex(), ui_->touchOffSpin->value())));
+    send_mdi(QString::fromStdString(
+        touch_off_gcode(ui_->touchOffAxisCombo->currentIndex(), ui_->touchOffSpin->value())));
   });
   connect(ui_->workSystemCombo, QOverload<int>::of(&QComboBox::activated), this,
           [this](int index) { send_mdi(QString::fromStdString(work_system_gcode(index))); });
@@ -108,8 +112,9 @@ void MachinePage::send(shm::CommandType type, double value, std::uint8_t axis, c
 }
 
 void MachinePage::start() {
-  const std::uint8_t flags = static_cast<std::uint8_t>((ui_->singleBlockCheck->isChecked() ? shm::kStartSingleBlock : 0) |
-                                                       (ui_->dryRunCheck->isChecked() ? shm::kStartDryRun : 0));
+  const std::uint8_t flags =
+      static_cast<std::uint8_t>((ui_->singleBlockCheck->isChecked() ? shm::kStartSingleBlock : 0) |
+                                (ui_->dryRunCheck->isChecked() ? shm::kStartDryRun : 0));
   send(shm::CommandType::Start, ui_->fromLineSpin->value(), flags);
 }
 
@@ -117,7 +122,8 @@ bool MachinePage::send_mdi(const QString& gcode) {
   const std::string text = gcode.trimmed().toStdString();
   if (text.empty()) return false;
   if (text.size() >= sizeof(shm::Command::text)) {
-    set_message(ui_->jobLabel, tr("MDI: a line of at most %1 characters.").arg(sizeof(shm::Command::text) - 1), true);
+    set_message(ui_->jobLabel,
+                tr("MDI: a line of at most %1 characters.").arg(sizeof(shm::Command::text) - 1), true);
     return false;
   }
   if (link_.send(shm::CommandType::Mdi, 0.0, 0, text) == 0) {
@@ -156,9 +162,10 @@ void MachinePage::show_alarms() {
     const QDateTime when = QDateTime::fromMSecsSinceEpoch(
         std::chrono::duration_cast<std::chrono::milliseconds>(a.last.time_since_epoch()).count());
     const QString cells[] = {when.toString("HH:mm:ss"), a.code != 0 ? QString("E%1").arg(a.code) : QString(),
-                             a.line != 0 ? QString::number(a.line) : QString(), QString::fromStdString(a.text),
+                             a.line != 0 ? QString::number(a.line) : QString(),
+                             QString::fromStdString(a.text),
                              a.count > 1 ? QString("×%1").arg(a.count) : QString()};
-    const QColor colour = a.acknowledged                          ? QColor("#78909c")
+    const QColor colour = a.acknowledged                         ? QColor("#78909c")
                           : a.severity == shm::Severity::Error   ? QColor(kErrorColor)
                           : a.severity == shm::Severity::Warning ? QColor(kWarningColor)
                                                                  : QColor();
@@ -172,7 +179,8 @@ void MachinePage::show_alarms() {
     }
   }
   const std::size_t open = alarms_.unacknowledged();
-  ui_->unacknowledgedLabel->setText(open > 0 ? tr("%n to acknowledge", nullptr, static_cast<int>(open)) : QString());
+  ui_->unacknowledgedLabel->setText(open > 0 ? tr("%n to acknowledge", nullptr, static_cast<int>(open))
+                                             : QString());
   ui_->unacknowledgedLabel->setStyleSheet(open > 0 ? kErrorStyle : "");
   ui_->acknowledgeButton->setEnabled(open > 0);
 }
@@ -233,11 +241,14 @@ void MachinePage::refresh() {
     dro[i]->setText(present ? QString::number(work, 'f', 3) : QString("—"));
     mach[i]->setText(present ? QString::number(st->pos[a], 'f', 3) : QString("—"));
     // the distance to go of the linear axes while a job moves
-    to_go[i]->setText(present && a < 3 && job && job->job_active ? QString::number(job->distance_to_go[a], 'f', 3)
-                                                                   : QString("—"));
+    to_go[i]->setText(present && a < 3 && job && job->job_active
+                          ? QString::number(job->distance_to_go[a], 'f', 3)
+                          : QString("—"));
     const bool is_homed = (st->homed_mask >> a) & 1u;
     homed[i]->setText(!present ? QString("—") : is_homed ? QString("✔") : QString("✘"));
-    homed[i]->setStyleSheet(!present ? "" : is_homed ? "color: #2e7d32; font-size: 16pt;" : "color: #b00020; font-size: 16pt;");
+    homed[i]->setStyleSheet(!present   ? ""
+                            : is_homed ? "color: #2e7d32; font-size: 16pt;"
+                                       : "color: #b00020; font-size: 16pt;");
     homed[i]->setToolTip(!present ? QString() : is_homed ? tr("homed") : tr("not homed"));
   }
 }
@@ -258,12 +269,13 @@ void MachinePage::show_status(const shm::Status& st, const shm::JobStatus* job) 
     ui_->overrideSlider->setValue(pct);
     ui_->overrideLabel->setText(QString("%1 %").arg(pct));
   }
-  ui_->laserLabel->setText(st.power_pct > 0.0f ? tr("Laser: on, %1 %").arg(static_cast<double>(st.power_pct), 0, 'f', 0)
-                                               : tr("Laser: off"));
+  ui_->laserLabel->setText(st.power_pct > 0.0f
+                               ? tr("Laser: on, %1 %").arg(static_cast<double>(st.power_pct), 0, 'f', 0)
+                               : tr("Laser: off"));
   ui_->laserLabel->setStyleSheet(st.power_pct > 0.0f ? "color: #c62828; font-weight: bold;" : "");
   ui_->gasLabel->setText((st.outputs & shm::kGasHighBit) != 0  ? tr("Gas: high (M8)")
                          : (st.outputs & shm::kGasLowBit) != 0 ? tr("Gas: low (M7)")
-                                                                : tr("Gas: off"));
+                                                               : tr("Gas: off"));
   if (!job) return;
   if (job->job_active && !job_was_active_) job_started_s_ = st.machine_time_s;
   job_was_active_ = job->job_active;

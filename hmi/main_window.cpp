@@ -2,26 +2,24 @@
 
 #include <QDir>
 
-#include <cstdlib>
-#include <string>
 #include <QPixmap>
 #include <QTabWidget>
+#include <cstdlib>
+#include <string>
 
+#include "common/share_path.h"
 #include "hmi/adjust_page.h"
 #include "hmi/cut_page.h"
 #include "hmi/decomposition_page.h"
 #include "hmi/focal_page.h"
-#include "hmi/measure_page.h"
 #include "hmi/machine_page.h"
-#include "common/share_path.h"
+#include "hmi/measure_page.h"
 #include "hmi/process_db_page.h"
 #include "hmi/program_page.h"
 
 namespace lcnc::hmi {
 
-Result<MachineConfig> shipped_machine() {
-  return load_machine_config(share_path("machines/default.toml"));
-}
+Result<MachineConfig> shipped_machine() { return load_machine_config(share_path("machines/default.toml")); }
 
 MainWindow::MainWindow(ProcessDatabase& db, const std::string& shm_name,
                        const PeripheralEndpoints& peripherals, const MachineConfig* machine, QWidget* parent)

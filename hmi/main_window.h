@@ -31,8 +31,8 @@ class ProcessDbPage;
 
 // Where the peripherals the screens use are (empty: none).
 struct PeripheralEndpoints {
-  std::optional<drivers::Endpoint> sensor;  // displacement sensor
-  std::string probe_serial;                 // the 3D probe's serial device
+  std::optional<drivers::Endpoint> sensor;              // displacement sensor
+  std::string probe_serial;                             // the 3D probe's serial device
   std::optional<drivers::Endpoint> laser, meter, head;  // laser source, power meter, scan head
 };
 

@@ -40,7 +40,10 @@ QString face_text(const std::string& face) {
 }  // namespace
 
 MeasurePage::MeasurePage(ProcessDatabase& db, std::string shm_name, std::string probe_serial, QWidget* parent)
-    : QWidget(parent), ui_(std::make_unique<Ui::MeasurePage>()), db_(db), shm_name_(std::move(shm_name)),
+    : QWidget(parent),
+      ui_(std::make_unique<Ui::MeasurePage>()),
+      db_(db),
+      shm_name_(std::move(shm_name)),
       probe_serial_(std::move(probe_serial)),
       confirm_([](QWidget* parent, const QString& title, const QString& text) {
         return QMessageBox::question(parent, title, text) == QMessageBox::Yes;
@@ -51,8 +54,8 @@ MeasurePage::MeasurePage(ProcessDatabase& db, std::string shm_name, std::string 
   ui_->setupUi(this);
   QTableWidget* t = ui_->pointTable;
   t->setColumnCount(kColumns);
-  t->setHorizontalHeaderLabels({tr("Point"), tr("Approach X, Y, Z mm; A, C °"), tr("Measured X, Y, Z mm"),
-                                tr("Residual mm")});
+  t->setHorizontalHeaderLabels(
+      {tr("Point"), tr("Approach X, Y, Z mm; A, C °"), tr("Measured X, Y, Z mm"), tr("Residual mm")});
   t->verticalHeader()->hide();
   t->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
   t->horizontalHeader()->setStretchLastSection(true);
@@ -79,9 +82,9 @@ void MeasurePage::show_plan() {
     for (int r = 0; r < static_cast<int>(o.points.size()); ++r) {
       const Pose& a = o.points[r].approach;
       t->setItem(r, kFace, new QTableWidgetItem(face_text(o.points[r].face)));
-      t->setItem(r, kApproach, new QTableWidgetItem(xyz(a.head<3>()) + tr("; %1, %2 (planned)")
-                                                                           .arg(a[3], 0, 'f', 2)
-                                                                           .arg(a[5], 0, 'f', 2)));
+      t->setItem(r, kApproach,
+                 new QTableWidgetItem(xyz(a.head<3>()) +
+                                      tr("; %1, %2 (planned)").arg(a[3], 0, 'f', 2).arg(a[5], 0, 'f', 2)));
       for (int c = kMeasured; c < kColumns; ++c) t->setItem(r, c, new QTableWidgetItem());
     }
   }
@@ -114,17 +117,18 @@ void MeasurePage::measure() {
   show_message(tr("Measuring: the machine moves to each point…"), false);
   const std::filesystem::path dir = std::filesystem::temp_directory_path() /
                                     ("lasercnc_hmi_" + std::to_string(QCoreApplication::applicationPid()));
-  measuring_.start([plan = plan(), dir, shm = shm_name_, dev = probe_serial_,
-                    timeout = probe_timeout_](TaskProgress& p) {
-    Result<std::unique_ptr<SerialPointProbe>> probe = SerialPointProbe::open(dev, timeout);
-    if (!probe) {
-      MeasureOutcome o;
-      o.error = "3D probe: " + probe.error().to_string();
-      return o;
-    }
-    MachineMover mover(shm, dir);
-    return run_measurement(plan, mover, **probe, [&p](int done, int) { p.done = done; }, &p.cancel);
-  });
+  measuring_.start(
+      [plan = plan(), dir, shm = shm_name_, dev = probe_serial_, timeout = probe_timeout_](TaskProgress& p) {
+        Result<std::unique_ptr<SerialPointProbe>> probe = SerialPointProbe::open(dev, timeout);
+        if (!probe) {
+          MeasureOutcome o;
+          o.error = "3D probe: " + probe.error().to_string();
+          return o;
+        }
+        MachineMover mover(shm, dir);
+        return run_measurement(
+            plan, mover, **probe, [&p](int done, int) { p.done = done; }, &p.cancel);
+      });
 }
 
 void MeasurePage::present(const MeasureOutcome& o) {
@@ -184,7 +188,8 @@ bool MeasurePage::apply() {
     show_message(QString::fromStdString(holes.error().to_string()), true);
     return false;
   }
-  Result<std::vector<std::pair<std::uint32_t, Pose>>> placed = placed_holes(*holes, outcome_->fit->work_to_machine);
+  Result<std::vector<std::pair<std::uint32_t, Pose>>> placed =
+      placed_holes(*holes, outcome_->fit->work_to_machine);
   if (!placed) {
     show_message(QString::fromStdString(placed.error().to_string()), true);
     return false;
@@ -201,7 +206,9 @@ bool MeasurePage::apply() {
 
 bool MeasurePage::wait_done(int timeout_ms) { return measuring_.wait(timeout_ms); }
 
-void MeasurePage::show_message(const QString& text, bool error) { set_message(ui_->messageLabel, text, error); }
+void MeasurePage::show_message(const QString& text, bool error) {
+  set_message(ui_->messageLabel, text, error);
+}
 
 QString MeasurePage::message() const { return ui_->messageLabel->text(); }
 QString MeasurePage::result_text() const { return ui_->resultLabel->text(); }

@@ -32,8 +32,7 @@ class MeasurePage : public QWidget {
 
  public:
   // `probe_serial`: the 3D probe's serial device (empty: none).
-  MeasurePage(ProcessDatabase& db, std::string shm_name, std::string probe_serial,
-              QWidget* parent = nullptr);
+  MeasurePage(ProcessDatabase& db, std::string shm_name, std::string probe_serial, QWidget* parent = nullptr);
   ~MeasurePage() override;
 
   // Test seams: the workflow started and waited for; the fit applied

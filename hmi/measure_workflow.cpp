@@ -48,7 +48,8 @@ Result<Pose> approach_for(const ProbePoint& p, const Eigen::Isometry3d& frame, d
 // the frame's z, the frame moved onto it); each secondary point moves the
 // frame along the front's normal onto it, and the second also turns the
 // frame about z so the front runs through both.
-Eigen::Isometry3d refined(const Eigen::Isometry3d& frame, const std::vector<ProbePoint>& pts, std::size_t done) {
+Eigen::Isometry3d refined(const Eigen::Isometry3d& frame, const std::vector<ProbePoint>& pts,
+                          std::size_t done) {
   Eigen::Isometry3d f = frame;
   if (done == 6) {  // the 3-2-1 fit plans the extra points of a best fit
     Result<FrameFit> fit = fit_321({*pts[0].measured, *pts[1].measured, *pts[2].measured},
@@ -203,7 +204,7 @@ MeasureOutcome run_measurement(const MeasurePlan& plan, MachineMover& mover, Poi
 }
 
 Result<std::vector<std::pair<std::uint32_t, Pose>>> placed_holes(const std::vector<HoleRecord>& holes,
-                                                                  const Eigen::Isometry3d& t) {
+                                                                 const Eigen::Isometry3d& t) {
   std::vector<std::pair<std::uint32_t, Pose>> out;
   for (const HoleRecord& h : holes) {
     Result<Pose> p = transform_hole(t, h.params.position);

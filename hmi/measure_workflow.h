@@ -62,8 +62,8 @@ struct MeasurePlan {
   // Where the operator believes the block's datum corner is and how it is
   // turned (a few mm and degrees off is what the probing is for).
   Eigen::Isometry3d nominal = Eigen::Isometry3d::Identity();
-  double standoff_mm = 5.0;   // from the face, along its normal (within the probe's reach)
-  double clearance_mm = 20.0; // above the block's top for the moves between points
+  double standoff_mm = 5.0;    // from the face, along its normal (within the probe's reach)
+  double clearance_mm = 20.0;  // above the block's top for the moves between points
   // Four more points (one on the top, one on the front, two on the left, at
   // other heights) and the best fit on faces over all ten
   // (workpiece_frame.h fit_faces) instead of the 3-2-1 alone.
@@ -71,11 +71,11 @@ struct MeasurePlan {
 };
 
 struct ProbePoint {
-  std::string face;              // "primary 1" …
+  std::string face;                  // "primary 1" …
   Vec3 planned_work = Vec3::Zero();  // on the face, drawing frame
   Vec3 normal_work = Vec3::UnitZ();  // the face's outward normal, drawing frame
-  Pose approach = Pose::Zero();  // where the machine stands to probe it
-  std::optional<Vec3> measured;  // machine frame
+  Pose approach = Pose::Zero();      // where the machine stands to probe it
+  std::optional<Vec3> measured;      // machine frame
   std::optional<double> residual_mm;
   std::string error;
 };
@@ -94,8 +94,7 @@ struct MeasureOutcome {
 // Probes the planned points in turn (progress(done, total) after each,
 // cancel checked between), then fits: 3-2-1, and with best_fit the fit on
 // faces over every point from it. Any point not measured ends the run.
-[[nodiscard]] MeasureOutcome run_measurement(const MeasurePlan& plan, MachineMover& mover,
-                                             PointProbe& probe,
+[[nodiscard]] MeasureOutcome run_measurement(const MeasurePlan& plan, MachineMover& mover, PointProbe& probe,
                                              const std::function<void(int, int)>& progress = {},
                                              const std::atomic<bool>* cancel = nullptr);
 

@@ -26,13 +26,11 @@ namespace {
 // loads unchanged; the write paths check every row with validate() anyway.
 std::string column_definition(const HoleField& f) {
   const std::string c(f.column);
-  std::string range = f.lo_open ? c + " > " + shortest_number_text(f.lo) + " AND " + c +
-                                      " <= " + shortest_number_text(f.hi)
-                                : c + " BETWEEN " + shortest_number_text(f.lo) + " AND " +
-                                      shortest_number_text(f.hi);
+  std::string range =
+      f.lo_open ? c + " > " + shortest_number_text(f.lo) + " AND " + c + " <= " + shortest_number_text(f.hi)
+                : c + " BETWEEN " + shortest_number_text(f.lo) + " AND " + shortest_number_text(f.hi);
   if (f.scan_radius)  // a free shape does not use the scan radii
-    range = "process = " + std::to_string(static_cast<int>(HoleProcessId::FreeShape)) + " OR (" +
-            range + ")";
+    range = "process = " + std::to_string(static_cast<int>(HoleProcessId::FreeShape)) + " OR (" + range + ")";
   std::string def = c + (f.type == HoleFieldType::Real ? " REAL" : " INTEGER") +
                     (&f == &kHoleFields.front() ? " PRIMARY KEY" : " NOT NULL") + " CHECK (" + range + ")";
   if (f.column == "total_depth_mm")
@@ -54,7 +52,8 @@ constexpr int kSchemaVersion = 1;
 // The columns in the order record_of() and insert() use them.
 QString columns() {
   QString c;
-  for (const HoleField& f : kHoleFields) c += QString::fromUtf8(f.column.data(), static_cast<int>(f.column.size())) + ", ";
+  for (const HoleField& f : kHoleFields)
+    c += QString::fromUtf8(f.column.data(), static_cast<int>(f.column.size())) + ", ";
   return c + "shape, focus_offset_mm";
 }
 constexpr int kShapeColumn = static_cast<int>(kHoleFields.size());
@@ -130,8 +129,7 @@ Status insert(QSqlDatabase& db, const HoleRecord& r, const std::string& path) {
   }
   q.addBindValue(QString::fromStdString(shape_text(p.shape)));
   q.addBindValue(r.focus_offset_mm ? QVariant(*r.focus_offset_mm) : QVariant(QVariant::Double));
-  if (!q.exec())
-    return sql_error("hole " + std::to_string(p.hole_number) + ": store", q.lastError(), path);
+  if (!q.exec()) return sql_error("hole " + std::to_string(p.hole_number) + ": store", q.lastError(), path);
   return {};
 }
 
@@ -167,14 +165,16 @@ Result<std::unique_ptr<ProcessDatabase>> ProcessDatabase::open(const std::string
   std::unique_ptr<ProcessDatabase> pdb(new ProcessDatabase(path, conn));
   QSqlDatabase db = QSqlDatabase::addDatabase("QSQLITE", QString::fromStdString(conn));
   if (!db.isValid())
-    return make_error(ErrorCode::ProcessDbError, "the SQLite driver of QtSql (libqt5sql5-sqlite) is missing", path);
+    return make_error(ErrorCode::ProcessDbError, "the SQLite driver of QtSql (libqt5sql5-sqlite) is missing",
+                      path);
   db.setDatabaseName(QString::fromStdString(path));
   db.setConnectOptions("QSQLITE_BUSY_TIMEOUT=5000");
   if (!db.open()) return sql_error("open", db.lastError(), path);
   QSqlQuery q(db);
   for (const char* pragma : {"PRAGMA journal_mode = WAL", "PRAGMA synchronous = FULL"})
     if (!q.exec(pragma)) return sql_error(pragma, q.lastError(), path);
-  if (!q.exec("PRAGMA user_version") || !q.next()) return sql_error("read the schema version", q.lastError(), path);
+  if (!q.exec("PRAGMA user_version") || !q.next())
+    return sql_error("read the schema version", q.lastError(), path);
   const int version = q.value(0).toInt();
   if (version > kSchemaVersion)
     return make_error(ErrorCode::ProcessDbError,
@@ -184,7 +184,8 @@ Result<std::unique_ptr<ProcessDatabase>> ProcessDatabase::open(const std::string
   if (Status s = in_transaction(db, path,
                                 [&]() -> Status {
                                   QSqlQuery t(db);
-                                  if (!t.exec(QString::fromStdString(schema()))) return sql_error("create the holes table", t.lastError(), path);
+                                  if (!t.exec(QString::fromStdString(schema())))
+                                    return sql_error("create the holes table", t.lastError(), path);
                                   if (!t.exec(QString("PRAGMA user_version = %1").arg(kSchemaVersion)))
                                     return sql_error("set the schema version", t.lastError(), path);
                                   return {};
@@ -271,7 +272,8 @@ Status ProcessDatabase::set_focus_offsets(const std::vector<std::pair<std::uint3
       q.prepare("UPDATE holes SET focus_offset_mm = ? WHERE hole = ?");
       q.addBindValue(offset);
       q.addBindValue(number);
-      if (!q.exec()) return sql_error("hole " + std::to_string(number) + ": focus offset", q.lastError(), path_);
+      if (!q.exec())
+        return sql_error("hole " + std::to_string(number) + ": focus offset", q.lastError(), path_);
       if (q.numRowsAffected() != 1)
         return make_error(ErrorCode::ProcessDbError, "no hole " + std::to_string(number), path_);
     }

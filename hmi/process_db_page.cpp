@@ -1,9 +1,9 @@
 #include "hmi/process_db_page.h"
 
+#include <QComboBox>
 #include <QCoreApplication>
 #include <QFileDialog>
 #include <QHeaderView>
-#include <QComboBox>
 #include <QItemSelectionModel>
 #include <QMouseEvent>
 #include <QPainter>
@@ -14,8 +14,8 @@
 #include <filesystem>
 #include <numbers>
 
-#include "hmi/page_support.h"
 #include "common/output_file.h"
+#include "hmi/page_support.h"
 #include "holes/hole_table.h"
 #include "ui_process_db_page.h"
 
@@ -64,7 +64,8 @@ class HolePlot : public QWidget {
       g.setPen(QPen(colour, selected ? 2.0 : 1.2));
       const double radius = std::max(4.0, h.head.start_radius_mm * f.k);
       g.drawEllipse(c, radius, radius);
-      const double a = h.position[3] * std::numbers::pi / 180.0, cz = h.position[5] * std::numbers::pi / 180.0;
+      const double a = h.position[3] * std::numbers::pi / 180.0,
+                   cz = h.position[5] * std::numbers::pi / 180.0;
       if (h.position[3] != 0.0)  // the tool axis tipped by A, turned by C: its X Y shadow
         g.drawLine(c, c + QPointF(std::sin(a) * std::sin(cz), std::sin(a) * std::cos(cz)) * 24.0);
       g.setPen(Qt::black);
@@ -74,8 +75,7 @@ class HolePlot : public QWidget {
   void mousePressEvent(QMouseEvent* e) override {
     const int r = row_at(e->pos());
     if (r < 0) return;
-    selection_.select(model_.index(r, 0),
-                      QItemSelectionModel::ClearAndSelect | QItemSelectionModel::Rows);
+    selection_.select(model_.index(r, 0), QItemSelectionModel::ClearAndSelect | QItemSelectionModel::Rows);
   }
 
  private:
@@ -114,14 +114,18 @@ bool column_shown(int group, int column, int columns) {
 }  // namespace
 
 ProcessDbPage::ProcessDbPage(ProcessDatabase& db, std::string shm_name, QWidget* parent)
-    : QWidget(parent), ui_(std::make_unique<Ui::ProcessDbPage>()), db_(db),
-      model_(std::make_unique<HoleTableModel>(db)), link_(std::move(shm_name)) {
+    : QWidget(parent),
+      ui_(std::make_unique<Ui::ProcessDbPage>()),
+      db_(db),
+      model_(std::make_unique<HoleTableModel>(db)),
+      link_(std::move(shm_name)) {
   ui_->setupUi(this);
   ui_->holeTable->setModel(model_.get());
   ui_->holeTable->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
   ui_->holeTable->verticalHeader()->hide();  // the hole number is the first column
   connect(model_.get(), &HoleTableModel::refused, this, [this](const QString& m) { show_message(m, true); });
-  connect(model_.get(), &QAbstractItemModel::dataChanged, this, [this] { show_message(tr("Stored."), false); });
+  connect(model_.get(), &QAbstractItemModel::dataChanged, this,
+          [this] { show_message(tr("Stored."), false); });
   connect(ui_->addButton, &QPushButton::clicked, this, [this] { add_hole(); });
   connect(ui_->removeButton, &QPushButton::clicked, this, [this] {
     const QModelIndexList rows = ui_->holeTable->selectionModel()->selectedRows();
@@ -189,7 +193,8 @@ std::string ProcessDbPage::send_to_controller() {
   std::filesystem::create_directories(dir, ec);
   std::string path = (dir / "holes_run.csv").string();
   // replaced whole: the controller may still be reading the last one sent
-  if (const Status s = write_output(path, {db_.path()}, [&](std::ostream& out) { out << write_hole_table(rows); });
+  if (const Status s =
+          write_output(path, {db_.path()}, [&](std::ostream& out) { out << write_hole_table(rows); });
       !s) {
     show_message(tr("Cannot write %1.").arg(QString::fromStdString(path)) + " " +
                      QString::fromStdString(s.error().to_string()),
@@ -208,11 +213,15 @@ std::string ProcessDbPage::send_to_controller() {
   return path;
 }
 
-void ProcessDbPage::show_message(const QString& text, bool error) { set_message(ui_->messageLabel, text, error); }
+void ProcessDbPage::show_message(const QString& text, bool error) {
+  set_message(ui_->messageLabel, text, error);
+}
 
 QString ProcessDbPage::message() const { return ui_->messageLabel->text(); }
 
-void ProcessDbPage::update_count() { ui_->countLabel->setText(tr("%n hole(s)", nullptr, model_->rowCount())); }
+void ProcessDbPage::update_count() {
+  ui_->countLabel->setText(tr("%n hole(s)", nullptr, model_->rowCount()));
+}
 
 bool ProcessDbPage::import_file(const QString& path, ProcessDatabase::ImportMode mode) {
   const Status s = db_.import_csv(path.toStdString(), mode);
@@ -238,7 +247,8 @@ bool ProcessDbPage::export_file(const QString& path) {
 
 bool ProcessDbPage::add_hole() {
   std::uint32_t next = 1;
-  for (int i = 0; i < model_->rowCount(); ++i) next = std::max(next, model_->record(i).params.hole_number + 1);
+  for (int i = 0; i < model_->rowCount(); ++i)
+    next = std::max(next, model_->record(i).params.hole_number + 1);
   HoleRecord r;
   r.params.hole_number = next;
   r.params.position << 500.0, 225.0, 0.0, 0.0, 0.0, 0.0;

@@ -1,7 +1,7 @@
 #include "hmi/program_page.h"
 
-#include <QFileDialog>
 #include <QFile>
+#include <QFileDialog>
 #include <QFileInfo>
 #include <QTextBlock>
 #include <QVBoxLayout>
@@ -26,7 +26,8 @@ ProgramPage::ProgramPage(MachineConfig machine, std::string shm_name, QWidget* p
   l->setContentsMargins(0, 0, 0, 0);
   l->addWidget(view_);
   connect(ui_->openButton, &QPushButton::clicked, this, [this] {
-    const QString p = QFileDialog::getOpenFileName(this, tr("Open program"), {}, tr("G-code (*.ngc *.nc *.gcode);;All (*)"));
+    const QString p = QFileDialog::getOpenFileName(this, tr("Open program"), {},
+                                                   tr("G-code (*.ngc *.nc *.gcode);;All (*)"));
     if (!p.isEmpty()) open_file(p);
   });
   connect(ui_->loadButton, &QPushButton::clicked, this, [this] { load(); });
@@ -67,9 +68,12 @@ void ProgramPage::open_file(const QString& path) {
   planning_.start(
       [m = machine_, p = path.toStdString(), start](TaskProgress& pr) {
         Outcome o;
-        Result<Toolpath> t =
-            plan_toolpath(p, m, start, [&pr](double f) { pr.done = static_cast<int>(f * 1000); }, &pr.cancel);
-        if (t) o.path = std::move(t).value(); else o.error = t.error();
+        Result<Toolpath> t = plan_toolpath(
+            p, m, start, [&pr](double f) { pr.done = static_cast<int>(f * 1000); }, &pr.cancel);
+        if (t)
+          o.path = std::move(t).value();
+        else
+          o.error = t.error();
         return o;
       },
       1000);
@@ -87,12 +91,13 @@ void ProgramPage::present(const Outcome& o) {
   }
   path_ = o.path;
   view_->set_toolpath(&*path_);
-  ui_->summaryLabel->setText(tr("%1 lines; path %2 mm; planned time %3 s; peak speed %4 mm/s; %5 points drawn")
-                                 .arg(path_->lines)
-                                 .arg(path_->length_mm, 0, 'f', 1)
-                                 .arg(path_->time_s, 0, 'f', 3)
-                                 .arg(path_->peak_speed, 0, 'f', 1)
-                                 .arg(path_->points.size()));
+  ui_->summaryLabel->setText(
+      tr("%1 lines; path %2 mm; planned time %3 s; peak speed %4 mm/s; %5 points drawn")
+          .arg(path_->lines)
+          .arg(path_->length_mm, 0, 'f', 1)
+          .arg(path_->time_s, 0, 'f', 3)
+          .arg(path_->peak_speed, 0, 'f', 1)
+          .arg(path_->points.size()));
   ui_->loadButton->setEnabled(true);
   show_message(tr("Planned. Load it into the controller to run it."), false);
   emit finished(true);
@@ -100,7 +105,8 @@ void ProgramPage::present(const Outcome& o) {
 
 bool ProgramPage::load() {
   if (!path_ || program_.isEmpty()) return false;
-  if (!link_.poll() || link_.send(shm::CommandType::Load, 0.0, 0, QFileInfo(program_).absoluteFilePath().toStdString()) == 0) {
+  if (!link_.poll() ||
+      link_.send(shm::CommandType::Load, 0.0, 0, QFileInfo(program_).absoluteFilePath().toStdString()) == 0) {
     show_message(tr("Not sent: no link to the controller."), true);
     return false;
   }
@@ -114,7 +120,8 @@ void ProgramPage::refresh() {
     if (const std::optional<shm::Status> st = link_.status()) {
       at = Vec3(st->pos[0], st->pos[1], st->pos[2]);
       const std::optional<shm::JobStatus> job = link_.job();
-      if (job && job->job_active && !job->mdi && !program_.isEmpty() && QString::fromUtf8(job->program) == program_)
+      if (job && job->job_active && !job->mdi && !program_.isEmpty() &&
+          QString::fromUtf8(job->program) == program_)
         set_current_line(st->line);
     }
   view_->set_position(at);
@@ -143,7 +150,9 @@ QString ProgramPage::highlighted_text() const {
 }
 
 bool ProgramPage::wait_done(int timeout_ms) { return planning_.wait(timeout_ms); }
-void ProgramPage::show_message(const QString& text, bool error) { set_message(ui_->messageLabel, text, error); }
+void ProgramPage::show_message(const QString& text, bool error) {
+  set_message(ui_->messageLabel, text, error);
+}
 QString ProgramPage::message() const { return ui_->messageLabel->text(); }
 QString ProgramPage::summary() const { return ui_->summaryLabel->text(); }
 

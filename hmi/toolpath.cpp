@@ -52,7 +52,8 @@ Result<Toolpath> plan_toolpath(const std::string& program, const MachineConfig& 
     }
     if ((tp.periods & 0x3fff) == 0) {
       if (cancel != nullptr && cancel->load()) return make_error(ErrorCode::Internal, "cancelled");
-      if (progress && summary->lines > 0) progress(std::min(1.0, static_cast<double>(s.line) / summary->lines));
+      if (progress && summary->lines > 0)
+        progress(std::min(1.0, static_cast<double>(s.line) / summary->lines));
     }
   }
   if (st == SourceStatus::Error) return (*src)->error();

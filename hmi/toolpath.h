@@ -26,7 +26,7 @@ struct ToolpathPoint {
   Vec3 at = Vec3::Zero();  // mm, machine
   double speed = 0.0;      // mm/s (path speed)
   bool laser = false;
-  bool rapid = false;      // G0 (else a feed move, or a dwell)
+  bool rapid = false;  // G0 (else a feed move, or a dwell)
   std::uint32_t line = 0;
   Vec3 axis = Vec3::UnitZ();  // the tool axis (A tilt, C rotary)
 };

@@ -21,9 +21,7 @@ const QColor kGridColor("#eceff1");
 
 }  // namespace
 
-ToolpathView::ToolpathView(QWidget* parent) : QWidget(parent) {
-  make_canvas(this, "toolpathView", 400, 300);
-}
+ToolpathView::ToolpathView(QWidget* parent) : QWidget(parent) { make_canvas(this, "toolpathView", 400, 300); }
 
 void ToolpathView::set_toolpath(const Toolpath* path) {
   path_ = path;
@@ -156,7 +154,8 @@ void ToolpathView::paintEvent(QPaintEvent*) {
     const ScreenPoint s = project(d, view_);
     return origin + QPointF(s.x * 24.0, -s.y * 24.0);
   };
-  const std::pair<Vec3, const char*> axes[] = {{Vec3::UnitX(), "X"}, {Vec3::UnitY(), "Y"}, {Vec3::UnitZ(), "Z"}};
+  const std::pair<Vec3, const char*> axes[] = {
+      {Vec3::UnitX(), "X"}, {Vec3::UnitY(), "Y"}, {Vec3::UnitZ(), "Z"}};
   const QColor axis_colours[] = {QColor("#c62828"), QColor("#2e7d32"), QColor("#1565c0")};
   for (int i = 0; i < 3; ++i) {
     g.setPen(QPen(axis_colours[i], 2.0));
@@ -167,10 +166,14 @@ void ToolpathView::paintEvent(QPaintEvent*) {
   // the extents and the legend
   g.setPen(Qt::black);
   const double bottom = height() - 26;
-  g.drawText(QPointF(12, bottom),
-             tr("Cut: X %1 … %2, Y %3 … %4, Z %5 … %6 mm; grid %7 mm")
-                 .arg(lo.x(), 0, 'f', 1).arg(hi.x(), 0, 'f', 1).arg(lo.y(), 0, 'f', 1).arg(hi.y(), 0, 'f', 1)
-                 .arg(lo.z(), 0, 'f', 1).arg(hi.z(), 0, 'f', 1).arg(step, 0, 'g', 3));
+  g.drawText(QPointF(12, bottom), tr("Cut: X %1 … %2, Y %3 … %4, Z %5 … %6 mm; grid %7 mm")
+                                      .arg(lo.x(), 0, 'f', 1)
+                                      .arg(hi.x(), 0, 'f', 1)
+                                      .arg(lo.y(), 0, 'f', 1)
+                                      .arg(hi.y(), 0, 'f', 1)
+                                      .arg(lo.z(), 0, 'f', 1)
+                                      .arg(hi.z(), 0, 'f', 1)
+                                      .arg(step, 0, 'g', 3));
   double lx = 12;
   const auto legend = [&](const QPen& pen, const QString& text) {
     g.setPen(pen);

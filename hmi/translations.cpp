@@ -42,7 +42,8 @@ bool install_language(const QString& language, QString* why) {
   if (!available_languages().contains(lang) || !t->load("lasercnc_hmi_" + lang, qm_dir())) {
     delete t;
     if (why != nullptr)
-      *why = QString("no translation for '%1' (there are: en, %2)").arg(lang, available_languages().join(", "));
+      *why =
+          QString("no translation for '%1' (there are: en, %2)").arg(lang, available_languages().join(", "));
     return false;
   }
   QCoreApplication::installTranslator(t);

@@ -34,12 +34,12 @@ class AxisMove {
   bool active_ = false;
   bool unbounded_ = false;  // a velocity move before stop()
   int dir_ = 1;
-  double v_ = 0.0;          // speed, steps/s, ≥ 0
+  double v_ = 0.0;  // speed, steps/s, ≥ 0
   double vmax_ = 0.0;
   double amax_ = 0.0;
   double period_s_ = 0.0;
-  double left_ = 0.0;       // distance left, steps, ≥ 0 (bounded moves)
-  double travelled_ = 0.0;  // exact distance so far, steps
+  double left_ = 0.0;         // distance left, steps, ≥ 0 (bounded moves)
+  double travelled_ = 0.0;    // exact distance so far, steps
   std::int64_t emitted_ = 0;  // whole steps emitted so far (unsigned sense)
   std::int64_t total_ = 0;    // whole steps of a bounded move
 };

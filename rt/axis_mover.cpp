@@ -24,8 +24,8 @@ AxisMover::AxisMover(const MachineConfig& machine, double ramp_rate_per_s) noexc
     l.search_speed = ax.home_search_velocity_or_default() * spu;
     l.latch_speed = ax.home_latch_velocity_or_default() * spu;
     const double fastest = std::max({l.jog_speed, std::abs(l.search_speed), std::abs(l.latch_speed)});
-    l.accel = std::max(0.5 * ax.max_acceleration * spu,
-                       ax.max_acceleration * spu - ramp_rate_per_s * fastest);
+    l.accel =
+        std::max(0.5 * ax.max_acceleration * spu, ax.max_acceleration * spu - ramp_rate_per_s * fastest);
     l.home_steps = std::llround(ax.home_position_or_default() * spu);
     // A rotary axis that wraps has no travel limits.
     if (ax.wrap) {
@@ -40,8 +40,7 @@ std::int64_t AxisMover::start_jog(int axis, std::int64_t pos, std::int64_t targe
   const AxisLimits& l = axes_[axis];
   std::int64_t short_by = 0;
   if (homed) {
-    const std::int64_t clamped =
-        std::clamp(target, std::min(l.min_steps, pos), std::max(l.max_steps, pos));
+    const std::int64_t clamped = std::clamp(target, std::min(l.min_steps, pos), std::max(l.max_steps, pos));
     short_by = std::llabs(target - clamped);
     target = clamped;
   }

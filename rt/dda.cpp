@@ -6,8 +6,7 @@ namespace {
 
 // The ticks of one period of magnitude n from accumulator acc0 (closed form,
 // see dda.h): one division, then add-and-carry per pulse.
-void period_ticks(std::uint32_t capacity, std::uint32_t acc0, std::uint32_t n,
-                  std::uint32_t* out) noexcept {
+void period_ticks(std::uint32_t capacity, std::uint32_t acc0, std::uint32_t n, std::uint32_t* out) noexcept {
   if (n == 0) return;
   // t_j = ceil(need_j / n) − 1 with need_j = (j+1)·N − acc0: need_{j+1} =
   // need_j + N adds q = N / n to the quotient and r = N % n to the remainder.
@@ -42,8 +41,7 @@ Dda::Dda(const DdaConfig& config) : n_cap_(config.capacity), max_pulses_(config.
   }
 }
 
-void Dda::run_period(const std::array<std::int32_t, kAxisCount>& steps,
-                     PulseFrame& frame) noexcept {
+void Dda::run_period(const std::array<std::int32_t, kAxisCount>& steps, PulseFrame& frame) noexcept {
   frame.ticks_per_period = n_cap_;
   for (int i = 0; i < kAxisCount; ++i) {
     const std::int32_t s = steps[i];

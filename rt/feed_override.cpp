@@ -31,8 +31,7 @@ double FeedOverrideRamp::period_scale(double e, double k_plan) const noexcept {
   return std::clamp(k, k_min_, 1.0);
 }
 
-double FeedOverrideRamp::step(double k, double target, double length_s,
-                              const RampRoom& room) const noexcept {
+double FeedOverrideRamp::step(double k, double target, double length_s, const RampRoom& room) const noexcept {
   const double r0 = room.r0;
   if (k < target) {
     // the room at the K this step may reach (K² grows with it)

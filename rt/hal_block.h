@@ -25,7 +25,8 @@
 namespace lcnc::shm {
 
 inline constexpr std::uint32_t kHalMagic = 0x4C48414C;  // "LHAL"
-inline constexpr std::uint32_t kHalVersion = 5;  // 2: outputs in PeriodIncrement, 3: feed_control, 4: its signals first (EntrySignals), 5: commands counted
+inline constexpr std::uint32_t kHalVersion =
+    5;  // 2: outputs in PeriodIncrement, 3: feed_control, 4: its signals first (EntrySignals), 5: commands counted
 
 struct HalHeader {
   std::uint32_t magic = 0;
@@ -54,7 +55,8 @@ struct HalBlock {
 // destruction.
 class HalSegment {
  public:
-  [[nodiscard]] static Result<HalSegment> create(const std::string& main_name, const std::string& machine_path,
+  [[nodiscard]] static Result<HalSegment> create(const std::string& main_name,
+                                                 const std::string& machine_path,
                                                  const std::array<std::int64_t, kAxisCount>& start_steps);
   HalSegment(HalSegment&&) noexcept;
   HalSegment& operator=(HalSegment&&) = delete;

@@ -20,8 +20,8 @@ namespace lcnc::rt {
 // The fault that ended motion, if any.
 struct RtFault {
   ErrorCode code = ErrorCode::Ok;  // Ok: none (active false)
-  int axis = -1;          // axis index, −1 if none
-  std::uint32_t line = 0; // program line, 0 if none
+  int axis = -1;                   // axis index, −1 if none
+  std::uint32_t line = 0;          // program line, 0 if none
   bool active = false;
 };
 
@@ -76,9 +76,13 @@ class KernelControl {
   // The last fault (code, axis, line), cleared by Reset/StartJob.
   [[nodiscard]] RtFault fault() const noexcept;
   // Axes whose position is known (homed, or known at start): bit per axis.
-  [[nodiscard]] std::uint32_t homed_mask() const noexcept { return port_.homed.load(std::memory_order_relaxed); }
+  [[nodiscard]] std::uint32_t homed_mask() const noexcept {
+    return port_.homed.load(std::memory_order_relaxed);
+  }
   // Jobs that have ended (at their end, by a stop or by an e-stop).
-  [[nodiscard]] std::uint32_t jobs_ended() const noexcept { return port_.jobs_ended.load(std::memory_order_acquire); }
+  [[nodiscard]] std::uint32_t jobs_ended() const noexcept {
+    return port_.jobs_ended.load(std::memory_order_acquire);
+  }
   // The last job ended ran to its end (not stopped, not e-stopped). Written
   // before jobs_ended() counts it: read after seeing that count.
   [[nodiscard]] bool last_job_completed() const noexcept {
@@ -103,28 +107,36 @@ class KernelControl {
   }
   // The override the machine runs at now: the period scale times the
   // override the running entries are planned at.
-  [[nodiscard]] double feed_override() const noexcept {
-    return port_.k_now.load(std::memory_order_relaxed);
-  }
+  [[nodiscard]] double feed_override() const noexcept { return port_.k_now.load(std::memory_order_relaxed); }
   [[nodiscard]] const FeedOverrideRamp& override_ramp() const noexcept { return ramp_; }
 
   [[nodiscard]] bool finished() const noexcept { return port_.finished.load(std::memory_order_acquire); }
 
   // Live counters (relaxed snapshots; exact after join()).
-  [[nodiscard]] std::uint64_t periods() const noexcept { return port_.periods.load(std::memory_order_relaxed); }
+  [[nodiscard]] std::uint64_t periods() const noexcept {
+    return port_.periods.load(std::memory_order_relaxed);
+  }
   [[nodiscard]] std::uint64_t motion_periods() const noexcept {
     return port_.motion_periods.load(std::memory_order_relaxed);
   }
-  [[nodiscard]] std::uint64_t underruns() const noexcept { return port_.underruns.load(std::memory_order_relaxed); }
+  [[nodiscard]] std::uint64_t underruns() const noexcept {
+    return port_.underruns.load(std::memory_order_relaxed);
+  }
   // Times the buffer fell below its braking reserve while streaming.
-  [[nodiscard]] std::uint64_t starvations() const noexcept { return port_.starvations.load(std::memory_order_relaxed); }
-  [[nodiscard]] std::uint64_t overruns() const noexcept { return port_.overruns.load(std::memory_order_relaxed); }
+  [[nodiscard]] std::uint64_t starvations() const noexcept {
+    return port_.starvations.load(std::memory_order_relaxed);
+  }
+  [[nodiscard]] std::uint64_t overruns() const noexcept {
+    return port_.overruns.load(std::memory_order_relaxed);
+  }
   // Periods that were already due when the last one ended (catching up after
   // a stall): started at once, without a sleep, so without a wake-up latency.
   [[nodiscard]] std::uint64_t catch_up_periods() const noexcept {
     return port_.catch_up.load(std::memory_order_relaxed);
   }
-  [[nodiscard]] std::uint64_t trace_drops() const noexcept { return port_.trace_drops.load(std::memory_order_relaxed); }
+  [[nodiscard]] std::uint64_t trace_drops() const noexcept {
+    return port_.trace_drops.load(std::memory_order_relaxed);
+  }
   [[nodiscard]] std::uint32_t current_segment() const noexcept {
     return port_.segment.load(std::memory_order_relaxed);
   }

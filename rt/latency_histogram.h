@@ -39,9 +39,7 @@ class LatencyHistogram {
     }
     return static_cast<double>(max_ns_) / 1000.0;
   }
-  [[nodiscard]] const std::array<std::uint64_t, kBuckets + 1>& counts() const noexcept {
-    return counts_;
-  }
+  [[nodiscard]] const std::array<std::uint64_t, kBuckets + 1>& counts() const noexcept { return counts_; }
 
  private:
   std::uint32_t bucket_ns_;

@@ -38,9 +38,7 @@ enum class RtClock : std::uint8_t { Wall, Simulated, SimulatedPaced };
 inline constexpr std::int64_t kNsPerS = 1'000'000'000;
 
 // CLOCK_MONOTONIC readings as ns, and back (absolute deadlines).
-[[nodiscard]] inline std::int64_t to_ns(const timespec& t) noexcept {
-  return t.tv_sec * kNsPerS + t.tv_nsec;
-}
+[[nodiscard]] inline std::int64_t to_ns(const timespec& t) noexcept { return t.tv_sec * kNsPerS + t.tv_nsec; }
 [[nodiscard]] inline timespec to_timespec(std::int64_t ns) noexcept {
   return timespec{static_cast<time_t>(ns / kNsPerS), static_cast<long>(ns % kNsPerS)};
 }

@@ -8,9 +8,8 @@
 
 namespace lcnc::rt {
 
-RtKernel::RtKernel(const MachineConfig& machine, PositionBuffer& buffer, PulseSink& sink,
-                   TraceRing* trace, const std::array<std::int64_t, kAxisCount>& start_steps,
-                   KernelPort* port)
+RtKernel::RtKernel(const MachineConfig& machine, PositionBuffer& buffer, PulseSink& sink, TraceRing* trace,
+                   const std::array<std::int64_t, kAxisCount>& start_steps, KernelPort* port)
     : KernelControl(machine, port != nullptr ? *port : own_port_),
       period_ns_(machine.period_ns),
       mover_(machine, ramp_.rate_per_s()),
@@ -122,8 +121,7 @@ bool RtKernel::period(std::int64_t wake_ns, std::int64_t late) noexcept {
   } else {
     k_plan_ = 1.0f;  // jogs and homing are not planned
   }
-  if (state_now_ == MachineState::FeedHold || state_now_ == MachineState::Stopping || starving_)
-    target = 0.0;
+  if (state_now_ == MachineState::FeedHold || state_now_ == MachineState::Stopping || starving_) target = 0.0;
   k_ = ramp_.step(k_, ramp_.period_scale(target, k_plan_), length_ns * 1e-9, room);
   port_.k_now.store(k_ * k_plan_, std::memory_order_relaxed);
   return true;
@@ -189,9 +187,7 @@ bool RtKernel::take_command(const RtCommand& c, MachineState s) noexcept {
   // began in: none acts on a change made earlier in the same period.
   const bool unchanged = s == state_now_;
   switch (c.type) {
-    case RtCommandType::EStop:
-      enter_estop(ErrorCode::RtEstop, -1, line_);
-      return true;
+    case RtCommandType::EStop: enter_estop(ErrorCode::RtEstop, -1, line_); return true;
     case RtCommandType::Stop:
       begin_stop(ErrorCode::Ok, -1, 0);  // the operator's: no fault
       return true;
@@ -204,12 +200,9 @@ bool RtKernel::take_command(const RtCommand& c, MachineState s) noexcept {
     case RtCommandType::Resume:
       if (unchanged) transition(KernelEvent::Resume);  // an M66 waits for its input
       return true;
-    case RtCommandType::StartJob:
-      return unchanged && transition(KernelEvent::Start);
-    case RtCommandType::Jog:
-      return unchanged && start_jog(c.axis, c.value);
-    case RtCommandType::Home:
-      return unchanged && start_home(c.axis);
+    case RtCommandType::StartJob: return unchanged && transition(KernelEvent::Start);
+    case RtCommandType::Jog: return unchanged && start_jog(c.axis, c.value);
+    case RtCommandType::Home: return unchanged && start_home(c.axis);
   }
   return true;
 }
@@ -246,15 +239,12 @@ void RtKernel::take_inputs() noexcept {
     // M66: the input came (the job goes on), or the time is up (a stop, at
     // rest already, with the fault)
     switch (wait_.check(inputs_.digital_in)) {
-      case InputWait::Outcome::Waiting:
-        break;
+      case InputWait::Outcome::Waiting: break;
       case InputWait::Outcome::Met:
         log(RtLogCode::InputWaitEnd, static_cast<std::int64_t>(wait_.periods()), -1, line_);
         transition(KernelEvent::InputCame);
         break;
-      case InputWait::Outcome::TimedOut:
-        begin_stop(ErrorCode::RtInputTimeout, -1, line_);
-        break;
+      case InputWait::Outcome::TimedOut: begin_stop(ErrorCode::RtInputTimeout, -1, line_); break;
     }
   } else if (hold_cause_ == HoldCause::ProgramPause && pause_left_ > 0 && --pause_left_ == 0) {
     // an unattended pause's time is up: as a resume
@@ -326,11 +316,8 @@ void RtKernel::axis_motion(Motion& m) noexcept {
   const AxisMover::Step step = mover_.next(inputs_, pos_steps_[a]);
   m.inc.steps[a] = step.steps;
   switch (step.event) {
-    case AxisMover::Event::None:
-      break;
-    case AxisMover::Event::SearchFailed:
-      set_fault(ErrorCode::RtHoming, a, 0);
-      break;
+    case AxisMover::Event::None: break;
+    case AxisMover::Event::SearchFailed: set_fault(ErrorCode::RtHoming, a, 0); break;
     case AxisMover::Event::Homed:
       pos_steps_[a] = step.rebased;
       port_.pos_pub[a].store(pos_steps_[a], std::memory_order_relaxed);
@@ -339,9 +326,7 @@ void RtKernel::axis_motion(Motion& m) noexcept {
       log(RtLogCode::Homed, mover_.limits(a).home_steps, a);
       transition(KernelEvent::MoveDone);
       break;
-    case AxisMover::Event::Done:
-      transition(KernelEvent::MoveDone);
-      break;
+    case AxisMover::Event::Done: transition(KernelEvent::MoveDone); break;
   }
 }
 

@@ -79,15 +79,15 @@
 #include "machine/machine_config.h"
 #include "machine/pulse_sink.h"
 #include "plan/period_increment.h"
+#include "rt/axis_mover.h"
 #include "rt/dda.h"
 #include "rt/feed_override.h"
+#include "rt/input_wait.h"
 #include "rt/kernel_control.h"
 #include "rt/kernel_port.h"
-#include "rt/axis_mover.h"
-#include "rt/input_wait.h"
-#include "rt/rt_clock.h"
 #include "rt/latency_histogram.h"
 #include "rt/pitch_compensation.h"
+#include "rt/rt_clock.h"
 #include "rt/rt_log.h"
 #include "rt/shm_interface.h"
 #include "rt/spsc_ring.h"
@@ -96,17 +96,17 @@
 namespace lcnc::rt {
 
 inline constexpr std::size_t kPositionBufferCapacity = 16384;  // 1.2 s at 75 µs
-inline constexpr std::size_t kTraceRingCapacity = 1 << 16;    // 4.9 s at 75 µs
+inline constexpr std::size_t kTraceRingCapacity = 1 << 16;     // 4.9 s at 75 µs
 
 using PositionBuffer = SpscRing<PeriodIncrement, kPositionBufferCapacity>;
 
 // What the RT thread executed in one period, for the trace and the report.
 struct TraceRecord {
-  std::uint64_t period = 0;                      // period index since start
-  std::int64_t t_ns = 0;                         // machine time at the end of the period
+  std::uint64_t period = 0;                          // period index since start
+  std::int64_t t_ns = 0;                             // machine time at the end of the period
   std::array<std::int64_t, kAxisCount> pos_steps{};  // commanded position after the period
-  double feed_override = 1.0;                    // K of the period: it lasted T/K
-  float power_pct = 0.0f;                        // laser output during the period, % of rated
+  double feed_override = 1.0;                        // K of the period: it lasted T/K
+  float power_pct = 0.0f;                            // laser output during the period, % of rated
   std::uint32_t line = 0;
   std::uint32_t segment = 0;
   bool underrun = false;  // the buffer was empty: position held
@@ -123,8 +123,21 @@ enum class HoldCause : std::uint8_t { None, Operator, ProgramPause, InputWait };
 
 // What changes the kernel's mode (the table above).
 enum class KernelEvent : std::uint8_t {
-  Start, Jog, Home, Hold, ProgramPause, InputWait, Resume, InputCame, PauseUp,
-  Stop, AtRest, JobEnd, MoveDone, EStop, Reset,
+  Start,
+  Jog,
+  Home,
+  Hold,
+  ProgramPause,
+  InputWait,
+  Resume,
+  InputCame,
+  PauseUp,
+  Stop,
+  AtRest,
+  JobEnd,
+  MoveDone,
+  EStop,
+  Reset,
 };
 
 struct RtOptions {
@@ -166,9 +179,8 @@ class RtKernel : private OwnKernelPort, public KernelControl {
  public:
   // `port`: the port shared with the control side when it is not this
   // object's own (a shared-memory segment); it outlives the kernel.
-  RtKernel(const MachineConfig& machine, PositionBuffer& buffer, PulseSink& sink,
-           TraceRing* trace, const std::array<std::int64_t, kAxisCount>& start_steps,
-           KernelPort* port = nullptr);
+  RtKernel(const MachineConfig& machine, PositionBuffer& buffer, PulseSink& sink, TraceRing* trace,
+           const std::array<std::int64_t, kAxisCount>& start_steps, KernelPort* port = nullptr);
   ~RtKernel();
   RtKernel(const RtKernel&) = delete;
   RtKernel& operator=(const RtKernel&) = delete;

@@ -9,32 +9,21 @@ bool RtKernel::takes(KernelEvent e) const noexcept {
   switch (e) {
     case KernelEvent::Start:
     case KernelEvent::Jog:
-    case KernelEvent::Home:
-      return s == MachineState::Idle && !flushing_;
-    case KernelEvent::Hold:
-      return s == MachineState::Running;
+    case KernelEvent::Home: return s == MachineState::Idle && !flushing_;
+    case KernelEvent::Hold: return s == MachineState::Running;
     case KernelEvent::ProgramPause:
-    case KernelEvent::InputWait:
-      return s == MachineState::Running || s == MachineState::FeedHold;
+    case KernelEvent::InputWait: return s == MachineState::Running || s == MachineState::FeedHold;
     case KernelEvent::Resume:
       return s == MachineState::FeedHold &&
              (hold_cause_ == HoldCause::Operator || hold_cause_ == HoldCause::ProgramPause);
-    case KernelEvent::InputCame:
-      return s == MachineState::FeedHold && hold_cause_ == HoldCause::InputWait;
-    case KernelEvent::PauseUp:
-      return s == MachineState::FeedHold && hold_cause_ == HoldCause::ProgramPause;
-    case KernelEvent::Stop:
-      return on_path_state() || s == MachineState::Jog || s == MachineState::Homing;
-    case KernelEvent::AtRest:
-      return s == MachineState::Stopping;
-    case KernelEvent::JobEnd:
-      return on_path_state();
-    case KernelEvent::MoveDone:
-      return s == MachineState::Jog || s == MachineState::Homing;
-    case KernelEvent::EStop:
-      return true;
-    case KernelEvent::Reset:
-      return s == MachineState::EStop && !flushing_;
+    case KernelEvent::InputCame: return s == MachineState::FeedHold && hold_cause_ == HoldCause::InputWait;
+    case KernelEvent::PauseUp: return s == MachineState::FeedHold && hold_cause_ == HoldCause::ProgramPause;
+    case KernelEvent::Stop: return on_path_state() || s == MachineState::Jog || s == MachineState::Homing;
+    case KernelEvent::AtRest: return s == MachineState::Stopping;
+    case KernelEvent::JobEnd: return on_path_state();
+    case KernelEvent::MoveDone: return s == MachineState::Jog || s == MachineState::Homing;
+    case KernelEvent::EStop: return true;
+    case KernelEvent::Reset: return s == MachineState::EStop && !flushing_;
   }
   return false;
 }
@@ -49,12 +38,8 @@ bool RtKernel::transition(KernelEvent e) noexcept {
       begin_at_override();
       enter(MachineState::Running);
       break;
-    case KernelEvent::Jog:
-      enter(MachineState::Jog);
-      break;
-    case KernelEvent::Home:
-      enter(MachineState::Homing);
-      break;
+    case KernelEvent::Jog: enter(MachineState::Jog); break;
+    case KernelEvent::Home: enter(MachineState::Homing); break;
     case KernelEvent::Hold:
       enter(MachineState::FeedHold);
       hold_cause_ = HoldCause::Operator;
@@ -76,9 +61,7 @@ bool RtKernel::transition(KernelEvent e) noexcept {
       break;
     case KernelEvent::Resume:
     case KernelEvent::InputCame:
-    case KernelEvent::PauseUp:
-      enter(MachineState::Running);
-      break;
+    case KernelEvent::PauseUp: enter(MachineState::Running); break;
     case KernelEvent::Stop:
       if (on_path_state()) {
         enter(MachineState::Stopping);
@@ -94,9 +77,7 @@ bool RtKernel::transition(KernelEvent e) noexcept {
       job_ended(true);
       enter(MachineState::Idle);
       break;
-    case KernelEvent::MoveDone:
-      enter(MachineState::Idle);
-      break;
+    case KernelEvent::MoveDone: enter(MachineState::Idle); break;
     case KernelEvent::EStop:
       // The job's remaining entries are discarded; nothing moves from this
       // period on.

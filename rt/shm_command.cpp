@@ -56,8 +56,7 @@ lcnc::Status check_command_frame(const Command& c, const CommandLimits& limits) 
     case CommandType::Home:
       if (!has_axis(c.axis, limits.axes_mask)) return refused("home refused: no axis " + axis_text(c.axis));
       return {};
-    default:
-      return {};
+    default: return {};
   }
 }
 

@@ -3,10 +3,10 @@
 #include "path/segment.h"
 
 #include <fcntl.h>
-#include <time.h>
 #include <signal.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -55,8 +55,8 @@ Result<ShmOwner> ShmOwner::create(const std::string& name) {
       }
       close(old);
       if (process_alive(pid) && pid != getpid())
-        return shm_error(name, "already owned by running process " + std::to_string(pid) +
-                                   "; stop that daemon first");
+        return shm_error(
+            name, "already owned by running process " + std::to_string(pid) + "; stop that daemon first");
     }
     shm_unlink(name.c_str());
     stale = true;
@@ -124,8 +124,8 @@ Result<ShmClient> ShmClient::open(const std::string& name) {
       std::atomic_ref<std::uint32_t>(block->header.magic).load(std::memory_order_acquire);
   if (magic != kMagic || block->header.version != kVersion || block->header.size != sizeof(ShmBlock)) {
     munmap(block, sizeof(ShmBlock));
-    return shm_error(name, "not a LaserCNC segment of interface version " +
-                               std::to_string(kVersion) + " (magic, version or size differ)");
+    return shm_error(name, "not a LaserCNC segment of interface version " + std::to_string(kVersion) +
+                               " (magic, version or size differ)");
   }
   return ShmClient(block);
 }
@@ -152,8 +152,10 @@ std::uint32_t ShmClient::send(Command c, std::chrono::nanoseconds lock_timeout) 
     ++until.tv_sec;
   }
   const int r = pthread_mutex_timedlock(&s.lock, &until);
-  if (r == EOWNERDEAD) pthread_mutex_consistent(&s.lock);  // its push was whole or not begun
-  else if (r != 0) return 0;
+  if (r == EOWNERDEAD)
+    pthread_mutex_consistent(&s.lock);  // its push was whole or not begun
+  else if (r != 0)
+    return 0;
   c.seq = ++s.next_seq == 0 ? ++s.next_seq : s.next_seq;
   const bool pushed = block_->commands.try_push(c);
   pthread_mutex_unlock(&s.lock);

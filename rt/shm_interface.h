@@ -44,8 +44,8 @@ inline constexpr const char* kDefaultName = "/lasercnc";
 enum class MachineState : std::uint8_t { Idle, Running, FeedHold, Stopping, EStop, Jog, Homing };
 
 enum class CommandType : std::uint8_t {
-  Load,      // text: program path
-  Start,     // value: run from this line (0: from the start); axis: StartFlags bits
+  Load,   // text: program path
+  Start,  // value: run from this line (0: from the start); axis: StartFlags bits
   Hold,
   Resume,
   Stop,
@@ -90,7 +90,7 @@ enum class Severity : std::uint8_t { Info, Warning, Error };
 
 struct Event {
   std::uint64_t period = 0;
-  std::uint16_t code = 0;  // ErrorCode (share/errors.def), 0 for plain state changes
+  std::uint16_t code = 0;              // ErrorCode (share/errors.def), 0 for plain state changes
   Severity severity = Severity::Info;  // Error: a fault or a failed job; Warning: worth a look
   MachineState state = MachineState::Idle;
   std::uint32_t line = 0;  // program line, 0 if none
@@ -100,16 +100,16 @@ struct Event {
 
 struct Status {
   MachineState state = MachineState::Idle;
-  std::uint16_t fault = 0;      // ErrorCode of the active fault, 0 if none
-  std::int8_t fault_axis = -1;  // axis of the fault, −1 if none
-  std::uint32_t line = 0;       // program line executing (or last executed)
-  std::uint32_t homed_mask = 0; // bit per axis whose position is known
-  std::uint32_t axes_mask = 0;  // bit per axis the machine has
+  std::uint16_t fault = 0;       // ErrorCode of the active fault, 0 if none
+  std::int8_t fault_axis = -1;   // axis of the fault, −1 if none
+  std::uint32_t line = 0;        // program line executing (or last executed)
+  std::uint32_t homed_mask = 0;  // bit per axis whose position is known
+  std::uint32_t axes_mask = 0;   // bit per axis the machine has
   std::uint64_t periods = 0;
   std::uint64_t underruns = 0;    // periods with the buffer empty while running
   std::uint64_t starvations = 0;  // decelerations for a low buffer while streaming
   std::array<std::int64_t, 6> pos_steps{};
-  std::array<double, 6> pos{};  // mm / deg
+  std::array<double, 6> pos{};        // mm / deg
   double feed_override = 1.0;         // K now
   double feed_override_target = 1.0;  // the operator's K
   double machine_time_s = 0.0;
@@ -151,23 +151,23 @@ struct JobStatus {
   char program[256] = {};      // the loaded program, "" if none
   std::uint32_t lines = 0;
   std::uint64_t segments = 0;
-  bool job_active = false;     // planning/executing a job
-  double progress = 0.0;       // 0 … 1 of the active (or last) job
+  bool job_active = false;  // planning/executing a job
+  double progress = 0.0;    // 0 … 1 of the active (or last) job
   std::uint32_t jobs_ended = 0;
   double last_cycle_time_s = 0.0;
   std::uint64_t last_underruns = 0;
   std::uint16_t last_fault = 0;  // ErrorCode that ended the last job, 0 if it ran to the end
   JobOutcome last_outcome = JobOutcome::None;
-  std::uint32_t last_line = 0;   // program line where the last job ended
+  std::uint32_t last_line = 0;  // program line where the last job ended
   // The work coordinates: work = machine − work_offset (mm, deg), in work
   // system coord_system (0 = G54 … 8 = G59.3), as the last job or MDI
   // command left them (and the parameter file keeps them).
   std::array<double, 6> work_offset{};
   std::uint8_t coord_system = 0;
-  bool inch = false;            // MDI commands are read in inches (G20)
-  char modes[128] = {};         // the modes the next MDI command starts in
+  bool inch = false;     // MDI commands are read in inches (G20)
+  char modes[128] = {};  // the modes the next MDI command starts in
   // The active (or last) job: what it is and how it runs.
-  bool mdi = false;             // an MDI command or framing, not the loaded program
+  bool mdi = false;  // an MDI command or framing, not the loaded program
   bool single_block = false;
   bool dry_run = false;
   std::uint32_t start_line = 0;  // run from this line; 0: from the start
@@ -195,8 +195,8 @@ struct ShmHeader {
 
 // The command ring's senders: any number of processes, one at a time.
 struct CommandSenders {
-  pthread_mutex_t lock;         // PTHREAD_PROCESS_SHARED, PTHREAD_MUTEX_ROBUST
-  std::uint32_t next_seq = 0;   // guarded by lock
+  pthread_mutex_t lock;        // PTHREAD_PROCESS_SHARED, PTHREAD_MUTEX_ROBUST
+  std::uint32_t next_seq = 0;  // guarded by lock
 };
 
 // The e-stop's own path: a request counter, bumped by any process with one

@@ -22,8 +22,7 @@ inline constexpr std::size_t kCacheLine = 64;
 
 template <typename T, std::size_t Capacity>
 class SpscRing {
-  static_assert(Capacity >= 2 && (Capacity & (Capacity - 1)) == 0,
-                "capacity must be a power of two");
+  static_assert(Capacity >= 2 && (Capacity & (Capacity - 1)) == 0, "capacity must be a power of two");
   static_assert(std::is_trivially_copyable_v<T>, "items are copied as bytes");
   static_assert(std::atomic<std::uint64_t>::is_always_lock_free);
 

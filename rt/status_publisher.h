@@ -29,8 +29,7 @@ class StatusPublisher {
   }
   // Publishes `st` with the wake-up latency's quantiles, refreshed once
   // every 64 publications (they scan the histogram) and when forced.
-  void publish(shm::Status& st, const LatencyHistogram& latency, std::uint64_t period,
-               bool force) noexcept {
+  void publish(shm::Status& st, const LatencyHistogram& latency, std::uint64_t period, bool force) noexcept {
     if (force || (period / kStatusEvery) % 64 == 0) {
       p50_ = latency.quantile_us(0.50);
       p99_ = latency.quantile_us(0.99);

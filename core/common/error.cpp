@@ -6,7 +6,8 @@ std::string_view error_summary(ErrorCode code) noexcept {
   switch (code) {
     case ErrorCode::Ok: return "no error";
 #define LCNC_ERROR(name, number, summary) \
-  case ErrorCode::name: return summary;
+  case ErrorCode::name:                   \
+    return summary;
 #include "errors.def"
 #undef LCNC_ERROR
   }
@@ -17,7 +18,8 @@ std::string_view error_name(ErrorCode code) noexcept {
   switch (code) {
     case ErrorCode::Ok: return "Ok";
 #define LCNC_ERROR(name, number, summary) \
-  case ErrorCode::name: return #name;
+  case ErrorCode::name:                   \
+    return #name;
 #include "errors.def"
 #undef LCNC_ERROR
   }
@@ -43,14 +45,13 @@ std::string Diagnostic::to_string() const {
     out += ": ";
   }
   out += is_warning(code) ? "warning E" : "error E";
-  out += std::to_string(static_cast<unsigned>(code)) + " (" +
-         std::string(error_name(code)) + "): ";
+  out += std::to_string(static_cast<unsigned>(code)) + " (" + std::string(error_name(code)) + "): ";
   out += message.empty() ? std::string(error_summary(code)) : message;
   return out;
 }
 
-Diagnostic make_error(ErrorCode code, std::string message, std::string file,
-                      std::uint32_t line, std::uint32_t col) {
+Diagnostic make_error(ErrorCode code, std::string message, std::string file, std::uint32_t line,
+                      std::uint32_t col) {
   return Diagnostic{code, std::move(file), line, col, std::move(message)};
 }
 

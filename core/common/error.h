@@ -32,8 +32,7 @@ struct Diagnostic {
   [[nodiscard]] std::string to_string() const;
 };
 
-[[nodiscard]] Diagnostic make_error(ErrorCode code, std::string message,
-                                    std::string file = {}, std::uint32_t line = 0,
-                                    std::uint32_t col = 0);
+[[nodiscard]] Diagnostic make_error(ErrorCode code, std::string message, std::string file = {},
+                                    std::uint32_t line = 0, std::uint32_t col = 0);
 
 }  // namespace lcnc

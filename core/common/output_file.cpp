@@ -41,7 +41,7 @@ std::string base_of(const std::string& path) {
 }
 
 std::optional<FileId> file_id(const std::string& path) {
-  struct stat st{};
+  struct stat st {};
   if (::stat(path.c_str(), &st) == 0) return FileId{st.st_dev, st.st_ino, {}};
   if (errno != ENOENT) return std::nullopt;
   if (::stat(dir_of(path).c_str(), &st) != 0) return std::nullopt;
@@ -77,8 +77,7 @@ Status check_inputs(const std::string& output, const std::optional<FileId>& id,
 
 }  // namespace
 
-Status check_outputs(const std::vector<std::string>& outputs,
-                     const std::vector<std::string>& inputs) {
+Status check_outputs(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs) {
   std::vector<std::pair<std::string, FileId>> seen;
   for (const std::string& out : outputs) {
     if (out.empty()) continue;
@@ -92,8 +91,7 @@ Status check_outputs(const std::vector<std::string>& outputs,
   return {};
 }
 
-Result<OutputFile> OutputFile::open(const std::string& path,
-                                    const std::vector<std::string>& inputs) {
+Result<OutputFile> OutputFile::open(const std::string& path, const std::vector<std::string>& inputs) {
   if (path.empty()) return make_error(ErrorCode::OutputWrite, "an output needs a file name");
   OutputFile f;
   f.path_ = path;
@@ -120,7 +118,7 @@ Result<OutputFile> OutputFile::open(const std::string& path,
     return f;
   }
   if (Status s = check_inputs(path, file_id(path), inputs); !s) return s.error();
-  struct stat st{};
+  struct stat st {};
   if (::stat(path.c_str(), &st) == 0) {
     if (S_ISDIR(st.st_mode)) return write_error(path, EISDIR, "write it");
     if (!S_ISREG(st.st_mode)) {

@@ -73,9 +73,9 @@ class OutputFile {
   std::string target_;  // the file replaced (symbolic links resolved)
   std::string temp_;    // the temporary file; empty: writing the target directly
   std::FILE* file_ = nullptr;
-  int errno_ = 0;       // first write error
+  int errno_ = 0;  // first write error
   bool has_mode_ = false;
-  unsigned mode_ = 0;   // permission bits of the replaced file
+  unsigned mode_ = 0;  // permission bits of the replaced file
 };
 
 // An std::ostream's buffer onto an OutputFile, for writers that take a

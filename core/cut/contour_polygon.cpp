@@ -16,8 +16,8 @@ using geom::point_segment;
 constexpr int kMaxSplineDepth = 16;
 
 // Appends the points of (s0, s1] of a spline edge.
-void spline_points(const dxf::Edge& e, double s0, const Vec2& p0, double s1, const Vec2& p1,
-                   double tol, int depth, std::vector<Vec2>& out) {
+void spline_points(const dxf::Edge& e, double s0, const Vec2& p0, double s1, const Vec2& p1, double tol,
+                   int depth, std::vector<Vec2>& out) {
   const double sm = 0.5 * (s0 + s1);
   const Vec2 pm = dxf::edge_point(e, sm);
   if (depth < kMaxSplineDepth && (depth < 2 || point_segment(pm, p0, p1) > tol)) {
@@ -39,8 +39,8 @@ dxf::Polyline contour_polygon(const dxf::Contour& c, double chord_tol_mm) {
       pts.push_back(e.b);
     } else if (e.kind == dxf::EdgeKind::Arc) {
       const double phi = 2.0 * std::acos(std::max(-1.0, 1.0 - chord_tol_mm / e.radius));
-      const auto n = static_cast<std::size_t>(
-          std::max(1.0, std::ceil(std::abs(e.sweep_rad) / std::max(phi, 1e-9))));
+      const auto n =
+          static_cast<std::size_t>(std::max(1.0, std::ceil(std::abs(e.sweep_rad) / std::max(phi, 1e-9))));
       for (std::size_t k = 1; k < n; ++k) {
         const double a = e.start_rad + e.sweep_rad * static_cast<double>(k) / static_cast<double>(n);
         pts.push_back(e.center + e.radius * Vec2(std::cos(a), std::sin(a)));

@@ -88,8 +88,8 @@ Status check_units(const dxf::Drawing& d, bool units_given) {
   const double across = size.maxCoeff();
   if (across < kMinPartMm || across > kMaxPartMm) {
     return make_error(ErrorCode::CutUnits,
-                      "the part is " + extent + " across in the drawing's units (" + d.units +
-                          "), " + (across < kMinPartMm ? "smaller than " : "larger than ") +
+                      "the part is " + extent + " across in the drawing's units (" + d.units + "), " +
+                          (across < kMinPartMm ? "smaller than " : "larger than ") +
                           fmt("%g mm", across < kMinPartMm ? kMinPartMm : kMaxPartMm) +
                           ": wrong units?; expected --units mm|inch|cm|m to say which",
                       d.file);
@@ -124,8 +124,10 @@ Result<CutPlan> plan_cut(const dxf::Drawing& d, const CutOptions& opt) {
       const std::string size = fmt("%.3f x %.3f mm", box.sizes().x(), box.sizes().y());
       if (off.empty()) {
         return make_error(ErrorCode::CutKerf,
-                          contours[i].name() + ", a hole " + size + ", vanishes under the kerf "
-                              "offset of " + fmt("%.3f mm (kerf %.3f mm)", half, 2 * half) +
+                          contours[i].name() + ", a hole " + size +
+                              ", vanishes under the kerf "
+                              "offset of " +
+                              fmt("%.3f mm (kerf %.3f mm)", half, 2 * half) +
                               "; expected a hole wider than the kerf",
                           d.file, contours[i].first_line);
       }
@@ -133,7 +135,8 @@ Result<CutPlan> plan_cut(const dxf::Drawing& d, const CutOptions& opt) {
         return make_error(ErrorCode::CutKerf,
                           contours[i].name() + ", a hole " + size + ", splits into " +
                               std::to_string(off.size()) + " pieces under the kerf offset of " +
-                              fmt("%.3f mm", half) + " (a waist narrower than the kerf); expected "
+                              fmt("%.3f mm", half) +
+                              " (a waist narrower than the kerf); expected "
                               "every part of a hole wider than the kerf",
                           d.file, contours[i].first_line);
       }
@@ -170,9 +173,9 @@ Result<CutPlan> plan_cut(const dxf::Drawing& d, const CutOptions& opt) {
     req.offset_mm = c.process.kerf_mm / 2.0;
     c.entry = place_lead_in(paths[i], polys[i], from, req, others);
     if (c.entry.shortened) {
-      plan.warnings.push_back(c.name + (c.hole ? ": the hole" : ": the outline") +
-                              fmt(" has no room for a %.3f mm lead-in; %.3f mm used", opt.lead_in_mm,
-                                  c.entry.lead_in_mm));
+      plan.warnings.push_back(
+          c.name + (c.hole ? ": the hole" : ": the outline") +
+          fmt(" has no room for a %.3f mm lead-in; %.3f mm used", opt.lead_in_mm, c.entry.lead_in_mm));
     }
     c.path_mm = path_length(c.entry.path);
     plan.rapid_mm += (c.entry.pierce - from).norm();
@@ -207,9 +210,10 @@ std::string cut_gcode(const CutPlan& plan, const CutOptions& opt, const std::str
   const char* outer = opt.outer == Direction::Cw ? "cw" : "ccw";
   const char* inner = opt.outer == Direction::Cw ? "ccw" : "cw";
   line("%");
-  line("(" + paren("lasercnc cut: " + source + ", " + std::to_string(plan.contours.size()) +
-                   " contours: " + std::to_string(plan.parts) + " outlines, " +
-                   std::to_string(plan.holes) + " holes") + ")");
+  line("(" +
+       paren("lasercnc cut: " + source + ", " + std::to_string(plan.contours.size()) + " contours: " +
+             std::to_string(plan.parts) + " outlines, " + std::to_string(plan.holes) + " holes") +
+       ")");
   line("(units mm; kerf compensated in the path: outlines offset outward, holes inward by kerf/2)");
   line(std::string("(outlines ") + outer + ", holes " + inner +
        fmt("; lead-in %.3f mm from the scrap side, lead-out overcut %.3f mm)", opt.lead_in_mm,
@@ -222,10 +226,11 @@ std::string cut_gcode(const CutPlan& plan, const CutOptions& opt, const std::str
   for (const CutContour& c : plan.contours) {
     ++k;
     line("");
-    line("(" + paren(fmt("cut %.0f of %.0f: ", static_cast<double>(k),
-                         static_cast<double>(plan.contours.size())) +
-                     (c.hole ? "hole" : "outline") + " " + c.name + ", layer " + c.layer +
-                     fmt(", depth %.0f, kerf %.3f mm", c.depth, c.process.kerf_mm)) + ")");
+    line("(" +
+         paren(fmt("cut %.0f of %.0f: ", static_cast<double>(k), static_cast<double>(plan.contours.size())) +
+               (c.hole ? "hole" : "outline") + " " + c.name + ", layer " + c.layer +
+               fmt(", depth %.0f, kerf %.3f mm", c.depth, c.process.kerf_mm)) +
+         ")");
     line("G0 " + xy(c.entry.pierce) + " (pierce)");
     line(fmt("M3 S%.4g", c.process.power_pct));
     if (c.process.pierce_s > 0.0) line(fmt("G4 P%.4g", c.process.pierce_s));

@@ -45,20 +45,20 @@ struct CutOptions {
   double lead_in_mm = 2.0;
   double lead_out_mm = 0.5;
   ProcessTable process;
-  Vec2 origin = Vec2::Zero();       // program coordinates = drawing + origin
-  bool units_given = false;         // the user named the units (--units)
+  Vec2 origin = Vec2::Zero();  // program coordinates = drawing + origin
+  bool units_given = false;    // the user named the units (--units)
 };
 
 struct CutContour {
-  std::uint32_t index = 0;   // dxf::Contour::index
-  std::string name;          // "contour 2 (CIRCLE at DXF line 60, layer CUT)"
+  std::uint32_t index = 0;  // dxf::Contour::index
+  std::string name;         // "contour 2 (CIRCLE at DXF line 60, layer CUT)"
   std::string layer;
-  int depth = 0;             // nesting depth: even = outline, odd = hole
+  int depth = 0;  // nesting depth: even = outline, odd = hole
   bool hole = false;
   Process process;
-  std::vector<Vec2> drawing; // the drawn contour's polygon (drawing coordinates)
-  LeadIn entry;              // the cut path from its start, pierce, overcut
-  double path_mm = 0.0;      // length of the closed path
+  std::vector<Vec2> drawing;  // the drawn contour's polygon (drawing coordinates)
+  LeadIn entry;               // the cut path from its start, pierce, overcut
+  double path_mm = 0.0;       // length of the closed path
 };
 
 struct CutPlan {
@@ -79,7 +79,6 @@ struct CutPlan {
 [[nodiscard]] Result<CutPlan> plan_cut(const dxf::Drawing& d, const CutOptions& opt);
 
 // The program; `source` names the drawing in its header comment.
-[[nodiscard]] std::string cut_gcode(const CutPlan& plan, const CutOptions& opt,
-                                    const std::string& source);
+[[nodiscard]] std::string cut_gcode(const CutPlan& plan, const CutOptions& opt, const std::string& source);
 
 }  // namespace lcnc::cut

@@ -23,15 +23,14 @@ std::string plan_svg(const CutPlan& plan, const std::string& title) {
        "\">drawing (black), <tspan fill=\"blue\">kerf-offset cut path</tspan>, "
        "<tspan fill=\"red\">pierce point and lead-in</tspan>, <tspan fill=\"darkorange\">lead-out"
        "</tspan>, <tspan fill=\"grey\">rapids</tspan>; numbers: cutting order</text>\n";
-  s += "<text x=\"" + num(pad) + "\" y=\"" + num(H - 12) + "\">" +
-       std::to_string(plan.contours.size()) + " contours (" + std::to_string(plan.parts) +
-       " outlines, " + std::to_string(plan.holes) + " holes), cut " + num(plan.cut_mm) +
-       " mm, rapids " + num(plan.rapid_mm) + " mm, about " + num(plan.time_s) + " s</text>\n";
+  s += "<text x=\"" + num(pad) + "\" y=\"" + num(H - 12) + "\">" + std::to_string(plan.contours.size()) +
+       " contours (" + std::to_string(plan.parts) + " outlines, " + std::to_string(plan.holes) +
+       " holes), cut " + num(plan.cut_mm) + " mm, rapids " + num(plan.rapid_mm) + " mm, about " +
+       num(plan.time_s) + " s</text>\n";
   auto poly = [&](const std::vector<Vec2>& p, bool closed, const char* color, double width,
                   const char* extra = "") {
-    std::string o = std::string("<") + (closed ? "polygon" : "polyline") +
-                    " fill=\"none\" stroke=\"" + color + "\" stroke-width=\"" + num(width) + "\"" +
-                    extra + " points=\"";
+    std::string o = std::string("<") + (closed ? "polygon" : "polyline") + " fill=\"none\" stroke=\"" +
+                    color + "\" stroke-width=\"" + num(width) + "\"" + extra + " points=\"";
     for (const Vec2& q : p) o += v.pt(q) + " ";
     return o + "\"/>\n";
   };
@@ -53,8 +52,8 @@ std::string plan_svg(const CutPlan& plan, const std::string& title) {
       at = c.entry.path.front();
     }
     const Vec2 p = v.px(c.entry.pierce);
-    s += "<circle cx=\"" + num(p.x()) + "\" cy=\"" + num(p.y()) + "\" r=\"" + num(dot) +
-         "\" fill=\"red\"/>\n";
+    s +=
+        "<circle cx=\"" + num(p.x()) + "\" cy=\"" + num(p.y()) + "\" r=\"" + num(dot) + "\" fill=\"red\"/>\n";
     s += "<text x=\"" + num(p.x() + 5) + "\" y=\"" + num(p.y() - 5) +
          "\" fill=\"red\" font-weight=\"bold\">" + std::to_string(k + 1) + "</text>\n";
   }

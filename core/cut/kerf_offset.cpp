@@ -81,14 +81,12 @@ std::vector<std::vector<Vec2>> offset_polygon(const std::vector<Vec2>& poly_in, 
     std::vector<Vec2> q;
     q.reserve(path.size());
     for (const ClipperLib::IntPoint& p : path) {
-      q.emplace_back(static_cast<double>(p.X) * kClipperUnitMm,
-                     static_cast<double>(p.Y) * kClipperUnitMm);
+      q.emplace_back(static_cast<double>(p.X) * kClipperUnitMm, static_cast<double>(p.Y) * kClipperUnitMm);
     }
     out.push_back(std::move(q));
   }
-  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) {
-    return signed_area(a) > signed_area(b);
-  });
+  std::sort(out.begin(), out.end(),
+            [](const auto& a, const auto& b) { return signed_area(a) > signed_area(b); });
   return out;
 }
 

@@ -17,8 +17,7 @@ using geom::cross;
 bool segments_meet(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
   const double d1 = cross(b - a, c - a), d2 = cross(b - a, d - a);
   const double d3 = cross(d - c, a - c), d4 = cross(d - c, b - c);
-  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0)))
-    return true;
+  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return true;
   auto on = [](const Vec2& p, const Vec2& q, const Vec2& r, double o) {  // r on pq, collinear
     return o == 0.0 && std::min(p.x(), q.x()) <= r.x() && r.x() <= std::max(p.x(), q.x()) &&
            std::min(p.y(), q.y()) <= r.y() && r.y() <= std::max(p.y(), q.y());
@@ -73,14 +72,13 @@ Vec2 inward_normal(const std::vector<Vec2>& poly, std::size_t i) {
   const Vec2 u = (poly[i] - poly[(i + n - 1) % n]).normalized();
   const Vec2 v = (poly[(i + 1) % n] - poly[i]).normalized();
   Vec2 left = Vec2(-u.y(), u.x()) + Vec2(-v.y(), v.x());  // left of travel
-  if (left.norm() < 1e-12) left = Vec2(-u.y(), u.x());   // folds back: either edge's
+  if (left.norm() < 1e-12) left = Vec2(-u.y(), u.x());    // folds back: either edge's
   left.normalize();
   return signed_area(poly) > 0.0 ? left : Vec2(-left);  // counter-clockwise: inside is left
 }
 
-LeadIn place_lead_in(const std::vector<Vec2>& path, const std::vector<Vec2>& drawing,
-                     const Vec2& from, const LeadInRequest& req,
-                     const std::vector<const std::vector<Vec2>*>& others) {
+LeadIn place_lead_in(const std::vector<Vec2>& path, const std::vector<Vec2>& drawing, const Vec2& from,
+                     const LeadInRequest& req, const std::vector<const std::vector<Vec2>*>& others) {
   // Candidate start vertices, preferred first.
   std::vector<std::size_t> cand;
   if (!req.hole) {

@@ -28,18 +28,18 @@ namespace lcnc::cut {
 using Vec2 = Eigen::Vector2d;
 
 struct LeadInRequest {
-  bool hole = false;        // the scrap is inside the path (else outside)
-  double lead_in_mm = 2.0;  // asked length; 0 = pierce on the path
-  double lead_out_mm = 0.5; // overcut past the start; 0 = none
-  double offset_mm = 0.0;   // the path's distance from the drawing (kerf/2)
+  bool hole = false;         // the scrap is inside the path (else outside)
+  double lead_in_mm = 2.0;   // asked length; 0 = pierce on the path
+  double lead_out_mm = 0.5;  // overcut past the start; 0 = none
+  double offset_mm = 0.0;    // the path's distance from the drawing (kerf/2)
 };
 
 struct LeadIn {
-  std::vector<Vec2> path;     // the contour's path from the start vertex, same direction
-  Vec2 pierce = Vec2::Zero(); // where the beam pierces (== path[0] without a lead-in)
-  double lead_in_mm = 0.0;    // its length as placed
-  bool shortened = false;     // shorter than asked (it did not fit)
-  std::vector<Vec2> overcut;  // after coming back to path[0]: the lead-out's points
+  std::vector<Vec2> path;      // the contour's path from the start vertex, same direction
+  Vec2 pierce = Vec2::Zero();  // where the beam pierces (== path[0] without a lead-in)
+  double lead_in_mm = 0.0;     // its length as placed
+  bool shortened = false;      // shorter than asked (it did not fit)
+  std::vector<Vec2> overcut;   // after coming back to path[0]: the lead-out's points
 };
 
 // `path`: the oriented cut path (closed); `drawing`: the drawn contour's

@@ -47,8 +47,7 @@ std::string check_process(const Process& p) {
 
 Result<ProcessTable> parse_process_table(std::string_view text, const std::string& file,
                                          const Process& defaults) {
-  static constexpr const char* kColumns[] = {"layer", "feed_mm_min", "power_pct", "pierce_s",
-                                             "kerf_mm"};
+  static constexpr const char* kColumns[] = {"layer", "feed_mm_min", "power_pct", "pierce_s", "kerf_mm"};
   ProcessTable t;
   t.defaults = defaults;
   std::uint32_t line_no = 0;
@@ -65,7 +64,8 @@ Result<ProcessTable> parse_process_table(std::string_view text, const std::strin
     const std::vector<std::string_view> f = split(line);
     if (f[0] == "layer") continue;  // the header
     if (f.size() != 5) {
-      return fail(std::to_string(f.size()) + " fields; expected 5: layer,feed_mm_min,power_pct,"
+      return fail(std::to_string(f.size()) +
+                  " fields; expected 5: layer,feed_mm_min,power_pct,"
                   "pierce_s,kerf_mm");
     }
     if (f[0].empty()) return fail("empty layer name; expected the DXF layer's name");

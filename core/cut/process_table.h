@@ -39,11 +39,9 @@ struct ProcessTable {
 };
 
 // The rows of `text` on top of `defaults`; `file` names it in errors.
-[[nodiscard]] Result<ProcessTable> parse_process_table(std::string_view text,
-                                                       const std::string& file,
+[[nodiscard]] Result<ProcessTable> parse_process_table(std::string_view text, const std::string& file,
                                                        const Process& defaults);
-[[nodiscard]] Result<ProcessTable> read_process_table(const std::string& path,
-                                                      const Process& defaults);
+[[nodiscard]] Result<ProcessTable> read_process_table(const std::string& path, const Process& defaults);
 
 // The first value out of range (feed ≤ 0, power outside 0–100, pierce or
 // kerf < 0, any not finite) as "what: found; expected", or empty.

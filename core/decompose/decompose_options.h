@@ -15,9 +15,9 @@ enum class Mode : std::uint8_t {
 
 // Sync mode: which of the feasible main paths (filter half-widths τ) to take.
 enum class SyncGoal : std::uint8_t {
-  SmoothestMain,  // the largest τ the field allows: lowest main-axis acceleration
-  ShortestLeadIn, // the smallest τ the main-axis limits allow: least time at
-                  // rest before and after each contour (2τ per contour)
+  SmoothestMain,   // the largest τ the field allows: lowest main-axis acceleration
+  ShortestLeadIn,  // the smallest τ the main-axis limits allow: least time at
+                   // rest before and after each contour (2τ per contour)
 };
 
 struct Options {
@@ -26,7 +26,7 @@ struct Options {
   double main_accel_mm_s2 = kDefaultMainAccel_mm_s2;
   double main_speed_mm_s = kDefaultMainSpeed_mm_s;
   double aux_speed_mm_s = kDefaultAuxSpeed_mm_s;
-  double aux_half_field_mm = kDefaultAuxHalfField_mm;  // |P|, |Q| ≤ this
+  double aux_half_field_mm = kDefaultAuxHalfField_mm;     // |P|, |Q| ≤ this
   double critical_angle_deg = kDefaultCriticalAngle_deg;  // Seed mode only
   SyncGoal goal = SyncGoal::SmoothestMain;                // Sync mode only
 };

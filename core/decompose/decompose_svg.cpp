@@ -20,8 +20,8 @@ using svg::View;
 
 template <typename F>
 std::string polyline(std::size_t n, F point, const View& v, const char* color, double width) {
-  std::string s = "<polyline fill=\"none\" stroke=\"" + std::string(color) +
-                  "\" stroke-width=\"" + num(width) + "\" points=\"";
+  std::string s = "<polyline fill=\"none\" stroke=\"" + std::string(color) + "\" stroke-width=\"" +
+                  num(width) + "\" points=\"";
   Vec2 last(1e300, 1e300);
   for (std::size_t i = 0; i < n; ++i) {
     const Vec2 q = v.px(point(i));
@@ -56,17 +56,19 @@ std::string paths_svg(const PartResult& r, const Options& opt, const std::string
        "\"><tspan fill=\"green\">S contour</tspan>, <tspan fill=\"blue\">S1 main axes "
        "(X, Y)</tspan> — part coordinates, mm</text>\n";
   s += "<text x=\"" + num(2 * pad + panel) + "\" y=\"" + num(H - 12) +
-       "\"><tspan fill=\"red\">S2 = S − S1 auxiliary axes (P, Q)</tspan> in the field ±" +
-       num(f) + " mm</text>\n";
+       "\"><tspan fill=\"red\">S2 = S − S1 auxiliary axes (P, Q)</tspan> in the field ±" + num(f) +
+       " mm</text>\n";
   // The field.
-  s += "<polygon fill=\"none\" stroke=\"#999\" stroke-dasharray=\"4 3\" points=\"" +
-       va.pt(Vec2(-f, -f)) + " " + va.pt(Vec2(f, -f)) + " " + va.pt(Vec2(f, f)) + " " +
-       va.pt(Vec2(-f, f)) + "\"/>\n";
+  s += "<polygon fill=\"none\" stroke=\"#999\" stroke-dasharray=\"4 3\" points=\"" + va.pt(Vec2(-f, -f)) +
+       " " + va.pt(Vec2(f, -f)) + " " + va.pt(Vec2(f, f)) + " " + va.pt(Vec2(-f, f)) + "\"/>\n";
   for (const ContourResult& c : r.contours) {
     const KinematicsTable& t = c.table;
-    s += polyline(t.size(), [&](std::size_t i) { return t.beam[i]; }, vp, "green", 2.0);
-    s += polyline(t.size(), [&](std::size_t i) { return t.main[i]; }, vp, "blue", 1.0);
-    s += polyline(t.size(), [&](std::size_t i) { return t.aux(i); }, va, "red", 1.0);
+    s += polyline(
+        t.size(), [&](std::size_t i) { return t.beam[i]; }, vp, "green", 2.0);
+    s += polyline(
+        t.size(), [&](std::size_t i) { return t.main[i]; }, vp, "blue", 1.0);
+    s += polyline(
+        t.size(), [&](std::size_t i) { return t.aux(i); }, va, "red", 1.0);
   }
   return s + "</svg>\n";
 }
@@ -96,8 +98,8 @@ std::string accel_svg(const PartResult& r, const Options& opt, const std::string
   }
   auto y = [&](double a) { return top + ph - a / a_top * ph; };
   auto curve = [&](const std::vector<double>& v, const char* color) {
-    std::string s = "<polyline fill=\"none\" stroke=\"" + std::string(color) +
-                    "\" stroke-width=\"1\" points=\"";
+    std::string s =
+        "<polyline fill=\"none\" stroke=\"" + std::string(color) + "\" stroke-width=\"1\" points=\"";
     for (std::size_t k = 0; k < cols; ++k) {
       if (v[k] < 0) continue;
       s += num(left + static_cast<double>(k)) + "," + num(y(v[k])) + " ";
@@ -106,8 +108,8 @@ std::string accel_svg(const PartResult& r, const Options& opt, const std::string
   };
   std::string s = svg::open(W, H);
   s += "<text x=\"" + num(left) + "\" y=\"22\">" + escape(title) + "</text>\n";
-  s += "<rect x=\"" + num(left) + "\" y=\"" + num(top) + "\" width=\"" + num(pw) +
-       "\" height=\"" + num(ph) + "\" fill=\"none\" stroke=\"black\"/>\n";
+  s += "<rect x=\"" + num(left) + "\" y=\"" + num(top) + "\" width=\"" + num(pw) + "\" height=\"" + num(ph) +
+       "\" fill=\"none\" stroke=\"black\"/>\n";
   for (int k = 0; k <= 5; ++k) {  // axis labels
     const double a = a_top * k / 5.0;
     s += "<text x=\"" + num(left - 6) + "\" y=\"" + num(y(a) + 4) + "\" text-anchor=\"end\">" +
@@ -118,12 +120,12 @@ std::string accel_svg(const PartResult& r, const Options& opt, const std::string
   }
   s += "<text x=\"" + num(left + pw / 2) + "\" y=\"" + num(H - 8) +
        "\" text-anchor=\"middle\">time, s</text>\n";
-  s += "<text x=\"14\" y=\"" + num(top + ph / 2) + "\" transform=\"rotate(-90 14 " +
-       num(top + ph / 2) + ")\" text-anchor=\"middle\">acceleration, m/s²</text>\n";
+  s += "<text x=\"14\" y=\"" + num(top + ph / 2) + "\" transform=\"rotate(-90 14 " + num(top + ph / 2) +
+       ")\" text-anchor=\"middle\">acceleration, m/s²</text>\n";
   s += curve(eff, "green") + curve(mainc, "blue");
   const double yl = y(opt.main_accel_mm_s2);
-  s += "<line x1=\"" + num(left) + "\" y1=\"" + num(yl) + "\" x2=\"" + num(left + pw) +
-       "\" y2=\"" + num(yl) + "\" stroke=\"blue\" stroke-dasharray=\"6 4\"/>\n";
+  s += "<line x1=\"" + num(left) + "\" y1=\"" + num(yl) + "\" x2=\"" + num(left + pw) + "\" y2=\"" + num(yl) +
+       "\" stroke=\"blue\" stroke-dasharray=\"6 4\"/>\n";
   s += "<text x=\"" + num(left + pw - 4) + "\" y=\"" + num(top + 16) +
        "\" text-anchor=\"end\"><tspan fill=\"green\">effective (beam)</tspan>  <tspan "
        "fill=\"blue\">main axes; dashed: main-axis limit</tspan></text>\n";
@@ -159,7 +161,10 @@ std::string axes_svg(const AxisCurves& c, const std::string& title) {
   s += "<text x=\"" + num(left) + "\" y=\"22\">" + escape(title) + "</text>\n";
   // laser-on spans
   for (std::size_t i = 0; i < n;) {
-    if (!c.laser[i]) { ++i; continue; }
+    if (!c.laser[i]) {
+      ++i;
+      continue;
+    }
     std::size_t j = i;
     while (j + 1 < n && c.laser[j + 1]) ++j;
     const double x0 = px(i > 0 ? c.t_s[i - 1] : c.t_s[i]), x1 = px(c.t_s[j]);
@@ -167,22 +172,22 @@ std::string axes_svg(const AxisCurves& c, const std::string& title) {
          "\" height=\"" + num(ph) + "\" fill=\"#fff2cc\"/>\n";
     i = j + 1;
   }
-  s += "<rect x=\"" + num(left) + "\" y=\"" + num(top) + "\" width=\"" + num(pw) +
-       "\" height=\"" + num(ph) + "\" fill=\"none\" stroke=\"black\"/>\n";
+  s += "<rect x=\"" + num(left) + "\" y=\"" + num(top) + "\" width=\"" + num(pw) + "\" height=\"" + num(ph) +
+       "\" fill=\"none\" stroke=\"black\"/>\n";
   for (int k = 0; k <= 5; ++k) {
     const double f = k / 5.0;
     s += "<text x=\"" + num(left - 6) + "\" y=\"" + num(top + ph - f * ph + 4) +
          "\" text-anchor=\"end\" fill=\"#1f4e9c\">" + num(m0 + f * (m1 - m0)).substr(0, 7) + "</text>\n";
-    s += "<text x=\"" + num(left + pw + 6) + "\" y=\"" + num(top + ph - f * ph + 4) +
-         "\" fill=\"#b22222\">" + num(a0 + f * (a1 - a0)).substr(0, 7) + "</text>\n";
-    s += "<text x=\"" + num(left + pw * f) + "\" y=\"" + num(top + ph + 18) +
-         "\" text-anchor=\"middle\">" + num(t_end * f).substr(0, 7) + "</text>\n";
+    s += "<text x=\"" + num(left + pw + 6) + "\" y=\"" + num(top + ph - f * ph + 4) + "\" fill=\"#b22222\">" +
+         num(a0 + f * (a1 - a0)).substr(0, 7) + "</text>\n";
+    s += "<text x=\"" + num(left + pw * f) + "\" y=\"" + num(top + ph + 18) + "\" text-anchor=\"middle\">" +
+         num(t_end * f).substr(0, 7) + "</text>\n";
   }
   s += "<text x=\"" + num(left + pw / 2) + "\" y=\"" + num(H - 8) +
        "\" text-anchor=\"middle\">time, s (shaded: laser on)</text>\n";
   const auto curve = [&](auto value, auto y, const char* color, const char* dash) {
-    std::string o = "<polyline fill=\"none\" stroke=\"" + std::string(color) +
-                    "\" stroke-width=\"1.2\"" + dash + " points=\"";
+    std::string o = "<polyline fill=\"none\" stroke=\"" + std::string(color) + "\" stroke-width=\"1.2\"" +
+                    dash + " points=\"";
     double last_x = -1e9;
     for (std::size_t i = 0; i < n; ++i) {
       const double x = px(c.t_s[i]);
@@ -196,7 +201,8 @@ std::string axes_svg(const AxisCurves& c, const std::string& title) {
   s += curve([&](std::size_t i) { return c.main[i].y(); }, ym, "#1f4e9c", " stroke-dasharray=\"6 3\"");
   s += curve([&](std::size_t i) { return c.aux[i].x(); }, ya, "#b22222", "");
   s += curve([&](std::size_t i) { return c.aux[i].y(); }, ya, "#b22222", " stroke-dasharray=\"6 3\"");
-  s += "<text x=\"" + num(left + pw) + "\" y=\"22\" text-anchor=\"end\"><tspan fill=\"#1f4e9c\">main X "
+  s += "<text x=\"" + num(left + pw) +
+       "\" y=\"22\" text-anchor=\"end\"><tspan fill=\"#1f4e9c\">main X "
        "(solid), Y (dashed), mm, left scale</tspan>  <tspan fill=\"#b22222\">auxiliary P (solid), Q "
        "(dashed), mm, right scale</tspan></text>\n";
   return s + "</svg>\n";

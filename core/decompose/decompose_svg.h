@@ -19,10 +19,8 @@
 
 namespace lcnc::decompose {
 
-[[nodiscard]] std::string paths_svg(const PartResult& r, const Options& opt,
-                                    const std::string& title);
-[[nodiscard]] std::string accel_svg(const PartResult& r, const Options& opt,
-                                    const std::string& title);
+[[nodiscard]] std::string paths_svg(const PartResult& r, const Options& opt, const std::string& title);
+[[nodiscard]] std::string accel_svg(const PartResult& r, const Options& opt, const std::string& title);
 
 // Positions over time of the two axis groups (mm, s), one sample per entry.
 struct AxisCurves {

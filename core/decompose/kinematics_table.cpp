@@ -45,8 +45,7 @@ double loop_accel(const std::vector<Vec2>& x, const std::vector<double>& t_s, st
   const double dt0 = t_s[last] - t_s[last - 1];
   const double dt1 = t_s[first + 1] - t_s[first];
   if (dt0 <= 0.0 || dt1 <= 0.0) return 0.0;
-  return ((x[first + 1] - x[first]) / dt1 - (x[last] - x[last - 1]) / dt0).norm() /
-         (0.5 * (dt0 + dt1));
+  return ((x[first + 1] - x[first]) / dt1 - (x[last] - x[last - 1]) / dt0).norm() / (0.5 * (dt0 + dt1));
 }
 
 Peaks peaks(const KinematicsTable& t) {
@@ -92,8 +91,8 @@ void write_csv(std::ostream& out, const std::vector<const KinematicsTable*>& tab
       }
       row += ',';
       put(row, t->t_s[i], 9);
-      for (double v : {t->v_main[i], t->v_aux[i], t->a_main[i], t->a_aux[i], t->at_main[i],
-                       t->at_aux[i], t->a_eff[i]}) {
+      for (double v :
+           {t->v_main[i], t->v_aux[i], t->a_main[i], t->a_aux[i], t->at_main[i], t->at_aux[i], t->a_eff[i]}) {
         row += ',';
         put(row, v, 3);
       }

@@ -53,8 +53,8 @@ void fill_derivatives(KinematicsTable& t, double v0_main, double v0_aux);
 // `last` are the same point, so the motion runs … last−1 → last ≡ first →
 // first+1 … (the one-sided differences at the table's ends would read the
 // start of the cut as a jump).
-[[nodiscard]] double loop_accel(const std::vector<Vec2>& x, const std::vector<double>& t_s,
-                                std::size_t first, std::size_t last);
+[[nodiscard]] double loop_accel(const std::vector<Vec2>& x, const std::vector<double>& t_s, std::size_t first,
+                                std::size_t last);
 
 [[nodiscard]] Peaks peaks(const KinematicsTable& t);
 

@@ -4,12 +4,12 @@
 #include <cmath>
 #include <cstdio>
 
+#include "common/error.h"
 #include "decompose/seed_decomposition.h"
 #include "decompose/sync_decomposition.h"
 #include "dxf/contour_chain.h"
 #include "dxf/contour_check.h"
 #include "dxf/dxf_tolerances.h"
-#include "common/error.h"
 
 namespace lcnc::decompose {
 namespace {
@@ -22,8 +22,7 @@ std::string over(const char* what, double value, double limit, const char* unit)
 
 }  // namespace
 
-Status check_part_size(const dxf::Drawing& d, const std::vector<dxf::Contour>& contours,
-                       double step_mm) {
+Status check_part_size(const dxf::Drawing& d, const std::vector<dxf::Contour>& contours, double step_mm) {
   if (!(step_mm > 0.0)) return {};  // discretize_all names a bad step
   double length_mm = 0.0, points = 0.0;
   for (const dxf::Contour& c : contours) {
@@ -45,9 +44,8 @@ Status check_part_size(const dxf::Drawing& d, const std::vector<dxf::Contour>& c
 Status check_options(const Options& opt) {
   auto positive = [](double v, const char* what, const char* unit) -> Status {
     if (std::isfinite(v) && v > 0.0) return {};
-    return make_error(ErrorCode::DecomposeBadOption,
-                      std::string(what) + " " + std::to_string(v) + " " + unit +
-                          "; expected a positive number");
+    return make_error(ErrorCode::DecomposeBadOption, std::string(what) + " " + std::to_string(v) + " " +
+                                                         unit + "; expected a positive number");
   };
   if (Status s = positive(opt.speed_mm_s, "contour speed", "mm/s"); !s) return s;
   if (Status s = positive(opt.main_accel_mm_s2, "main-axis acceleration limit", "mm/s^2"); !s) return s;
@@ -65,14 +63,14 @@ Status check_options(const Options& opt) {
                   "contour speed %.1f mm/s (%.2f m/min) is more than the main and auxiliary "
                   "axes reach together: %.1f + %.1f = %.1f mm/s (%.2f m/min); expected a contour "
                   "speed at most that",
-                  opt.speed_mm_s, opt.speed_mm_s * 0.06, opt.main_speed_mm_s, opt.aux_speed_mm_s,
-                  sum, sum * 0.06);
+                  opt.speed_mm_s, opt.speed_mm_s * 0.06, opt.main_speed_mm_s, opt.aux_speed_mm_s, sum,
+                  sum * 0.06);
     return make_error(ErrorCode::DecomposeInfeasible, buf);
   }
   if (!(opt.critical_angle_deg > 0.0 && opt.critical_angle_deg < 180.0)) {
-    return make_error(ErrorCode::DecomposeBadOption,
-                      "critical angle " + std::to_string(opt.critical_angle_deg) +
-                          " deg; expected 0 < angle < 180");
+    return make_error(
+        ErrorCode::DecomposeBadOption,
+        "critical angle " + std::to_string(opt.critical_angle_deg) + " deg; expected 0 < angle < 180");
   }
   return {};
 }
@@ -82,8 +80,7 @@ Result<PreparedPart> prepare_part(const dxf::Drawing& d, double step_mm) {
   if (!cs) return cs.error();
   if (cs->empty()) {
     return make_error(ErrorCode::DxfOpenContour,
-                      "the drawing has no contours; expected at least one closed contour",
-                      d.file);
+                      "the drawing has no contours; expected at least one closed contour", d.file);
   }
   if (Status s = check_part_size(d, *cs, step_mm); !s) return s.error();
   Result<std::vector<dxf::Polyline>> pl = dxf::discretize_all(*cs, step_mm, d.file);
@@ -125,8 +122,7 @@ Result<PartResult> decompose_prepared(const PreparedPart& p, const Options& opt)
       r.exceeded.push_back(over("auxiliary speed", r.peaks.v_aux, opt.aux_speed_mm_s, "mm/s"));
     }
     if (r.peaks.aux_excursion > opt.aux_half_field_mm) {
-      r.exceeded.push_back(
-          over("auxiliary excursion", r.peaks.aux_excursion, opt.aux_half_field_mm, "mm"));
+      r.exceeded.push_back(over("auxiliary excursion", r.peaks.aux_excursion, opt.aux_half_field_mm, "mm"));
     }
     out.points += r.polyline.size();
     out.contours.push_back(std::move(r));

@@ -32,8 +32,7 @@ struct PartResult {
   std::size_t points = 0;  // contour points decomposed
 };
 
-[[nodiscard]] Result<PartResult> decompose_part(const dxf::Drawing& d, double step_mm,
-                                                const Options& opt);
+[[nodiscard]] Result<PartResult> decompose_part(const dxf::Drawing& d, double step_mm, const Options& opt);
 
 // Checks the options (speeds, limits, field, angle > 0; in sync mode a
 // contour speed the two axis groups can reach together); the error names the
@@ -43,8 +42,8 @@ struct PartResult {
 // DecomposeTooLarge when the contours at `step_mm` would make more than
 // kMaxPartPoints points (estimated from their lengths, before anything is
 // allocated); the message gives the length, the points and the units.
-[[nodiscard]] Status check_part_size(const dxf::Drawing& d,
-                                     const std::vector<dxf::Contour>& contours, double step_mm);
+[[nodiscard]] Status check_part_size(const dxf::Drawing& d, const std::vector<dxf::Contour>& contours,
+                                     double step_mm);
 
 // The part's contours prepared for decomposition (chained, discretized,
 // checked) — decompose_part's first half, for callers that time the halves.

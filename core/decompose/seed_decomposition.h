@@ -37,8 +37,7 @@ namespace lcnc::decompose {
 
 // S1 by eq. 1–5 (closed polyline, same size as `s`); error when the walk does
 // not settle (a bend the critical angle cannot spread over the contour).
-[[nodiscard]] Result<std::vector<Vec2>> seed_smooth(const std::vector<Vec2>& s,
-                                                    double critical_angle_deg);
+[[nodiscard]] Result<std::vector<Vec2>> seed_smooth(const std::vector<Vec2>& s, double critical_angle_deg);
 
 // The whole seed decomposition of one contour: rows 0 … n (row n is point 0
 // again, closing the contour).

@@ -94,10 +94,14 @@ Fail evaluate(const dxf::Polyline& s, const Options& opt, double vk, std::size_t
     }
     if (exc > field || v2 > vaux_sqr) break;
   }
-  if (exc > field) fail = Fail::AuxField;
-  else if (v2 > vaux_sqr) fail = Fail::AuxSpeed;
-  else if (a2 > acc_sqr) fail = Fail::MainAccel;
-  else if (v1 > vmain_sqr) fail = Fail::MainSpeed;
+  if (exc > field)
+    fail = Fail::AuxField;
+  else if (v2 > vaux_sqr)
+    fail = Fail::AuxSpeed;
+  else if (a2 > acc_sqr)
+    fail = Fail::MainAccel;
+  else if (v1 > vmain_sqr)
+    fail = Fail::MainSpeed;
   return fail;
 }
 
@@ -119,8 +123,10 @@ std::size_t largest(std::size_t lo, std::size_t cap, Ok ok) {
   if (lo == hi) return lo;
   while (hi - lo > std::max<std::size_t>(1, lo / 100)) {
     const std::size_t mid = lo + (hi - lo) / 2;
-    if (ok(mid)) lo = mid;
-    else hi = mid;
+    if (ok(mid))
+      lo = mid;
+    else
+      hi = mid;
   }
   return lo;
 }
@@ -134,13 +140,11 @@ std::size_t choose_m(const dxf::Polyline& s, const Options& opt, double vk, Fail
   // |S2| ≤ vkτ/3 and |v2| ≤ 2vk it fits up to m = 3F/Δ when 2vk is allowed.
   std::size_t m0 = 1;
   if (2.0 * vk <= opt.aux_speed_mm_s * kMargin) {
-    m0 = std::clamp<std::size_t>(
-        static_cast<std::size_t>(3.0 * opt.aux_half_field_mm * kMargin / s.step_mm), 1, m_cap);
+    m0 = std::clamp<std::size_t>(static_cast<std::size_t>(3.0 * opt.aux_half_field_mm * kMargin / s.step_mm),
+                                 1, m_cap);
   }
   // Largest m whose auxiliary motion fits: the main axes as even as can be.
-  const std::size_t m_f = largest(m0, m_cap, [&](std::size_t m) {
-    return aux_ok(evaluate(s, opt, vk, m));
-  });
+  const std::size_t m_f = largest(m0, m_cap, [&](std::size_t m) { return aux_ok(evaluate(s, opt, vk, m)); });
   const Fail at_f = evaluate(s, opt, vk, m_f);
   if (at_f == Fail::None && opt.goal == SyncGoal::SmoothestMain) return m_f;
   // Otherwise the main axes decide: the smallest m that keeps them within
@@ -148,15 +152,17 @@ std::size_t choose_m(const dxf::Polyline& s, const Options& opt, double vk, Fail
   // if the auxiliary motion still fits there.
   const double m_acc = std::ceil(2.0 * vk / (opt.main_accel_mm_s2 * kMargin * dt));
   // (bounded: every trial allocates n + 4m rows, see kMaxFilterSamples)
-  std::size_t lo = m_f, hi = static_cast<std::size_t>(
-                            std::min<double>(m_acc, static_cast<double>(kMaxFilterSamples)));
+  std::size_t lo = m_f,
+              hi = static_cast<std::size_t>(std::min<double>(m_acc, static_cast<double>(kMaxFilterSamples)));
   if (at_f == Fail::None) {  // ShortestLeadIn: the smallest m ≤ m_f that keeps them
     lo = 0;
     hi = m_f;
     while (hi - lo > std::max<std::size_t>(1, lo / 100)) {
       const std::size_t mid = lo + (hi - lo) / 2;
-      if (evaluate(s, opt, vk, mid) == Fail::None) hi = mid;
-      else lo = mid;
+      if (evaluate(s, opt, vk, mid) == Fail::None)
+        hi = mid;
+      else
+        lo = mid;
     }
     return hi;
   }
@@ -165,8 +171,10 @@ std::size_t choose_m(const dxf::Polyline& s, const Options& opt, double vk, Fail
       const std::size_t mid = lo + (hi - lo) / 2;
       const Fail f = evaluate(s, opt, vk, mid);
       if (f == Fail::None) return mid;
-      if (aux_ok(f)) lo = mid;  // main limits: needs a larger m
-      else hi = mid;            // the field or aux speed: a smaller one
+      if (aux_ok(f))
+        lo = mid;  // main limits: needs a larger m
+      else
+        hi = mid;  // the field or aux speed: a smaller one
     }
     const Fail f = evaluate(s, opt, vk, hi);
     if (f == Fail::None) return hi;
@@ -201,14 +209,15 @@ double highest_feasible_speed(const dxf::Polyline& s, const Options& opt) {
   }
   while (hi - lo > kSpeedSearchRel * lo) {
     const double mid = 0.5 * (lo + hi);
-    if (choose_m(s, opt, mid, &why) != 0) lo = mid;
-    else hi = mid;
+    if (choose_m(s, opt, mid, &why) != 0)
+      lo = mid;
+    else
+      hi = mid;
   }
   return lo;
 }
 
-Result<SyncResult> sync_decompose(const dxf::Polyline& s, const Options& opt,
-                                  const std::string& name) {
+Result<SyncResult> sync_decompose(const dxf::Polyline& s, const Options& opt, const std::string& name) {
   const double vk = opt.speed_mm_s;
   Fail why = Fail::None;
   const std::size_t m = choose_m(s, opt, vk, &why);
@@ -248,8 +257,7 @@ Result<SyncResult> sync_decompose(const dxf::Polyline& s, const Options& opt,
   // The output checks itself against the limits it was made for.
   const Peaks p = peaks(t);
   if (p.a_main > opt.main_accel_mm_s2 || p.aux_excursion > opt.aux_half_field_mm ||
-      p.v_aux > opt.aux_speed_mm_s || p.v_main > opt.main_speed_mm_s ||
-      p.exactness > kExactness_mm) {
+      p.v_aux > opt.aux_speed_mm_s || p.v_main > opt.main_speed_mm_s || p.exactness > kExactness_mm) {
     char buf[512];
     std::snprintf(buf, sizeof buf,
                   "%s: the table breaks a limit it was made for (main %.3f mm/s2, %.3f mm/s; "

@@ -90,9 +90,8 @@ Result<std::vector<Contour>> chain_contours(const Drawing& d) {
       std::string list;
       for (std::size_t id : found) list += (list.empty() ? "" : ", ") + describe(es[id / 2]);
       return make_error(ErrorCode::DxfOpenContour,
-                        c.name() + " branches at " + format_point(p) + ": " +
-                            describe(es[self_entity]) + " meets " + list +
-                            "; expected exactly two entity ends at every vertex",
+                        c.name() + " branches at " + format_point(p) + ": " + describe(es[self_entity]) +
+                            " meets " + list + "; expected exactly two entity ends at every vertex",
                         d.file, es[found[0] / 2].line);
     }
     return {};
@@ -128,10 +127,10 @@ Result<std::vector<Contour>> chain_contours(const Drawing& d) {
       }
       if (found.empty()) {
         return make_error(ErrorCode::DxfOpenContour,
-                          c.name() + " is open: " + describe(es[last]) + " ends at " +
-                              format_point(end) + " and no entity continues it (the contour "
-                              "starts at " + format_point(start) + ", " +
-                              std::to_string((end - start).norm()) +
+                          c.name() + " is open: " + describe(es[last]) + " ends at " + format_point(end) +
+                              " and no entity continues it (the contour "
+                              "starts at " +
+                              format_point(start) + ", " + std::to_string((end - start).norm()) +
                               " mm away); expected a closed contour (ends within " +
                               std::to_string(kJoinToleranceMm) + " mm)",
                           d.file, es[last].line);

@@ -6,8 +6,8 @@
 #include <optional>
 #include <set>
 
-#include "dxf/contour_chain.h"
 #include "common/error.h"
+#include "dxf/contour_chain.h"
 #include "geom/plane.h"
 
 namespace lcnc::dxf {
@@ -21,9 +21,7 @@ struct ChordRef {
 using geom::cross;
 
 // Lexicographic order of points, the order the sweep meets them in.
-bool before(const Vec2& a, const Vec2& b) {
-  return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-}
+bool before(const Vec2& a, const Vec2& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); }
 
 // Where the chords p0p1 and q0q1 meet (cross, touch or overlap), if they do.
 std::optional<Vec2> meet(const Vec2& p0, const Vec2& p1, const Vec2& q0, const Vec2& q1) {
@@ -43,9 +41,7 @@ std::optional<Vec2> meet(const Vec2& p0, const Vec2& p1, const Vec2& q0, const V
   const int s1 = sgn(o1), s2 = sgn(o2), s3 = sgn(o3), s4 = sgn(o4);
   if (s1 * s2 < 0 && s3 * s4 < 0) return p0 + (o3 / (o3 - o4)) * dp;
   // Touching or collinear: an end point of one chord on the other.
-  auto on = [](const Vec2& a, const Vec2& b, const Vec2& x) {
-    return (x - a).dot(x - b) <= 0.0;
-  };
+  auto on = [](const Vec2& a, const Vec2& b, const Vec2& x) { return (x - a).dot(x - b) <= 0.0; };
   if (s1 == 0 && on(p0, p1, q0)) return q0;
   if (s2 == 0 && on(p0, p1, q1)) return q1;
   if (s3 == 0 && on(q0, q1, p0)) return p0;
@@ -88,13 +84,12 @@ struct SweepOrder {
 
 Status check_crossings(const std::vector<Contour>& contours, const std::vector<Polyline>& lines,
                        const std::string& file) {
-  auto crossing = [&](const ChordRef& r, const ChordRef& s, const Vec2& at,
-                      const char* how) -> Status {
+  auto crossing = [&](const ChordRef& r, const ChordRef& s, const Vec2& at, const char* how) -> Status {
     const Polyline& lr = lines[r.poly];
     const Polyline& ls = lines[s.poly];
-    const std::string who =
-        r.poly == s.poly ? contours[r.poly].name() + " " + how + " itself"
-                         : contours[r.poly].name() + " " + how + " " + contours[s.poly].name();
+    const std::string who = r.poly == s.poly
+                                ? contours[r.poly].name() + " " + how + " itself"
+                                : contours[r.poly].name() + " " + how + " " + contours[s.poly].name();
     return make_error(ErrorCode::DxfCrossing,
                       who + " at " + format_point(at) + " (the entity at DXF line " +
                           std::to_string(lr.src_line[r.j]) + " and the one at DXF line " +
@@ -119,10 +114,9 @@ Status check_crossings(const std::vector<Contour>& contours, const std::vector<P
       const Vec2& a = l.pts[j];
       const Vec2& b = l.pts[(j + 1) % n];
       const Vec2 d0 = a - prev, d1 = b - a;
-      if (std::abs(cross(d0, d1)) <= 1e-12 * (d0.squaredNorm() + d1.squaredNorm()) &&
-          d0.dot(d1) < 0.0) {
-        return crossing(ChordRef{p, static_cast<std::uint32_t>((j + n - 1) % n)}, ChordRef{p, j},
-                        a, "turns back onto");
+      if (std::abs(cross(d0, d1)) <= 1e-12 * (d0.squaredNorm() + d1.squaredNorm()) && d0.dot(d1) < 0.0) {
+        return crossing(ChordRef{p, static_cast<std::uint32_t>((j + n - 1) % n)}, ChordRef{p, j}, a,
+                        "turns back onto");
       }
     }
   }
@@ -135,9 +129,8 @@ Status check_crossings(const std::vector<Contour>& contours, const std::vector<P
     for (std::uint32_t p = 0; p < lines.size(); ++p)
       for (std::uint32_t j = 0; j < lines[p].size(); ++j) at.push_back(ChordRef{p, j});
     auto pt = [&](const ChordRef& r) -> const Vec2& { return lines[r.poly].pts[r.j]; };
-    std::sort(at.begin(), at.end(), [&](const ChordRef& u, const ChordRef& v) {
-      return before(pt(u), pt(v));
-    });
+    std::sort(at.begin(), at.end(),
+              [&](const ChordRef& u, const ChordRef& v) { return before(pt(u), pt(v)); });
     for (std::size_t i = 1; i < at.size(); ++i) {
       if (pt(at[i]) == pt(at[i - 1]) && !neighbours(at[i - 1], at[i]))
         return crossing(at[i - 1], at[i], pt(at[i]), "touches");

@@ -24,8 +24,7 @@ namespace lcnc::dxf {
 // `contours[i]` is the contour of `lines[i]`. The first crossing found is an
 // error naming both contours (or one, crossing itself), the point, and the
 // DXF lines of the two entities.
-[[nodiscard]] Status check_crossings(const std::vector<Contour>& contours,
-                                     const std::vector<Polyline>& lines,
+[[nodiscard]] Status check_crossings(const std::vector<Contour>& contours, const std::vector<Polyline>& lines,
                                      const std::string& file);
 
 }  // namespace lcnc::dxf

@@ -40,8 +40,8 @@ Result<std::vector<Polyline>> discretize_all(const std::vector<Contour>& cs, dou
                                              const std::string& file) {
   if (!(step_mm >= kMinStepMm * (1.0 - 1e-9))) {
     return make_error(ErrorCode::DecomposeBadOption,
-                      "discretization step " + std::to_string(step_mm) +
-                          " mm; expected at least " + std::to_string(kMinStepMm) + " mm (1 µm)",
+                      "discretization step " + std::to_string(step_mm) + " mm; expected at least " +
+                          std::to_string(kMinStepMm) + " mm (1 µm)",
                       file);
   }
   double total = 0.0;
@@ -49,9 +49,8 @@ Result<std::vector<Polyline>> discretize_all(const std::vector<Contour>& cs, dou
   if (total > static_cast<double>(kMaxDrawingPoints)) {
     return make_error(ErrorCode::DecomposeBadOption,
                       "step " + std::to_string(step_mm) + " mm gives " +
-                          std::to_string(static_cast<long long>(total)) +
-                          " points; expected at most " + std::to_string(kMaxDrawingPoints) +
-                          " (use a coarser step)",
+                          std::to_string(static_cast<long long>(total)) + " points; expected at most " +
+                          std::to_string(kMaxDrawingPoints) + " (use a coarser step)",
                       file);
   }
   std::vector<Polyline> out;

@@ -17,11 +17,11 @@
 namespace lcnc::dxf {
 
 struct Polyline {
-  std::uint32_t contour = 0;       // Contour::index
-  std::vector<Vec2> pts;           // n points, closed (pts[n] ≡ pts[0])
+  std::uint32_t contour = 0;            // Contour::index
+  std::vector<Vec2> pts;                // n points, closed (pts[n] ≡ pts[0])
   std::vector<std::uint32_t> src_line;  // DXF line of the entity each point lies on
-  double length_mm = 0.0;          // L, of the exact contour
-  double step_mm = 0.0;            // Δ = L / n
+  double length_mm = 0.0;               // L, of the exact contour
+  double step_mm = 0.0;                 // Δ = L / n
 
   [[nodiscard]] std::size_t size() const { return pts.size(); }
 };
@@ -30,8 +30,7 @@ struct Polyline {
 
 // All contours of a drawing; errors when the step is below kMinStepMm or
 // the point count would pass kMaxDrawingPoints.
-[[nodiscard]] Result<std::vector<Polyline>> discretize_all(const std::vector<Contour>& cs,
-                                                           double step_mm,
+[[nodiscard]] Result<std::vector<Polyline>> discretize_all(const std::vector<Contour>& cs, double step_mm,
                                                            const std::string& file);
 
 }  // namespace lcnc::dxf

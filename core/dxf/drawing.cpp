@@ -84,8 +84,8 @@ double Contour::length() const {
 }
 
 std::string Contour::name() const {
-  std::string s = "contour " + std::to_string(index) + " (" + entity_name(first_kind) +
-                  " at DXF line " + std::to_string(first_line);
+  std::string s = "contour " + std::to_string(index) + " (" + entity_name(first_kind) + " at DXF line " +
+                  std::to_string(first_line);
   if (!layer.empty()) s += ", layer " + layer;
   if (!block.empty()) s += ", block " + block;
   return s + ")";

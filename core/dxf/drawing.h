@@ -43,8 +43,7 @@ struct Edge {
 };
 
 [[nodiscard]] Edge make_line(const Vec2& a, const Vec2& b);
-[[nodiscard]] Edge make_arc(const Vec2& center, double radius, double start_rad,
-                            double sweep_rad);
+[[nodiscard]] Edge make_arc(const Vec2& center, double radius, double start_rad, double sweep_rad);
 [[nodiscard]] Edge make_spline(std::shared_ptr<const SplineCurve> c);
 [[nodiscard]] double edge_length(const Edge& e);
 // The point at arc length s ∈ [0, edge_length(e)] from a.
@@ -61,7 +60,7 @@ struct Entity {
   bool closed = false;
   std::uint32_t line = 0;  // DXF line of the entity's "0 / TYPE" pair (1-based)
   std::string layer;
-  std::string block;       // the block it was inserted from; empty in ENTITIES
+  std::string block;  // the block it was inserted from; empty in ENTITIES
 
   [[nodiscard]] Vec2 start() const { return edges.front().a; }
   [[nodiscard]] Vec2 end() const { return edges.back().b; }

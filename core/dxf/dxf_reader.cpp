@@ -13,9 +13,9 @@
 #include <set>
 #include <sstream>
 
-#include <Eigen/Dense>
 #include <dl_creationadapter.h>
 #include <dl_dxf.h>
+#include <Eigen/Dense>
 
 #include "common/error.h"
 #include "dxf/dxf_scan.h"
@@ -175,8 +175,8 @@ class Collector final : public DL_CreationAdapter {
     flush();
     const std::size_t k = i_poly_;
     const bool lw = k < scan_.poly_is_lw.size() && scan_.poly_is_lw[k];
-    RawEntity e = start(lw ? EntityKind::LwPolyline : EntityKind::Polyline,
-                        next_line(scan_.poly_lines, i_poly_));
+    RawEntity e =
+        start(lw ? EntityKind::LwPolyline : EntityKind::Polyline, next_line(scan_.poly_lines, i_poly_));
     const std::optional<bool> mirror = ocs_mirror(e);
     if (!mirror) return;
     if (!lw && (d.flags & (16 | 64)) != 0) {
@@ -203,8 +203,8 @@ class Collector final : public DL_CreationAdapter {
     }
     if (!std::isfinite(bulge) || std::abs(bulge) > kMaxBulge) {
       fail(poly_->line, std::string(entity_name(poly_->kind)) + " vertex " +
-                            std::to_string(poly_vertices_.size() + 1) + " has bulge " +
-                            number(d.bulge) + "; expected a bulge within ±" + number(kMaxBulge) +
+                            std::to_string(poly_vertices_.size() + 1) + " has bulge " + number(d.bulge) +
+                            "; expected a bulge within ±" + number(kMaxBulge) +
                             " (tan of a quarter of the arc's angle)");
       return;
     }
@@ -291,8 +291,8 @@ class Collector final : public DL_CreationAdapter {
       if (n[2] < 0.0) return true;
     }
     fail(e.line, std::string(entity_name(e.kind)) + " lies outside the XY plane (extrusion " +
-                     std::to_string(n[0]) + ", " + std::to_string(n[1]) + ", " +
-                     std::to_string(n[2]) + "); expected 0, 0, ±1");
+                     std::to_string(n[0]) + ", " + std::to_string(n[1]) + ", " + std::to_string(n[2]) +
+                     "); expected 0, 0, ±1");
     return std::nullopt;
   }
 
@@ -316,12 +316,10 @@ class Collector final : public DL_CreationAdapter {
       poly_.reset();
       const std::size_t n = poly_vertices_.size();
       for (std::size_t i = 0; i + 1 < n; ++i) {
-        polyline_segment(poly_vertices_[i].p, poly_vertices_[i + 1].p, poly_vertices_[i].bulge,
-                         e.edges);
+        polyline_segment(poly_vertices_[i].p, poly_vertices_[i + 1].p, poly_vertices_[i].bulge, e.edges);
       }
       if (e.closed && n >= 2) {
-        polyline_segment(poly_vertices_[n - 1].p, poly_vertices_[0].p,
-                         poly_vertices_[n - 1].bulge, e.edges);
+        polyline_segment(poly_vertices_[n - 1].p, poly_vertices_[0].p, poly_vertices_[n - 1].bulge, e.edges);
       }
       push(std::move(e));
     }
@@ -348,8 +346,7 @@ class Collector final : public DL_CreationAdapter {
 // Places the entities of `c` through `xf` into the drawing, inserts recursively.
 class Expander {
  public:
-  Expander(const std::map<std::string, Container>& blocks, const std::string& file,
-           Drawing& out)
+  Expander(const std::map<std::string, Container>& blocks, const std::string& file, Drawing& out)
       : blocks_(blocks), file_(file), out_(out) {}
 
   // Before anything is placed: every INSERT names a block, no block inserts
@@ -367,8 +364,8 @@ class Expander {
       if (placed > static_cast<double>(kMaxPlacedEntities)) {
         return make_error(ErrorCode::DxfUnsupported,
                           "the INSERTs place more than " + std::to_string(kMaxPlacedEntities) +
-                              " entities (this one of block '" + in.name + "' " +
-                              fmt_count(*c) + "); expected fewer copies",
+                              " entities (this one of block '" + in.name + "' " + fmt_count(*c) +
+                              "); expected fewer copies",
                           file_, in.line);
       }
     }
@@ -435,10 +432,10 @@ class Expander {
   Result<const Container*> block_of(const RawInsert& in) const {
     const auto it = blocks_.find(in.name);
     if (it == blocks_.end()) {
-      return make_error(ErrorCode::DxfSyntax,
-                        "INSERT of block '" + in.name +
-                            "', which is not defined; expected a BLOCK of that name",
-                        file_, in.line);
+      return make_error(
+          ErrorCode::DxfSyntax,
+          "INSERT of block '" + in.name + "', which is not defined; expected a BLOCK of that name", file_,
+          in.line);
     }
     return &it->second;
   }
@@ -464,8 +461,7 @@ class Expander {
     return {};
   }
 
-  Status place(const RawEntity& e, const Affine& xf, const std::string& block,
-               std::uint32_t insert_line) {
+  Status place(const RawEntity& e, const Affine& xf, const std::string& block, std::uint32_t insert_line) {
     Entity out;
     out.kind = e.kind;
     out.line = e.line;
@@ -505,9 +501,11 @@ class Expander {
           const Eigen::Matrix2d mtm = xf.m.transpose() * xf.m;
           if ((mtm - s2 * Eigen::Matrix2d::Identity()).norm() > kSimilarityRel * s2) {
             return make_error(ErrorCode::DxfUnsupported,
-                              std::string(entity_name(e.kind)) + " inserted with unequal X/Y "
-                              "scales (INSERT at line " + std::to_string(insert_line) +
-                              ") would be an ellipse; expected equal scales",
+                              std::string(entity_name(e.kind)) +
+                                  " inserted with unequal X/Y "
+                                  "scales (INSERT at line " +
+                                  std::to_string(insert_line) +
+                                  ") would be an ellipse; expected equal scales",
                               file_, e.line);
           }
           const double s = std::sqrt(s2);
@@ -532,7 +530,7 @@ class Expander {
   const std::string& file_;
   Drawing& out_;
   std::map<std::string, double> counted_;  // check(): entities of one copy of each block
-  std::set<std::string> visiting_;        // check(): the blocks being counted, outermost first
+  std::set<std::string> visiting_;         // check(): the blocks being counted, outermost first
   std::size_t spline_nodes_left_ = kMaxDrawingSplineNodes;
 };
 
@@ -545,13 +543,26 @@ double insunits_mm(int code, std::string* name) {
     double mm;
   };
   static constexpr Unit kUnits[] = {
-      {1, "inch", 25.4},        {2, "foot", 304.8},        {3, "mile", 1609344.0},
-      {4, "mm", 1.0},           {5, "cm", 10.0},           {6, "m", 1000.0},
-      {7, "km", 1e6},           {8, "microinch", 25.4e-6}, {9, "mil", 0.0254},
-      {10, "yard", 914.4},      {11, "angstrom", 1e-7},    {12, "nanometre", 1e-6},
-      {13, "micron", 1e-3},     {14, "decimetre", 100.0},  {15, "decametre", 1e4},
-      {16, "hectometre", 1e5},  {17, "gigametre", 1e12},   {18, "astronomical unit", 1.495978707e14},
-      {19, "light year", 9.4607304725808e18}, {20, "parsec", 3.0856775814913673e19},
+      {1, "inch", 25.4},
+      {2, "foot", 304.8},
+      {3, "mile", 1609344.0},
+      {4, "mm", 1.0},
+      {5, "cm", 10.0},
+      {6, "m", 1000.0},
+      {7, "km", 1e6},
+      {8, "microinch", 25.4e-6},
+      {9, "mil", 0.0254},
+      {10, "yard", 914.4},
+      {11, "angstrom", 1e-7},
+      {12, "nanometre", 1e-6},
+      {13, "micron", 1e-3},
+      {14, "decimetre", 100.0},
+      {15, "decametre", 1e4},
+      {16, "hectometre", 1e5},
+      {17, "gigametre", 1e12},
+      {18, "astronomical unit", 1.495978707e14},
+      {19, "light year", 9.4607304725808e18},
+      {20, "parsec", 3.0856775814913673e19},
   };
   for (const Unit& u : kUnits) {
     if (u.code == code) {
@@ -562,8 +573,7 @@ double insunits_mm(int code, std::string* name) {
   return 0.0;
 }
 
-Result<ReadResult> read_dxf_text(std::string_view text, const std::string& file,
-                                 const ReadOptions& opt) {
+Result<ReadResult> read_dxf_text(std::string_view text, const std::string& file, const ReadOptions& opt) {
   Result<ScanResult> scan = scan_dxf(text, file);
   if (!scan) return scan.error();
 
@@ -578,8 +588,8 @@ Result<ReadResult> read_dxf_text(std::string_view text, const std::string& file,
   } else if (scan->insunits <= 0) {
     unit_mm = 1.0;
     out.drawing.units_known = false;
-    out.drawing.units = scan->insunits == 0 ? "unitless ($INSUNITS 0), read as mm"
-                                            : "not set ($INSUNITS absent), read as mm";
+    out.drawing.units =
+        scan->insunits == 0 ? "unitless ($INSUNITS 0), read as mm" : "not set ($INSUNITS absent), read as mm";
   } else {
     std::string name;
     unit_mm = insunits_mm(scan->insunits, &name);
@@ -607,8 +617,7 @@ Result<ReadResult> read_dxf_text(std::string_view text, const std::string& file,
       list += (i ? ", " : "") + col.degenerate[i];
     if (col.degenerate.size() > 5) list += ", …";
     out.notes.push_back("warning: " + std::to_string(col.degenerate.size()) + " entit" +
-                        (col.degenerate.size() == 1 ? "y" : "ies") +
-                        " of zero length, not cut: " + list);
+                        (col.degenerate.size() == 1 ? "y" : "ies") + " of zero length, not cut: " + list);
   }
 
   Affine units;
@@ -629,21 +638,20 @@ Result<ReadResult> read_dxf_file(const std::string& path, const ReadOptions& opt
   };
   const std::unique_ptr<std::FILE, FileCloser> f(std::fopen(path.c_str(), "rb"));
   if (!f) {
-    return make_error(ErrorCode::FileNotFound,
-                      "cannot open '" + path + "': " + std::strerror(errno) +
-                          "; expected a readable DXF file",
-                      path);
+    return make_error(
+        ErrorCode::FileNotFound,
+        "cannot open '" + path + "': " + std::strerror(errno) + "; expected a readable DXF file", path);
   }
-  const std::string bound = std::to_string(kMaxDxfFileBytes) + " bytes (" +
-                            std::to_string(kMaxDxfFileBytes >> 20) + " MiB)";
+  const std::string bound =
+      std::to_string(kMaxDxfFileBytes) + " bytes (" + std::to_string(kMaxDxfFileBytes >> 20) + " MiB)";
   std::string text;
   struct stat st {};
   if (::fstat(::fileno(f.get()), &st) == 0 && S_ISREG(st.st_mode)) {
     if (static_cast<std::uint64_t>(st.st_size) > kMaxDxfFileBytes) {
-      return make_error(ErrorCode::DxfUnsupported,
-                        "a file of " + std::to_string(st.st_size) +
-                            " bytes; expected a DXF file of at most " + bound,
-                        path);
+      return make_error(
+          ErrorCode::DxfUnsupported,
+          "a file of " + std::to_string(st.st_size) + " bytes; expected a DXF file of at most " + bound,
+          path);
     }
     text.reserve(static_cast<std::size_t>(st.st_size));
   }
@@ -672,17 +680,19 @@ Result<ReadResult> read_dxf_file(const std::string& path, const ReadOptions& opt
     }
     if (text.size() + got > kMaxDxfFileBytes) {
       return make_error(ErrorCode::DxfUnsupported,
-                        "more than " + bound + " read and no end of file; expected a DXF "
-                        "file of at most " + bound,
+                        "more than " + bound +
+                            " read and no end of file; expected a DXF "
+                            "file of at most " +
+                            bound,
                         path);
     }
     text.append(chunk.get(), got);
   }
   if (std::ferror(f.get()) != 0) {
-    return make_error(ErrorCode::FileNotFound,
-                      "reading '" + path + "' stopped: " + std::strerror(errno) +
-                          "; expected to read the whole DXF file",
-                      path);
+    return make_error(
+        ErrorCode::FileNotFound,
+        "reading '" + path + "' stopped: " + std::strerror(errno) + "; expected to read the whole DXF file",
+        path);
   }
   return read_dxf_text(text, path, opt);
 }

@@ -31,8 +31,7 @@ struct ReadResult {
   std::vector<std::string> notes;  // "ignored: 3 TEXT", "units: inch (25.4 mm)"
 };
 
-[[nodiscard]] Result<ReadResult> read_dxf_file(const std::string& path,
-                                               const ReadOptions& opt = {});
+[[nodiscard]] Result<ReadResult> read_dxf_file(const std::string& path, const ReadOptions& opt = {});
 // The same from text in memory; `file` names it in diagnostics.
 [[nodiscard]] Result<ReadResult> read_dxf_text(std::string_view text, const std::string& file,
                                                const ReadOptions& opt = {});

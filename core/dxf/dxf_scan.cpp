@@ -5,8 +5,8 @@
 #include <cstdlib>
 #include <map>
 
-#include "common/quote.h"
 #include "common/error.h"
+#include "common/quote.h"
 #include "dxf/dxf_tolerances.h"
 
 namespace lcnc::dxf {
@@ -24,14 +24,12 @@ enum class ValueType : std::uint8_t { Text, Real, Integer };
 
 // Value types of the group code ranges (DXF reference, "Group code value types").
 ValueType value_type(int code) {
-  if ((code >= 10 && code <= 59) || (code >= 110 && code <= 149) ||
-      (code >= 210 && code <= 239) || (code >= 460 && code <= 469) ||
-      (code >= 1010 && code <= 1059)) {
+  if ((code >= 10 && code <= 59) || (code >= 110 && code <= 149) || (code >= 210 && code <= 239) ||
+      (code >= 460 && code <= 469) || (code >= 1010 && code <= 1059)) {
     return ValueType::Real;
   }
-  if ((code >= 60 && code <= 99) || (code >= 160 && code <= 179) ||
-      (code >= 270 && code <= 299) || (code >= 370 && code <= 389) ||
-      (code >= 400 && code <= 409) || (code >= 420 && code <= 429) ||
+  if ((code >= 60 && code <= 99) || (code >= 160 && code <= 179) || (code >= 270 && code <= 299) ||
+      (code >= 370 && code <= 389) || (code >= 400 && code <= 409) || (code >= 420 && code <= 429) ||
       (code >= 440 && code <= 459) || (code >= 1060 && code <= 1071)) {
     return ValueType::Integer;
   }
@@ -69,9 +67,8 @@ struct PendingEntity {
 enum class Use : std::uint8_t { Keep, Ignore, Reject };
 
 Use use_of(const std::string& type) {
-  static const char* const kKeep[] = {"LINE",   "ARC",    "CIRCLE", "LWPOLYLINE", "POLYLINE",
-                                      "VERTEX", "SEQEND", "SPLINE", "INSERT",     "BLOCK",
-                                      "ENDBLK"};
+  static const char* const kKeep[] = {"LINE",   "ARC",    "CIRCLE", "LWPOLYLINE", "POLYLINE", "VERTEX",
+                                      "SEQEND", "SPLINE", "INSERT", "BLOCK",      "ENDBLK"};
   for (const char* k : kKeep) {
     if (type == k) return Use::Keep;
   }
@@ -127,15 +124,13 @@ Status Scanner::check_counts(const PendingEntity& e) const {
     if (want < 0) return {};  // not declared: dxflib counts itself
     if (static_cast<unsigned long long>(want) > kMaxDeclaredCount) {
       return error(ErrorCode::DxfSyntax, at,
-                   e.type + " declares " + std::to_string(want) + " " + what +
-                       " (group " + std::to_string(declared) + "); expected at most " +
-                       std::to_string(kMaxDeclaredCount));
+                   e.type + " declares " + std::to_string(want) + " " + what + " (group " +
+                       std::to_string(declared) + "); expected at most " + std::to_string(kMaxDeclaredCount));
     }
     if (static_cast<std::size_t>(want) != have) {
       return error(ErrorCode::DxfSyntax, at,
-                   e.type + " at line " + std::to_string(e.line) + " declares " +
-                       std::to_string(want) + " " + what + " (group " +
-                       std::to_string(declared) + ") but has " + std::to_string(have) +
+                   e.type + " at line " + std::to_string(e.line) + " declares " + std::to_string(want) + " " +
+                       what + " (group " + std::to_string(declared) + ") but has " + std::to_string(have) +
                        " (group " + std::to_string(item) + "); expected the two to agree");
     }
     return {};
@@ -168,8 +163,9 @@ Status Scanner::finish_entity() {
   }
   if (use == Use::Reject) {
     return error(ErrorCode::DxfUnsupported, e.line,
-                 e.type + " is not supported; expected LINE, ARC, CIRCLE, LWPOLYLINE, "
-                          "POLYLINE, SPLINE or INSERT (convert it to a polyline or spline)");
+                 e.type +
+                     " is not supported; expected LINE, ARC, CIRCLE, LWPOLYLINE, "
+                     "POLYLINE, SPLINE or INSERT (convert it to a polyline or spline)");
   }
   // dxflib reads these values; they must be numbers here.
   for (const Pair& p : e.pairs) {
@@ -178,17 +174,15 @@ Status Scanner::finish_entity() {
       double v = 0;
       if (!parse_real(p.value, v)) {
         return error(ErrorCode::DxfSyntax, p.line + 1,
-                     "found " + quote(trim(p.value)) + " for group " +
-                         std::to_string(p.code) + " of " + e.type + " at line " +
-                         std::to_string(e.line) + "; expected a finite real number");
+                     "found " + quote(trim(p.value)) + " for group " + std::to_string(p.code) + " of " +
+                         e.type + " at line " + std::to_string(e.line) + "; expected a finite real number");
       }
     } else if (t == ValueType::Integer) {
       long long v = 0;
       if (!parse_int(p.value, v)) {
         return error(ErrorCode::DxfSyntax, p.line + 1,
-                     "found " + quote(trim(p.value)) + " for group " +
-                         std::to_string(p.code) + " of " + e.type + " at line " +
-                         std::to_string(e.line) + "; expected an integer");
+                     "found " + quote(trim(p.value)) + " for group " + std::to_string(p.code) + " of " +
+                         e.type + " at line " + std::to_string(e.line) + "; expected an integer");
       }
     }
   }
@@ -261,8 +255,8 @@ Result<ScanResult> Scanner::run() {
       if (value == "EOF") {
         if (!section_.empty()) {
           return error(ErrorCode::DxfSyntax, line,
-                       "EOF inside section " + section_ + " (opened at line " +
-                           std::to_string(section_line) + "); expected 0/ENDSEC first");
+                       "EOF inside section " + section_ + " (opened at line " + std::to_string(section_line) +
+                           "); expected 0/ENDSEC first");
         }
         seen_eof = true;
         continue;
@@ -287,8 +281,7 @@ Result<ScanResult> Scanner::run() {
       }
       if (section_.empty()) {
         return error(ErrorCode::DxfSyntax, line,
-                     "found " + quote(value) +
-                         " outside any section; expected 0/SECTION or 0/EOF");
+                     "found " + quote(value) + " outside any section; expected 0/SECTION or 0/EOF");
       }
       if (section_ == "BLOCKS" || section_ == "ENTITIES") {
         in_entity_ = true;
@@ -300,9 +293,9 @@ Result<ScanResult> Scanner::run() {
     }
     if (expect_section_name) {
       if (code != 2) {
-        return error(ErrorCode::DxfSyntax, line,
-                     "found group " + std::to_string(code) +
-                         " after SECTION; expected 2 and the section name");
+        return error(
+            ErrorCode::DxfSyntax, line,
+            "found group " + std::to_string(code) + " after SECTION; expected 2 and the section name");
       }
       section_ = std::string(value);
       expect_section_name = false;
@@ -332,15 +325,14 @@ Result<ScanResult> Scanner::run() {
   if (!seen_eof) {
     if (Status s = finish_entity(); !s) return s.error();
     return error(ErrorCode::DxfSyntax, static_cast<std::uint32_t>(lines.size()),
-                 section_.empty()
-                     ? std::string("the file ends without 0/EOF (truncated?)")
-                     : "the file ends inside section " + section_ + " (opened at line " +
-                           std::to_string(section_line) + ") without 0/ENDSEC and 0/EOF "
-                           "(truncated?)");
+                 section_.empty() ? std::string("the file ends without 0/EOF (truncated?)")
+                                  : "the file ends inside section " + section_ + " (opened at line " +
+                                        std::to_string(section_line) +
+                                        ") without 0/ENDSEC and 0/EOF "
+                                        "(truncated?)");
   }
   if (!acadver.empty()) {
-    out_.filtered = "0\nSECTION\n2\nHEADER\n9\n$ACADVER\n1\n" + acadver + "\n0\nENDSEC\n" +
-                    out_.filtered;
+    out_.filtered = "0\nSECTION\n2\nHEADER\n9\n$ACADVER\n1\n" + acadver + "\n0\nENDSEC\n" + out_.filtered;
   }
   out_.filtered += "0\nEOF\n";
   for (const auto& [type, n] : ignored_) out_.ignored.push_back(std::to_string(n) + " " + type);

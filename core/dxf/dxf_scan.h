@@ -31,8 +31,7 @@ struct ScanResult {
   // DXF line (1-based) of each entity's "0 / TYPE" pair, in file order, per
   // dxflib callback: addLine, addArc, addCircle, addPolyline (LWPOLYLINE and
   // POLYLINE both), addSpline, addInsert.
-  std::vector<std::uint32_t> line_lines, arc_lines, circle_lines, poly_lines,
-      spline_lines, insert_lines;
+  std::vector<std::uint32_t> line_lines, arc_lines, circle_lines, poly_lines, spline_lines, insert_lines;
   std::vector<bool> poly_is_lw;  // per addPolyline: LWPOLYLINE (true) or POLYLINE
   int insunits = -1;             // $INSUNITS, -1 when absent
   // Entities skipped because they never cut (TEXT, DIMENSION, HATCH, ...):

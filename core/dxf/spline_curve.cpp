@@ -42,8 +42,7 @@ std::shared_ptr<const SplineCurve> SplineCurve::make(const SplineData& given, st
     return std::shared_ptr<const SplineCurve>();
   };
   if (s.degree < 1 || s.degree > kSplineMaxDegree) {
-    return fail("degree " + std::to_string(s.degree) + "; expected 1 to " +
-                std::to_string(kSplineMaxDegree));
+    return fail("degree " + std::to_string(s.degree) + "; expected 1 to " + std::to_string(kSplineMaxDegree));
   }
   if (n == 0) {
     return fail("no control points and no fit points; expected either");
@@ -54,8 +53,7 @@ std::shared_ptr<const SplineCurve> SplineCurve::make(const SplineData& given, st
   }
   if (s.knots.size() != n + p + 1) {
     return fail(std::to_string(s.knots.size()) + " knots for " + std::to_string(n) +
-                " control points of degree " + std::to_string(p) + "; expected " +
-                std::to_string(n + p + 1));
+                " control points of degree " + std::to_string(p) + "; expected " + std::to_string(n + p + 1));
   }
   for (std::size_t i = 1; i < s.knots.size(); ++i) {
     if (!(s.knots[i] >= s.knots[i - 1])) {
@@ -106,8 +104,7 @@ SplineCurve::SplineCurve(SplineData d, std::size_t max_nodes) : d_(std::move(d))
   }
 }
 
-void SplineCurve::subdivide(double u0, const Vec2& p0, double u1, const Vec2& p1, const Vec2& pm,
-                            int depth) {
+void SplineCurve::subdivide(double u0, const Vec2& p0, double u1, const Vec2& p1, const Vec2& pm, int depth) {
   if (too_many_nodes()) return;  // make() refuses the curve
   // pm = C(middle) comes from the parent (its quarter point): two new
   // evaluations per interval instead of three.
@@ -115,8 +112,7 @@ void SplineCurve::subdivide(double u0, const Vec2& p0, double u1, const Vec2& p1
   const Vec2 qa = at_param(0.5 * (u0 + um)), qb = at_param(0.5 * (um + u1));
   if (depth < kSplineMaxDepth &&
       (depth < 2 || dist_to_chord(pm, p0, p1) > kSplineFlatnessMm ||
-       dist_to_chord(qa, p0, p1) > kSplineFlatnessMm ||
-       dist_to_chord(qb, p0, p1) > kSplineFlatnessMm)) {
+       dist_to_chord(qa, p0, p1) > kSplineFlatnessMm || dist_to_chord(qb, p0, p1) > kSplineFlatnessMm)) {
     subdivide(u0, p0, um, pm, qa, depth + 1);
     subdivide(um, pm, u1, p1, qb, depth + 1);
     return;
@@ -129,10 +125,9 @@ std::size_t SplineCurve::span(double u) const {
   const auto p = static_cast<std::size_t>(d_.degree);
   const std::size_t n = d_.control.size();
   // The last k in [p, n−1] with U_k ≤ u (and U_k < U_k+1).
-  std::size_t k = static_cast<std::size_t>(
-                      std::upper_bound(d_.knots.begin() + static_cast<long>(p),
-                                       d_.knots.begin() + static_cast<long>(n), u) -
-                      d_.knots.begin()) -
+  std::size_t k = static_cast<std::size_t>(std::upper_bound(d_.knots.begin() + static_cast<long>(p),
+                                                            d_.knots.begin() + static_cast<long>(n), u) -
+                                           d_.knots.begin()) -
                   1;
   k = std::clamp(k, p, n - 1);
   while (k > p && !(d_.knots[k + 1] > d_.knots[k])) --k;
@@ -181,8 +176,8 @@ double SplineCurve::speed(double u) const { return eval(u).tangent.norm(); }
 
 double SplineCurve::arc(double u0, double u1) const {
   // 5-point Gauss–Legendre on [u0, u1].
-  static constexpr double kX[5] = {0.0, -0.5384693101056831, 0.5384693101056831,
-                                   -0.9061798459386640, 0.9061798459386640};
+  static constexpr double kX[5] = {0.0, -0.5384693101056831, 0.5384693101056831, -0.9061798459386640,
+                                   0.9061798459386640};
   static constexpr double kW[5] = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665,
                                    0.2369268850561891, 0.2369268850561891};
   const double c = 0.5 * (u0 + u1), h = 0.5 * (u1 - u0);
@@ -194,8 +189,7 @@ double SplineCurve::arc(double u0, double u1) const {
 Vec2 SplineCurve::at_length(double s) const {
   s = std::clamp(s, 0.0, length());
   const std::size_t j = std::min<std::size_t>(
-      static_cast<std::size_t>(std::upper_bound(s_.begin(), s_.end(), s) - s_.begin()),
-      s_.size() - 1);
+      static_cast<std::size_t>(std::upper_bound(s_.begin(), s_.end(), s) - s_.begin()), s_.size() - 1);
   const std::size_t j0 = j == 0 ? 0 : j - 1;
   const double ua = u_[j0], ub = u_[j0 + 1 < u_.size() ? j0 + 1 : j0];
   const double sa = s_[j0], sb = s_[j0 + 1 < s_.size() ? j0 + 1 : j0];

@@ -63,7 +63,7 @@ class SplineCurve {
   };
   [[nodiscard]] Eval eval(double u) const;
   [[nodiscard]] std::size_t span(double u) const;
-  [[nodiscard]] double speed(double u) const;  // |C'(u)|
+  [[nodiscard]] double speed(double u) const;            // |C'(u)|
   [[nodiscard]] double arc(double u0, double u1) const;  // Gauss–Legendre
   void subdivide(double u0, const Vec2& p0, double u1, const Vec2& p1, const Vec2& pm, int depth);
   [[nodiscard]] bool too_many_nodes() const noexcept { return u_.size() > max_nodes_; }
@@ -71,8 +71,8 @@ class SplineCurve {
   SplineData d_;
   std::size_t max_nodes_;
   std::vector<Eigen::Vector3d> pw_;  // (w·x, w·y, w)
-  std::vector<double> u_;  // nodes
-  std::vector<double> s_;  // arc length at each node
+  std::vector<double> u_;            // nodes
+  std::vector<double> s_;            // arc length at each node
 };
 
 }  // namespace lcnc::dxf

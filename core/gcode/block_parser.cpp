@@ -14,10 +14,13 @@ namespace {
 
 constexpr const char* kSupportedWords = "G M N X Y Z A B C I J K R F S P Q T H L D E";
 constexpr const char* kSupportedGCodes =
-    "G0 G1 G2 G3 G4 G10 G17 G18 G19 G20 G21 G28 G28.1 G30 G30.1 G40 G41 G41.1 G42 G42.1 G43 G43.1 G43.2 G49 G52 "
+    "G0 G1 G2 G3 G4 G10 G17 G18 G19 G20 G21 G28 G28.1 G30 G30.1 G40 G41 G41.1 G42 G42.1 G43 G43.1 G43.2 G49 "
+    "G52 "
     "G53 G54-G59 G59.1 G59.2 G59.3 G61 G61.1 G64 G73 G80 G81 G82 G83 G85 G86 G89 G90 G91 G90.1 "
     "G91.1 G92 G92.1 G92.2 G92.3 G93 G94 G98 G99";
-constexpr const char* kSupportedMCodes = "M0 M1 M2 M3 M4 M5 M6 M7 M8 M9 M30 M60 M61 M62 M63 M64 M65 M66 M67 M68 M70 M71 M72 M73 M48 M49 M50 M51 M52 M53";
+constexpr const char* kSupportedMCodes =
+    "M0 M1 M2 M3 M4 M5 M6 M7 M8 M9 M30 M60 M61 M62 M63 M64 M65 M66 M67 M68 M70 M71 M72 M73 M48 M49 M50 M51 "
+    "M52 M53";
 
 // Exact powers of ten: a double holds 10^k exactly for k <= 22.
 constexpr double kPow10[] = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
@@ -61,23 +64,64 @@ constexpr std::array<char, 256> kUpper = [] {
 // Modal group of a G code ×10; -1 when outside the subset.
 [[nodiscard]] constexpr int g_group(int tenths) noexcept {
   switch (tenths) {
-    case 0: case 10: case 20: case 30: case 800:
-    case 730: case 810: case 820: case 830: case 850: case 860: case 890:
-      return group_index(GGroup::Motion);
-    case 980: case 990: return group_index(GGroup::RetractMode);
-    case 400: case 410: case 411: case 420: case 421: return group_index(GGroup::CutterComp);
-    case 430: case 431: case 432: case 490: return group_index(GGroup::ToolLength);
-    case 40: case 100: case 280: case 281: case 300: case 301: case 520: case 530:
-    case 920: case 921: case 922: case 923:
-      return group_index(GGroup::NonModal);
-    case 170: case 180: case 190: return group_index(GGroup::Plane);
-    case 200: case 210: return group_index(GGroup::Units);
-    case 540: case 550: case 560: case 570: case 580: case 590: case 591: case 592: case 593:
-      return group_index(GGroup::CoordSystem);
-    case 610: case 611: case 640: return group_index(GGroup::PathControl);
-    case 900: case 910: return group_index(GGroup::Distance);
-    case 901: case 911: return group_index(GGroup::ArcDistance);
-    case 930: case 940: return group_index(GGroup::FeedMode);
+    case 0:
+    case 10:
+    case 20:
+    case 30:
+    case 800:
+    case 730:
+    case 810:
+    case 820:
+    case 830:
+    case 850:
+    case 860:
+    case 890: return group_index(GGroup::Motion);
+    case 980:
+    case 990: return group_index(GGroup::RetractMode);
+    case 400:
+    case 410:
+    case 411:
+    case 420:
+    case 421: return group_index(GGroup::CutterComp);
+    case 430:
+    case 431:
+    case 432:
+    case 490: return group_index(GGroup::ToolLength);
+    case 40:
+    case 100:
+    case 280:
+    case 281:
+    case 300:
+    case 301:
+    case 520:
+    case 530:
+    case 920:
+    case 921:
+    case 922:
+    case 923: return group_index(GGroup::NonModal);
+    case 170:
+    case 180:
+    case 190: return group_index(GGroup::Plane);
+    case 200:
+    case 210: return group_index(GGroup::Units);
+    case 540:
+    case 550:
+    case 560:
+    case 570:
+    case 580:
+    case 590:
+    case 591:
+    case 592:
+    case 593: return group_index(GGroup::CoordSystem);
+    case 610:
+    case 611:
+    case 640: return group_index(GGroup::PathControl);
+    case 900:
+    case 910: return group_index(GGroup::Distance);
+    case 901:
+    case 911: return group_index(GGroup::ArcDistance);
+    case 930:
+    case 940: return group_index(GGroup::FeedMode);
     default: return -1;
   }
 }
@@ -126,10 +170,10 @@ bool BlockParser::malformed_number(std::uint32_t i) {
   const char letter = c[word];
   return fail(ErrorCode::GcodeBadNumber, text_.offset[word],
               "found " + quoted(word, end) + ": malformed number " + quoted(word + 1, end) +
-                  (c[i] == '.' ? " (more than one decimal point)"
-                               : " (a sign inside the number)") +
+                  (c[i] == '.' ? " (more than one decimal point)" : " (a sign inside the number)") +
                   "; expected one number: [+-] digits with at most one decimal point, such "
-                  "as " + std::string(1, letter) + "1.25");
+                  "as " +
+                  std::string(1, letter) + "1.25");
 }
 
 // Drops comments and blanks, upper-cases letters (LinuxCNC close_and_downcase).
@@ -157,8 +201,7 @@ bool BlockParser::compact(std::string_view line) {
     if (c == ';') break;  // the rest of the line is a comment
     if (c == ')') {
       text_.size = n;
-      return fail(ErrorCode::GcodeComment, i,
-                  "found ')' with no comment open; expected '(' before it");
+      return fail(ErrorCode::GcodeComment, i, "found ')' with no comment open; expected '(' before it");
     }
     // '(': a comment to its ')'
     const std::uint32_t comment_pos = i;
@@ -166,8 +209,7 @@ bool BlockParser::compact(std::string_view line) {
       if (line[i] == '(') {
         text_.size = n;
         return fail(ErrorCode::GcodeComment, i,
-                    "found '(' inside the comment opened at column " +
-                        std::to_string(comment_pos + 1) +
+                    "found '(' inside the comment opened at column " + std::to_string(comment_pos + 1) +
                         "; expected ')' first: comments do not nest");
       }
     }
@@ -226,20 +268,16 @@ bool BlockParser::read_number(std::uint32_t& i, std::uint32_t letter_at_pos, dou
     if (start < n && c[start] == '#') {
       return fail(ErrorCode::GcodeUnsupported, text_.offset[start],
                   std::string("found '") + letter +
-                      "#': parameters (#) are not supported; expected a plain number after " +
-                      letter);
+                      "#': parameters (#) are not supported; expected a plain number after " + letter);
     }
     if (start < n && c[start] == '[') {
       return fail(ErrorCode::GcodeUnsupported, text_.offset[start],
                   std::string("found '") + letter +
-                      "[': expressions ([ ]) are not supported; expected a plain number after " +
-                      letter);
+                      "[': expressions ([ ]) are not supported; expected a plain number after " + letter);
     }
     return fail(ErrorCode::GcodeBadNumber, letter_pos,
-                "found " + quoted(letter_at_pos, std::min(n, start + 8)) +
-                    " with no number after " + letter +
-                    "; expected a number such as " + letter + "10, " + letter + "-0.5 or " +
-                    letter + ".5");
+                "found " + quoted(letter_at_pos, std::min(n, start + 8)) + " with no number after " + letter +
+                    "; expected a number such as " + letter + "10, " + letter + "-0.5 or " + letter + ".5");
   }
   if (digits <= kFastDigits) {
     double v = static_cast<double>(mantissa);
@@ -263,16 +301,26 @@ bool BlockParser::read_number(std::uint32_t& i, std::uint32_t letter_at_pos, dou
 // Why a LinuxCNC G code this machine does not run is refused, or nullptr.
 [[nodiscard]] static const char* g_refusal(int tenths) noexcept {
   switch (tenths) {
-    case 330: case 331: return "spindle-synchronized motion needs a spindle encoder; a laser has no spindle";
-    case 740: case 840: return "tapping reverses a spindle; a laser has none";
+    case 330:
+    case 331: return "spindle-synchronized motion needs a spindle encoder; a laser has no spindle";
+    case 740:
+    case 840: return "tapping reverses a spindle; a laser has none";
     case 760: return "lathe threading needs a spindle; a laser has none";
     case 870: return "back boring needs an oriented spindle stop; a laser has no spindle";
     case 880: return "boring with a manual retract needs the operator's hand at a program stop";
-    case 382: case 383: case 384: case 385: return "probing: this machine has no probe input yet";
-    case 50: case 51: case 52: case 53: return "splines are not read yet";
-    case 70: case 80: return "lathe diameter/radius mode; this is no lathe";
+    case 382:
+    case 383:
+    case 384:
+    case 385: return "probing: this machine has no probe input yet";
+    case 50:
+    case 51:
+    case 52:
+    case 53: return "splines are not read yet";
+    case 70:
+    case 80: return "lathe diameter/radius mode; this is no lathe";
     case 950: return "feed per revolution needs a spindle; a laser has none";
-    case 960: case 970: return "spindle speed modes; a laser's power is S (M3/M4)";
+    case 960:
+    case 970: return "spindle speed modes; a laser's power is S (M3/M4)";
     default: return nullptr;
   }
 }
@@ -302,8 +350,8 @@ bool BlockParser::read_g(Span w, double value, Block& out) {
   if (out.g[grp] >= 0 && out.g[grp] != 800) {
     return fail(ErrorCode::GcodeModalConflict, pos,
                 "found " + g_code_name(out.g[grp]) + " and " + g_code_name(tenths) +
-                    " in one block, both of modal group " + std::to_string(kGGroupNumber[grp]) +
-                    " (" + kGGroupName[grp] + "); expected at most one code of each group");
+                    " in one block, both of modal group " + std::to_string(kGGroupNumber[grp]) + " (" +
+                    kGGroupName[grp] + "); expected at most one code of each group");
   }
   out.g[grp] = static_cast<std::int16_t>(tenths);
   out.g_word[grp] = w;
@@ -315,16 +363,14 @@ bool BlockParser::read_m(Span w, double value, Block& out) {
   const double rounded = std::round(value);
   if (std::fabs(value - rounded) > kIntegerTol || value < 0.0 || value >= 10000.0) {
     return fail(ErrorCode::GcodeBadNumber, pos,
-                "found " + quoted(w) + "; expected a whole-number M code (" + kSupportedMCodes +
-                    ")");
+                "found " + quoted(w) + "; expected a whole-number M code (" + kSupportedMCodes + ")");
   }
   const int code = static_cast<int>(rounded);
   const std::string name = "M" + std::to_string(code);
   auto conflict = [&](int other, int group, const char* group_name) {
     return fail(ErrorCode::GcodeModalConflict, pos,
-                "found M" + std::to_string(other) + " and " + name +
-                    " in one block, both of M modal group " + std::to_string(group) + " (" +
-                    group_name + "); expected at most one code of each group");
+                "found M" + std::to_string(other) + " and " + name + " in one block, both of M modal group " +
+                    std::to_string(group) + " (" + group_name + "); expected at most one code of each group");
   };
   switch (code) {
     case 0:
@@ -422,15 +468,17 @@ bool BlockParser::read_spindle(std::uint32_t& i) {
     std::uint32_t j = i;
     while (j < text_.size && text_.compact[j] != '(') ++j;
     return fail(ErrorCode::GcodeSyntax, text_.offset[at],
-                "found " + quoted(at, j) + ": a grbl system command, not G-code; expected $0 "
-                "(the spindle selector), or [machine] dialect = \"grbl\" to pass such lines over");
+                "found " + quoted(at, j) +
+                    ": a grbl system command, not G-code; expected $0 "
+                    "(the spindle selector), or [machine] dialect = \"grbl\" to pass such lines over");
   }
   double value = 0.0;
   if (!read_number(i, at, value)) return false;
   if (value == 0.0 || value == -1.0) return true;
   return fail(ErrorCode::GcodeBadValue, text_.offset[at],
-              "found " + quoted(Span{at, i}) + ": this machine has one laser, spindle $0; "
-              "expected $0 (or $-1, all of them) or no $ word");
+              "found " + quoted(Span{at, i}) +
+                  ": this machine has one laser, spindle $0; "
+                  "expected $0 (or $-1, all of them) or no $ word");
 }
 
 // @ radius or ^ angle: X and Y in polar coordinates, never with X or Y.
@@ -448,8 +496,9 @@ bool BlockParser::read_polar(std::uint32_t& i, Block& out) {
   }
   if ((present_axes_ & 3u) != 3u) {
     return fail(ErrorCode::GcodeNoSuchAxis, text_.offset[at],
-                "found " + quoted(w) + ": polar coordinates place X and Y, and this machine "
-                "lacks one of them");
+                "found " + quoted(w) +
+                    ": polar coordinates place X and Y, and this machine "
+                    "lacks one of them");
   }
   if (out.polar == 0) out.polar_word = w;
   out.polar |= bit;
@@ -481,10 +530,8 @@ bool BlockParser::read_word(std::uint32_t& i, Block& out) {
                     "found '/' inside the block; expected block delete '/' only as the first "
                     "character of a line");
       case '@':
-      case '^':
-        return read_polar(i, out);
-      case '$':
-        return read_spindle(i);
+      case '^': return read_polar(i, out);
+      case '$': return read_spindle(i);
       case '.':
       case '+':
       case '-':
@@ -494,8 +541,7 @@ bool BlockParser::read_word(std::uint32_t& i, Block& out) {
           return malformed_number(i);
         }
         break;
-      default:
-        break;
+      default: break;
     }
     // Quote the whole UTF-8 character when it is one.
     std::string_view orig = text_.original.substr(pos);
@@ -504,8 +550,8 @@ bool BlockParser::read_word(std::uint32_t& i, Block& out) {
       ++len;
     }
     return fail(ErrorCode::GcodeSyntax, pos,
-                "found " + quote(orig.substr(0, len)) + "; expected a word: a letter (" +
-                    kSupportedWords + ") followed by a number");
+                "found " + quote(orig.substr(0, len)) + "; expected a word: a letter (" + kSupportedWords +
+                    ") followed by a number");
   }
 
   // The span of an unsupported word, for its message: the letter and what
@@ -522,19 +568,19 @@ bool BlockParser::read_word(std::uint32_t& i, Block& out) {
       return fail(ErrorCode::GcodeSyntax, pos,
                   "found a letter 'O' after " + quoted(word_before(i), i) +
                       ": unexpected 'O' inside the block (a zero typed as the letter O?); "
-                      "expected the digit 0 or a word letter (" + kSupportedWords + ")");
+                      "expected the digit 0 or a word letter (" +
+                      kSupportedWords + ")");
     case 'N':
-      return fail(ErrorCode::GcodeSyntax, pos,
-                  "found " + rough_word() +
-                      " after other words; expected the line number N first in the block");
+      return fail(
+          ErrorCode::GcodeSyntax, pos,
+          "found " + rough_word() + " after other words; expected the line number N first in the block");
     case 'U':
     case 'V':
     case 'W':
-      return fail(ErrorCode::GcodeUnsupported, pos,
-                  "found " + rough_word() +
-                      ": U V W axes are not supported; expected axis words X Y Z A B C");
-    default:
-      break;
+      return fail(
+          ErrorCode::GcodeUnsupported, pos,
+          "found " + rough_word() + ": U V W axes are not supported; expected axis words X Y Z A B C");
+    default: break;
   }
 
   const std::uint32_t letter_at = i;
@@ -548,9 +594,8 @@ bool BlockParser::read_word(std::uint32_t& i, Block& out) {
   const int li = letter_index(ch);
   if ((out.letters >> li) & 1u) {
     return fail(ErrorCode::GcodeRepeatedWord, pos,
-                "found a second " + std::string(1, ch) + " word " + quoted(w) +
-                    " (the first is " + quoted(out.word[li]) +
-                    "); expected each word letter at most once per block");
+                "found a second " + std::string(1, ch) + " word " + quoted(w) + " (the first is " +
+                    quoted(out.word[li]) + "); expected each word letter at most once per block");
   }
   const int axis = axis_of(ch);
   if (axis >= 0) {
@@ -601,8 +646,7 @@ bool BlockParser::read_setting(std::uint32_t& i, Block& out) {
     if (std::fabs(v - rounded) > kIntegerTol || rounded < 1.0 || rounded > kMaxParameterIndex) {
       return fail(ErrorCode::GcodeBadValue, text_.offset[index_at],
                   "found " + quoted(at, i) + ": parameter number " + quoted(index_at, i) +
-                      "; expected a whole number from 1 to " +
-                      std::to_string(kMaxParameterIndex));
+                      "; expected a whole number from 1 to " + std::to_string(kMaxParameterIndex));
     }
     set.index = static_cast<int>(rounded);
   }
@@ -629,7 +673,7 @@ bool BlockParser::read_setting(std::uint32_t& i, Block& out) {
 // Resets `out`, compacts the line and reads what opens it: a '%' line, '/'
 // and the N number. `i` is left at the first word; false on an error.
 [[gnu::always_inline]] inline bool BlockParser::read_prefix(std::string_view line, Block& out,
-                                                          std::uint32_t& i) {
+                                                            std::uint32_t& i) {
   out.sets.clear();
   out.empty = true;
   out.percent = false;
@@ -738,8 +782,9 @@ bool BlockParser::read_o(std::uint32_t& i, Block& out) {
     while (i < n && c[i] != '>') ++i;
     if (i == n) {
       return fail(ErrorCode::GcodeSyntax, text_.offset[at],
-                  "found " + quoted(at, n) + " with no '>' closing the name; expected an O-word "
-                  "such as o<drill_row> call");
+                  "found " + quoted(at, n) +
+                      " with no '>' closing the name; expected an O-word "
+                      "such as o<drill_row> call");
     }
     if (i == name_at) {
       return fail(ErrorCode::GcodeSyntax, text_.offset[at],
@@ -768,13 +813,22 @@ bool BlockParser::read_o(std::uint32_t& i, Block& out) {
   const std::uint32_t keyword_at = i;
   while (i < n && c[i] >= 'A' && c[i] <= 'Z') ++i;
   const std::string_view keyword(c + keyword_at, i - keyword_at);
-  static constexpr std::array<std::pair<std::string_view, OKind>, 15> kKeywords = {{
-      {"SUB", OKind::Sub}, {"ENDSUB", OKind::EndSub}, {"RETURN", OKind::Return},
-      {"CALL", OKind::Call}, {"IF", OKind::If}, {"ELSEIF", OKind::ElseIf},
-      {"ELSE", OKind::Else}, {"ENDIF", OKind::EndIf}, {"WHILE", OKind::While},
-      {"ENDWHILE", OKind::EndWhile}, {"DO", OKind::Do}, {"REPEAT", OKind::Repeat},
-      {"ENDREPEAT", OKind::EndRepeat}, {"BREAK", OKind::Break},
-      {"CONTINUE", OKind::Continue}}};
+  static constexpr std::array<std::pair<std::string_view, OKind>, 15> kKeywords = {
+      {{"SUB", OKind::Sub},
+       {"ENDSUB", OKind::EndSub},
+       {"RETURN", OKind::Return},
+       {"CALL", OKind::Call},
+       {"IF", OKind::If},
+       {"ELSEIF", OKind::ElseIf},
+       {"ELSE", OKind::Else},
+       {"ENDIF", OKind::EndIf},
+       {"WHILE", OKind::While},
+       {"ENDWHILE", OKind::EndWhile},
+       {"DO", OKind::Do},
+       {"REPEAT", OKind::Repeat},
+       {"ENDREPEAT", OKind::EndRepeat},
+       {"BREAK", OKind::Break},
+       {"CONTINUE", OKind::Continue}}};
   o.kind = OKind::None;
   for (const auto& [word, kind] : kKeywords) {
     if (keyword == word) o.kind = kind;
@@ -815,24 +869,24 @@ bool BlockParser::read_o(std::uint32_t& i, Block& out) {
   std::uint32_t least = 0;
   std::uint32_t most = 0;
   switch (o.kind) {
-    case OKind::If: case OKind::ElseIf: case OKind::While: case OKind::Repeat:
-      least = most = 1;
-      break;
-    case OKind::Return: case OKind::EndSub: most = 1; break;
+    case OKind::If:
+    case OKind::ElseIf:
+    case OKind::While:
+    case OKind::Repeat: least = most = 1; break;
+    case OKind::Return:
+    case OKind::EndSub: most = 1; break;
     case OKind::Call: most = kMaxCallArgs; break;
     default: break;
   }
   if (o.arg_count < least || o.arg_count > most) {
     const std::string kw = o_keyword(o.kind);
-    std::string expected =
-        least == 1 ? "one bracketed value, such as O100 " + kw + " [#1 LT 3]"
-        : most == 0 ? "nothing after '" + kw + "' but a comment"
-        : most == 1 ? "at most one bracketed value, the one returned"
-                    : "at most " + std::to_string(kMaxCallArgs) + " bracketed arguments";
+    std::string expected = least == 1  ? "one bracketed value, such as O100 " + kw + " [#1 LT 3]"
+                           : most == 0 ? "nothing after '" + kw + "' but a comment"
+                           : most == 1 ? "at most one bracketed value, the one returned"
+                                       : "at most " + std::to_string(kMaxCallArgs) + " bracketed arguments";
     return fail(ErrorCode::GcodeSyntax, text_.offset[at],
-                "found " + quoted(o.word) + " with " + std::to_string(o.arg_count) +
-                    " bracketed value" + (o.arg_count == 1 ? "" : "s") + "; expected " +
-                    expected);
+                "found " + quoted(o.word) + " with " + std::to_string(o.arg_count) + " bracketed value" +
+                    (o.arg_count == 1 ? "" : "s") + "; expected " + expected);
   }
   return true;
 }

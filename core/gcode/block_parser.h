@@ -20,8 +20,8 @@
 #include <string_view>
 #include <vector>
 
-#include "common/quote.h"
 #include "common/error.h"
+#include "common/quote.h"
 
 namespace lcnc::gcode {
 
@@ -44,11 +44,18 @@ enum class GGroup : std::uint8_t {
 };
 inline constexpr int kGGroupCount = 12;
 inline constexpr std::array<int, kGGroupCount> kGGroupNumber = {0, 1, 2, 3, 4, 5, 6, 12, 13, 7, 8, 10};
-inline constexpr std::array<const char*, kGGroupCount> kGGroupName = {
-    "non-modal",       "motion",        "plane selection", "distance mode",
-    "arc distance mode", "feed rate mode", "units",        "coordinate system",
-    "path control mode", "cutter radius compensation", "tool length offset",
-    "canned cycle return mode"};
+inline constexpr std::array<const char*, kGGroupCount> kGGroupName = {"non-modal",
+                                                                      "motion",
+                                                                      "plane selection",
+                                                                      "distance mode",
+                                                                      "arc distance mode",
+                                                                      "feed rate mode",
+                                                                      "units",
+                                                                      "coordinate system",
+                                                                      "path control mode",
+                                                                      "cutter radius compensation",
+                                                                      "tool length offset",
+                                                                      "canned cycle return mode"};
 
 [[nodiscard]] constexpr int group_index(GGroup g) noexcept { return static_cast<int>(g); }
 
@@ -61,13 +68,11 @@ struct Span {
 // The line being read: the original text and its compacted form.
 struct LineText {
   std::string_view original;
-  std::vector<char> compact;           // capacity reused from line to line
-  std::vector<std::uint32_t> offset;   // byte offset in `original` of each compact char
-  std::uint32_t size = 0;              // compact chars in use
+  std::vector<char> compact;          // capacity reused from line to line
+  std::vector<std::uint32_t> offset;  // byte offset in `original` of each compact char
+  std::uint32_t size = 0;             // compact chars in use
 
-  [[nodiscard]] std::string_view text(Span s) const {
-    return {compact.data() + s.begin, s.end - s.begin};
-  }
+  [[nodiscard]] std::string_view text(Span s) const { return {compact.data() + s.begin, s.end - s.begin}; }
   [[nodiscard]] std::uint32_t byte_pos(Span s) const { return offset[s.begin]; }
 };
 
@@ -84,8 +89,8 @@ inline constexpr int kLetterCount = 26;
 // A parameter setting of the block (#5 = ..., #<name> = ...): it takes
 // effect after every value of its line has been read (RS274NGC).
 struct ParamSet {
-  int index = 0;      // #index, or 0 for a named one
-  std::string name;   // lower-cased, without < >
+  int index = 0;     // #index, or 0 for a named one
+  std::string name;  // lower-cased, without < >
   double value = 0.0;
   Span word{};
 };
@@ -94,8 +99,22 @@ class ParameterReader;
 
 // An O-word line's keyword (LinuxCNC's O-codes): subroutines and control flow.
 enum class OKind : std::uint8_t {
-  None, Sub, EndSub, Return, Call, If, ElseIf, Else, EndIf,
-  While, EndWhile, Do, Repeat, EndRepeat, Break, Continue
+  None,
+  Sub,
+  EndSub,
+  Return,
+  Call,
+  If,
+  ElseIf,
+  Else,
+  EndIf,
+  While,
+  EndWhile,
+  Do,
+  Repeat,
+  EndRepeat,
+  Break,
+  Continue
 };
 [[nodiscard]] const char* o_keyword(OKind k) noexcept;  // "sub", "endsub", ...
 
@@ -116,37 +135,36 @@ struct OWord {
 // One parsed block. Word values are as written (program units); codes are
 // stored ×10 (G61.1 -> 611), -1 when the group is not in the block.
 struct Block {
-  bool empty = true;          // no words: blank or comment-only line
-  bool percent = false;       // a '%' program delimiter line
-  bool block_delete = false;  // started with '/'
-  std::uint32_t letters = 0;  // bit letter_index(L) for each word other than G, M, N
-  std::uint8_t axis_mask = 0; // bit index(Axis) for each axis word
+  bool empty = true;           // no words: blank or comment-only line
+  bool percent = false;        // a '%' program delimiter line
+  bool block_delete = false;   // started with '/'
+  std::uint32_t letters = 0;   // bit letter_index(L) for each word other than G, M, N
+  std::uint8_t axis_mask = 0;  // bit index(Axis) for each axis word
   Span first_axis_word{};
   std::array<double, kLetterCount> value{};
   std::array<Span, kLetterCount> word{};
   std::array<std::int16_t, kGGroupCount> g{};
   std::array<Span, kGGroupCount> g_word{};
-  std::int16_t m_stop = -1;   // 0 or 1 or 60 (pause), 2 or 30 (end)
-  std::int16_t m_laser = -1;  // 3, 4 or 5
-  std::int16_t m_tool = -1;   // 6 (tool change) or 61 (set the tool in the spindle)
+  std::int16_t m_stop = -1;     // 0 or 1 or 60 (pause), 2 or 30 (end)
+  std::int16_t m_laser = -1;    // 3, 4 or 5
+  std::int16_t m_tool = -1;     // 6 (tool change) or 61 (set the tool in the spindle)
   std::int16_t m_context = -1;  // 70 save, 71 forget, 72 restore, 73 save till return
-  std::int16_t m_io = -1;       // 62 63 64 65 (digital out P), 66 (wait on input P L Q), 67 68 (analog out E Q)
-  std::int16_t m_override = -1; // 48 49 (both overrides on/off), 50 51 52 53 P (feed, speed, adaptive, feed hold)
+  std::int16_t m_io = -1;  // 62 63 64 65 (digital out P), 66 (wait on input P L Q), 67 68 (analog out E Q)
+  std::int16_t m_override =
+      -1;  // 48 49 (both overrides on/off), 50 51 52 53 P (feed, speed, adaptive, feed hold)
   bool m7 = false, m8 = false, m9 = false;
-  Span m_stop_word{}, m_laser_word{}, m_tool_word{}, m_context_word{}, m_io_word{}, m7_word{},
-      m8_word{}, m9_word{}, m_override_word{};
+  Span m_stop_word{}, m_laser_word{}, m_tool_word{}, m_context_word{}, m_io_word{}, m7_word{}, m8_word{},
+      m9_word{}, m_override_word{};
   // Polar coordinates (LinuxCNC's): @ the radius and ^ the angle (degrees)
   // of X Y about the program's origin, in place of X and Y (whose bits in
   // axis_mask they set). Bit 0: @ given, bit 1: ^ given.
   std::uint8_t polar = 0;
   double polar_radius = 0.0, polar_angle_deg = 0.0;
-  Span polar_word{};  // the first of them
+  Span polar_word{};           // the first of them
   std::vector<ParamSet> sets;  // in the order written (capacity reused)
   OWord o;                     // kind None unless an O-word line (then nothing else is set)
 
-  [[nodiscard]] bool has(char upper) const noexcept {
-    return ((letters >> letter_index(upper)) & 1u) != 0;
-  }
+  [[nodiscard]] bool has(char upper) const noexcept { return ((letters >> letter_index(upper)) & 1u) != 0; }
   [[nodiscard]] double operator[](char upper) const noexcept { return value[letter_index(upper)]; }
   [[nodiscard]] Span span(char upper) const noexcept { return word[letter_index(upper)]; }
   [[nodiscard]] std::int16_t code(GGroup grp) const noexcept { return g[group_index(grp)]; }

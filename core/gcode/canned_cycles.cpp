@@ -72,8 +72,8 @@ bool Interpreter::cycle_words(double& r, double& z, double& p, double& q) {
     for (const char l : {'R', 'Z'}) {
       if (b.has(l)) continue;
       return fail(ErrorCode::GcodeMissingWord, motion_word_,
-                  "found " + quoted_block() + " with no " + std::string(1, l) + " word; expected " +
-                      name + " with R (the retract plane) and Z (the hole's bottom) on its first "
+                  "found " + quoted_block() + " with no " + std::string(1, l) + " word; expected " + name +
+                      " with R (the retract plane) and Z (the hole's bottom) on its first "
                       "block");
     }
     if (dwells && !b.has('P')) {
@@ -93,9 +93,8 @@ bool Interpreter::cycle_words(double& r, double& z, double& p, double& q) {
     const double v = b['P'];
     if (v < 0.0 || v > kMaxBlockSeconds) {
       return fail(ErrorCode::GcodeBadValue, b.span('P'),
-                  "found " + quoted(b.span('P')) + " on " + name +
-                      "; expected a dwell P from 0 to " + std::to_string(static_cast<int>(kMaxBlockSeconds)) +
-                      " seconds");
+                  "found " + quoted(b.span('P')) + " on " + name + "; expected a dwell P from 0 to " +
+                      std::to_string(static_cast<int>(kMaxBlockSeconds)) + " seconds");
     }
     cycle_p_ = v;
   }
@@ -119,10 +118,11 @@ bool Interpreter::canned_cycle(SegmentBuffer& out) {
   const MotionMode m = block_motion_;
   const char* name = cycle_name(m);
   if (modal_.plane != Plane::XY) {
-    return fail(ErrorCode::GcodeUnsupported, motion_word_,
-                "found " + quoted_block() + " in the " +
-                    (modal_.plane == Plane::ZX ? std::string("ZX plane (G18)") : std::string("YZ plane (G19)")) +
-                    "; expected canned cycles in G17 (holes along Z, the beam's axis)");
+    return fail(
+        ErrorCode::GcodeUnsupported, motion_word_,
+        "found " + quoted_block() + " in the " +
+            (modal_.plane == Plane::ZX ? std::string("ZX plane (G18)") : std::string("YZ plane (G19)")) +
+            "; expected canned cycles in G17 (holes along Z, the beam's axis)");
   }
   if (b.code(GGroup::NonModal) == 530) {
     return fail(ErrorCode::GcodeSyntax, b.code_word(GGroup::NonModal),
@@ -130,8 +130,9 @@ bool Interpreter::canned_cycle(SegmentBuffer& out) {
   }
   if (modal_.inverse_time) {
     return fail(ErrorCode::GcodeSyntax, motion_word_,
-                "found " + quoted_block() + " in inverse-time mode (G93); expected canned cycles "
-                "in G94 (F per minute)");
+                "found " + quoted_block() +
+                    " in inverse-time mode (G93); expected canned cycles "
+                    "in G94 (F per minute)");
   }
   for (int a = 3; a < kAxisCount; ++a) {
     if (((b.axis_mask >> a) & 1u) == 0) continue;
@@ -142,9 +143,10 @@ bool Interpreter::canned_cycle(SegmentBuffer& out) {
   }
   if (m == MotionMode::Cycle86 && modal_.laser == LaserMode::Off) {
     return fail(ErrorCode::GcodeUnsupported, motion_word_,
-                "found " + quoted_block() + " with the beam off; expected M3 or M4 before G86 "
-                "(it bores with the beam on and turns it off for the rapid out; LinuxCNC "
-                "refuses it with the spindle off too)");
+                "found " + quoted_block() +
+                    " with the beam off; expected M3 or M4 before G86 "
+                    "(it bores with the beam on and turns it off for the rapid out; LinuxCNC "
+                    "refuses it with the spindle off too)");
   }
   double r = 0.0, z = 0.0, p = 0.0, q = 0.0;
   if (!cycle_words(r, z, p, q)) return false;
@@ -169,8 +171,9 @@ bool Interpreter::canned_cycle(SegmentBuffer& out) {
   const double bottom = modal_.absolute ? z + offset[2] : r_m + z;
   if (bottom > r_m) {
     return fail(ErrorCode::GcodeBadValue, b.has('Z') ? b.span('Z') : motion_word_,
-                "found " + quoted_block() + ": the bottom Z is above the retract plane R; "
-                "expected Z at or below R");
+                "found " + quoted_block() +
+                    ": the bottom Z is above the retract plane R; "
+                    "expected Z at or below R");
   }
   const bool pecks = m == MotionMode::Cycle83 || m == MotionMode::Cycle73;
   const double peck_count = pecks ? std::ceil((r_m - bottom) / q) : 0.0;
@@ -178,7 +181,8 @@ bool Interpreter::canned_cycle(SegmentBuffer& out) {
     return fail(ErrorCode::GcodeBadValue, b.has('Q') ? b.span('Q') : motion_word_,
                 "found " + quoted_block() + ": " + std::to_string(repeats) + " holes of " +
                     std::to_string(static_cast<long long>(peck_count)) + " pecks; expected at most " +
-                    std::to_string(kMaxBlockSegments) + " moves from one line (a larger Q, fewer "
+                    std::to_string(kMaxBlockSegments) +
+                    " moves from one line (a larger Q, fewer "
                     "repeats)");
   }
 

@@ -36,23 +36,22 @@ double point_arc(const V& p, const PlanePiece& arc) {
 bool segments_meet(const V& a, const V& b, const V& c, const V& d) {
   const double o1 = cross(b - a, c - a), o2 = cross(b - a, d - a);
   const double o3 = cross(d - c, a - c), o4 = cross(d - c, b - c);
-  if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0)))
-    return true;
+  if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0))) return true;
   return (o1 == 0 && point_segment(c, a, b) == 0.0) || (o2 == 0 && point_segment(d, a, b) == 0.0);
 }
 
 double segment_segment(const V& a, const V& b, const V& c, const V& d) {
   if (segments_meet(a, b, c, d)) return 0.0;
-  return std::min({point_segment(a, c, d), point_segment(b, c, d), point_segment(c, a, b),
-                   point_segment(d, a, b)});
+  return std::min(
+      {point_segment(a, c, d), point_segment(b, c, d), point_segment(c, a, b), point_segment(d, a, b)});
 }
 
 // Exact: the least distance is at an end of either, where the segment
 // crosses the arc, or along the radius through the segment's point nearest
 // the centre (the segment outside the circle there).
 double segment_arc(const V& p0, const V& p1, const PlanePiece& arc) {
-  double best = std::min({point_arc(p0, arc), point_arc(p1, arc), point_segment(arc.a, p0, p1),
-                          point_segment(arc.b, p0, p1)});
+  double best = std::min(
+      {point_arc(p0, arc), point_arc(p1, arc), point_segment(arc.a, p0, p1), point_segment(arc.b, p0, p1)});
   const V d = p1 - p0;
   const double dd = d.squaredNorm();
   if (dd == 0.0) return best;
@@ -82,8 +81,7 @@ double box_distance(const Eigen::AlignedBox2d& p, const Eigen::AlignedBox2d& q) 
 
 template <class Pieces>
 std::optional<GougeWindow::Gouge> nearest_below(const PlanePiece& p, const Pieces& others,
-                                                double min_distance, double chord_tol,
-                                                bool p_is_cut) {
+                                                double min_distance, double chord_tol, bool p_is_cut) {
   for (const PlanePiece& o : others) {
     if (box_distance(p.box, o.box) >= min_distance) continue;
     const PlanePiece& cut = p_is_cut ? p : o;
@@ -140,8 +138,8 @@ double piece_distance(const PlanePiece& p, const PlanePiece& q, double chord_tol
   return best;
 }
 
-std::optional<GougeWindow::Gouge> GougeWindow::add(const PlanePiece& p, bool cut,
-                                                   double min_distance, double chord_tol) {
+std::optional<GougeWindow::Gouge> GougeWindow::add(const PlanePiece& p, bool cut, double min_distance,
+                                                   double chord_tol) {
   auto g = nearest_below(p, cut ? programmed_ : cut_, min_distance, chord_tol, cut);
   std::deque<PlanePiece>& into = cut ? cut_ : programmed_;
   into.push_back(p);

@@ -36,7 +36,7 @@ struct PlanePiece {
   bool arc = false;
   Eigen::Vector2d c = Eigen::Vector2d::Zero();
   double radius = 0.0, start = 0.0, sweep = 0.0;
-  std::uint32_t line = 0;  // the program line the move comes from
+  std::uint32_t line = 0;   // the program line the move comes from
   Eigen::AlignedBox2d box;  // contains the piece
   // A compensated move: the programmed points it belongs to (its programmed
   // move's ends; a corner arc's corner). Programmed moves that end at one of
@@ -50,8 +50,8 @@ struct PlanePiece {
   }
 
   static PlanePiece straight(const Eigen::Vector2d& a, const Eigen::Vector2d& b, std::uint32_t line);
-  static PlanePiece circular(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
-                             const Eigen::Vector2d& c, double sweep, std::uint32_t line);
+  static PlanePiece circular(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+                             double sweep, std::uint32_t line);
 };
 
 // The least distance between two pieces (chord_tol: how far chords of an arc
@@ -74,8 +74,7 @@ class GougeWindow {
                                                     double chord_tol) {
     return add(p, false, min_distance, chord_tol);
   }
-  [[nodiscard]] std::optional<Gouge> add_cut(const PlanePiece& p, double min_distance,
-                                             double chord_tol) {
+  [[nodiscard]] std::optional<Gouge> add_cut(const PlanePiece& p, double min_distance, double chord_tol) {
     return add(p, true, min_distance, chord_tol);
   }
 

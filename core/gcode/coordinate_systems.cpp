@@ -55,8 +55,9 @@ bool Interpreter::polar_target(const Pose& from, Pose& to) {
   } else {
     if (cx == 0.0 && cy == 0.0) {
       return fail(ErrorCode::GcodeSyntax, b.polar_word,
-                  "found " + quoted(b.polar_word) + " in G91 at the origin, where the angle is "
-                  "undefined; expected an incremental polar move from elsewhere, or G90");
+                  "found " + quoted(b.polar_word) +
+                      " in G91 at the origin, where the angle is "
+                      "undefined; expected an incremental polar move from elsewhere, or G90");
     }
     if (has_r) r += b.polar_radius;
     if (has_a) theta += a_rad;
@@ -72,19 +73,20 @@ bool Interpreter::run_non_modal(SegmentBuffer& out) {
     case 100: {  // G10
       if (!b_->has('L')) {
         return fail(ErrorCode::GcodeMissingWord, b_->code_word(GGroup::NonModal),
-                    "found " + quoted_block() + " with no L word; expected G10 L2 or L20 "
-                    "(a work offset) or L1, L10 or L11 (a tool)");
+                    "found " + quoted_block() +
+                        " with no L word; expected G10 L2 or L20 "
+                        "(a work offset) or L1, L10 or L11 (a tool)");
       }
       const double l = (*b_)['L'];
       if (l == 2.0 || l == 20.0) return set_coord_system_data();
       if (l == 1.0 || l == 10.0 || l == 11.0) return set_tool_data();
       return fail(ErrorCode::GcodeUnsupported, b_->span('L'),
-                  "found " + quoted(b_->span('L')) + " on G10; expected L1, L10, L11 (tool "
-                  "table), L2 or L20 (work offsets)");
+                  "found " + quoted(b_->span('L')) +
+                      " on G10; expected L1, L10, L11 (tool "
+                      "table), L2 or L20 (work offsets)");
     }
     case 280:
-    case 300:
-      return go_home(code == 280 ? kParamG28 : kParamG30, out);
+    case 300: return go_home(code == 280 ? kParamG28 : kParamG30, out);
     case 281:
     case 301: {  // store where the machine is
       const int first = code == 281 ? kParamG28 : kParamG30;
@@ -100,8 +102,7 @@ bool Interpreter::run_non_modal(SegmentBuffer& out) {
       update_offsets();
       return ok;
     }
-    default:
-      return true;
+    default: return true;
   }
 }
 
@@ -110,8 +111,8 @@ bool Interpreter::set_coord_system_data() {
   const bool l20 = b['L'] == 20.0;
   if (!b.has('P')) {
     return fail(ErrorCode::GcodeMissingWord, b.code_word(GGroup::NonModal),
-                "found " + quoted_block() + " with no P word; expected G10 L" +
-                    (l20 ? "20" : "2") + " P1 … P9 (G54 … G59.3; P0: the system in effect)");
+                "found " + quoted_block() + " with no P word; expected G10 L" + (l20 ? "20" : "2") +
+                    " P1 … P9 (G54 … G59.3; P0: the system in effect)");
   }
   const double p = b['P'];
   if (p != std::floor(p) || p < 0.0 || p > kWorkOffsetCount) {
@@ -121,8 +122,9 @@ bool Interpreter::set_coord_system_data() {
   }
   if (b.has('R') && b['R'] != 0.0) {
     return fail(ErrorCode::GcodeUnsupported, b.span('R'),
-                "found " + quoted(b.span('R')) + ": a rotated coordinate system is not "
-                "supported; expected no R, or R0");
+                "found " + quoted(b.span('R')) +
+                    ": a rotated coordinate system is not "
+                    "supported; expected no R, or R0");
   }
   const int index = p == 0.0 ? modal_.coord_system : static_cast<int>(p) - 1;
   const int base = coord_param(index);
@@ -141,17 +143,15 @@ bool Interpreter::set_axis_offsets() {
   const int code = b.code(GGroup::NonModal);
   auto store = [&](bool on) {
     numbered_[kParamG92On] = on ? 1.0 : 0.0;
-    for (int a = 0; a < kAxisCount; ++a)
-      numbered_[static_cast<std::size_t>(kParamG92 + a)] = axis_offset_[a];
+    for (int a = 0; a < kAxisCount; ++a) numbered_[static_cast<std::size_t>(kParamG92 + a)] = axis_offset_[a];
   };
   switch (code) {
     case 920:
     case 520:
       if (b.axis_mask == 0) {
         return fail(ErrorCode::GcodeMissingWord, b.code_word(GGroup::NonModal),
-                    "found " + quoted_block() + " with no axis words; expected " +
-                        g_code_name(code) + " with the axes to offset, e.g. " +
-                        g_code_name(code) + " X0 Y0");
+                    "found " + quoted_block() + " with no axis words; expected " + g_code_name(code) +
+                        " with the axes to offset, e.g. " + g_code_name(code) + " X0 Y0");
       }
       for (int a = 0; a < kAxisCount; ++a) {
         if (((b.axis_mask >> a) & 1u) == 0) continue;
@@ -173,8 +173,7 @@ bool Interpreter::set_axis_offsets() {
         axis_offset_[a] = numbered_[static_cast<std::size_t>(kParamG92 + a)];
       numbered_[kParamG92On] = 1.0;
       return true;
-    default:
-      return true;
+    default: return true;
   }
 }
 

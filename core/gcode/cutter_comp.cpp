@@ -97,8 +97,8 @@ bool Interpreter::comp_fail(std::string message) {
   return fail(ErrorCode::GcodeCutterComp, motion_word_,
               "found " + quoted_block() + " with cutter compensation (" +
                   (comp_side_ == kLeft ? "left" : "right") + ", tool radius " +
-                  num(comp_radius_mm_ / length_scale()) + (modal_.inch ? " in" : " mm") + "): " +
-                  std::move(message));
+                  num(comp_radius_mm_ / length_scale()) + (modal_.inch ? " in" : " mm") +
+                  "): " + std::move(message));
 }
 
 namespace {
@@ -114,7 +114,8 @@ bool Interpreter::comp_gouge_fail(const GougeWindow::Gouge& g) {
   const char* unit = modal_.inch ? " in" : " mm";
   return comp_fail("the compensated path of line " + std::to_string(g.cut.line) + " comes within " +
                    num(g.distance / s) + unit + " of the programmed path of line " +
-                   std::to_string(g.programmed.line) + ", nearer than the tool radius: the beam "
+                   std::to_string(g.programmed.line) +
+                   ", nearer than the tool radius: the beam "
                    "would cut into the part there; expected a path whose features are wider "
                    "than the tool");
 }
@@ -138,8 +139,7 @@ bool Interpreter::comp_check_cut(const HeldMove& h) {
   if (s.kind == MotionKind::Arc) {
     const Eigen::Vector2d c(s.center[a], s.center[b]);
     p = PlanePiece::circular(from, to, c,
-                             find_turn(from.x(), from.y(), c.x(), c.y(), turn_of(s), to.x(), to.y()),
-                             s.line);
+                             find_turn(from.x(), from.y(), c.x(), c.y(), turn_of(s), to.x(), to.y()), s.line);
   } else {
     const Eigen::Vector2d dir(h.dx, h.dy);
     if (dir.squaredNorm() > 0.0 && (to - from).dot(dir.normalized()) < -1e-6) {
@@ -192,17 +192,20 @@ bool Interpreter::check_comp_conflicts() {
     return refuse(b.code_word(GGroup::FeedMode), "inverse time feed (G93) is not supported");
   }
   switch (b.code(GGroup::NonModal)) {
-    case 280: case 281: case 300: case 301:
-      return refuse(b.code_word(GGroup::NonModal), "reference points cannot be used or set");
-    case 520: case 920: case 921: case 922: case 923:
-      return refuse(b.code_word(GGroup::NonModal), "the axis offsets cannot change");
-    case 530:
-      return refuse(b.code_word(GGroup::NonModal), "machine coordinates (G53) cannot be used");
+    case 280:
+    case 281:
+    case 300:
+    case 301: return refuse(b.code_word(GGroup::NonModal), "reference points cannot be used or set");
+    case 520:
+    case 920:
+    case 921:
+    case 922:
+    case 923: return refuse(b.code_word(GGroup::NonModal), "the axis offsets cannot change");
+    case 530: return refuse(b.code_word(GGroup::NonModal), "machine coordinates (G53) cannot be used");
     case 100:
       if (b.has('L') && (b['L'] == 2.0 || b['L'] == 20.0) && b.has('P') &&
           (b['P'] == 0.0 || b['P'] == modal_.coord_system + 1)) {
-        return refuse(b.code_word(GGroup::NonModal),
-                      "the coordinate system in effect cannot change");
+        return refuse(b.code_word(GGroup::NonModal), "the coordinate system in effect cannot change");
       }
       break;
     default: break;
@@ -235,22 +238,27 @@ bool Interpreter::set_cutter_comp(SegmentBuffer& out) {
   }
   if (comp_side_ != 0) {
     return fail(ErrorCode::GcodeModalConflict, at,
-                "found " + quoted(at) + " with cutter compensation already on; expected G40 "
-                "before turning it on again");
+                "found " + quoted(at) +
+                    " with cutter compensation already on; expected G40 "
+                    "before turning it on again");
   }
   const int plane_code = b.code(GGroup::Plane);
-  const Plane plane = plane_code == 180 ? Plane::ZX : plane_code == 190 ? Plane::YZ
-                      : plane_code == 170 ? Plane::XY : modal_.plane;
+  const Plane plane = plane_code == 180   ? Plane::ZX
+                      : plane_code == 190 ? Plane::YZ
+                      : plane_code == 170 ? Plane::XY
+                                          : modal_.plane;
   if (plane == Plane::YZ) {
     return fail(ErrorCode::GcodeUnsupported, at,
-                "found " + quoted(at) + " in the YZ plane (G19); expected cutter compensation "
-                "in G17 (XY) or G18 (ZX)");
+                "found " + quoted(at) +
+                    " in the YZ plane (G19); expected cutter compensation "
+                    "in G17 (XY) or G18 (ZX)");
   }
   const int fm = b.code(GGroup::FeedMode);
   if (fm == 930 || (fm < 0 && modal_.inverse_time)) {
     return fail(ErrorCode::GcodeUnsupported, at,
-                "found " + quoted(at) + " in inverse time feed (G93); expected G94 (units per "
-                "minute) with cutter compensation");
+                "found " + quoted(at) +
+                    " in inverse time feed (G93); expected G94 (units per "
+                    "minute) with cutter compensation");
   }
   int side = code < 420 ? kLeft : -kLeft;
   double radius = 0.0;
@@ -273,8 +281,7 @@ bool Interpreter::set_cutter_comp(SegmentBuffer& out) {
   if (std::fabs(radius) > kMaxToolOffsetMm) {
     return fail(ErrorCode::GcodeBadValue, b.has('D') ? b.span('D') : at,
                 "found " + quoted(at) + " with a tool radius of " + gnum(radius) +
-                    " mm; expected a diameter of at most " + gnum(2.0 * kMaxToolOffsetMm) +
-                    " mm");
+                    " mm; expected a diameter of at most " + gnum(2.0 * kMaxToolOffsetMm) + " mm");
   }
   if (radius < 0.0) {  // a negative diameter: the other side
     radius = -radius;
@@ -306,8 +313,8 @@ bool Interpreter::comp_held_straight(const Pose& end, double dx, double dy, Segm
   return ok;
 }
 
-bool Interpreter::comp_held_arc(const Pose& end, const Vec3& c, int turn, double turns,
-                                SegmentBuffer& out, const HeldTag& tag) {
+bool Interpreter::comp_held_arc(const Pose& end, const Vec3& c, int turn, double turns, SegmentBuffer& out,
+                                const HeldTag& tag) {
   holding_ = true;
   const std::size_t n = held_.size();
   const bool ok = arc_to(end, c, turn < 0, static_cast<std::uint32_t>(std::abs(turn) - 1), out);
@@ -322,8 +329,7 @@ bool Interpreter::comp_held_arc(const Pose& end, const Vec3& c, int turn, double
 // Round a convex corner: an arc of the tool radius about the programmed
 // corner from where the tool stands to (mx, my) (a G0: straight there), Z
 // where it is, the rotary axes at the move's `end`; then it goes.
-bool Interpreter::comp_round_corner(double mx, double my, const Pose& end, bool rapid,
-                                    SegmentBuffer& out) {
+bool Interpreter::comp_round_corner(double mx, double my, const Pose& end, bool rapid, SegmentBuffer& out) {
   Pose m = pos_;
   m[comp_a_] = mx;
   m[comp_b_] = my;
@@ -334,8 +340,7 @@ bool Interpreter::comp_round_corner(double mx, double my, const Pose& end, bool 
     Vec3 c = linear_part(pos_);
     c[comp_a_] = programmed_[comp_a_];
     c[comp_b_] = programmed_[comp_b_];
-    if (!comp_held_arc(m, c, comp_side_ == kLeft ? -1 : 1, 0.0, out,
-                       HeldTag::at({c[comp_a_], c[comp_b_]}))) {
+    if (!comp_held_arc(m, c, comp_side_ == kLeft ? -1 : 1, 0.0, out, HeldTag::at({c[comp_a_], c[comp_b_]}))) {
       return false;
     }
   }
@@ -362,8 +367,8 @@ bool Interpreter::comp_move_endpoint_and_flush(double x, double y, SegmentBuffer
         const double l2 = find_turn(ex, ey, c1, c2, turn_of(s), x, y);
         if (std::fabs(r1 - r2) > 0.01 * length_scale()) {
           return comp_fail("the compensated arc of line " + std::to_string(s.line) +
-                           " would end off its circle (radius " + num(r1) + " mm, end at " +
-                           num(r2) + " mm); expected a path whose moves meet where the tool "
+                           " would end off its circle (radius " + num(r1) + " mm, end at " + num(r2) +
+                           " mm); expected a path whose moves meet where the tool "
                            "fits");
         }
         if (h.turns != 0.0 && comp_endpoint_valid_ &&
@@ -380,9 +385,8 @@ bool Interpreter::comp_move_endpoint_and_flush(double x, double y, SegmentBuffer
       case MotionKind::Linear: {
         const double dot = h.dx * (x - ex) + h.dy * (y - ey);
         if (comp_endpoint_valid_ && dot < 0.0) {
-          return comp_fail(std::string("the ") +
-                           (s.kind == MotionKind::Rapid ? "rapid" : "straight") + " move of line " +
-                           std::to_string(s.line) +
+          return comp_fail(std::string("the ") + (s.kind == MotionKind::Rapid ? "rapid" : "straight") +
+                           " move of line " + std::to_string(s.line) +
                            " runs into a concave corner the tool cannot reach without gouging "
                            "the part (its compensated path would run backwards); expected a "
                            "longer move or a smaller tool");
@@ -445,8 +449,7 @@ bool Interpreter::comp_straight(const Pose& end, SegmentBuffer& out) {
     // The entry: to one radius beside the end, square to this move.
     const double distance = std::hypot(px - cx, py - cy);
     if (distance <= r) {
-      return comp_fail("its entry move is " + num(distance / length_scale()) +
-                       (modal_.inch ? " in" : " mm") +
+      return comp_fail("its entry move is " + num(distance / length_scale()) + (modal_.inch ? " in" : " mm") +
                        " long in the plane; expected an entry move (the first after G41/G42) "
                        "longer than the tool radius");
     }
@@ -455,8 +458,7 @@ bool Interpreter::comp_straight(const Pose& end, SegmentBuffer& out) {
     e[a] = px + r * std::cos(alpha);
     e[b] = py + r * std::sin(alpha);
     comp_set_endpoint(cx, cy);
-    if (!comp_held_straight(e, std::cos(alpha), std::sin(alpha), out, HeldTag::entry_move()))
-      return false;
+    if (!comp_held_straight(e, std::cos(alpha), std::sin(alpha), out, HeldTag::entry_move())) return false;
     comp_first_move_ = false;
     programmed_ = end;
     return true;
@@ -498,8 +500,7 @@ bool Interpreter::comp_straight(const Pose& end, SegmentBuffer& out) {
   }
   if (!concave && beta > kCornerTolRad) {
     // Convex: round the corner about it (a G0 goes straight there).
-    if (!comp_move_endpoint_and_flush(cx, cy, out) ||
-        !comp_round_corner(mid_x, mid_y, end, rapid, out)) {
+    if (!comp_move_endpoint_and_flush(cx, cy, out) || !comp_round_corner(mid_x, mid_y, end, rapid, out)) {
       return false;
     }
   } else if (concave) {
@@ -525,9 +526,10 @@ bool Interpreter::comp_straight(const Pose& end, SegmentBuffer& out) {
       const double d = oldrad_uncomp * std::cos(th - phi);  // old centre to the new line
       const double l = (inside ? d - r : d + r) / oldrad;
       if (l > 1.0 || l < -1.0) {
-        return comp_fail("the arc before and this straight move make a corner the tool "
-                         "cannot fit without gouging the part; expected a corner the tool "
-                         "radius fits");
+        return comp_fail(
+            "the arc before and this straight move make a corner the tool "
+            "cannot fit without gouging the part; expected a corner the tool "
+            "radius fits");
       }
       const double angle = ((pturn > 0) == inside ? -std::acos(l) : std::acos(l)) + th + kPi;
       x = pc1 + oldrad * std::cos(angle);
@@ -541,8 +543,7 @@ bool Interpreter::comp_straight(const Pose& end, SegmentBuffer& out) {
   }
   e[a] = ex;
   e[b] = ey;
-  if (!comp_held_straight(e, px - opx, py - opy, out, HeldTag::between({opx, opy}, {px, py})))
-    return false;
+  if (!comp_held_straight(e, px - opx, py - opy, out, HeldTag::between({opx, opy}, {px, py}))) return false;
   programmed_ = end;
   if (!rapid && !comp_check_programmed(PlanePiece::straight({opx, opy}, {px, py}, line_))) return false;
   return true;
@@ -565,21 +566,21 @@ bool Interpreter::comp_arc(const Pose& end_in, SegmentBuffer& out) {
     // The entry arc: its end one radius beside the programmed end, its
     // centre moved to keep it an arc from where the tool stands.
     if (std::hypot(e[a] - cx, e[b] - cy) <= r) {
-      return comp_fail("its entry arc ends within the tool radius of its start; expected an "
-                       "entry move (the first after G41/G42) longer than the tool radius");
+      return comp_fail(
+          "its entry arc ends within the tool radius of its start; expected an "
+          "entry move (the first after G41/G42) longer than the tool radius");
     }
     if (!arc_centre(pos_, e, c, extra)) return false;
     const int turn = cw ? -static_cast<int>(extra + 1) : static_cast<int>(extra + 1);
-    const double arc_r = blk.has('R') ? std::fabs(blk['R']) * length_scale()
-                                      : std::hypot(c[a] - cx, c[b] - cy);
+    const double arc_r =
+        blk.has('R') ? std::fabs(blk['R']) * length_scale() : std::hypot(c[a] - cx, c[b] - cy);
     if (tool_inside_arc(comp_side_, turn) && arc_r <= r) {
       return comp_fail("the arc's radius " + num(arc_r) +
                        " mm is not larger than the tool radius; expected arcs the tool fits "
                        "inside");
     }
-    const double gamma = tool_inside_arc(comp_side_, turn)
-                             ? std::atan2(c[b] - e[b], c[a] - e[a])
-                             : std::atan2(e[b] - c[b], e[a] - c[a]);
+    const double gamma = tool_inside_arc(comp_side_, turn) ? std::atan2(c[b] - e[b], c[a] - e[a])
+                                                           : std::atan2(e[b] - c[b], e[a] - c[a]);
     comp_first_move_ = false;
     programmed_ = e;
     e[a] += r * std::cos(gamma);
@@ -588,16 +589,17 @@ bool Interpreter::comp_arc(const Pose& end_in, SegmentBuffer& out) {
     const double ab_ang = std::atan2(c[b] - e[b], c[a] - e[a]);
     const double a_ang = std::atan2(cy - e[b], cx - e[a]) - ab_ang;
     if (std::fabs(std::cos(a_ang)) < kEqualTol) {
-      return comp_fail("the tool radius is not less than the entry arc's; expected arcs the "
-                       "tool fits inside");
+      return comp_fail(
+          "the tool radius is not less than the entry arc's; expected arcs the "
+          "tool fits inside");
     }
     const double c_len = b_len / std::cos(a_ang);
     c[a] = e[a] + c_len * std::cos(ab_ang);
     c[b] = e[b] + c_len * std::sin(ab_ang);
-    if (std::fabs(std::hypot(c[a] - e[a], c[b] - e[b]) - std::hypot(c[a] - cx, c[b] - cy)) >
-        abs_tol) {
-      return comp_fail("the entry arc cannot be compensated (its radii differ); expected a "
-                       "straight entry move");
+    if (std::fabs(std::hypot(c[a] - e[a], c[b] - e[b]) - std::hypot(c[a] - cx, c[b] - cy)) > abs_tol) {
+      return comp_fail(
+          "the entry arc cannot be compensated (its radii differ); expected a "
+          "straight entry move");
     }
     return comp_held_arc(e, c, turn, find_turn(cx, cy, c[a], c[b], turn, e[a], e[b]), out,
                          HeldTag::entry_move());
@@ -642,12 +644,12 @@ bool Interpreter::comp_arc(const Pose& end_in, SegmentBuffer& out) {
       const double dist = inside ? arc_radius - r : arc_radius + r;
       const double l = (inside ? cy2 + r : cy2 - r) / dist;
       if (l > 1.0 || l < -1.0) {
-        return comp_fail("this arc makes a concave corner the tool cannot reach without "
-                         "gouging the part; expected a corner the tool radius fits");
+        return comp_fail(
+            "this arc makes a concave corner the tool cannot reach without "
+            "gouging the part; expected a corner the tool radius fits");
       }
       const double angle = inside ? (turn > 0 ? theta + std::asin(l) : theta - std::asin(l))
-                                  : (turn > 0 ? theta + kPi - std::asin(l)
-                                              : theta + kPi + std::asin(l));
+                                  : (turn > 0 ? theta + kPi - std::asin(l) : theta + kPi + std::asin(l));
       x = ccx + dist * std::cos(angle);
       y = ccy + dist * std::sin(angle);
     } else {
@@ -658,14 +660,15 @@ bool Interpreter::comp_arc(const Pose& end_in, SegmentBuffer& out) {
       const double newrad = inside ? arc_radius - r : arc_radius + r;
       const double arc_cc = std::hypot(pc2 - ccy, pc1 - ccx);
       if (oldrad == 0.0 || arc_cc == 0.0) {
-        return comp_fail("this arc and the one before have the same centre; expected arcs "
-                         "that meet at a corner");
+        return comp_fail(
+            "this arc and the one before have the same centre; expected arcs "
+            "that meet at a corner");
       }
-      const double cos_a = (oldrad * oldrad + arc_cc * arc_cc - newrad * newrad) /
-                           (2.0 * oldrad * arc_cc);
+      const double cos_a = (oldrad * oldrad + arc_cc * arc_cc - newrad * newrad) / (2.0 * oldrad * arc_cc);
       if (cos_a > 1.0 || cos_a < -1.0) {
-        return comp_fail("this arc and the one before make a corner the tool cannot fit "
-                         "without gouging the part; expected a corner the tool radius fits");
+        return comp_fail(
+            "this arc and the one before make a corner the tool cannot fit "
+            "without gouging the part; expected a corner the tool radius fits");
       }
       const double pullback = std::acos(cos_a);
       const double cc_dir = std::atan2(ccy - pc2, ccx - pc1);
@@ -689,8 +692,7 @@ bool Interpreter::comp_arc(const Pose& end_in, SegmentBuffer& out) {
     ne[a] = pos_[a];
     ne[b] = pos_[b];
   }
-  if (!comp_held_arc(ne, c, turn, turns, out, HeldTag::between({opx, opy}, {e[a], e[b]})))
-    return false;
+  if (!comp_held_arc(ne, c, turn, turns, out, HeldTag::between({opx, opy}, {e[a], e[b]}))) return false;
   programmed_ = e;
   return comp_check_programmed(PlanePiece::circular({opx, opy}, {e[a], e[b]}, {ccx, ccy}, turns, line_));
 }

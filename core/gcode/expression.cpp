@@ -14,20 +14,40 @@ namespace {
 // Binary operators, by precedence (LinuxCNC precedence()).
 enum Op : int {
   kClose,  // ']' ends the expression
-  kAnd, kOr, kXor,
-  kEq, kNe, kGt, kGe, kLt, kLe,
-  kPlus, kMinus,
-  kTimes, kDivide, kMod,
+  kAnd,
+  kOr,
+  kXor,
+  kEq,
+  kNe,
+  kGt,
+  kGe,
+  kLt,
+  kLe,
+  kPlus,
+  kMinus,
+  kTimes,
+  kDivide,
+  kMod,
   kPower,
 };
 
 int precedence(int op) {
   switch (op) {
     case kClose: return 1;
-    case kAnd: case kOr: case kXor: return 2;
-    case kEq: case kNe: case kGt: case kGe: case kLt: case kLe: return 3;
-    case kPlus: case kMinus: return 4;
-    case kTimes: case kDivide: case kMod: return 5;
+    case kAnd:
+    case kOr:
+    case kXor: return 2;
+    case kEq:
+    case kNe:
+    case kGt:
+    case kGe:
+    case kLt:
+    case kLe: return 3;
+    case kPlus:
+    case kMinus: return 4;
+    case kTimes:
+    case kDivide:
+    case kMod: return 5;
     default: return 6;  // kPower
   }
 }
@@ -96,8 +116,7 @@ bool ExpressionReader::integer_value(std::uint32_t& i, int& out) {
   if (!real_value(i, v)) return false;
   const double r = std::round(v);
   if (std::fabs(v - r) > kIntegerTol || std::fabs(r) > 1e9) {
-    return fail(at, "found " + excerpt(at, i) + " = " + std::to_string(v) +
-                        "; expected a whole number here");
+    return fail(at, "found " + excerpt(at, i) + " = " + std::to_string(v) + "; expected a whole number here");
   }
   out = static_cast<int>(r);
   return true;
@@ -117,8 +136,8 @@ bool ExpressionReader::name(std::uint32_t& i, std::string& out) {
     ++i;
   }
   if (i == n_) {
-    return fail(open, "found " + excerpt(open, i) +
-                          ": a parameter name not closed; expected '>' after the name");
+    return fail(open,
+                "found " + excerpt(open, i) + ": a parameter name not closed; expected '>' after the name");
   }
   if (out.empty()) return fail(open, "found '<>': an empty parameter name; expected #<name>");
   ++i;  // '>'
@@ -188,8 +207,8 @@ bool ExpressionReader::parameter(std::uint32_t& i, double& out, int depth) {
     std::string nm;
     if (!name(i, nm)) return false;
     if (!params_.named(nm, out)) {
-      return fail(at, "found #<" + nm + ">: a named parameter not defined; expected it set (#<" +
-                          nm + "> = ...) before it is read");
+      return fail(at, "found #<" + nm + ">: a named parameter not defined; expected it set (#<" + nm +
+                          "> = ...) before it is read");
     }
     return true;
   }
@@ -200,8 +219,7 @@ bool ExpressionReader::parameter(std::uint32_t& i, double& out, int depth) {
   const double r = std::round(v);
   if (std::fabs(v - r) > kIntegerTol || r < 1.0 || r > kMaxParameterIndex) {
     return fail(index_at, "found " + excerpt(at, i) + ": parameter number " + std::to_string(v) +
-                              "; expected a whole number from 1 to " +
-                              std::to_string(kMaxParameterIndex));
+                              "; expected a whole number from 1 to " + std::to_string(kMaxParameterIndex));
   }
   out = params_.numbered(static_cast<int>(r));
   return true;
@@ -223,8 +241,8 @@ bool ExpressionReader::function(std::uint32_t& i, double& out, int depth) {
   }
   i = j;
   if (i >= n_ || c_[i] != '[') {
-    return fail(at, "found " + excerpt(at, i + 1) + ": " + std::string(word) +
-                        " without '['; expected " + std::string(word) + "[...]");
+    return fail(at, "found " + excerpt(at, i + 1) + ": " + std::string(word) + " without '['; expected " +
+                        std::string(word) + "[...]");
   }
   if (id == kExists) {
     // EXISTS[#<name>]: 1 when the named parameter is defined
@@ -235,7 +253,8 @@ bool ExpressionReader::function(std::uint32_t& i, double& out, int depth) {
     ++i;
     std::string nm;
     if (!name(i, nm)) return false;
-    if (i >= n_ || c_[i] != ']') return fail(i, "found " + excerpt(at, i + 1) + "; expected ']' after the name");
+    if (i >= n_ || c_[i] != ']')
+      return fail(i, "found " + excerpt(at, i + 1) + "; expected ']' after the name");
     ++i;
     double ignored = 0.0;
     out = params_.named(nm, ignored) ? 1.0 : 0.0;
@@ -310,8 +329,9 @@ bool ExpressionReader::binary(int op, double& left, double right, std::uint32_t 
       return true;
     case kPower:
       if (left < 0.0 && std::floor(right) != right) {
-        return bad("found a negative number to a non-integer power; expected a whole power of a "
-                   "negative number");
+        return bad(
+            "found a negative number to a non-integer power; expected a whole power of a "
+            "negative number");
       }
       left = std::pow(left, right);
       return true;
@@ -355,26 +375,41 @@ bool ExpressionReader::expression(std::uint32_t& i, double& out, int depth) {
       }
       return false;
     };
-    if (is("]")) op = kClose;
-    else if (is("**")) op = kPower;
-    else if (is("*")) op = kTimes;
-    else if (is("/")) op = kDivide;
-    else if (is("+")) op = kPlus;
-    else if (is("-")) op = kMinus;
-    else if (is("MOD")) op = kMod;
-    else if (is("AND")) op = kAnd;
-    else if (is("OR")) op = kOr;
-    else if (is("XOR")) op = kXor;
-    else if (is("EQ")) op = kEq;
-    else if (is("NE")) op = kNe;
-    else if (is("GT")) op = kGt;
-    else if (is("GE")) op = kGe;
-    else if (is("LT")) op = kLt;
-    else if (is("LE")) op = kLe;
+    if (is("]"))
+      op = kClose;
+    else if (is("**"))
+      op = kPower;
+    else if (is("*"))
+      op = kTimes;
+    else if (is("/"))
+      op = kDivide;
+    else if (is("+"))
+      op = kPlus;
+    else if (is("-"))
+      op = kMinus;
+    else if (is("MOD"))
+      op = kMod;
+    else if (is("AND"))
+      op = kAnd;
+    else if (is("OR"))
+      op = kOr;
+    else if (is("XOR"))
+      op = kXor;
+    else if (is("EQ"))
+      op = kEq;
+    else if (is("NE"))
+      op = kNe;
+    else if (is("GT"))
+      op = kGt;
+    else if (is("GE"))
+      op = kGe;
+    else if (is("LT"))
+      op = kLt;
+    else if (is("LE"))
+      op = kLe;
     else {
       return fail(i, "found " + excerpt(i, i + 6) + " in the expression opened at " +
-                         excerpt(open, open + 1) + "; expected an operator (" + kOperators +
-                         ") or ']'");
+                         excerpt(open, open + 1) + "; expected an operator (" + kOperators + ") or ']'");
     }
     return true;
   };

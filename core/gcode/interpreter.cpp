@@ -60,8 +60,7 @@ std::string gnum(double v) {
   return buf;
 }
 
-Interpreter::Interpreter(const MachineConfig& machine, const Pose& start,
-                         std::vector<double>& numbered)
+Interpreter::Interpreter(const MachineConfig& machine, const Pose& start, std::vector<double>& numbered)
     : machine_(machine), pos_(start), numbered_(numbered) {
   for (int a = 0; a < kAxisCount; ++a) {
     const AxisConfig& ax = machine.axes[a];
@@ -102,8 +101,7 @@ const char* Interpreter::feed_unit() const noexcept { return modal_.inch ? "in/m
 
 // --- the block ------------------------------------------------------------
 
-bool Interpreter::execute(const Block& block, const LineText& text, std::uint32_t line,
-                          SegmentBuffer& out) {
+bool Interpreter::execute(const Block& block, const LineText& text, std::uint32_t line, SegmentBuffer& out) {
   b_ = &block;
   t_ = &text;
   line_ = line;
@@ -113,16 +111,16 @@ bool Interpreter::execute(const Block& block, const LineText& text, std::uint32_
   if (!resolve_motion()) return false;
   if (comp_side_ != 0 && !check_comp_conflicts()) return false;
   if ((block.letters & kDataLetters) != 0 && !check_word_use()) return false;
-  if (!set_feed_and_power()) return false;  // G93/G94, F, S, M3-M5, M7-M9
+  if (!set_feed_and_power()) return false;                                    // G93/G94, F, S, M3-M5, M7-M9
   if ((block.has('T') || block.m_tool >= 0) && !change_tool()) return false;  // T, M6, M61
   if (block.m_io >= 0 && !(block.m_io == 66 ? wait_input(out) : set_outputs())) return false;  // M62 … M68
-  if (block.m_override >= 0 && !set_override_switches()) return false;  // M48 … M53
-  if (block.m_context >= 0 && !run_context()) return false;  // M70 M71 M72 M73
-  if (non_modal == 40 && !dwell(out)) return false;  // G4
+  if (block.m_override >= 0 && !set_override_switches()) return false;                         // M48 … M53
+  if (block.m_context >= 0 && !run_context()) return false;                        // M70 M71 M72 M73
+  if (non_modal == 40 && !dwell(out)) return false;                                // G4
   if (block.code(GGroup::CutterComp) >= 0 && !set_cutter_comp(out)) return false;  // G40 G41 G42
-  set_modes();                              // plane, units, coordinate system
+  set_modes();  // plane, units, coordinate system
   if (block.code(GGroup::ToolLength) >= 0 && !set_tool_length()) return false;  // G43 … G49
-  if (!set_path_control()) return false;    // G61 G61.1 G64
+  if (!set_path_control()) return false;                                        // G61 G61.1 G64
   if (non_modal > 40 && non_modal != 530 && !run_non_modal(out)) return false;  // G10 G28 G30 G52 G92
   if (block_motion_ != MotionMode::None && !move(out)) return false;
   if (block.m_stop >= 0 && comp_active() && !comp_first_move_) {
@@ -137,7 +135,7 @@ bool Interpreter::execute(const Block& block, const LineText& text, std::uint32_
     comp_side_ = 0;
     comp_first_move_ = true;
   } else if (block.m_stop >= 0 && (block.m_stop != 1 || machine_.optional_stop)) {
-    return pause(out);                      // M0 M60, M1 with the optional stop on
+    return pause(out);  // M0 M60, M1 with the optional stop on
   }
   return true;
 }
@@ -160,8 +158,8 @@ bool Interpreter::resolve_motion() {
   // no motion mode uses them then (LinuxCNC: two codes may not both).
   const int nm = b.code(GGroup::NonModal);
   const int tl = b.code(GGroup::ToolLength);
-  const bool axis_words_used = (nm > 40 || tl >= 0) && (nm == 100 || nm == 280 || nm == 300 ||
-                                                       nm == 520 || nm == 920 || tl == 431);
+  const bool axis_words_used =
+      (nm > 40 || tl >= 0) && (nm == 100 || nm == 280 || nm == 300 || nm == 520 || nm == 920 || tl == 431);
   if (b.polar != 0) {
     if (b.has('X') || b.has('Y')) {
       return fail(ErrorCode::GcodeSyntax, b.polar_word,
@@ -171,15 +169,15 @@ bool Interpreter::resolve_motion() {
     }
     if (axis_words_used || nm == 530) {
       return fail(ErrorCode::GcodeSyntax, b.polar_word,
-                  "found " + quoted(b.polar_word) + " with " + quoted(b.code_word(
-                      nm == 530 || nm > 40 ? GGroup::NonModal : GGroup::ToolLength)) +
+                  "found " + quoted(b.polar_word) + " with " +
+                      quoted(b.code_word(nm == 530 || nm > 40 ? GGroup::NonModal : GGroup::ToolLength)) +
                       "; expected polar words only on moves in the program's coordinates");
     }
   }
   if (axis_words_used) {
     if (g >= 0 && g != 800 && b.axis_mask != 0) {
-      const Span at = b.code(GGroup::ToolLength) == 431 ? b.code_word(GGroup::ToolLength)
-                                                        : b.code_word(GGroup::NonModal);
+      const Span at =
+          b.code(GGroup::ToolLength) == 431 ? b.code_word(GGroup::ToolLength) : b.code_word(GGroup::NonModal);
       return fail(ErrorCode::GcodeModalConflict, b.code_word(GGroup::Motion),
                   "found " + quoted(b.code_word(GGroup::Motion)) + " and " + quoted(at) +
                       " in one block, both using its axis words; expected them on two lines");
@@ -323,8 +321,8 @@ bool Interpreter::set_feed_and_power() {
         const char* unit = inch ? "in/min" : "mm/min";
         return fail(ErrorCode::GcodeBadValue, b.span('F'),
                     "found " + quoted(b.span('F')) + " (" + gnum(f) + " " + unit +
-                        "); expected a feed rate F from " + gnum(kMinFeedPerMin / scale) +
-                        " to " + gnum(kMaxFeedPerMin / scale) + " " + unit +
+                        "); expected a feed rate F from " + gnum(kMinFeedPerMin / scale) + " to " +
+                        gnum(kMaxFeedPerMin / scale) + " " + unit +
                         " (or deg/min for rotary-only moves): slower never finishes a move, "
                         "faster is no feed");
       }
@@ -361,8 +359,7 @@ bool Interpreter::dwell(SegmentBuffer& out) {
   if (b.code(GGroup::NonModal) != 40) return true;
   if (!b.has('P')) {
     return fail(ErrorCode::GcodeMissingWord, b.code_word(GGroup::NonModal),
-                "found " + quoted_block() +
-                    " with no P word; expected G4 P<seconds>, e.g. G4 P0.5");
+                "found " + quoted_block() + " with no P word; expected G4 P<seconds>, e.g. G4 P0.5");
   }
   const double p = b['P'];
   if (p < 0.0) {
@@ -420,10 +417,8 @@ bool Interpreter::set_path_control() {
       modal_.path_mode = PathMode::ExactStop;
       modal_.blend_tolerance_mm = modal_.naive_cam_tolerance_mm = 0.0;
       return true;
-    case 640:
-      break;
-    default:
-      return true;
+    case 640: break;
+    default: return true;
   }
   // G64 [P blend tolerance] [Q naive-CAM tolerance]: no P -> the machine's
   // path tolerance; no Q -> no line merging. (LinuxCNC merges with Q = P by
@@ -439,24 +434,25 @@ bool Interpreter::set_path_control() {
     p_mm = b['P'] * length_scale();
     if (p_mm > kMaxPathToleranceMm) {
       return fail(ErrorCode::GcodeBadValue, b.span('P'),
-                  "found " + quoted(b.span('P')) + " on G64; expected a blend tolerance P from "
-                  "0 to " + gnum(kMaxPathToleranceMm / length_scale()) +
-                      tolerance_unit());
+                  "found " + quoted(b.span('P')) +
+                      " on G64; expected a blend tolerance P from "
+                      "0 to " +
+                      gnum(kMaxPathToleranceMm / length_scale()) + tolerance_unit());
     }
   }
   double q_mm = 0.0;
   if (b.has('Q')) {
     if (b['Q'] < 0.0) {
       return fail(ErrorCode::GcodeBadValue, b.span('Q'),
-                  "found " + quoted(b.span('Q')) +
-                      " on G64; expected a naive-CAM tolerance Q >= 0");
+                  "found " + quoted(b.span('Q')) + " on G64; expected a naive-CAM tolerance Q >= 0");
     }
     q_mm = b['Q'] * length_scale();
     if (q_mm > kMaxPathToleranceMm) {
       return fail(ErrorCode::GcodeBadValue, b.span('Q'),
-                  "found " + quoted(b.span('Q')) + " on G64; expected a naive-CAM tolerance Q "
-                  "from 0 to " + gnum(kMaxPathToleranceMm / length_scale()) +
-                      tolerance_unit());
+                  "found " + quoted(b.span('Q')) +
+                      " on G64; expected a naive-CAM tolerance Q "
+                      "from 0 to " +
+                      gnum(kMaxPathToleranceMm / length_scale()) + tolerance_unit());
     }
   }
   modal_.path_mode = PathMode::Blend;
@@ -518,9 +514,8 @@ bool Interpreter::check_feed() {
     }
     if (block_f_ < kMinInverseTimeF || block_f_ > kMaxFeedPerMin) {
       return fail(ErrorCode::GcodeBadValue, b_->span('F'),
-                  "found " + quoted(b_->span('F')) +
-                      " in inverse-time mode (G93): a move of " + gnum(1.0 / block_f_) +
-                      " minutes; expected F from " + gnum(kMinInverseTimeF) + " to " +
+                  "found " + quoted(b_->span('F')) + " in inverse-time mode (G93): a move of " +
+                      gnum(1.0 / block_f_) + " minutes; expected F from " + gnum(kMinInverseTimeF) + " to " +
                       gnum(kMaxFeedPerMin) + " (F = 1 / minutes the move takes: at most " +
                       gnum(kMaxBlockSeconds / 60.0) + " minutes, one day)");
     }
@@ -528,14 +523,15 @@ bool Interpreter::check_feed() {
   }
   if (!modal_.feed_set) {
     return fail(ErrorCode::GcodeNoFeed, motion_word_,
-                "found " + quoted_block() +
-                    " with no feed rate in effect; expected an F word (feed in " + feed_unit() +
-                    ") before or on this line");
+                "found " + quoted_block() + " with no feed rate in effect; expected an F word (feed in " +
+                    feed_unit() + ") before or on this line");
   }
   if (modal_.feed_raw <= 0.0) {
     return fail(ErrorCode::GcodeNoFeed, motion_word_,
-                "found " + quoted_block() + " with feed rate F0 in effect; expected a positive F "
-                "word (feed in " + feed_unit() + ") before or on this line");
+                "found " + quoted_block() +
+                    " with feed rate F0 in effect; expected a positive F "
+                    "word (feed in " +
+                    feed_unit() + ") before or on this line");
   }
   return true;
 }
@@ -547,7 +543,7 @@ bool Interpreter::check_duration(double linear_mm, double rotary_deg) {
   if (modal_.inverse_time) return true;
   constexpr double kMaxMinutes = kMaxBlockSeconds / 60.0;
   if (moves_linear(linear_mm) ? linear_mm <= modal_.feed_mm_min * kMaxMinutes
-                      : rotary_deg <= modal_.feed_raw * kMaxMinutes) {
+                              : rotary_deg <= modal_.feed_raw * kMaxMinutes) {
     return true;
   }
   return fail_duration(linear_mm, rotary_deg);
@@ -560,8 +556,8 @@ bool Interpreter::fail_duration(double linear_mm, double rotary_deg) {
   const double scale = rotary_only ? 1.0 : length_scale();
   const char* unit = rotary_only ? "deg" : (modal_.inch ? "in" : "mm");
   return fail(ErrorCode::GcodeBadValue, b_->has('F') ? b_->span('F') : motion_word_,
-              "found " + quoted_block() + ": a move of " + gnum(length / scale) + " " + unit +
-                  " at F" + gnum(modal_.feed_raw) + " takes " + gnum(minutes) +
+              "found " + quoted_block() + ": a move of " + gnum(length / scale) + " " + unit + " at F" +
+                  gnum(modal_.feed_raw) + " takes " + gnum(minutes) +
                   " minutes; expected a move of at most " + gnum(kMaxBlockSeconds / 60.0) +
                   " minutes (one day): a higher F");
 }
@@ -578,9 +574,9 @@ bool Interpreter::check_magnitude(const Pose& end) {
     const char l = kAxisLetters[a];
     const char* unit = a < 3 ? "mm" : "deg";
     return fail(ErrorCode::GcodeBadValue, b_->span(l),
-                "found " + quoted(b_->span(l)) + " moving " + std::string(1, l) + " to " +
-                    gnum(end[a]) + " " + unit + " in machine coordinates; expected |" +
-                    std::string(1, l) + "| <= " + gnum(bound) + " " + unit);
+                "found " + quoted(b_->span(l)) + " moving " + std::string(1, l) + " to " + gnum(end[a]) +
+                    " " + unit + " in machine coordinates; expected |" + std::string(1, l) +
+                    "| <= " + gnum(bound) + " " + unit);
   }
   return true;
 }
@@ -616,11 +612,10 @@ bool Interpreter::check_travel(const Pose& lo, const Pose& hi, const Pose& end) 
     // Point at the axis word when its end point is the problem, else at the move.
     const Span at = (at_end && b_->has(l)) ? b_->span(l) : motion_word_;
     return fail(ErrorCode::GcodeBeyondTravel, at,
-                "found " + quoted_block() + (at_end ? " moving " : " passing ") +
-                    std::string(1, l) + " to " + num(bad) + " " + unit +
-                    (at_end ? "" : " (arc extreme)") + " in machine coordinates, beyond the " +
-                    std::string(1, l) + " travel [" + num(ax.min) + ", " + num(ax.max) + "] " +
-                    unit + "; expected positions within the travel");
+                "found " + quoted_block() + (at_end ? " moving " : " passing ") + std::string(1, l) + " to " +
+                    num(bad) + " " + unit + (at_end ? "" : " (arc extreme)") +
+                    " in machine coordinates, beyond the " + std::string(1, l) + " travel [" + num(ax.min) +
+                    ", " + num(ax.max) + "] " + unit + "; expected positions within the travel");
   }
   return true;
 }
@@ -637,8 +632,9 @@ bool Interpreter::move(SegmentBuffer& out) {
     }
     if (!modal_.absolute) {
       return fail(ErrorCode::GcodeSyntax, b.code_word(GGroup::NonModal),
-                  "found " + quoted_block() + " in G91: G53 names machine positions; expected "
-                  "G53 in G90 (absolute)");
+                  "found " + quoted_block() +
+                      " in G91: G53 names machine positions; expected "
+                      "G53 in G90 (absolute)");
     }
   }
   const Pose offset = machine_coords ? Pose::Zero() : offsets_;
@@ -671,8 +667,9 @@ bool Interpreter::move(SegmentBuffer& out) {
   const bool is_arc = block_motion_ == MotionMode::ArcCw || block_motion_ == MotionMode::ArcCcw;
   if (comp_exited_ && is_arc) {
     return fail(ErrorCode::GcodeCutterComp, motion_word_,
-                "found " + quoted_block() + " just after G40: the move that leaves the "
-                "compensated path must be straight; expected G0 or G1 first");
+                "found " + quoted_block() +
+                    " just after G40: the move that leaves the "
+                    "compensated path must be straight; expected G0 or G1 first");
   }
   if (comp_active()) return is_arc ? comp_arc(end, out) : comp_straight(end, out);
   if (is_arc) return arc(end, out);
@@ -738,22 +735,20 @@ bool Interpreter::arc_centre(const Pose& from, Pose& end, Vec3& c, std::uint32_t
   if (b.has(ln)) {
     return fail(ErrorCode::GcodeSyntax, b.span(ln),
                 "found " + quoted(b.span(ln)) + " on an arc in the " + plane_name(modal_.plane) +
-                    "; expected " + std::string(1, la) + " and " + std::string(1, lb) +
-                    " for the centre");
+                    "; expected " + std::string(1, la) + " and " + std::string(1, lb) + " for the centre");
   }
   const bool has_r = b.has('R');
   const bool has_ijk = b.has(la) || b.has(lb);
   if (has_r && has_ijk) {
     return fail(ErrorCode::GcodeSyntax, b.span('R'),
                 "found " + quoted(b.span('R')) + " together with " + std::string(1, la) + "/" +
-                    std::string(1, lb) + " words; expected either R or " + std::string(1, la) +
-                    " " + std::string(1, lb) + " for the arc, not both");
+                    std::string(1, lb) + " words; expected either R or " + std::string(1, la) + " " +
+                    std::string(1, lb) + " for the arc, not both");
   }
   if (!has_r && !has_ijk) {
     return fail(ErrorCode::GcodeArcMissingCenter, motion_word_,
-                "found " + quoted_block() + " with no centre or radius; expected " +
-                    std::string(1, la) + " " + std::string(1, lb) + " (centre, " +
-                    plane_name(modal_.plane) + ") or R (radius)");
+                "found " + quoted_block() + " with no centre or radius; expected " + std::string(1, la) +
+                    " " + std::string(1, lb) + " (centre, " + plane_name(modal_.plane) + ") or R (radius)");
   }
   if (!check_feed()) return false;
 
@@ -764,7 +759,8 @@ bool Interpreter::arc_centre(const Pose& from, Pose& end, Vec3& c, std::uint32_t
     // (bounded before the conversion: a P of 1e18 is no number of turns)
     if (std::fabs(p - turns) > kIntegerTol || turns < 1.0 || turns > kMaxArcTurns) {
       return fail(ErrorCode::GcodeBadValue, b.span('P'),
-                  "found " + quoted(b.span('P')) + " on an arc; expected P as a whole number of turns from 1 to " +
+                  "found " + quoted(b.span('P')) +
+                      " on an arc; expected P as a whole number of turns from 1 to " +
                       std::to_string(static_cast<int>(kMaxArcTurns)));
     }
     extra_turns = static_cast<std::uint32_t>(turns) - 1;
@@ -788,10 +784,9 @@ bool Interpreter::arc_centre(const Pose& from, Pose& end, Vec3& c, std::uint32_t
     if (chord / 2.0 - abs_r > kArcReachMm) {
       return fail(ErrorCode::GcodeArcRadius, rw,
                   "found " + quoted(rw) + " but the end point is " + num(chord) +
-                      " mm from the start: radius " + num(abs_r) + " mm reaches at most " +
-                      num(2.0 * abs_r) + " mm; expected |R| >= " + num(chord / 2.0) +
-                      " mm, half the chord (less " + gnum(kArcReachMm) +
-                      " mm: then a half circle through both ends)");
+                      " mm from the start: radius " + num(abs_r) + " mm reaches at most " + num(2.0 * abs_r) +
+                      " mm; expected |R| >= " + num(chord / 2.0) + " mm, half the chord (less " +
+                      gnum(kArcReachMm) + " mm: then a half circle through both ends)");
     }
     const double half = chord / 2.0;
     // within 1e-12 of a half circle it is one (LinuxCNC's TINY): R² − half²
@@ -818,9 +813,8 @@ bool Interpreter::arc_centre(const Pose& from, Pose& end, Vec3& c, std::uint32_t
     if (r_start < kArcMinRadiusMm || r_end < kArcMinRadiusMm) {
       return fail(ErrorCode::GcodeArcRadius, at,
                   "found " + quoted_block() + " whose centre is at its " +
-                      (r_start < kArcMinRadiusMm ? "start" : "end") +
-                      " point (radius 0); expected " + std::string(1, la) + " " +
-                      std::string(1, lb) + " placing the centre away from both");
+                      (r_start < kArcMinRadiusMm ? "start" : "end") + " point (radius 0); expected " +
+                      std::string(1, la) + " " + std::string(1, lb) + " placing the centre away from both");
     }
     const double diff = std::fabs(r_end - r_start);
     const double rel = diff / std::max(r_start, r_end);
@@ -831,10 +825,9 @@ bool Interpreter::arc_centre(const Pose& from, Pose& end, Vec3& c, std::uint32_t
       const char* name = inch ? " in" : " mm";
       return fail(ErrorCode::GcodeArcRadius, at,
                   "found " + quoted_block() + " with radius " + num(r_start / unit) + name +
-                      " to the start and " + num(r_end / unit) + name +
-                      " to the end (they differ by " + num(diff / unit) + name +
-                      "); expected equal radii, within " + gnum(tol / unit) + name + " or " +
-                      num(kArcRadiusRel * 100.0) + " % (up to " +
+                      " to the start and " + num(r_end / unit) + name + " to the end (they differ by " +
+                      num(diff / unit) + name + "); expected equal radii, within " + gnum(tol / unit) + name +
+                      " or " + num(kArcRadiusRel * 100.0) + " % (up to " +
                       gnum(kArcRadiusHardFactor * tol / unit) + name + ")");
     }
   }
@@ -869,8 +862,8 @@ bool Interpreter::arc_to(const Pose& end, const Vec3& c, bool cw, std::uint32_t 
   const double length_mm = arc_length_mm(s);
   if (length_mm > kMaxArcLengthMm) {
     return fail(ErrorCode::GcodeBadValue, b.has('P') ? b.span('P') : motion_word_,
-                "found " + quoted_block() + ": an arc of " + gnum(length_mm) +
-                    " mm (radius " + gnum(std::hypot(pos_[axes[0]] - c[axes[0]], pos_[axes[1]] - c[axes[1]])) + " mm" +
+                "found " + quoted_block() + ": an arc of " + gnum(length_mm) + " mm (radius " +
+                    gnum(std::hypot(pos_[axes[0]] - c[axes[0]], pos_[axes[1]] - c[axes[1]])) + " mm" +
                     (extra_turns > 0 ? ", " + std::to_string(extra_turns + 1) + " turns" : "") +
                     "); expected an arc of at most " + gnum(kMaxArcLengthMm) +
                     " mm (1 km): fewer turns or a smaller radius");
@@ -911,7 +904,8 @@ bool Interpreter::set_override_switches() {
     on = p != 0.0;
   }
   auto set = [&](std::uint8_t bit, bool value) {
-    modal_.feed_control = static_cast<std::uint8_t>(value ? modal_.feed_control | bit : modal_.feed_control & ~bit);
+    modal_.feed_control =
+        static_cast<std::uint8_t>(value ? modal_.feed_control | bit : modal_.feed_control & ~bit);
   };
   switch (code) {
     case 48:
@@ -943,10 +937,9 @@ bool Interpreter::set_outputs() {
   const int count = analog ? kAnalogOutputs : kDigitalOutputs;
   if (!b.has(letter)) {
     return fail(ErrorCode::GcodeMissingWord, b.m_io_word,
-                "found " + quoted(b.m_io_word) + " with no " + std::string(1, letter) +
-                    " word; expected " + quoted(b.m_io_word) + " " + std::string(1, letter) +
-                    "<output 0 … " + std::to_string(count - 1) + ">" +
-                    (analog ? " Q<value>" : ""));
+                "found " + quoted(b.m_io_word) + " with no " + std::string(1, letter) + " word; expected " +
+                    quoted(b.m_io_word) + " " + std::string(1, letter) + "<output 0 … " +
+                    std::to_string(count - 1) + ">" + (analog ? " Q<value>" : ""));
   }
   const double v = b[letter];
   if (v != std::floor(v) || v < 0.0 || v >= count) {
@@ -959,8 +952,8 @@ bool Interpreter::set_outputs() {
   if (analog) {
     if (!b.has('Q')) {
       return fail(ErrorCode::GcodeMissingWord, b.m_io_word,
-                  "found " + quoted(b.m_io_word) + " with no Q word; expected " +
-                      quoted(b.m_io_word) + " E<output> Q<value>");
+                  "found " + quoted(b.m_io_word) + " with no Q word; expected " + quoted(b.m_io_word) +
+                      " E<output> Q<value>");
     }
     const float q = static_cast<float>(b['Q']);
     if (!std::isfinite(q)) {
@@ -978,8 +971,14 @@ bool Interpreter::set_outputs() {
   }
   const auto bit = static_cast<std::uint8_t>(1u << n);
   switch (code) {
-    case 62: synced_on_ |= bit; synced_off_ = static_cast<std::uint8_t>(synced_off_ & ~bit); break;
-    case 63: synced_off_ |= bit; synced_on_ = static_cast<std::uint8_t>(synced_on_ & ~bit); break;
+    case 62:
+      synced_on_ |= bit;
+      synced_off_ = static_cast<std::uint8_t>(synced_off_ & ~bit);
+      break;
+    case 63:
+      synced_off_ |= bit;
+      synced_on_ = static_cast<std::uint8_t>(synced_on_ & ~bit);
+      break;
     case 64: digital_out_ |= bit; break;
     default: digital_out_ = static_cast<std::uint8_t>(digital_out_ & ~bit); break;
   }
@@ -1001,8 +1000,9 @@ bool Interpreter::wait_input(SegmentBuffer& out) {
   const Span at = b.m_io_word;
   if (b.has('E')) {
     return fail(ErrorCode::GcodeUnsupported, b.span('E'),
-                "found " + quoted(b.span('E')) + " on M66: waiting on an analog input is not "
-                "supported; expected M66 P<digital input> L1…L4 Q<seconds>");
+                "found " + quoted(b.span('E')) +
+                    " on M66: waiting on an analog input is not "
+                    "supported; expected M66 P<digital input> L1…L4 Q<seconds>");
   }
   if (!b.has('P')) {
     return fail(ErrorCode::GcodeMissingWord, at,
@@ -1028,8 +1028,10 @@ bool Interpreter::wait_input(SegmentBuffer& out) {
   }
   if (!b.has('Q') || !(b['Q'] > 0.0) || b['Q'] > kMaxBlockSeconds) {
     return fail(ErrorCode::GcodeBadValue, b.has('Q') ? b.span('Q') : at,
-                "found " + quoted_block() + ": M66 needs a timeout; expected Q<seconds> from "
-                "more than 0 to " + gnum(kMaxBlockSeconds) + " (after it the job stops)");
+                "found " + quoted_block() +
+                    ": M66 needs a timeout; expected Q<seconds> from "
+                    "more than 0 to " +
+                    gnum(kMaxBlockSeconds) + " (after it the job stops)");
   }
   Segment& s = hold_segment(out);
   s.wait_input = static_cast<std::int8_t>(p);
@@ -1074,9 +1076,7 @@ bool Interpreter::run_context() {
       // M73 at the top level: nothing to return to; kept as M70's (LinuxCNC)
       c.restore_on_return = b.m_context == 73 && contexts_.size() > 1;
       return true;
-    case 71:
-      c.valid = false;
-      return true;
+    case 71: c.valid = false; return true;
     default:
       if (!c.valid) {
         return fail(ErrorCode::GcodeFlow, b.m_context_word,
@@ -1140,8 +1140,7 @@ void Interpreter::leave_call() {
 // "Predefined Named Parameters"): read-only views of the modal state.
 bool Interpreter::predefined(std::string_view name, double& out) const {
   static constexpr std::string_view kAxes[] = {"_x", "_y", "_z", "_a", "_b", "_c"};
-  static constexpr std::string_view kAbsAxes[] = {"_abs_x", "_abs_y", "_abs_z",
-                                                  "_abs_a", "_abs_b", "_abs_c"};
+  static constexpr std::string_view kAbsAxes[] = {"_abs_x", "_abs_y", "_abs_z", "_abs_a", "_abs_b", "_abs_c"};
   for (int a = 0; a < kAxisCount; ++a) {
     if (name == kAxes[a]) {
       out = position_param(a);
@@ -1160,7 +1159,8 @@ bool Interpreter::predefined(std::string_view name, double& out) const {
   if (name == "_current_tool") return out = current_tool_, true;
   if (name == "_selected_tool") return out = selected_tool_, true;
   if (name == "_coord_system")
-    return out = modal_.coord_system < 6 ? 540 + 10 * modal_.coord_system : 591 + (modal_.coord_system - 6), true;
+    return out = modal_.coord_system < 6 ? 540 + 10 * modal_.coord_system : 591 + (modal_.coord_system - 6),
+           true;
   if (name == "_metric") return flag(!modal_.inch);
   if (name == "_imperial") return flag(modal_.inch);
   if (name == "_absolute") return flag(modal_.absolute);
@@ -1171,7 +1171,8 @@ bool Interpreter::predefined(std::string_view name, double& out) const {
   if (name == "_ijk_absolute_mode") return flag(modal_.arc_absolute);
   if (name == "_tool_offset") return flag(modal_.tool_length_on);
   if (name == "_ccomp") return out = 400, true;
-  if (name == "_plane") return out = modal_.plane == Plane::ZX ? 180 : modal_.plane == Plane::YZ ? 190 : 170, true;
+  if (name == "_plane")
+    return out = modal_.plane == Plane::ZX ? 180 : modal_.plane == Plane::YZ ? 190 : 170, true;
   if (name == "_motion_mode") return out = kMotionCode[static_cast<std::size_t>(motion_)], true;
   if (name == "_feed") return out = modal_.inverse_time ? 0.0 : modal_.feed_mm_min / length_scale(), true;
   if (name == "_rpm") return out = modal_.power_pct * machine_.laser.s_max / 100.0, true;

@@ -78,7 +78,18 @@ inline constexpr std::uint32_t kDataLetters = [] {
 }();
 
 enum class MotionMode : std::uint8_t {
-  None, Rapid, Linear, ArcCw, ArcCcw, Cycle73, Cycle81, Cycle82, Cycle83, Cycle85, Cycle86, Cycle89
+  None,
+  Rapid,
+  Linear,
+  ArcCw,
+  ArcCcw,
+  Cycle73,
+  Cycle81,
+  Cycle82,
+  Cycle83,
+  Cycle85,
+  Cycle86,
+  Cycle89
 };
 [[nodiscard]] constexpr bool is_cycle(MotionMode m) noexcept { return m >= MotionMode::Cycle73; }
 
@@ -183,8 +194,7 @@ class Interpreter {
   bool arc_centre(const Pose& from, Pose& end, Vec3& c, std::uint32_t& extra_turns);
   // An arc from where the machine is to `end` about `c`, checked (travel,
   // length, time).
-  bool arc_to(const Pose& end, const Vec3& c, bool cw, std::uint32_t extra_turns,
-              SegmentBuffer& out);
+  bool arc_to(const Pose& end, const Vec3& c, bool cw, std::uint32_t extra_turns, SegmentBuffer& out);
   // M62 … M65 digital and M67/M68 analog outputs; the synchronized ones
   // (M62 M63 M67) wait for the next move (take_synced_outputs).
   bool set_outputs();
@@ -201,10 +211,10 @@ class Interpreter {
     bool absolute = true;
     bool arc_absolute = false;
     bool inverse_time = false;
-    int coord_system = 0;                // 0 = G54 … 8 = G59.3
-    Pose tool_offset = Pose::Zero();     // G43
-    bool tool_length_on = false;         // G43 / G43.1 / G43.2 in effect
-    bool retract_old_z = false;          // G98 (true) / G99
+    int coord_system = 0;             // 0 = G54 … 8 = G59.3
+    Pose tool_offset = Pose::Zero();  // G43
+    bool tool_length_on = false;      // G43 / G43.1 / G43.2 in effect
+    bool retract_old_z = false;       // G98 (true) / G99
     PathMode path_mode = PathMode::ExactPath;
     double blend_tolerance_mm = 0.0;
     double naive_cam_tolerance_mm = 0.0;
@@ -233,22 +243,17 @@ class Interpreter {
     int anchors = 0;
     static HeldTag entry_move() { return {true, {}, 0}; }
     static HeldTag at(const Eigen::Vector2d& p) { return {false, {p, Eigen::Vector2d::Zero()}, 1}; }
-    static HeldTag between(const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
-      return {false, {p, q}, 2};
-    }
+    static HeldTag between(const Eigen::Vector2d& p, const Eigen::Vector2d& q) { return {false, {p, q}, 2}; }
   };
   bool check_comp_conflicts();
   bool set_cutter_comp(SegmentBuffer& out);
-  [[nodiscard]] bool comp_active() const noexcept {
-    return comp_side_ != 0 && comp_radius_mm_ > 0.0;
-  }
+  [[nodiscard]] bool comp_active() const noexcept { return comp_side_ != 0 && comp_radius_mm_ > 0.0; }
   bool comp_straight(const Pose& end, SegmentBuffer& out);
   bool comp_arc(const Pose& end, SegmentBuffer& out);
   bool comp_round_corner(double mx, double my, const Pose& end, bool rapid, SegmentBuffer& out);
-  bool comp_held_straight(const Pose& end, double dx, double dy, SegmentBuffer& out,
-                          const HeldTag& tag);
-  bool comp_held_arc(const Pose& end, const Vec3& c, int turn, double turns,
-                     SegmentBuffer& out, const HeldTag& tag);
+  bool comp_held_straight(const Pose& end, double dx, double dy, SegmentBuffer& out, const HeldTag& tag);
+  bool comp_held_arc(const Pose& end, const Vec3& c, int turn, double turns, SegmentBuffer& out,
+                     const HeldTag& tag);
   bool comp_move_endpoint_and_flush(double x, double y, SegmentBuffer& out);
   bool comp_dequeue(SegmentBuffer& out);
   void comp_set_endpoint(double x, double y) {
@@ -279,7 +284,7 @@ class Interpreter {
   // bit index(Axis) for each axis check_travel does not bound: continuous
   // rotary axes, and X Y Z under tool-centre-point control
   std::uint8_t untraveled_axes_ = 0;
-  std::uint8_t wrapping_axes_ = 0;    // continuous rotary axes: G90 takes the shorter turn
+  std::uint8_t wrapping_axes_ = 0;  // continuous rotary axes: G90 takes the shorter turn
 
   // Modal state (initially G17 G21 G90 G91.1 G94 G54 G61 M5 M9, F unset, S0).
   MotionMode motion_ = MotionMode::None;
@@ -289,19 +294,19 @@ class Interpreter {
   Pose axis_offset_ = Pose::Zero();  // G92 / G52
   Pose offsets_ = Pose::Zero();      // their sum: machine = program + offsets_
   std::vector<ToolConfig> tools_;
-  std::vector<int> changed_tools_;   // numbers of the tools G10 set
-  int selected_tool_ = 0;            // T
-  int current_tool_ = 0;             // in the spindle: M6, M61
+  std::vector<int> changed_tools_;  // numbers of the tools G10 set
+  int selected_tool_ = 0;           // T
+  int current_tool_ = 0;            // in the spindle: M6, M61
   // Canned cycles (G98/G99: modal_.retract_old_z): the sticky R, Z, P, Q of the cycle in effect (mm, s), valid while
   // its mode lasts (a new cycle mode needs R and Z again).
   bool cycle_sticky_ = false;
-  bool cycle_series_ = false;        // cycle blocks in a row: cycle_initial_z_ is set
-  double cycle_initial_z_ = 0.0;     // where Z stood before the first of them
+  bool cycle_series_ = false;     // cycle blocks in a row: cycle_initial_z_ is set
+  double cycle_initial_z_ = 0.0;  // where Z stood before the first of them
   double cycle_r_ = 0.0, cycle_z_ = 0.0, cycle_p_ = 0.0, cycle_q_ = 0.0;
-  std::uint8_t digital_out_ = 0;                 // M62 … M65
-  std::array<float, kAnalogOutputs> analog_out_{};  // M67 M68
-  std::uint8_t synced_on_ = 0, synced_off_ = 0;  // M62 / M63 for the next move
-  std::uint8_t synced_analog_ = 0;               // M67 for the next move: which E …
+  std::uint8_t digital_out_ = 0;                             // M62 … M65
+  std::array<float, kAnalogOutputs> analog_out_{};           // M67 M68
+  std::uint8_t synced_on_ = 0, synced_off_ = 0;              // M62 / M63 for the next move
+  std::uint8_t synced_analog_ = 0;                           // M67 for the next move: which E …
   std::array<float, kAnalogOutputs> synced_analog_value_{};  // … to what
   bool ended_ = false;
 
@@ -323,11 +328,11 @@ class Interpreter {
   bool comp_exited_ = false;
   Pose programmed_ = Pose::Zero();
   std::vector<HeldMove> held_;
-  bool holding_ = false;              // comp's moves: every new segment is held
+  bool holding_ = false;  // comp's moves: every new segment is held
   double comp_endpoint_[2] = {0.0, 0.0};
   bool comp_endpoint_valid_ = false;
-  int comp_a_ = 0, comp_b_ = 1;       // the plane's two axes (X Y in G17, Z X in G18)
-  GougeWindow gouge_;                 // the run's programmed and cut moves (comp_gouge.h)
+  int comp_a_ = 0, comp_b_ = 1;  // the plane's two axes (X Y in G17, Z X in G18)
+  GougeWindow gouge_;            // the run's programmed and cut moves (comp_gouge.h)
   bool comp_check_programmed(const PlanePiece& p);
   bool comp_check_cut(const HeldMove& h);
   bool comp_gouge_fail(const GougeWindow::Gouge& g);
@@ -345,7 +350,7 @@ class Interpreter {
   const LineText* t_ = nullptr;
   std::uint32_t line_ = 0;
   MotionMode block_motion_ = MotionMode::None;
-  Span motion_word_{};       // the G0..G3 word, or the first axis word
+  Span motion_word_{};        // the G0..G3 word, or the first axis word
   bool block_has_f_ = false;  // G93: this block's F
   double block_f_ = 0.0;
 

@@ -12,8 +12,7 @@ namespace lcnc::gcode {
 static_assert(kMaxLineBytes + 2 < LineSource::kChunkBytes,
               "a whole line and its end must fit one read chunk");
 
-LineSource::LineSource(std::string text)
-    : buf_(std::move(text)), end_(buf_.size()), eof_(true) {}
+LineSource::LineSource(std::string text) : buf_(std::move(text)), end_(buf_.size()), eof_(true) {}
 
 std::unique_ptr<LineSource> LineSource::open_file(const std::string& path, std::string& error) {
   std::FILE* f = std::fopen(path.c_str(), "rb");

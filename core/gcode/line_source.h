@@ -22,8 +22,7 @@ class LineSource {
   // Reads lines out of `text` (kept by the source).
   explicit LineSource(std::string text);
   // Opens a file; on failure returns nullptr and sets `error` to the reason.
-  [[nodiscard]] static std::unique_ptr<LineSource> open_file(const std::string& path,
-                                                             std::string& error);
+  [[nodiscard]] static std::unique_ptr<LineSource> open_file(const std::string& path, std::string& error);
 
   // The next line; false at the end of the input, on a read error or at a
   // line longer than kMaxLineBytes.
@@ -56,15 +55,15 @@ class LineSource {
   void refill();
 
   std::unique_ptr<std::FILE, FileCloser> file_;
-  std::string buf_;          // file mode: chunk buffer; memory mode: the text
-  std::uint64_t base_ = 0;   // input offset of buf_[0]
-  std::size_t begin_ = 0;    // first unread byte
-  std::size_t end_ = 0;      // one past the last valid byte
-  bool eof_ = false;         // no more bytes beyond end_
-  bool first_line_ = true;   // BOM check pending
+  std::string buf_;         // file mode: chunk buffer; memory mode: the text
+  std::uint64_t base_ = 0;  // input offset of buf_[0]
+  std::size_t begin_ = 0;   // first unread byte
+  std::size_t end_ = 0;     // one past the last valid byte
+  bool eof_ = false;        // no more bytes beyond end_
+  bool first_line_ = true;  // BOM check pending
   bool too_long_ = false;
-  std::size_t cr_at_ = 0;   // first '\r' at or after begin_, end_ when none
-  bool cr_valid_ = false;   // cr_at_ holds for the bytes in buf_
+  std::size_t cr_at_ = 0;  // first '\r' at or after begin_, end_ when none
+  bool cr_valid_ = false;  // cr_at_ holds for the bytes in buf_
   std::string read_error_;
 };
 

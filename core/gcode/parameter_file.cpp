@@ -56,8 +56,9 @@ Status tool_line(std::string_view s, const std::string& path, std::uint32_t line
     double v = 0.0;
     if (!number(s, i, v))
       return bad(path, line, static_cast<std::uint32_t>(at + 1),
-                 "found " + quote(s.substr(at, 1)) + " with no number after it; expected tool words "
-                 "T<n> X<mm> Y<mm> Z<mm> D<mm> and a ;description");
+                 "found " + quote(s.substr(at, 1)) +
+                     " with no number after it; expected tool words "
+                     "T<n> X<mm> Y<mm> Z<mm> D<mm> and a ;description");
     switch (letter) {
       case 'T':
         if (v != std::floor(v) || v < 1 || v > kMaxToolNumber)
@@ -81,8 +82,9 @@ Status tool_line(std::string_view s, const std::string& path, std::uint32_t line
   if (!have_number) return bad(path, line, 1, "a tool line without T<n>");
   for (int k = 0; k < 3; ++k) {
     if (std::fabs(t.offset[k]) > kMaxToolOffsetMm)
-      return bad(path, line, 1, "tool " + std::to_string(t.number) + " offset beyond ±" +
-                                    std::to_string(static_cast<int>(kMaxToolOffsetMm)) + " mm");
+      return bad(path, line, 1,
+                 "tool " + std::to_string(t.number) + " offset beyond ±" +
+                     std::to_string(static_cast<int>(kMaxToolOffsetMm)) + " mm");
   }
   tools.push_back(std::move(t));
   return {};
@@ -114,9 +116,11 @@ Result<ParameterFileData> read_parameter_file(const std::string& path) {
     if (!number(s, i, index) || index != std::floor(index) || index < kParamPersistentFirst ||
         index > kParamPersistentLast)
       return bad(path, line, static_cast<std::uint32_t>(at + 1),
-                 "found " + quote(s.substr(at), 24) + "; expected '<parameter> <value>' "
-                 "with a parameter from " + std::to_string(kParamPersistentFirst) + " to " +
-                 std::to_string(kParamPersistentLast) + ", or a tool line 'T<n> Z<mm> …'");
+                 "found " + quote(s.substr(at), 24) +
+                     "; expected '<parameter> <value>' "
+                     "with a parameter from " +
+                     std::to_string(kParamPersistentFirst) + " to " + std::to_string(kParamPersistentLast) +
+                     ", or a tool line 'T<n> Z<mm> …'");
     skip_blanks(s, i);
     const std::size_t vat = i;
     if (!number(s, i, value)) {
@@ -137,8 +141,9 @@ Result<ParameterFileData> read_parameter_file(const std::string& path) {
     skip_blanks(s, i);
     if (i < s.size())
       return bad(path, line, static_cast<std::uint32_t>(i + 1),
-                 "found " + quote(s.substr(i), 24) + " after the value; expected the "
-                 "line's end");
+                 "found " + quote(s.substr(i), 24) +
+                     " after the value; expected the "
+                     "line's end");
     data.params.emplace_back(static_cast<int>(index), value);
   }
   return data;
@@ -151,8 +156,8 @@ Status write_parameter_file(const std::string& path, const std::vector<double>& 
   for (int k = kParamPersistentFirst; k <= kParamPersistentLast; ++k)
     out << k << '\t' << numbered[static_cast<std::size_t>(k)] << '\n';
   for (const ToolConfig& t : tools) {
-    out << 'T' << t.number << " X" << t.offset[0] << " Y" << t.offset[1] << " Z" << t.offset[2]
-        << " D" << t.diameter_mm;
+    out << 'T' << t.number << " X" << t.offset[0] << " Y" << t.offset[1] << " Z" << t.offset[2] << " D"
+        << t.diameter_mm;
     if (!t.description.empty()) out << " ;" << t.description;
     out << '\n';
   }

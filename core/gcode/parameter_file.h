@@ -23,21 +23,21 @@
 
 namespace lcnc::gcode {
 
-inline constexpr int kParamAxes = 9;           // X Y Z A B C U V W
-inline constexpr int kParamG28 = 5161;         // #5161 … #5169: G28 position (G28.1)
-inline constexpr int kParamG30 = 5181;         // #5181 … #5189: G30 position (G30.1)
-inline constexpr int kParamG92On = 5210;       // 1 while the G92 offset applies
-inline constexpr int kParamG92 = 5211;         // #5211 … #5219: the G92 / G52 offset
-inline constexpr int kParamCoordSystem = 5220; // 1 … 9: G54 … G59.3 in effect
-inline constexpr int kParamCoordFirst = 5221;  // G54's X; system n (0-based) at +20·n
+inline constexpr int kParamAxes = 9;            // X Y Z A B C U V W
+inline constexpr int kParamG28 = 5161;          // #5161 … #5169: G28 position (G28.1)
+inline constexpr int kParamG30 = 5181;          // #5181 … #5189: G30 position (G30.1)
+inline constexpr int kParamG92On = 5210;        // 1 while the G92 offset applies
+inline constexpr int kParamG92 = 5211;          // #5211 … #5219: the G92 / G52 offset
+inline constexpr int kParamCoordSystem = 5220;  // 1 … 9: G54 … G59.3 in effect
+inline constexpr int kParamCoordFirst = 5221;   // G54's X; system n (0-based) at +20·n
 inline constexpr int kParamCoordStride = 20;
-inline constexpr int kParamCoordRotation = 9;  // +9 in a system's block: its XY rotation (R)
+inline constexpr int kParamCoordRotation = 9;   // +9 in a system's block: its XY rotation (R)
 inline constexpr int kParamInputResult = 5399;  // M66: the input's value
-inline constexpr int kParamTool = 5400;        // the tool in the spindle (M6, M61)
-inline constexpr int kParamToolOffset = 5401;  // #5401 … #5409: the tool offset in effect (G43)
+inline constexpr int kParamTool = 5400;         // the tool in the spindle (M6, M61)
+inline constexpr int kParamToolOffset = 5401;   // #5401 … #5409: the tool offset in effect (G43)
 inline constexpr int kParamToolDiameter = 5410;
-inline constexpr int kParamToolLast = 5413;    // … #5411 – #5413: its angles and orientation (lathes)
-inline constexpr int kParamPosition = 5420;    // #5420 … #5428: the position, program coordinates
+inline constexpr int kParamToolLast = 5413;  // … #5411 – #5413: its angles and orientation (lathes)
+inline constexpr int kParamPosition = 5420;  // #5420 … #5428: the position, program coordinates
 // Kept in the file (LinuxCNC's required set).
 inline constexpr int kParamPersistentFirst = 5161;
 inline constexpr int kParamPersistentLast = 5390;
@@ -59,8 +59,7 @@ struct ParameterFileData {
 
 // Writes #5161 … #5390 of `numbered` (indexed by parameter number) and
 // `tools`, replacing the file whole.
-[[nodiscard]] Status write_parameter_file(const std::string& path,
-                                          const std::vector<double>& numbered,
+[[nodiscard]] Status write_parameter_file(const std::string& path, const std::vector<double>& numbered,
                                           const std::vector<ToolConfig>& tools);
 
 }  // namespace lcnc::gcode

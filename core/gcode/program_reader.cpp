@@ -76,7 +76,8 @@ class Parameters final : public gcode::ParameterReader {
     globals_["_value_returned"] = 0.0;  // 1 when it returned a value
   }
   [[nodiscard]] double numbered(int index) const override {
-    if (index >= gcode::kParamPosition && index < gcode::kParamPosition + gcode::kParamAxes && interp_ != nullptr)
+    if (index >= gcode::kParamPosition && index < gcode::kParamPosition + gcode::kParamAxes &&
+        interp_ != nullptr)
       return interp_->position_param(index - gcode::kParamPosition);
     return numbered_[index];
   }
@@ -99,7 +100,8 @@ class Parameters final : public gcode::ParameterReader {
     if (index >= gcode::kParamPosition && index < gcode::kParamPosition + gcode::kParamAxes)
       return "the current position";
     if (index >= gcode::kParamInputResult && index <= gcode::kParamToolLast)
-      return index == gcode::kParamInputResult ? "M66's input value" : "the tool's data, set by M6, M61 and G43";
+      return index == gcode::kParamInputResult ? "M66's input value"
+                                               : "the tool's data, set by M6, M61 and G43";
     return {};
   }
   // Where the interpreter keeps its offsets (and reads them back).
@@ -169,12 +171,12 @@ struct Frame {
 // Lines passed over unread except for O-words with `label`.
 enum class Skip : std::uint8_t {
   None,
-  ToSub,      // to "O<label> sub", then into it (a call of a sub defined later, or in its file)
-  SubBody,    // a definition, to its endsub
-  IfBranch,   // a false branch: to the elseif, else or endif
-  ToEndIf,    // after the branch that ran: to the endif
-  LoopEnd,    // a loop not (or no longer) run: to its end (`end`)
-  ToDoTest,   // continue in a do loop: to its closing while
+  ToSub,     // to "O<label> sub", then into it (a call of a sub defined later, or in its file)
+  SubBody,   // a definition, to its endsub
+  IfBranch,  // a false branch: to the elseif, else or endif
+  ToEndIf,   // after the branch that ran: to the endif
+  LoopEnd,   // a loop not (or no longer) run: to its end (`end`)
+  ToDoTest,  // continue in a do loop: to its closing while
 };
 
 // A program file and the subroutine files it calls.
@@ -218,11 +220,11 @@ struct ProgramReader::Impl {
   Next read_program(Segment& out);
   bool approach_to(const Segment& first);
   [[nodiscard]] Segment pause_at(const Segment& after) const;
-  std::vector<Segment> queued;      // what read() returns before reading on
+  std::vector<Segment> queued;  // what read() returns before reading on
   std::size_t queued_next = 0;
-  bool reached_start = false;       // the first move of the start line has been read
+  bool reached_start = false;  // the first move of the start line has been read
   bool emitted_any = false;
-  std::uint32_t last_line = 0;      // of the last segment returned
+  std::uint32_t last_line = 0;  // of the last segment returned
   Segment last_segment;
 
   enum class State : std::uint8_t { Running, Ended, Failed };
@@ -252,21 +254,21 @@ struct ProgramReader::Impl {
   Control* find_loop(const std::string& label);
   gcode::LineSource& src() { return *in; }
 
-  std::string file;  // the file being read (for diagnostics)
+  std::string file;       // the file being read (for diagnostics)
   MachineConfig machine;  // before interp, which keeps a reference to it
   ReaderOptions options;
-  std::vector<OpenFile> files;  // [0] the program
-  bool from_memory = false;     // [0] is a name for text held in memory (MDI), no file
-  std::size_t cur = 0;          // files[cur] is being read
+  std::vector<OpenFile> files;      // [0] the program
+  bool from_memory = false;         // [0] is a name for text held in memory (MDI), no file
+  std::size_t cur = 0;              // files[cur] is being read
   gcode::LineSource* in = nullptr;  // files[cur].src
-  Parameters params;  // before parser, which reads them
+  Parameters params;                // before parser, which reads them
   gcode::BlockParser parser;
   gcode::Block block;
   gcode::Interpreter interp;
   gcode::SegmentBuffer pending;
 
-  std::vector<Frame> frames;                              // [0] the program
-  std::unordered_map<std::string, Location> subs;        // label -> the line after its "sub"
+  std::vector<Frame> frames;                                 // [0] the program
+  std::unordered_map<std::string, Location> subs;            // label -> the line after its "sub"
   std::unordered_map<std::string, std::uint32_t> sub_lines;  // label -> its "sub" line
   Skip skip = Skip::None;
   std::string skip_label;
@@ -296,8 +298,8 @@ struct ProgramReader::Impl {
   std::string end_what;
 };
 
-ProgramReader::Next ProgramReader::Impl::fail(ErrorCode code, std::string_view text,
-                                              std::uint32_t byte_pos, std::string message) {
+ProgramReader::Next ProgramReader::Impl::fail(ErrorCode code, std::string_view text, std::uint32_t byte_pos,
+                                              std::string message) {
   error = make_error(code, std::move(message), file, line, column_of(text, byte_pos));
   pending.clear();
   state = State::Failed;
@@ -338,16 +340,16 @@ bool ProgramReader::Impl::within_budget(const Segment& s) {
     return true;
   }
   error = make_error(ErrorCode::GcodeWorkBudget,
-                     "the program makes " + what + " by this line: an endless loop? expected a "
-                     "program that ends within its work budget (raise the limit for a longer one)",
+                     "the program makes " + what +
+                         " by this line: an endless loop? expected a "
+                         "program that ends within its work budget (raise the limit for a longer one)",
                      file, s.line, 1);
   state = State::Failed;
   return false;
 }
 
 ProgramReader::Next ProgramReader::Impl::fail_o(std::string_view text, std::string message) {
-  return fail(ErrorCode::GcodeFlow, text, parser.text().byte_pos(block.o.word),
-              std::move(message));
+  return fail(ErrorCode::GcodeFlow, text, parser.text().byte_pos(block.o.word), std::move(message));
 }
 
 ProgramReader::Next ProgramReader::Impl::read_program(Segment& out) {
@@ -372,7 +374,8 @@ ProgramReader::Next ProgramReader::Impl::read_program(Segment& out) {
       continue;
     }
     if (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed)) {
-      error = make_error(ErrorCode::GcodeCancelled, "the reading was cancelled before its end", file, line, 0);
+      error =
+          make_error(ErrorCode::GcodeCancelled, "the reading was cancelled before its end", file, line, 0);
       state = State::Failed;
       return Next::Error;
     }
@@ -383,7 +386,8 @@ ProgramReader::Next ProgramReader::Impl::read_program(Segment& out) {
         error = make_error(ErrorCode::GcodeSyntax,
                            "found a line longer than " + std::to_string(gcode::kMaxLineBytes) +
                                " bytes (no line end within it); expected program lines of at "
-                               "most " + std::to_string(gcode::kMaxLineBytes) +
+                               "most " +
+                               std::to_string(gcode::kMaxLineBytes) +
                                " bytes ending in a line feed: is this a G-code text file?",
                            file, line + 1, 0);
         state = State::Failed;
@@ -391,8 +395,8 @@ ProgramReader::Next ProgramReader::Impl::read_program(Segment& out) {
       }
       if (!src().read_error().empty()) {
         error = make_error(ErrorCode::FileNotFound,
-                           "reading stopped after line " + std::to_string(line) + ": " +
-                               src().read_error() + "; expected to read the whole program",
+                           "reading stopped after line " + std::to_string(line) + ": " + src().read_error() +
+                               "; expected to read the whole program",
                            file, line + 1, 0);
         state = State::Failed;
         return Next::Error;
@@ -556,8 +560,7 @@ bool ProgramReader::Impl::release_held() {
 // subroutine, a skip or a control structure is still open.
 ProgramReader::Next ProgramReader::Impl::at_file_end() {
   auto fail_here = [&](const Location& at, std::string message, std::uint32_t col = 1) {
-    error = make_error(ErrorCode::GcodeFlow, std::move(message), files[at.file].path,
-                       at.line + 1, col);
+    error = make_error(ErrorCode::GcodeFlow, std::move(message), files[at.file].path, at.line + 1, col);
     pending.clear();
     state = State::Failed;
     return Next::Error;
@@ -572,44 +575,45 @@ ProgramReader::Next ProgramReader::Impl::at_file_end() {
                   ".ngc in the program's folder or machine.subroutine_path";
       }
       return fail_here(skip_from,
-                       "subroutine " + o_name(skip_label) + " not found: " + looked +
-                           "; expected " + o_name(skip_label) + " sub … " + o_name(skip_label) +
-                           " endsub",
+                       "subroutine " + o_name(skip_label) + " not found: " + looked + "; expected " +
+                           o_name(skip_label) + " sub … " + o_name(skip_label) + " endsub",
                        skip_col);
     }
     case Skip::SubBody:
-      return fail_here(skip_from, where + " inside the definition of " + o_name(skip_label) +
-                                      "; expected " + o_name(skip_label) + " endsub", skip_col);
+      return fail_here(skip_from,
+                       where + " inside the definition of " + o_name(skip_label) + "; expected " +
+                           o_name(skip_label) + " endsub",
+                       skip_col);
     case Skip::IfBranch:
     case Skip::ToEndIf:
-      return fail_here(skip_from, where + " before " + o_name(skip_label) +
-                                      " endif; expected one for this " + o_name(skip_label) +
-                                      " if", skip_col);
+      return fail_here(skip_from,
+                       where + " before " + o_name(skip_label) + " endif; expected one for this " +
+                           o_name(skip_label) + " if",
+                       skip_col);
     case Skip::LoopEnd:
     case Skip::ToDoTest:
-      return fail_here(skip_from, where + " before " + o_name(skip_label) + " " +
-                                      o_keyword(skip_end == gcode::OKind::None
-                                                    ? gcode::OKind::While
-                                                    : skip_end) +
-                                      "; expected the end of this loop", skip_col);
+      return fail_here(skip_from,
+                       where + " before " + o_name(skip_label) + " " +
+                           o_keyword(skip_end == gcode::OKind::None ? gcode::OKind::While : skip_end) +
+                           "; expected the end of this loop",
+                       skip_col);
   }
   Frame& f = frames.back();
   if (frames.size() > 1) {
     return fail_here(Location{cur, 0, line}, where + " inside subroutine " + o_name(f.sub) +
-                                                 " (called from " +
-                                                 files[f.return_to.file].path + ":" +
-                                                 std::to_string(f.return_to.line) +
-                                                 "); expected " + o_name(f.sub) + " endsub");
+                                                 " (called from " + files[f.return_to.file].path + ":" +
+                                                 std::to_string(f.return_to.line) + "); expected " +
+                                                 o_name(f.sub) + " endsub");
   }
   if (!f.controls.empty()) {
     const Control& c = f.controls.back();
-    const char* end = c.kind == gcode::OKind::If ? "endif"
+    const char* end = c.kind == gcode::OKind::If      ? "endif"
                       : c.kind == gcode::OKind::While ? "endwhile"
-                      : c.kind == gcode::OKind::Do ? "while"
-                      : "endrepeat";
+                      : c.kind == gcode::OKind::Do    ? "while"
+                                                      : "endrepeat";
     return fail_here(Location{0, 0, c.line - 1},
-                     where + " with " + o_name(c.label) + " " + o_keyword(c.kind) +
-                         " still open; expected " + o_name(c.label) + " " + end + " before it",
+                     where + " with " + o_name(c.label) + " " + o_keyword(c.kind) + " still open; expected " +
+                         o_name(c.label) + " " + end + " before it",
                      c.col);
   }
   if (!release_held()) return Next::Error;
@@ -650,16 +654,15 @@ bool ProgramReader::Impl::jump(const Location& to) {
     std::string why;
     f.src = gcode::LineSource::open_file(f.path, why);
     if (!f.src) {
-      error = make_error(ErrorCode::FileNotFound,
-                         "cannot reopen subroutine file '" + f.path + "': " + why, file, line, 1);
+      error = make_error(ErrorCode::FileNotFound, "cannot reopen subroutine file '" + f.path + "': " + why,
+                         file, line, 1);
       state = State::Failed;
       return false;
     }
   }
   if (!f.src->seek(to.offset)) {
-    error = make_error(ErrorCode::FileNotFound,
-                       "cannot go back in '" + f.path + "': " + f.src->read_error(), file, line,
-                       1);
+    error = make_error(ErrorCode::FileNotFound, "cannot go back in '" + f.path + "': " + f.src->read_error(),
+                       file, line, 1);
     state = State::Failed;
     return false;
   }
@@ -671,8 +674,8 @@ bool ProgramReader::Impl::jump(const Location& to) {
   // Subroutine files no call in progress reads are closed (their buffer freed).
   for (std::size_t i = 1; i < files.size(); ++i) {
     if (i == cur || !files[i].src) continue;
-    const bool in_use = std::any_of(frames.begin(), frames.end(),
-                                    [&](const Frame& fr) { return fr.return_to.file == i; });
+    const bool in_use =
+        std::any_of(frames.begin(), frames.end(), [&](const Frame& fr) { return fr.return_to.file == i; });
     if (!in_use) files[i].src.reset();
   }
   return true;
@@ -711,9 +714,10 @@ bool ProgramReader::Impl::call(std::string_view text, const Location& after) {
     // a name, never a path: o</etc/x> or o<../x> would read files outside
     // the folders a program's subroutines come from
     if (stem.find_first_of("/\\") != std::string::npos || stem == "." || stem == "..") {
-      fail_o(text, "found " + o_name(label) + " call: a subroutine's name is a path; expected a plain "
-                   "name, whose file <name>.ngc is looked for in the program's folder and "
-                   "machine.subroutine_path");
+      fail_o(text, "found " + o_name(label) +
+                       " call: a subroutine's name is a path; expected a plain "
+                       "name, whose file <name>.ngc is looked for in the program's folder and "
+                       "machine.subroutine_path");
       return false;
     }
     const std::string name = stem + ".ngc";
@@ -731,8 +735,8 @@ bool ProgramReader::Impl::call(std::string_view text, const Location& after) {
       const std::string path = candidate.string();
       if (options.file_policy) {
         if (const Status may = options.file_policy(path); !may) {
-          fail_o(text, "subroutine " + o_name(label) + ": its file " + path + " is refused: " +
-                           may.error().message);
+          fail_o(text, "subroutine " + o_name(label) + ": its file " + path +
+                           " is refused: " + may.error().message);
           return false;
         }
       }
@@ -746,10 +750,11 @@ bool ProgramReader::Impl::call(std::string_view text, const Location& after) {
     }
   }
   if (cur != 0) {
-    fail_o(text, "subroutine " + o_name(label) + " not found: not defined before the call and no "
-                 "file for it; expected it defined in the program or in its own file " +
-                 (label.front() == '<' ? label.substr(1, label.size() - 2) + ".ngc" : "") +
-                 " in the program's folder or machine.subroutine_path");
+    fail_o(text, "subroutine " + o_name(label) +
+                     " not found: not defined before the call and no "
+                     "file for it; expected it defined in the program or in its own file " +
+                     (label.front() == '<' ? label.substr(1, label.size() - 2) + ".ngc" : "") +
+                     " in the program's folder or machine.subroutine_path");
     return false;
   }
   start_skip(Skip::ToSub, label);  // later in the program (LinuxCNC's forward search)
@@ -769,8 +774,7 @@ bool ProgramReader::Impl::run_o(std::string_view text, const Location& here) {
     if (!cs.empty() && cs.back().label == label && cs.back().kind == opened) return &cs.back();
     std::string open_now = cs.empty() ? std::string("none is open")
                                       : o_name(cs.back().label) + " " + o_keyword(cs.back().kind) +
-                                            " (line " + std::to_string(cs.back().line) +
-                                            ") is the one open";
+                                            " (line " + std::to_string(cs.back().line) + ") is the one open";
     fail_o(text, "found " + name + " " + what + " with no " + name + " " + o_keyword(opened) +
                      " open here (" + open_now + "); expected each " + what +
                      " to close the structure opened last, with the same label");
@@ -804,8 +808,8 @@ bool ProgramReader::Impl::run_o(std::string_view text, const Location& here) {
       // a return may carry any label (LinuxCNC: it leaves the running call);
       // an endsub closes its own sub
       if (o.kind == gcode::OKind::EndSub && label != f.sub) {
-        fail_o(text, "found " + name + " endsub inside subroutine " + o_name(f.sub) +
-                         "; expected " + o_name(f.sub) + " endsub");
+        fail_o(text, "found " + name + " endsub inside subroutine " + o_name(f.sub) + "; expected " +
+                         o_name(f.sub) + " endsub");
         return false;
       }
       if (!values(text)) return false;
@@ -856,9 +860,7 @@ bool ProgramReader::Impl::run_o(std::string_view text, const Location& here) {
       cs.pop_back();
       return jump(back);
     }
-    case OKind::Do:
-      cs.push_back(Control{OKind::Do, label, after, line, 0, col});
-      return true;
+    case OKind::Do: cs.push_back(Control{OKind::Do, label, after, line, 0, col}); return true;
     case OKind::Repeat: {
       if (!values(text)) return false;
       const double n = std::round(args[0]);
@@ -866,8 +868,8 @@ bool ProgramReader::Impl::run_o(std::string_view text, const Location& here) {
         start_skip(Skip::LoopEnd, label, OKind::EndRepeat);
         return true;
       }
-      cs.push_back(Control{OKind::Repeat, label, after, line,
-                           static_cast<std::int64_t>(std::min(n, 1e15)) - 1, col});
+      cs.push_back(
+          Control{OKind::Repeat, label, after, line, static_cast<std::int64_t>(std::min(n, 1e15)) - 1, col});
       return true;
     }
     case OKind::EndRepeat: {
@@ -1033,8 +1035,7 @@ bool ProgramReader::Impl::save_offsets() {
   saved = true;
   if (!options.keep_parameters || machine.parameter_file.empty()) return true;
   if (kept_state() == kept_at_start) return true;  // nothing to keep: the file stays as it is
-  if (Status st = gcode::write_parameter_file(machine.parameter_file, params.store(),
-                                              interp.changed_tools());
+  if (Status st = gcode::write_parameter_file(machine.parameter_file, params.store(), interp.changed_tools());
       !st) {
     error = st.error();
     error.message = "the offsets and tools this program set are not kept: " + error.message;
@@ -1061,9 +1062,9 @@ void ProgramReader::Impl::run_line0(const std::string& code, const char* what, E
     why = "it moves or ends";
   }
   if (why == nullptr) return;
-  error = make_error(code_if_bad, std::string(what) + " \"" + code + "\": " + why +
-                         "; expected modal codes only",
-                     file, 0, 0);
+  error =
+      make_error(code_if_bad, std::string(what) + " \"" + code + "\": " + why + "; expected modal codes only",
+                 file, 0, 0);
   pending.clear();
   state = State::Failed;
 }
@@ -1115,12 +1116,12 @@ void ProgramReader::Impl::warn_lines_after_end() {
       first_text = "longer than " + std::to_string(gcode::kMaxLineBytes) + " bytes";
     }
   }
-  warnings.push_back(make_error(
-      ErrorCode::GcodeLinesAfterEnd,
-      "found " + std::to_string(count) + " line" + (count == 1 ? "" : "s") +
-          " after the program end (" + end_what + "), the first " + first_text +
-          "; they are not run: expected only blank lines, comments or '%' after the end",
-      file, first_line, first_col));
+  warnings.push_back(
+      make_error(ErrorCode::GcodeLinesAfterEnd,
+                 "found " + std::to_string(count) + " line" + (count == 1 ? "" : "s") +
+                     " after the program end (" + end_what + "), the first " + first_text +
+                     "; they are not run: expected only blank lines, comments or '%' after the end",
+                 file, first_line, first_col));
 }
 
 ProgramReader::ProgramReader(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -1133,8 +1134,7 @@ Result<std::unique_ptr<ProgramReader>> ProgramReader::open(const std::string& pa
   auto src = gcode::LineSource::open_file(path, why);
   if (!src) {
     return make_error(ErrorCode::FileNotFound,
-                      "cannot open G-code program '" + path + "': " + why +
-                          "; expected a readable file",
+                      "cannot open G-code program '" + path + "': " + why + "; expected a readable file",
                       path);
   }
   return std::unique_ptr<ProgramReader>(
@@ -1191,12 +1191,9 @@ Result<ProgramSummary> check_program(const std::string& path, const MachineConfi
     Pose lo = s.start.cwiseMin(s.end);
     Pose hi = s.start.cwiseMax(s.end);
     switch (s.kind) {
-      case MotionKind::Dwell:
-        continue;
+      case MotionKind::Dwell: continue;
       case MotionKind::Rapid:
-      case MotionKind::Linear:
-        length = (s.end.head<3>() - s.start.head<3>()).norm();
-        break;
+      case MotionKind::Linear: length = (s.end.head<3>() - s.start.head<3>()).norm(); break;
       case MotionKind::Arc: {
         length = gcode::arc_length_mm(s);
         Vec3 arc_lo, arc_hi;

@@ -37,7 +37,7 @@
 namespace lcnc {
 
 struct ReaderOptions {
-  Pose start = Pose::Zero();   // machine position when the program starts
+  Pose start = Pose::Zero();  // machine position when the program starts
   // '/' lines skipped (true) or run (false); unset: the machine's
   // block_delete (skipped by default, as LinuxCNC does)
   std::optional<bool> block_delete;
@@ -77,10 +77,10 @@ struct ReaderOptions {
 
 // Where a reading left its modes and offsets.
 struct ReaderModes {
-  std::string block;          // the modes as one block (ReaderOptions::modes of the next)
+  std::string block;            // the modes as one block (ReaderOptions::modes of the next)
   Pose offsets = Pose::Zero();  // machine = program + offsets (mm, deg)
-  int coord_system = 0;       // 0 = G54 … 8 = G59.3
-  bool inch = false;          // G20
+  int coord_system = 0;         // 0 = G54 … 8 = G59.3
+  bool inch = false;            // G20
 };
 
 class ProgramReader {
@@ -88,12 +88,13 @@ class ProgramReader {
   enum class Next : std::uint8_t { Segment, End, Error };
 
   // Opens a program file. FileNotFound when it cannot be read.
-  [[nodiscard]] static Result<std::unique_ptr<ProgramReader>> open(
-      const std::string& path, const MachineConfig& machine, const ReaderOptions& options = {});
+  [[nodiscard]] static Result<std::unique_ptr<ProgramReader>> open(const std::string& path,
+                                                                   const MachineConfig& machine,
+                                                                   const ReaderOptions& options = {});
   // Reads a program held in memory; `name` stands for the file in diagnostics.
-  [[nodiscard]] static std::unique_ptr<ProgramReader> from_string(
-      std::string text, std::string name, const MachineConfig& machine,
-      const ReaderOptions& options = {});
+  [[nodiscard]] static std::unique_ptr<ProgramReader> from_string(std::string text, std::string name,
+                                                                  const MachineConfig& machine,
+                                                                  const ReaderOptions& options = {});
 
   ~ProgramReader();
   ProgramReader(const ProgramReader&) = delete;
@@ -105,7 +106,7 @@ class ProgramReader {
   // every further call returns the same.
   [[nodiscard]] Next next(Segment& out);
 
-  [[nodiscard]] const Diagnostic& error() const;            // valid after Next::Error
+  [[nodiscard]] const Diagnostic& error() const;                  // valid after Next::Error
   [[nodiscard]] const std::vector<Diagnostic>& warnings() const;  // e.g. lines after M2
   [[nodiscard]] std::uint32_t lines_read() const;
   // The modes and offsets as the blocks read so far left them.
@@ -133,8 +134,7 @@ struct ProgramSummary : MotionSummary {
 
 // Reads the whole program, checking syntax, modal conflicts, arcs, feeds and
 // travel. The first error is returned; nothing is run.
-[[nodiscard]] Result<ProgramSummary> check_program(const std::string& path,
-                                                   const MachineConfig& machine,
+[[nodiscard]] Result<ProgramSummary> check_program(const std::string& path, const MachineConfig& machine,
                                                    const ReaderOptions& options = {});
 
 }  // namespace lcnc

@@ -29,8 +29,7 @@ void Interpreter::load_offsets(std::vector<ToolConfig> tools, std::vector<int> c
   const double cs = numbered_[kParamCoordSystem];
   select_coord_system(cs >= 1.0 && cs <= kWorkOffsetCount ? static_cast<int>(cs) - 1 : 0);
   if (numbered_[kParamG92On] == 1.0) {
-    for (int a = 0; a < kAxisCount; ++a)
-      axis_offset_[a] = numbered_[static_cast<std::size_t>(kParamG92 + a)];
+    for (int a = 0; a < kAxisCount; ++a) axis_offset_[a] = numbered_[static_cast<std::size_t>(kParamG92 + a)];
   }
   update_offsets();
 }
@@ -61,12 +60,11 @@ bool Interpreter::tool_number(char letter, int& out) {
     }
     table += (table.empty() ? "" : " ") + std::to_string(t.number);
   }
-  return fail(ErrorCode::GcodeNoSuchTool, b.span(letter),
-              "found " + quoted(b.span(letter)) + ": tool " + std::to_string(out) +
-                  " is not in the tool table ([tools." + std::to_string(out) +
-                  "] of the machine config); expected " +
-                  (table.empty() ? std::string("T0: the table is empty")
-                                 : "one of " + table + ", or 0 (no tool)"));
+  return fail(
+      ErrorCode::GcodeNoSuchTool, b.span(letter),
+      "found " + quoted(b.span(letter)) + ": tool " + std::to_string(out) +
+          " is not in the tool table ([tools." + std::to_string(out) + "] of the machine config); expected " +
+          (table.empty() ? std::string("T0: the table is empty") : "one of " + table + ", or 0 (no tool)"));
 }
 
 bool Interpreter::change_tool() {
@@ -114,8 +112,7 @@ bool Interpreter::set_tool_length() {
         if ((b.axis_mask >> a) & 1u) modal_.tool_offset[a] = axis_value(a);
       modal_.tool_length_on = true;
       break;
-    default:
-      return true;
+    default: return true;
   }
   apply_tool_offset();
   const ToolConfig* in_spindle = find_tool(current_tool_);
@@ -133,9 +130,9 @@ bool Interpreter::set_tool_data() {
   const Block& b = *b_;
   const int l = static_cast<int>(b['L']);
   if (!b.has('P')) {
-    return fail(ErrorCode::GcodeMissingWord, b.code_word(GGroup::NonModal),
-                "found " + quoted_block() + " with no P word; expected G10 L" +
-                    std::to_string(l) + " P<tool>");
+    return fail(
+        ErrorCode::GcodeMissingWord, b.code_word(GGroup::NonModal),
+        "found " + quoted_block() + " with no P word; expected G10 L" + std::to_string(l) + " P<tool>");
   }
   int n = 0;
   if (!tool_number('P', n)) return false;
@@ -144,12 +141,12 @@ bool Interpreter::set_tool_data() {
                 "found " + quoted(b.span('P')) + " on G10 L" + std::to_string(l) +
                     "; expected a tool of the table, not P0 (no tool)");
   }
-  ToolConfig& t = *std::find_if(tools_.begin(), tools_.end(),
-                                [n](const ToolConfig& x) { return x.number == n; });
+  ToolConfig& t =
+      *std::find_if(tools_.begin(), tools_.end(), [n](const ToolConfig& x) { return x.number == n; });
   Pose reference = origin_ + axis_offset_;  // L10: the offsets in effect
   if (l == 11) {
-    reference = Eigen::Map<const Pose>(
-        &numbered_[static_cast<std::size_t>(coord_param(kWorkOffsetCount - 1))]);
+    reference =
+        Eigen::Map<const Pose>(&numbered_[static_cast<std::size_t>(coord_param(kWorkOffsetCount - 1))]);
   }
   for (int a = 0; a < 3; ++a) {
     if (((b.axis_mask >> a) & 1u) == 0) continue;
@@ -157,9 +154,8 @@ bool Interpreter::set_tool_data() {
     t.offset[a] = l == 1 ? v : pos_[a] - reference[a] - v;
     if (std::fabs(t.offset[a]) > kMaxToolOffsetMm) {
       return fail(ErrorCode::GcodeBadValue, b.span(kAxisLetters[a]),
-                  "found " + quoted_block() + ": a tool offset of " +
-                      std::to_string(t.offset[a]) + " mm; expected at most ±" +
-                      std::to_string(static_cast<int>(kMaxToolOffsetMm)) + " mm");
+                  "found " + quoted_block() + ": a tool offset of " + std::to_string(t.offset[a]) +
+                      " mm; expected at most ±" + std::to_string(static_cast<int>(kMaxToolOffsetMm)) + " mm");
     }
   }
   for (int a = 3; a < kAxisCount; ++a) {

@@ -13,8 +13,7 @@ inline double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
 }
 
 // Distance from p to the segment a–b (to a when it has no length).
-inline double point_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
-                            const Eigen::Vector2d& b) {
+inline double point_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   const Eigen::Vector2d ab = b - a;
   const double l2 = ab.squaredNorm();
   const double t = l2 > 0.0 ? std::clamp((p - a).dot(ab) / l2, 0.0, 1.0) : 0.0;

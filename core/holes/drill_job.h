@@ -26,14 +26,14 @@
 #include "common/result.h"
 #include "gcode/program_reader.h"
 #include "holes/hole_processes.h"
-#include "machine/machine_config.h"
 #include "kinematics/five_axis.h"
+#include "machine/machine_config.h"
 
 namespace lcnc {
 
 struct DrillOptions {
-  double clearance_mm = 5.0;         // above the surface, along the tool axis
-  double head_settle_s = 0.2;        // dwell while the head takes its block
+  double clearance_mm = 5.0;   // above the surface, along the tool axis
+  double head_settle_s = 0.2;  // dwell while the head takes its block
 };
 
 struct DrillStep {

@@ -52,8 +52,8 @@ std::string hole_field_range_message(const HoleField& f, double v) {
     return std::string(b);
   };
   const std::string unit = f.unit.empty() ? std::string() : " " + std::string(f.unit);
-  std::string m = "field " + std::to_string(f.number) + " " + std::string(f.label) + " = " + text(v) +
-                  unit + "; allowed " + (f.lo_open ? "> " : "") + text(f.lo) + " … " + text(f.hi) + unit;
+  std::string m = "field " + std::to_string(f.number) + " " + std::string(f.label) + " = " + text(v) + unit +
+                  "; allowed " + (f.lo_open ? "> " : "") + text(f.lo) + " … " + text(f.hi) + unit;
   if (f.type == HoleFieldType::Process) m += " (" + std::string(f.doc) + ")";
   return m;
 }

@@ -49,8 +49,8 @@ struct HoleField {
   std::string_view unit;  // "" for counts and the process id
   double lo;
   double hi;
-  bool lo_open;       // lo itself is not allowed
-  bool scan_radius;   // fields 12–13: not used (nor checked) by a free shape
+  bool lo_open;      // lo itself is not allowed
+  bool scan_radius;  // fields 12–13: not used (nor checked) by a free shape
   double (*get)(const HoleProcessParams&);
   void (*set)(HoleProcessParams&, double);
   std::string_view doc;
@@ -80,22 +80,30 @@ constexpr T from_double(double v) {
   }
 }
 template <auto M>
-constexpr double get(const HoleProcessParams& p) { return to_double(p.*M); }
+constexpr double get(const HoleProcessParams& p) {
+  return to_double(p.*M);
+}
 template <auto M>
 constexpr void set(HoleProcessParams& p, double v) {
   p.*M = from_double<std::remove_reference_t<decltype(p.*M)>>(v);
 }
 template <auto M>
-constexpr double get_head(const HoleProcessParams& p) { return to_double(p.head.*M); }
+constexpr double get_head(const HoleProcessParams& p) {
+  return to_double(p.head.*M);
+}
 template <auto M>
 constexpr void set_head(HoleProcessParams& p, double v) {
   p.head.*M = from_double<std::remove_reference_t<decltype(p.head.*M)>>(v);
 }
 // Fields 2–6: X Y Z A C of the X Y Z A B C pose.
 template <Axis A>
-constexpr double get_pose(const HoleProcessParams& p) { return p.position[index(A)]; }
+constexpr double get_pose(const HoleProcessParams& p) {
+  return p.position[index(A)];
+}
 template <Axis A>
-constexpr void set_pose(HoleProcessParams& p, double v) { p.position[index(A)] = v; }
+constexpr void set_pose(HoleProcessParams& p, double v) {
+  p.position[index(A)] = v;
+}
 }  // namespace hole_fields_detail
 
 // number, column, register, label, type, unit, lo, hi, lo_open, scan_radius,
@@ -103,76 +111,54 @@ constexpr void set_pose(HoleProcessParams& p, double v) { p.position[index(A)] =
 inline constexpr std::array<HoleField, 18> kHoleFields = {{
     {1, "hole", "hole_number", "hole number", HoleFieldType::Count, "", 1, kMaxHoleNumber, false, false,
      hole_fields_detail::get<&HoleProcessParams::hole_number>,
-     hole_fields_detail::set<&HoleProcessParams::hole_number>,
-     "hole number, the row's key"},
+     hole_fields_detail::set<&HoleProcessParams::hole_number>, "hole number, the row's key"},
     {2, "x_mm", "hole_x_mm", "X", HoleFieldType::Real, "mm", 0, 1000, false, false,
-     hole_fields_detail::get_pose<Axis::X>,
-     hole_fields_detail::set_pose<Axis::X>,
+     hole_fields_detail::get_pose<Axis::X>, hole_fields_detail::set_pose<Axis::X>,
      "hole centre X (the travel)"},
     {3, "y_mm", "hole_y_mm", "Y", HoleFieldType::Real, "mm", 0, 450, false, false,
-     hole_fields_detail::get_pose<Axis::Y>,
-     hole_fields_detail::set_pose<Axis::Y>,
-     "hole centre Y"},
+     hole_fields_detail::get_pose<Axis::Y>, hole_fields_detail::set_pose<Axis::Y>, "hole centre Y"},
     {4, "z_mm", "hole_z_mm", "Z", HoleFieldType::Real, "mm", 0, 500, false, false,
-     hole_fields_detail::get_pose<Axis::Z>,
-     hole_fields_detail::set_pose<Axis::Z>,
-     "hole centre Z"},
+     hole_fields_detail::get_pose<Axis::Z>, hole_fields_detail::set_pose<Axis::Z>, "hole centre Z"},
     {5, "a_deg", "hole_a_deg", "A", HoleFieldType::Real, "deg", -95, 95, false, false,
-     hole_fields_detail::get_pose<Axis::A>,
-     hole_fields_detail::set_pose<Axis::A>,
-     "tool axis tilt A"},
+     hole_fields_detail::get_pose<Axis::A>, hole_fields_detail::set_pose<Axis::A>, "tool axis tilt A"},
     {6, "c_deg", "hole_c_deg", "C", HoleFieldType::Real, "deg", 0, 359.999, false, false,
-     hole_fields_detail::get_pose<Axis::C>,
-     hole_fields_detail::set_pose<Axis::C>,
-     "tool axis rotation C"},
-    {7, "feed_mm_min", "feed_mm_min", "feed rate", HoleFieldType::Real, "mm/min", 0, kMaxHoleFeedMmMin, true, false,
-     hole_fields_detail::get<&HoleProcessParams::feed_mm_min>,
-     hole_fields_detail::set<&HoleProcessParams::feed_mm_min>,
-     "feed along the hole path (a hole needs one)"},
-    {8, "layer_feed_mm", "layer_feed_mm", "single-layer feed", HoleFieldType::Real, "mm", 0, kMaxLayerFeedMm, true, false,
-     hole_fields_detail::get<&HoleProcessParams::layer_feed_mm>,
-     hole_fields_detail::set<&HoleProcessParams::layer_feed_mm>,
-     "Z per helix turn / layer"},
-    {9, "layer_count", "layer_count", "layer count", HoleFieldType::Count, "", 1, kMaxLayerCount, false, false,
-     hole_fields_detail::get<&HoleProcessParams::layer_count>,
-     hole_fields_detail::set<&HoleProcessParams::layer_count>,
-     "layers (helix turns) to the total depth"},
-    {10, "total_depth_mm", "total_depth_mm", "total depth", HoleFieldType::Real, "mm", 0, kMaxTotalDepthMm, false, false,
-     hole_fields_detail::get<&HoleProcessParams::total_depth_mm>,
-     hole_fields_detail::set<&HoleProcessParams::total_depth_mm>,
-     "layer count × single-layer feed"},
+     hole_fields_detail::get_pose<Axis::C>, hole_fields_detail::set_pose<Axis::C>, "tool axis rotation C"},
+    {7, "feed_mm_min", "feed_mm_min", "feed rate", HoleFieldType::Real, "mm/min", 0, kMaxHoleFeedMmMin, true,
+     false, hole_fields_detail::get<&HoleProcessParams::feed_mm_min>,
+     hole_fields_detail::set<&HoleProcessParams::feed_mm_min>, "feed along the hole path (a hole needs one)"},
+    {8, "layer_feed_mm", "layer_feed_mm", "single-layer feed", HoleFieldType::Real, "mm", 0, kMaxLayerFeedMm,
+     true, false, hole_fields_detail::get<&HoleProcessParams::layer_feed_mm>,
+     hole_fields_detail::set<&HoleProcessParams::layer_feed_mm>, "Z per helix turn / layer"},
+    {9, "layer_count", "layer_count", "layer count", HoleFieldType::Count, "", 1, kMaxLayerCount, false,
+     false, hole_fields_detail::get<&HoleProcessParams::layer_count>,
+     hole_fields_detail::set<&HoleProcessParams::layer_count>, "layers (helix turns) to the total depth"},
+    {10, "total_depth_mm", "total_depth_mm", "total depth", HoleFieldType::Real, "mm", 0, kMaxTotalDepthMm,
+     false, false, hole_fields_detail::get<&HoleProcessParams::total_depth_mm>,
+     hole_fields_detail::set<&HoleProcessParams::total_depth_mm>, "layer count × single-layer feed"},
     {11, "power_pct", "laser_power_pct", "laser power", HoleFieldType::Real, "%", 0, 100, false, false,
      hole_fields_detail::get<&HoleProcessParams::power_pct>,
-     hole_fields_detail::set<&HoleProcessParams::power_pct>,
-     "% of rated power"},
-    {12, "start_radius_mm", "scan_start_radius_mm", "start radius", HoleFieldType::Real, "mm", 0, kMaxScanRadiusMm, true, true,
-     hole_fields_detail::get_head<&ScanHeadParams::start_radius_mm>,
-     hole_fields_detail::set_head<&ScanHeadParams::start_radius_mm>,
-     "scan radius at the entry (first ring)"},
-    {13, "end_radius_mm", "scan_end_radius_mm", "end radius", HoleFieldType::Real, "mm", 0, kMaxScanRadiusMm, true, true,
-     hole_fields_detail::get_head<&ScanHeadParams::end_radius_mm>,
-     hole_fields_detail::set_head<&ScanHeadParams::end_radius_mm>,
-     "scan radius at the exit (last ring)"},
-    {14, "radius_turns", "scan_radius_turns", "radius turns", HoleFieldType::Count, "", 1, kMaxRadiusTurns, false, false,
-     hole_fields_detail::get_head<&ScanHeadParams::radius_turns>,
-     hole_fields_detail::set_head<&ScanHeadParams::radius_turns>,
-     "rings per layer (circle scan)"},
-    {15, "scan_speed_mm_s", "scan_speed_mm_s", "scan speed", HoleFieldType::Real, "mm/s", 0, kMaxScanSpeedMmS, false, false,
-     hole_fields_detail::get_head<&ScanHeadParams::scan_speed_mm_s>,
-     hole_fields_detail::set_head<&ScanHeadParams::scan_speed_mm_s>,
-     "beam speed on the workpiece"},
-    {16, "wedge_speed_rpm", "wedge_speed_rpm", "wedge speed", HoleFieldType::Real, "rpm", 0, kMaxWedgeSpeedRpm, false, false,
-     hole_fields_detail::get_head<&ScanHeadParams::wedge_speed_rpm>,
-     hole_fields_detail::set_head<&ScanHeadParams::wedge_speed_rpm>,
-     "wedge rotation speed"},
-    {17, "beam_offset_mm", "beam_offset_mm", "beam offset", HoleFieldType::Real, "mm", -kMaxBeamOffsetMm, kMaxBeamOffsetMm, false, false,
-     hole_fields_detail::get_head<&ScanHeadParams::beam_offset_mm>,
-     hole_fields_detail::set_head<&ScanHeadParams::beam_offset_mm>,
-     "lateral beam offset in the head"},
+     hole_fields_detail::set<&HoleProcessParams::power_pct>, "% of rated power"},
+    {12, "start_radius_mm", "scan_start_radius_mm", "start radius", HoleFieldType::Real, "mm", 0,
+     kMaxScanRadiusMm, true, true, hole_fields_detail::get_head<&ScanHeadParams::start_radius_mm>,
+     hole_fields_detail::set_head<&ScanHeadParams::start_radius_mm>, "scan radius at the entry (first ring)"},
+    {13, "end_radius_mm", "scan_end_radius_mm", "end radius", HoleFieldType::Real, "mm", 0, kMaxScanRadiusMm,
+     true, true, hole_fields_detail::get_head<&ScanHeadParams::end_radius_mm>,
+     hole_fields_detail::set_head<&ScanHeadParams::end_radius_mm>, "scan radius at the exit (last ring)"},
+    {14, "radius_turns", "scan_radius_turns", "radius turns", HoleFieldType::Count, "", 1, kMaxRadiusTurns,
+     false, false, hole_fields_detail::get_head<&ScanHeadParams::radius_turns>,
+     hole_fields_detail::set_head<&ScanHeadParams::radius_turns>, "rings per layer (circle scan)"},
+    {15, "scan_speed_mm_s", "scan_speed_mm_s", "scan speed", HoleFieldType::Real, "mm/s", 0, kMaxScanSpeedMmS,
+     false, false, hole_fields_detail::get_head<&ScanHeadParams::scan_speed_mm_s>,
+     hole_fields_detail::set_head<&ScanHeadParams::scan_speed_mm_s>, "beam speed on the workpiece"},
+    {16, "wedge_speed_rpm", "wedge_speed_rpm", "wedge speed", HoleFieldType::Real, "rpm", 0,
+     kMaxWedgeSpeedRpm, false, false, hole_fields_detail::get_head<&ScanHeadParams::wedge_speed_rpm>,
+     hole_fields_detail::set_head<&ScanHeadParams::wedge_speed_rpm>, "wedge rotation speed"},
+    {17, "beam_offset_mm", "beam_offset_mm", "beam offset", HoleFieldType::Real, "mm", -kMaxBeamOffsetMm,
+     kMaxBeamOffsetMm, false, false, hole_fields_detail::get_head<&ScanHeadParams::beam_offset_mm>,
+     hole_fields_detail::set_head<&ScanHeadParams::beam_offset_mm>, "lateral beam offset in the head"},
     {18, "process", "process_id", "process id", HoleFieldType::Process, "", 0, 2, false, false,
      hole_fields_detail::get<&HoleProcessParams::process>,
-     hole_fields_detail::set<&HoleProcessParams::process>,
-     "0 helix, 1 circle, 2 free shape"},
+     hole_fields_detail::set<&HoleProcessParams::process>, "0 helix, 1 circle, 2 free shape"},
 }};
 
 // The scanning head's parameter block (fields 12–17) as the head's

@@ -18,7 +18,6 @@
 
 namespace lcnc {
 
-[[nodiscard]] Result<HoleProgram> place_hole(const HoleProgram& program,
-                                             const FiveAxisKinematics& kin);
+[[nodiscard]] Result<HoleProgram> place_hole(const HoleProgram& program, const FiveAxisKinematics& kin);
 
 }  // namespace lcnc

@@ -99,15 +99,12 @@ Status validate(const HoleProcessParams& p) {
   const double depth = p.layer_count * p.layer_feed_mm;
   if (!(std::abs(p.total_depth_mm - depth) <= kDepthTolerance))
     return bad("field 10 total depth = " + fmt(p.total_depth_mm) +
-               " mm; must equal layer count × single-layer feed = " +
-               std::to_string(p.layer_count) + " × " + fmt(p.layer_feed_mm) + " = " + fmt(depth) +
-               " mm (within " + fmt(kDepthTolerance) + " mm)");
+               " mm; must equal layer count × single-layer feed = " + std::to_string(p.layer_count) + " × " +
+               fmt(p.layer_feed_mm) + " = " + fmt(depth) + " mm (within " + fmt(kDepthTolerance) + " mm)");
   const ScanHeadParams& h = p.head;
-  if (p.process == HoleProcessId::Circle && h.radius_turns == 1 &&
-      h.end_radius_mm != h.start_radius_mm)
-    return bad("field 14 radius turns = 1 with start radius " + fmt(h.start_radius_mm) +
-               " mm ≠ end radius " + fmt(h.end_radius_mm) +
-               " mm; a circle scan from one radius to another needs 2 or more turns");
+  if (p.process == HoleProcessId::Circle && h.radius_turns == 1 && h.end_radius_mm != h.start_radius_mm)
+    return bad("field 14 radius turns = 1 with start radius " + fmt(h.start_radius_mm) + " mm ≠ end radius " +
+               fmt(h.end_radius_mm) + " mm; a circle scan from one radius to another needs 2 or more turns");
   if (p.process == HoleProcessId::FreeShape) {
     const std::size_t n = p.shape.size();
     if (n < 3 || n > kMaxShapeVertices)
@@ -117,8 +114,8 @@ Status validate(const HoleProcessParams& p) {
       const PolarVertex& v = p.shape[i];
       const std::string at = "free shape vertex " + std::to_string(i + 1) + ": ";
       if (!(std::isfinite(v.radius_mm) && v.radius_mm > 0.0 && v.radius_mm <= kMaxShapeRadiusMm))
-        return bad(at + "radius = " + fmt(v.radius_mm) + " mm; allowed > 0 … " +
-                   fmt(kMaxShapeRadiusMm) + " mm");
+        return bad(at + "radius = " + fmt(v.radius_mm) + " mm; allowed > 0 … " + fmt(kMaxShapeRadiusMm) +
+                   " mm");
       if (!(std::isfinite(v.angle_deg) && v.angle_deg >= 0.0 && v.angle_deg < 360.0))
         return bad(at + "angle = " + fmt(v.angle_deg) + "°; allowed 0 … <360°");
       const double next = i + 1 < n ? p.shape[i + 1].angle_deg : p.shape[0].angle_deg + 360.0;

@@ -73,16 +73,16 @@ struct PolarVertex {
 
 // The fields of one process-DB row that the generator uses (docs/design.md §6).
 struct HoleProcessParams {
-  std::uint32_t hole_number = 1;   // 1
-  Pose position = Pose::Zero();    // 2–6: X Y Z (mm) and A, C (deg) of the hole centre
-  double feed_mm_min = 600.0;      // 7
-  double layer_feed_mm = 0.1;      // 8: depth per layer / helix turn
-  std::uint32_t layer_count = 1;   // 9
-  double total_depth_mm = 0.1;     // 10
-  double power_pct = 50.0;         // 11
-  ScanHeadParams head{};           // 12–17
+  std::uint32_t hole_number = 1;                 // 1
+  Pose position = Pose::Zero();                  // 2–6: X Y Z (mm) and A, C (deg) of the hole centre
+  double feed_mm_min = 600.0;                    // 7
+  double layer_feed_mm = 0.1;                    // 8: depth per layer / helix turn
+  std::uint32_t layer_count = 1;                 // 9
+  double total_depth_mm = 0.1;                   // 10
+  double power_pct = 50.0;                       // 11
+  ScanHeadParams head{};                         // 12–17
   HoleProcessId process = HoleProcessId::Helix;  // 18
-  std::vector<PolarVertex> shape;  // FreeShape only
+  std::vector<PolarVertex> shape;                // FreeShape only
 };
 
 // Ranges (docs/design.md §6) and the ones the geometry needs.

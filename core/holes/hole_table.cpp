@@ -90,9 +90,11 @@ Result<std::vector<HoleProcessParams>> parse_hole_table(std::string_view text, c
           if (cells[i].text == column_name(k)) found = k;
         if (found == kColumnCount)
           return err(ErrorCode::HoleTableSyntax, cells[i].col,
-                     "unknown column '" + std::string(cells[i].text) + "'; expected the fields of docs/design.md §6: hole, x_mm, …, process, shape");
+                     "unknown column '" + std::string(cells[i].text) +
+                         "'; expected the fields of docs/design.md §6: hole, x_mm, …, process, shape");
         if (where[found] >= 0)
-          return err(ErrorCode::HoleTableSyntax, cells[i].col, "column '" + std::string(column_name(found)) + "' twice");
+          return err(ErrorCode::HoleTableSyntax, cells[i].col,
+                     "column '" + std::string(column_name(found)) + "' twice");
         where[found] = static_cast<int>(i);
       }
       for (std::size_t k = 0; k < kColumnCount; ++k)
@@ -106,8 +108,9 @@ Result<std::vector<HoleProcessParams>> parse_hole_table(std::string_view text, c
     for (std::size_t k = 0; k < kColumnCount; ++k)
       if (where[k] >= 0) ++expected;
     if (cells.size() != expected)
-      return err(ErrorCode::HoleTableSyntax, cells.back().col,
-                 std::to_string(cells.size()) + " fields; expected " + std::to_string(expected) + " as the header");
+      return err(
+          ErrorCode::HoleTableSyntax, cells.back().col,
+          std::to_string(cells.size()) + " fields; expected " + std::to_string(expected) + " as the header");
     const auto cell = [&](std::size_t k) { return cells[static_cast<std::size_t>(where[k])]; };
     HoleProcessParams p;
     for (std::size_t k = 0; k < kHoleFields.size(); ++k) {
@@ -126,12 +129,14 @@ Result<std::vector<HoleProcessParams>> parse_hole_table(std::string_view text, c
           v = n;
           break;
         case HoleFieldType::Process:
-          if (x.text == "0" || x.text == "helix") v = 0;
-          else if (x.text == "1" || x.text == "circle") v = 1;
-          else if (x.text == "2" || x.text == "free_shape") v = 2;
+          if (x.text == "0" || x.text == "helix")
+            v = 0;
+          else if (x.text == "1" || x.text == "circle")
+            v = 1;
+          else if (x.text == "2" || x.text == "free_shape")
+            v = 2;
           else
-            return err(ErrorCode::HoleTableSyntax, x.col,
-                       found + "0/helix, 1/circle or 2/free_shape");
+            return err(ErrorCode::HoleTableSyntax, x.col, found + "0/helix, 1/circle or 2/free_shape");
           break;
       }
       f.set(p, v);
@@ -159,8 +164,7 @@ Result<std::vector<HoleProcessParams>> parse_hole_table(std::string_view text, c
     }
     if (p.process == HoleProcessId::FreeShape && where[kShape] < 0)
       return err(ErrorCode::HoleTableSyntax, proc.col, "a free shape needs the shape column");
-    if (Status s = validate(p); !s)
-      return err(ErrorCode::HoleTableBadValue, hole.col, s.error().message);
+    if (Status s = validate(p); !s) return err(ErrorCode::HoleTableBadValue, hole.col, s.error().message);
     if (!numbers.insert(p.hole_number).second)
       return err(ErrorCode::HoleTableDuplicate, hole.col,
                  "hole " + std::to_string(p.hole_number) + " is listed twice");
@@ -168,7 +172,8 @@ Result<std::vector<HoleProcessParams>> parse_hole_table(std::string_view text, c
     if (row_lines) row_lines->push_back(line_no);
   }
   if (!have_header)
-    return make_error(ErrorCode::HoleTableSyntax, "no header line; expected the fields of docs/design.md §6", file, 1, 1);
+    return make_error(ErrorCode::HoleTableSyntax, "no header line; expected the fields of docs/design.md §6",
+                      file, 1, 1);
   return rows;
 }
 

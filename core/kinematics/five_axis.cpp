@@ -16,12 +16,8 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-Eigen::Matrix3d rot_x(double deg) {
-  return Eigen::AngleAxisd(deg * kDeg, Vec3::UnitX()).toRotationMatrix();
-}
-Eigen::Matrix3d rot_z(double deg) {
-  return Eigen::AngleAxisd(deg * kDeg, Vec3::UnitZ()).toRotationMatrix();
-}
+Eigen::Matrix3d rot_x(double deg) { return Eigen::AngleAxisd(deg * kDeg, Vec3::UnitX()).toRotationMatrix(); }
+Eigen::Matrix3d rot_z(double deg) { return Eigen::AngleAxisd(deg * kDeg, Vec3::UnitZ()).toRotationMatrix(); }
 
 std::string fmt(double v) {
   char buf[32];
@@ -104,8 +100,7 @@ Result<RotaryJoints> choose_rotary(const Vec3& axis, const RotaryJoints& previou
     if (cand[i].a_deg < limits.a_min_deg || cand[i].a_deg > limits.a_max_deg) continue;
     const double da = std::abs(cand[i].a_deg - previous.a_deg);
     const double dc = std::abs(cand[i].c_deg - previous.c_deg);
-    const double time =
-        std::max(da / limits.a_max_velocity_deg_s, dc / limits.c_max_velocity_deg_s);
+    const double time = std::max(da / limits.a_max_velocity_deg_s, dc / limits.c_max_velocity_deg_s);
     const double sum = da + dc;
     if (best == nullptr || time < best_time || (time == best_time && sum < best_sum)) {
       best = &cand[i];
@@ -114,9 +109,9 @@ Result<RotaryJoints> choose_rotary(const Vec3& axis, const RotaryJoints& previou
     }
   }
   if (best == nullptr)
-    return make_error(ErrorCode::GcodeBeyondTravel,
-                      "tool axis needs A = ±" + fmt(sols[0].a_deg) + "°; allowed A " +
-                          fmt(limits.a_min_deg) + " … " + fmt(limits.a_max_deg) + "°");
+    return make_error(ErrorCode::GcodeBeyondTravel, "tool axis needs A = ±" + fmt(sols[0].a_deg) +
+                                                        "°; allowed A " + fmt(limits.a_min_deg) + " … " +
+                                                        fmt(limits.a_max_deg) + "°");
   return *best;
 }
 
@@ -128,8 +123,8 @@ Eigen::Isometry3d FiveAxisKinematics::tip_to_joints(const RotaryJoints& r) const
   if (geometry_.variant == MachineVariant::HeadHead) {
     // P = tip − Rz(C)·(c_to_a + Rx(A)·(−L·ẑ)): a pure translation.
     const Vec3 tip_from_p =
-        rot_z(r.c_deg) * (geometry_.head_c_to_a_mm +
-                          rot_x(r.a_deg) * Vec3(0.0, 0.0, -geometry_.head_pivot_length_mm));
+        rot_z(r.c_deg) *
+        (geometry_.head_c_to_a_mm + rot_x(r.a_deg) * Vec3(0.0, 0.0, -geometry_.head_pivot_length_mm));
     t.translation() = -tip_from_p;
   } else {
     // P = a_pivot + Rx(−A)·(c_offset + Rz(−C)·tip_w)

@@ -73,9 +73,7 @@ struct RotaryJoints {
 
 // k(A, C) above.
 [[nodiscard]] Vec3 tool_axis(double a_deg, double c_deg) noexcept;
-[[nodiscard]] inline Vec3 tool_axis(const RotaryJoints& j) noexcept {
-  return tool_axis(j.a_deg, j.c_deg);
-}
+[[nodiscard]] inline Vec3 tool_axis(const RotaryJoints& j) noexcept { return tool_axis(j.a_deg, j.c_deg); }
 // The two solutions of a unit axis: [0] with A ≥ 0, [1] with A ≤ 0, C in
 // [0, 360). On the pole (sin A < kin::kPoleSin) both have A = 0 and C = 0.
 [[nodiscard]] std::array<RotaryJoints, 2> rotary_solutions(const Vec3& axis) noexcept;

@@ -50,10 +50,8 @@ const char* method_name(OrientationMethod method) noexcept {
   return "unknown";
 }
 
-Result<OrientationMove> OrientationMove::between_joints(OrientationMethod method,
-                                                        const RotaryJoints& start,
-                                                        const RotaryJoints& end,
-                                                        const RotaryLimits& limits,
+Result<OrientationMove> OrientationMove::between_joints(OrientationMethod method, const RotaryJoints& start,
+                                                        const RotaryJoints& end, const RotaryLimits& limits,
                                                         double tolerance_deg) {
   OrientationMove m;
   m.method_ = method;
@@ -64,9 +62,8 @@ Result<OrientationMove> OrientationMove::between_joints(OrientationMethod method
   return m.finish(limits);
 }
 
-Result<OrientationMove> OrientationMove::to_axis(OrientationMethod method,
-                                                 const RotaryJoints& start, const Vec3& end_axis,
-                                                 const RotaryLimits& limits,
+Result<OrientationMove> OrientationMove::to_axis(OrientationMethod method, const RotaryJoints& start,
+                                                 const Vec3& end_axis, const RotaryLimits& limits,
                                                  double tolerance_deg) {
   if (!(end_axis.allFinite() && end_axis.norm() > 0.0))
     return make_error(ErrorCode::GcodeBadValue, "tool axis must be a finite, non-zero vector");
@@ -144,8 +141,7 @@ Result<OrientationMove> OrientationMove::finish(const RotaryLimits& limits) {
 
   // Snap through the pole (PoleSmoothed, δ ≤ ε, pole well inside the arc).
   snapped_ = false;
-  if (method_ == OrientationMethod::PoleSmoothed && pole_interior_ &&
-      pole_dist_rad_ <= tolerance_rad) {
+  if (method_ == OrientationMethod::PoleSmoothed && pole_interior_ && pole_dist_rad_ <= tolerance_rad) {
     const double margin = std::min(alpha_m_rad_, theta_rad_ - alpha_m_rad_);
     if (margin >= kin::kMinPoleMarginRad) {
       snapped_ = true;
@@ -161,8 +157,7 @@ Result<OrientationMove> OrientationMove::finish(const RotaryLimits& limits) {
         const double u = static_cast<double>(i) / kin::kCurveSamples;
         const double alpha = u * theta_rad_;
         double c = c_core_deg_;
-        if (std::abs(alpha - alpha_m_rad_) > core_rad_)
-          c = raw_c_deg(smoothed_axis_at(u), branch_at(u));
+        if (std::abs(alpha - alpha_m_rad_) > core_rad_) c = raw_c_deg(smoothed_axis_at(u), branch_at(u));
         prev = c_table_[i] = (i == 0) ? c0_deg_ : nearest_turn(c, prev);
       }
       // Keep the snap only where it helps: within the A range (it flips the
@@ -182,9 +177,9 @@ Result<OrientationMove> OrientationMove::finish(const RotaryLimits& limits) {
   if (const double u = first_a_outside(limits); u >= 0.0) {
     const double a = joints_at(u).a_deg;
     return make_error(ErrorCode::GcodeBeyondTravel,
-                      std::string(method_name(method_)) + " orientation path reaches A = " +
-                          fmt(a) + "° at u = " + fmt(u) + "; allowed A " + fmt(limits.a_min_deg) +
-                          " … " + fmt(limits.a_max_deg) + "°");
+                      std::string(method_name(method_)) + " orientation path reaches A = " + fmt(a) +
+                          "° at u = " + fmt(u) + "; allowed A " + fmt(limits.a_min_deg) + " … " +
+                          fmt(limits.a_max_deg) + "°");
   }
   return *this;
 }
@@ -240,8 +235,7 @@ double OrientationMove::vector_c_at(double u) const {
 RotaryJoints OrientationMove::joints_at(double u) const {
   u = std::clamp(u, 0.0, 1.0);
   if (method_ == OrientationMethod::JointLinear)
-    return {start_.a_deg + u * (end_.a_deg - start_.a_deg),
-            start_.c_deg + u * (end_.c_deg - start_.c_deg)};
+    return {start_.a_deg + u * (end_.a_deg - start_.a_deg), start_.c_deg + u * (end_.c_deg - start_.c_deg)};
   if (!snapped_) return {branch0_ * tilt_deg(ideal_axis_at(u)), vector_c_at(u)};
   const Vec3 k = smoothed_axis_at(u);
   const double b = branch_at(u);
@@ -304,7 +298,8 @@ bool OrientationReport::within(const RotaryLimits& l) const noexcept {
 }
 
 OrientationReport evaluate(const OrientationMove& move, const TimeLaw& law, double dt) {
-  return evaluate(move, law.duration_s, [&law](double t) { return law.u_at(t); }, dt);
+  return evaluate(
+      move, law.duration_s, [&law](double t) { return law.u_at(t); }, dt);
 }
 
 OrientationReport evaluate(const OrientationMove& move, double duration_s,

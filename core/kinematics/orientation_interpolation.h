@@ -57,7 +57,6 @@
 
 namespace lcnc {
 
-
 [[nodiscard]] const char* method_name(OrientationMethod method) noexcept;
 
 class OrientationMove {
@@ -70,9 +69,9 @@ class OrientationMove {
       const RotaryLimits& limits, double tolerance_deg = kin::kOrientationToleranceDeg);
   // From the joints at the start to a programmed tool axis (unit or not).
   // JointLinear ends at choose_rotary(end_axis, start).
-  [[nodiscard]] static Result<OrientationMove> to_axis(
-      OrientationMethod method, const RotaryJoints& start, const Vec3& end_axis,
-      const RotaryLimits& limits, double tolerance_deg = kin::kOrientationToleranceDeg);
+  [[nodiscard]] static Result<OrientationMove> to_axis(OrientationMethod method, const RotaryJoints& start,
+                                                       const Vec3& end_axis, const RotaryLimits& limits,
+                                                       double tolerance_deg = kin::kOrientationToleranceDeg);
 
   [[nodiscard]] OrientationMethod method() const noexcept { return method_; }
   // Joints at u ∈ [0, 1] (clamped); C continuous over the move.
@@ -110,25 +109,25 @@ class OrientationMove {
   [[nodiscard]] double pole_weight(double alpha_rad) const noexcept;
 
   OrientationMethod method_ = OrientationMethod::Vector;
-  RotaryJoints start_{}, end_{};      // JointLinear: the joints it moves between
+  RotaryJoints start_{}, end_{};                          // JointLinear: the joints it moves between
   double tolerance_deg_ = kin::kOrientationToleranceDeg;  // PoleSmoothed: ε
   Vec3 k0_ = Vec3::UnitZ(), k1_ = Vec3::UnitZ();
-  Vec3 t0_ = Vec3::UnitX();           // direction of travel at k0 (unit)
-  Vec3 n_ = Vec3::Zero();             // unit normal of the great circle (0 if Θ = 0)
-  double theta_rad_ = 0.0;            // Θ
-  double branch0_ = 1.0;              // sign of A at the start
-  double sigma_ = 1.0;                // sign of dC/du on a great circle (n_z)
-  double c0_deg_ = 0.0;               // C at u = 0 (departure C when the start is on the pole)
-  double c0_raw_deg_ = 0.0;           // the raw azimuth C0 is congruent to
-  double pole_dist_rad_ = 0.0;        // δ
-  bool pole_interior_ = false;        // the closest approach lies inside the arc
-  double alpha_m_rad_ = 0.0;          // arc angle of the closest approach
+  Vec3 t0_ = Vec3::UnitX();     // direction of travel at k0 (unit)
+  Vec3 n_ = Vec3::Zero();       // unit normal of the great circle (0 if Θ = 0)
+  double theta_rad_ = 0.0;      // Θ
+  double branch0_ = 1.0;        // sign of A at the start
+  double sigma_ = 1.0;          // sign of dC/du on a great circle (n_z)
+  double c0_deg_ = 0.0;         // C at u = 0 (departure C when the start is on the pole)
+  double c0_raw_deg_ = 0.0;     // the raw azimuth C0 is congruent to
+  double pole_dist_rad_ = 0.0;  // δ
+  bool pole_interior_ = false;  // the closest approach lies inside the arc
+  double alpha_m_rad_ = 0.0;    // arc angle of the closest approach
   // Snap (PoleSmoothed).
   bool snapped_ = false;
-  Vec3 snap_axis_ = Vec3::UnitX();    // t_m: rotation axis of the snap
-  double core_rad_ = 0.0;             // half-width of the core and of each taper
-  double c_core_deg_ = 0.0;           // C along the meridian through the pole
-  std::vector<double> c_table_;       // C at kin::kCurveSamples + 1 points (unwrap reference)
+  Vec3 snap_axis_ = Vec3::UnitX();  // t_m: rotation axis of the snap
+  double core_rad_ = 0.0;           // half-width of the core and of each taper
+  double c_core_deg_ = 0.0;         // C along the meridian through the pole
+  std::vector<double> c_table_;     // C at kin::kCurveSamples + 1 points (unwrap reference)
 };
 
 // A time law for evaluation: u(t) with a trapezoidal du/dt, from rest to
@@ -162,12 +161,10 @@ struct OrientationReport {
 // Samples a move every sample_dt_s along the time law: joints, their speeds
 // and accelerations (central differences; at rest before and after the
 // move) and the orientation error against the great circle.
-[[nodiscard]] OrientationReport evaluate(const OrientationMove& move, const TimeLaw& law,
-                                         double sample_dt_s);
+[[nodiscard]] OrientationReport evaluate(const OrientationMove& move, const TimeLaw& law, double sample_dt_s);
 // The same for any time law u(t) from rest at t = 0 to rest at duration_s
 // (orientation_retiming.h).
 [[nodiscard]] OrientationReport evaluate(const OrientationMove& move, double duration_s,
-                                         const std::function<double(double)>& u_of_t,
-                                         double sample_dt_s);
+                                         const std::function<double(double)>& u_of_t, double sample_dt_s);
 
 }  // namespace lcnc

@@ -13,9 +13,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // Share of each axis' acceleration given to the curvature term X''·u̇².
 constexpr double kCurvatureShare = 0.5;
 
-double limit_ratio(double limit, double derivative) {
-  return derivative > 0.0 ? limit / derivative : kInf;
-}
+double limit_ratio(double limit, double derivative) { return derivative > 0.0 ? limit / derivative : kInf; }
 
 }  // namespace
 
@@ -42,8 +40,7 @@ RetimedLaw retime(const OrientationMove& move, const RotaryLimits& lim, double m
                          limit_ratio(lim.c_max_velocity_deg_s, d1c),
                          std::sqrt(limit_ratio(kCurvatureShare * lim.a_max_accel_deg_s2, d2a)),
                          std::sqrt(limit_ratio(kCurvatureShare * lim.c_max_accel_deg_s2, d2c))});
-    acc[i] = std::min({max_u_accel,
-                       limit_ratio((1.0 - kCurvatureShare) * lim.a_max_accel_deg_s2, d1a),
+    acc[i] = std::min({max_u_accel, limit_ratio((1.0 - kCurvatureShare) * lim.a_max_accel_deg_s2, d1a),
                        limit_ratio((1.0 - kCurvatureShare) * lim.c_max_accel_deg_s2, d1c)});
   }
   // Forward from rest, backward to rest (squared rates, docs/design.md §5.2).
@@ -52,8 +49,7 @@ RetimedLaw retime(const OrientationMove& move, const RotaryLimits& lim, double m
   for (int i = 0; i < n; ++i)
     v_sqr[i + 1] = std::min(v_lim[i + 1] * v_lim[i + 1], v_sqr[i] + 2.0 * acc[i] * du);
   v_sqr[n] = 0.0;
-  for (int i = n; i > 0; --i)
-    v_sqr[i - 1] = std::min(v_sqr[i - 1], v_sqr[i] + 2.0 * acc[i] * du);
+  for (int i = n; i > 0; --i) v_sqr[i - 1] = std::min(v_sqr[i - 1], v_sqr[i] + 2.0 * acc[i] * du);
 
   RetimedLaw law;
   law.t_s_.resize(n + 1);
@@ -86,7 +82,8 @@ double RetimedLaw::peak_u_rate() const noexcept {
 }
 
 OrientationReport evaluate(const OrientationMove& move, const RetimedLaw& law, double dt) {
-  return evaluate(move, law.duration_s(), [&law](double t) { return law.u_at(t); }, dt);
+  return evaluate(
+      move, law.duration_s(), [&law](double t) { return law.u_at(t); }, dt);
 }
 
 }  // namespace lcnc

@@ -37,13 +37,13 @@ class RetimedLaw {
 
  private:
   friend RetimedLaw retime(const OrientationMove&, const RotaryLimits&, double, double);
-  std::vector<double> t_s_;    // time at grid point i
-  std::vector<double> rate_;   // du/dt at grid point i
+  std::vector<double> t_s_;   // time at grid point i
+  std::vector<double> rate_;  // du/dt at grid point i
 };
 
 // The re-timed law of a move (caps > 0; infinity for none).
-[[nodiscard]] RetimedLaw retime(const OrientationMove& move, const RotaryLimits& limits,
-                                double max_u_rate, double max_u_accel);
+[[nodiscard]] RetimedLaw retime(const OrientationMove& move, const RotaryLimits& limits, double max_u_rate,
+                                double max_u_accel);
 
 // evaluate() along a re-timed law.
 [[nodiscard]] OrientationReport evaluate(const OrientationMove& move, const RetimedLaw& law,

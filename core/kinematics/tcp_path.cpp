@@ -11,8 +11,8 @@
 
 namespace lcnc {
 
-Pose tcp_joints_at(const FiveAxisKinematics& kin, const Vec3& a, const Vec3& b,
-                   const OrientationMove& move, double u) {
+Pose tcp_joints_at(const FiveAxisKinematics& kin, const Vec3& a, const Vec3& b, const OrientationMove& move,
+                   double u) {
   return kin.joints_for_tip(a + u * (b - a), move.joints_at(u));
 }
 
@@ -27,13 +27,11 @@ double joint_length(const Pose& d) {
 
 }  // namespace
 
-Result<std::vector<Segment>> tcp_line_segments(const FiveAxisKinematics& kin, const Vec3& a,
-                                               const Vec3& b, const OrientationMove& move,
-                                               const Segment& prototype, double tip_tol,
-                                               double orient_tol) {
+Result<std::vector<Segment>> tcp_line_segments(const FiveAxisKinematics& kin, const Vec3& a, const Vec3& b,
+                                               const OrientationMove& move, const Segment& prototype,
+                                               double tip_tol, double orient_tol) {
   if (!(tip_tol > 0.0 && orient_tol > 0.0))
-    return make_error(ErrorCode::GcodeBadValue,
-                      "TCP tolerances must be > 0 (tip mm, orientation deg)");
+    return make_error(ErrorCode::GcodeBadValue, "TCP tolerances must be > 0 (tip mm, orientation deg)");
   struct Piece {
     double u0, u1;
     int depth;
@@ -59,8 +57,7 @@ Result<std::vector<Segment>> tcp_line_segments(const FiveAxisKinematics& kin, co
     if (!ok) {
       if (p.depth >= kin::kMaxTcpDepth)
         return make_error(ErrorCode::GcodeBadValue,
-                          "TCP move cannot be split within tolerance near u = " +
-                              std::to_string(p.u0) +
+                          "TCP move cannot be split within tolerance near u = " + std::to_string(p.u0) +
                               " (C jumps: a vector move through A = 0? use pole-smoothed)");
       const double um = 0.5 * (p.u0 + p.u1);
       stack.push_back({um, p.u1, p.depth + 1});

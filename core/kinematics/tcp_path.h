@@ -30,9 +30,11 @@ namespace lcnc {
 // joints' path at that feed, moves the tip at prototype.feed_mm_s. Error
 // GcodeBadValue when a tolerance is not > 0 or when the move cannot be split
 // within them (a C jump: a vector move through the pole).
-[[nodiscard]] Result<std::vector<Segment>> tcp_line_segments(
-    const FiveAxisKinematics& kin, const Vec3& tip_start_mm, const Vec3& tip_end_mm,
-    const OrientationMove& move, const Segment& prototype, double tip_tolerance_mm,
-    double orientation_tolerance_deg);
+[[nodiscard]] Result<std::vector<Segment>> tcp_line_segments(const FiveAxisKinematics& kin,
+                                                             const Vec3& tip_start_mm, const Vec3& tip_end_mm,
+                                                             const OrientationMove& move,
+                                                             const Segment& prototype,
+                                                             double tip_tolerance_mm,
+                                                             double orientation_tolerance_deg);
 
 }  // namespace lcnc

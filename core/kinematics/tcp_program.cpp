@@ -38,7 +38,8 @@ void TcpExpander::emit(Segment q) {
 
 Status TcpExpander::expand(const Segment& s) {
   const auto fail = [&](const std::string& why) {
-    return Status(make_error(ErrorCode::GcodeUnsupported, "line " + std::to_string(s.line) + ": " + why, {}, s.line));
+    return Status(
+        make_error(ErrorCode::GcodeUnsupported, "line " + std::to_string(s.line) + ": " + why, {}, s.line));
   };
   if (s.kind == MotionKind::Dwell) {
     Segment q = s;
@@ -78,15 +79,18 @@ Status TcpExpander::expand(const Segment& s) {
     return {};
   }
   if (s.kind == MotionKind::Arc)
-    return fail("an arc along which A or C moves cannot be run under tool-centre-point control; "
-                "split it into lines");
+    return fail(
+        "an arc along which A or C moves cannot be run under tool-centre-point control; "
+        "split it into lines");
   const RotaryJoints written = rotary_of(s.start);
   const double turns = std::round((from.c_deg - written.c_deg) / 360.0);
   Result<OrientationMove> move =
-      (from.a_deg == written.a_deg && std::abs(from.c_deg - written.c_deg - 360.0 * turns) <= kin::kSameJointDeg)
-          ? OrientationMove::between_joints(config_.orientation, from,
-                                            RotaryJoints{s.end[index(Axis::A)], s.end[index(Axis::C)] + 360.0 * turns},
-                                            kin_.limits(), config_.orientation_tolerance_deg)
+      (from.a_deg == written.a_deg &&
+       std::abs(from.c_deg - written.c_deg - 360.0 * turns) <= kin::kSameJointDeg)
+          ? OrientationMove::between_joints(
+                config_.orientation, from,
+                RotaryJoints{s.end[index(Axis::A)], s.end[index(Axis::C)] + 360.0 * turns}, kin_.limits(),
+                config_.orientation_tolerance_deg)
           : OrientationMove::to_axis(config_.orientation, from, tool_axis(rotary_of(s.end)), kin_.limits(),
                                      config_.orientation_tolerance_deg);
   if (!move) return fail(move.error().message);

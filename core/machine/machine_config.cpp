@@ -2,8 +2,8 @@
 // names the key, the value found and what is allowed, with file:line:col where
 // the TOML source has it. Unknown keys are errors: a misspelt key must never
 // leave a default silently in force.
-#include "common/quote.h"
 #include "machine/machine_config.h"
+#include "common/quote.h"
 
 #include "machine/config_keys.h"
 
@@ -75,17 +75,17 @@ struct Loader {
       if (!known) {
         std::string list;
         for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-        return fail(ErrorCode::ConfigUnknownKey, node.source(),
-                    "unknown key '" + std::string(prefix) + std::string(key.str()) +
-                        "'; expected one of: " + list);
+        return fail(
+            ErrorCode::ConfigUnknownKey, node.source(),
+            "unknown key '" + std::string(prefix) + std::string(key.str()) + "'; expected one of: " + list);
       }
     }
     return true;
   }
 
   // Reads a number (integer or float) into `out` when present.
-  bool number(const toml::table& t, std::string_view prefix, std::string_view key,
-              double& out, bool required) {
+  bool number(const toml::table& t, std::string_view prefix, std::string_view key, double& out,
+              bool required) {
     const toml::node* n = t.get(key);
     if (n == nullptr) {
       if (!required) return true;
@@ -111,8 +111,7 @@ struct Loader {
                 "'" + std::string(prefix) + std::string(key) + "' must be true or false");
   }
 
-  bool string(const toml::table& t, std::string_view prefix, std::string_view key,
-              std::string& out) {
+  bool string(const toml::table& t, std::string_view prefix, std::string_view key, std::string& out) {
     const toml::node* n = t.get(key);
     if (n == nullptr) return true;
     if (auto v = n->value<std::string>(); v && n->is_string()) {
@@ -171,9 +170,9 @@ struct Loader {
       const toml::node& e = *arr->get(i);
       auto v = e.value<double>();
       if (!v || !(e.is_floating_point() || e.is_integer()))
-        return fail(ErrorCode::ConfigBadValue, e.source(),
-                    "'" + std::string(prefix) + std::string(key) + "[" + std::to_string(i) +
-                        "]' must be a number");
+        return fail(
+            ErrorCode::ConfigBadValue, e.source(),
+            "'" + std::string(prefix) + std::string(key) + "[" + std::to_string(i) + "]' must be a number");
       out.push_back(*v);
     }
     return true;
@@ -181,8 +180,8 @@ struct Loader {
 
   // Reject keys of `table` that are not rows of `name` in the key table.
   template <class C>
-  bool only_rows(const toml::table& table, std::string_view prefix,
-                 std::span<const ConfigKey<C>> keys, std::string_view name) {
+  bool only_rows(const toml::table& table, std::string_view prefix, std::span<const ConfigKey<C>> keys,
+                 std::string_view name) {
     std::vector<std::string_view> allowed;
     for (const ConfigKey<C>& k : keys)
       if (k.table == name) allowed.push_back(k.name);
@@ -193,9 +192,8 @@ struct Loader {
   // is checked here, the range by validate(). A number the member cannot
   // hold (a negative period) is reported with the row's range.
   template <class C>
-  bool read_rows(const toml::table& t, std::string_view prefix,
-                 std::span<const ConfigKey<C>> keys, std::string_view name, C& c,
-                 bool rotary = false) {
+  bool read_rows(const toml::table& t, std::string_view prefix, std::span<const ConfigKey<C>> keys,
+                 std::string_view name, C& c, bool rotary = false) {
     for (const ConfigKey<C>& k : keys) {
       if (k.table != name || k.set == nullptr) continue;
       const toml::node* n = t.get(k.name);
@@ -236,8 +234,7 @@ struct Loader {
           break;
         }
         case KeyType::Numbers:
-        case KeyType::Table:
-          continue;
+        case KeyType::Table: continue;
       }
       if (std::string why = k.set(c, v); !why.empty())
         return fail(ErrorCode::ConfigBadValue, n->source(), "'" + path + "' " + why);
@@ -266,8 +263,7 @@ struct Loader {
     return load(*s) && !failed;
   }
 
-  const toml::table* subtable(const toml::table& t, std::string_view key,
-                              std::string_view prefix = {}) {
+  const toml::table* subtable(const toml::table& t, std::string_view key, std::string_view prefix = {}) {
     const toml::node* n = t.get(key);
     if (n == nullptr) return nullptr;
     if (!n->is_table()) {
@@ -288,8 +284,7 @@ bool load_pitch_table(Loader& L, const toml::table& axis_table, const std::strin
   if (t == nullptr) return !L.failed;
   const std::string p = axis_prefix + "pitch_compensation.";
   if (!(L.only_rows(*t, p, axis_keys(), "axes.<L>.pitch_compensation") &&
-        L.number(*t, p, "start", table.start, true) &&
-        L.number(*t, p, "interval", table.interval, true) &&
+        L.number(*t, p, "start", table.start, true) && L.number(*t, p, "interval", table.interval, true) &&
         L.numbers(*t, p, "values", table.values)))
     return false;
   // Caught here, not only in validate(): `values = []` would otherwise read
@@ -303,8 +298,8 @@ bool load_pitch_table(Loader& L, const toml::table& axis_table, const std::strin
 
 // Homing and pitch-compensation keys of one axis; the axis' own ranges
 // (min < max, max_velocity > 0) are already checked.
-Status validate_home_and_pitch(const MachineConfig& m, const AxisConfig& a,
-                               const std::string& file, std::string& key) {
+Status validate_home_and_pitch(const MachineConfig& m, const AxisConfig& a, const std::string& file,
+                               std::string& key) {
   const std::string p = std::string("axes.") + letter(a.axis) + ".";
   auto bad = [&](std::string_view k, std::string msg) {
     key = p + std::string(k);
@@ -314,41 +309,41 @@ Status validate_home_and_pitch(const MachineConfig& m, const AxisConfig& a,
   const double home = a.home_position_or_default();
   if (!(std::isfinite(home) && home >= a.min && home <= a.max))
     return bad("home_position", p + "home_position = " + fmt(home) + "; allowed min … max = " + fmt(a.min) +
-               " … " + fmt(a.max) + " " + unit);
+                                    " … " + fmt(a.max) + " " + unit);
   if (!(std::isfinite(a.following_error) && a.following_error >= 0.0 && a.following_error <= a.max - a.min))
-    return bad("following_error", p + "following_error = " + fmt(a.following_error) + "; allowed 0 (not checked) … max − min = " +
-               fmt(a.max - a.min) + " " + unit);
+    return bad("following_error", p + "following_error = " + fmt(a.following_error) +
+                                      "; allowed 0 (not checked) … max − min = " + fmt(a.max - a.min) + " " +
+                                      unit);
   const double search = a.home_search_velocity_or_default();
   if (!(std::isfinite(search) && search != 0.0 && std::abs(search) <= a.max_velocity))
-    return bad("home_search_velocity", p + "home_search_velocity = " + fmt(search) + "; allowed " +
-               fmt(-a.max_velocity) + " … " + fmt(a.max_velocity) + " " + unit +
-               "/s (±max_velocity), not 0: the sign is the direction toward the home switch");
+    return bad("home_search_velocity",
+               p + "home_search_velocity = " + fmt(search) + "; allowed " + fmt(-a.max_velocity) + " … " +
+                   fmt(a.max_velocity) + " " + unit +
+                   "/s (±max_velocity), not 0: the sign is the direction toward the home switch");
   const double latch = a.home_latch_velocity_or_default();
   if (!(std::isfinite(latch) && latch > 0.0 && latch <= std::abs(search)))
     return bad("home_latch_velocity", p + "home_latch_velocity = " + fmt(latch) + "; allowed > 0 … " +
-               fmt(std::abs(search)) + " " + unit + "/s (|home_search_velocity|)");
+                                          fmt(std::abs(search)) + " " + unit + "/s (|home_search_velocity|)");
 
   const PitchTable& t = a.pitch_compensation;
   if (t.empty()) return {};
   const std::string pp = p + "pitch_compensation.";
   if (t.values.size() < 2)
     return bad("pitch_compensation.values", pp + "values has " + std::to_string(t.values.size()) +
-               " value(s); allowed 2 or more (one per interval end)");
+                                                " value(s); allowed 2 or more (one per interval end)");
   if (!(std::isfinite(t.interval) && t.interval > 0.0))
     return bad("pitch_compensation.interval", pp + "interval = " + fmt(t.interval) + "; allowed > 0 " + unit);
   for (std::size_t k = 0; k < t.values.size(); ++k) {
     if (!(std::isfinite(t.values[k]) && std::abs(t.values[k]) <= kMaxPitchCorrection))
-      return bad("pitch_compensation.values", pp + "values[" + std::to_string(k) + "] = " + fmt(t.values[k]) + "; allowed " +
-                 fmt(-kMaxPitchCorrection) + " … " + fmt(kMaxPitchCorrection) + " " + unit);
+      return bad("pitch_compensation.values", pp + "values[" + std::to_string(k) + "] = " + fmt(t.values[k]) +
+                                                  "; allowed " + fmt(-kMaxPitchCorrection) + " … " +
+                                                  fmt(kMaxPitchCorrection) + " " + unit);
   }
-  auto slack = [](double limit) {
-    return kPitchTableEndTolerance * std::max(1.0, std::abs(limit));
-  };
-  if (!(std::isfinite(t.start) && t.start >= a.min - slack(a.min) &&
-        t.end() <= a.max + slack(a.max)))
-    return bad("pitch_compensation.start", pp + "start … start + (n−1)·interval = " + fmt(t.start) + " … " + fmt(t.end()) +
-               " " + unit + "; the table must lie within min … max = " + fmt(a.min) + " … " +
-               fmt(a.max) + " " + unit);
+  auto slack = [](double limit) { return kPitchTableEndTolerance * std::max(1.0, std::abs(limit)); };
+  if (!(std::isfinite(t.start) && t.start >= a.min - slack(a.min) && t.end() <= a.max + slack(a.max)))
+    return bad("pitch_compensation.start",
+               pp + "start … start + (n−1)·interval = " + fmt(t.start) + " … " + fmt(t.end()) + " " + unit +
+                   "; the table must lie within min … max = " + fmt(a.min) + " … " + fmt(a.max) + " " + unit);
   // The RT kernel outputs commanded + correction(commanded): at max_velocity
   // a period moves pulses·(1 + slope) steps, +1 for the rounding of the
   // correction to whole steps. That must still fit the DDA preset.
@@ -356,11 +351,12 @@ Status validate_home_and_pitch(const MachineConfig& m, const AxisConfig& a,
   if (slope > 0.0) {
     const double pulses = a.max_velocity * a.steps_per_unit * m.period_s() * (1.0 + slope) + 1.0;
     if (pulses > m.dda.max_pulses())
-      return bad("pitch_compensation.values", pp + "values: slope " + fmt(slope) + " at max_velocity = " +
-                 fmt(a.max_velocity) + " " + unit + "/s needs " + fmt(pulses) +
-                 " pulses per period (with 1 for rounding); the DDA preset gives at most " +
-                 std::to_string(m.dda.max_pulses()) +
-                 " (flatten the table, raise dda.magnitude_bits or lower max_velocity)");
+      return bad("pitch_compensation.values",
+                 pp + "values: slope " + fmt(slope) + " at max_velocity = " + fmt(a.max_velocity) + " " +
+                     unit + "/s needs " + fmt(pulses) +
+                     " pulses per period (with 1 for rounding); the DDA preset gives at most " +
+                     std::to_string(m.dda.max_pulses()) +
+                     " (flatten the table, raise dda.magnitude_bits or lower max_velocity)");
   }
   return {};
 }
@@ -373,9 +369,12 @@ bool load_kinematics(Loader& L, const toml::table& t, FiveAxisGeometry& g, TcpCo
   std::string method;
   if (!L.string(t, kPre, "orientation", method)) return false;
   if (const toml::node* n = t.get("orientation")) {
-    if (method == "joint_linear") tcp.orientation = OrientationMethod::JointLinear;
-    else if (method == "vector") tcp.orientation = OrientationMethod::Vector;
-    else if (method == "pole_smoothed") tcp.orientation = OrientationMethod::PoleSmoothed;
+    if (method == "joint_linear")
+      tcp.orientation = OrientationMethod::JointLinear;
+    else if (method == "vector")
+      tcp.orientation = OrientationMethod::Vector;
+    else if (method == "pole_smoothed")
+      tcp.orientation = OrientationMethod::PoleSmoothed;
     else
       return L.fail(ErrorCode::ConfigBadValue, n->source(),
                     "kinematics.orientation = \"" + method +
@@ -384,8 +383,9 @@ bool load_kinematics(Loader& L, const toml::table& t, FiveAxisGeometry& g, TcpCo
   const auto bounded = [&](std::string_view key, double& out, double hi, const char* unit) {
     if (!L.number(t, kPre, key, out, false)) return false;
     if (out > 0.0 && out <= hi) return true;
-    return L.fail(ErrorCode::ConfigBadValue, t.get(key)->source(),
-                  "kinematics." + std::string(key) + " = " + fmt(out) + "; allowed > 0 … " + fmt(hi) + " " + unit);
+    return L.fail(
+        ErrorCode::ConfigBadValue, t.get(key)->source(),
+        "kinematics." + std::string(key) + " = " + fmt(out) + "; allowed > 0 … " + fmt(hi) + " " + unit);
   };
   if (!bounded("orientation_tolerance_deg", tcp.orientation_tolerance_deg, 1.0, "deg") ||
       !bounded("tip_tolerance_mm", tcp.tip_tolerance_mm, 0.1, "mm"))
@@ -393,8 +393,10 @@ bool load_kinematics(Loader& L, const toml::table& t, FiveAxisGeometry& g, TcpCo
   std::string variant;
   if (!L.string(t, kPre, "variant", variant)) return false;
   if (const toml::node* n = t.get("variant")) {
-    if (variant == "head_head") g.variant = MachineVariant::HeadHead;
-    else if (variant == "table_table") g.variant = MachineVariant::TableTable;
+    if (variant == "head_head")
+      g.variant = MachineVariant::HeadHead;
+    else if (variant == "table_table")
+      g.variant = MachineVariant::TableTable;
     else
       return L.fail(ErrorCode::ConfigBadValue, n->source(),
                     "kinematics.variant = \"" + variant + "\"; allowed \"head_head\" or \"table_table\"");
@@ -417,9 +419,9 @@ bool load_kinematics(Loader& L, const toml::table& t, FiveAxisGeometry& g, TcpCo
     return false;
   if (!L.number(t, kPre, "head_pivot_length_mm", g.head_pivot_length_mm, false)) return false;
   if (!(g.head_pivot_length_mm > 0.0 && g.head_pivot_length_mm <= 10000.0))
-    return L.fail(ErrorCode::ConfigBadValue, t.get("head_pivot_length_mm")->source(),
-                  "kinematics.head_pivot_length_mm = " + fmt(g.head_pivot_length_mm) +
-                      "; allowed > 0 … 10000 mm");
+    return L.fail(
+        ErrorCode::ConfigBadValue, t.get("head_pivot_length_mm")->source(),
+        "kinematics.head_pivot_length_mm = " + fmt(g.head_pivot_length_mm) + "; allowed > 0 … 10000 mm");
   return true;
 }
 
@@ -432,8 +434,10 @@ bool load_tools(Loader& L, const toml::table& t, std::vector<ToolConfig>& tools)
     const auto [end, ec] = std::from_chars(k.data(), k.data() + k.size(), number);
     if (ec != std::errc{} || end != k.data() + k.size() || number < 1 || number > kMaxToolNumber)
       return L.fail(ErrorCode::ConfigBadValue, node.source(),
-                    "tools." + k + ": a tool is named by its number; expected [tools.N] with N "
-                    "from 1 to " + std::to_string(kMaxToolNumber) + " (the T word)");
+                    "tools." + k +
+                        ": a tool is named by its number; expected [tools.N] with N "
+                        "from 1 to " +
+                        std::to_string(kMaxToolNumber) + " (the T word)");
     const toml::table* tt = L.subtable(t, key.str(), "tools.");
     if (tt == nullptr) return false;
     const std::string p = "tools." + k + ".";
@@ -442,8 +446,7 @@ bool load_tools(Loader& L, const toml::table& t, std::vector<ToolConfig>& tools)
     double x = 0.0, y = 0.0, z = 0.0;
     if (!(L.only_keys(*tt, p, {"z_offset", "x_offset", "y_offset", "diameter", "description"}) &&
           L.number(*tt, p, "z_offset", z, false) && L.number(*tt, p, "x_offset", x, false) &&
-          L.number(*tt, p, "y_offset", y, false) &&
-          L.number(*tt, p, "diameter", tool.diameter_mm, false) &&
+          L.number(*tt, p, "y_offset", y, false) && L.number(*tt, p, "diameter", tool.diameter_mm, false) &&
           L.string(*tt, p, "description", tool.description)))
       return false;
     tool.offset << x, y, z, 0.0, 0.0, 0.0;
@@ -454,9 +457,9 @@ bool load_tools(Loader& L, const toml::table& t, std::vector<ToolConfig>& tools)
                           fmt(kMaxToolOffsetMm) + " mm");
     }
     if (!(tool.diameter_mm >= 0.0 && tool.diameter_mm <= kMaxToolOffsetMm))
-      return L.fail(ErrorCode::ConfigBadValue, tt->source(),
-                    p + "diameter = " + fmt(tool.diameter_mm) + "; allowed 0 … " +
-                        fmt(kMaxToolOffsetMm) + " mm");
+      return L.fail(
+          ErrorCode::ConfigBadValue, tt->source(),
+          p + "diameter = " + fmt(tool.diameter_mm) + "; allowed 0 … " + fmt(kMaxToolOffsetMm) + " mm");
     tools.push_back(std::move(tool));
   }
   std::sort(tools.begin(), tools.end(),
@@ -465,10 +468,8 @@ bool load_tools(Loader& L, const toml::table& t, std::vector<ToolConfig>& tools)
 }
 
 // [work_offsets]: G54 … G59.3 = [X, Y, Z, A, B, C].
-bool load_work_offsets(Loader& L, const toml::table& t,
-                       std::array<Pose, kWorkOffsetCount>& offsets) {
-  if (!L.only_keys(t, "work_offsets.",
-                   {"G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3"}))
+bool load_work_offsets(Loader& L, const toml::table& t, std::array<Pose, kWorkOffsetCount>& offsets) {
+  if (!L.only_keys(t, "work_offsets.", {"G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3"}))
     return false;
   for (int i = 0; i < kWorkOffsetCount; ++i) {
     const std::string key = kWorkOffsetNames[i];
@@ -502,8 +503,8 @@ bool load_axis(Loader& L, const toml::table& t, Axis axis, AxisConfig& a) {
 // after G64, as numbers. The G-code reader runs it; this only admits it.
 std::string startup_code_problem(const std::string& code) {
   static constexpr std::array<const char*, 23> kAllowed = {
-      "G17", "G18", "G19", "G20", "G21", "G90", "G91", "G90.1", "G91.1", "G93", "G94", "G54",
-      "G55", "G56", "G57", "G58", "G59", "G61", "G61.1", "G64", "G40", "G49", "G80"};
+      "G17", "G18", "G19", "G20", "G21", "G90", "G91",   "G90.1", "G91.1", "G93", "G94", "G54",
+      "G55", "G56", "G57", "G58", "G59", "G61", "G61.1", "G64",   "G40",   "G49", "G80"};
   bool after_g64 = false;
   std::size_t i = 0;
   while (i < code.size()) {
@@ -527,7 +528,8 @@ std::string startup_code_problem(const std::string& code) {
     bool known = false;
     for (const char* a : kAllowed) known = known || w == a;
     if (!known)
-      return "found " + quote(w) + "; expected only G17 G18 G19 G20 G21 G90 G91 G90.1 G91.1 G93 G94 "
+      return "found " + quote(w) +
+             "; expected only G17 G18 G19 G20 G21 G90 G91 G90.1 G91.1 G93 G94 "
              "G54…G59 G61 G61.1 G64 [P Q] G40 G49 G80 M5 M9 (modes a program starts in, no "
              "motion)";
     after_g64 = w == "G64";
@@ -583,11 +585,11 @@ Status check(const MachineConfig& m, const std::string& file, std::string& key) 
       return bad(p + "wrap", p + "wrap = true needs max − min = 360 deg; found " + fmt(a.max - a.min));
     const double pulses = a.max_velocity * a.steps_per_unit * m.period_s();
     if (pulses > m.dda.max_pulses())
-      return bad(p + "max_velocity",
-                 p + "max_velocity = " + fmt(a.max_velocity) + " " + unit + "/s needs " +
-                     fmt(pulses) + " pulses per " + fmt(m.period_ns / 1000.0) +
-                     " µs period; the DDA preset gives at most " + std::to_string(m.dda.max_pulses()) +
-                     " (raise dda.magnitude_bits or lower max_velocity)");
+      return bad(p + "max_velocity", p + "max_velocity = " + fmt(a.max_velocity) + " " + unit + "/s needs " +
+                                         fmt(pulses) + " pulses per " + fmt(m.period_ns / 1000.0) +
+                                         " µs period; the DDA preset gives at most " +
+                                         std::to_string(m.dda.max_pulses()) +
+                                         " (raise dda.magnitude_bits or lower max_velocity)");
     if (Status s = validate_home_and_pitch(m, a, file, key); !s) return s;
   }
   if (!any) return bad("axes", "no axes configured; expected at least one [axes.X] … [axes.C] table");
@@ -607,8 +609,8 @@ Result<MachineConfig> parse_machine_config(std::string_view text, const std::str
   try {
     root = toml::parse(text, std::string_view(name));
   } catch (const toml::parse_error& e) {
-    return make_error(ErrorCode::ConfigSyntax, std::string(e.description()), name,
-                      e.source().begin.line, e.source().begin.column);
+    return make_error(ErrorCode::ConfigSyntax, std::string(e.description()), name, e.source().begin.line,
+                      e.source().begin.column);
   }
   MachineConfig m;
   m.axes = {};
@@ -623,25 +625,23 @@ Result<MachineConfig> parse_machine_config(std::string_view text, const std::str
   for (const std::string_view table : {"machine", "dda", "laser"}) {
     const std::string prefix = std::string(table) + ".";
     ok = ok && L.section(root, table, [&](const toml::table& t) {
-           return L.only_rows(t, prefix, machine_keys(), table) &&
-                  L.read_rows(t, prefix, machine_keys(), table, m);
-         });
+      return L.only_rows(t, prefix, machine_keys(), table) &&
+             L.read_rows(t, prefix, machine_keys(), table, m);
+    });
   }
   ok = ok && L.section(root, "axes", [&](const toml::table& t) {
-         if (!L.only_keys(t, "axes.", {"X", "Y", "Z", "A", "B", "C"})) return false;
-         for (Axis a : kAllAxes) {
-           if (!L.section(t, std::string(1, letter(a)),
-                          [&](const toml::table& at) { return load_axis(L, at, a, m.axis(a)); }))
-             return false;
-         }
-         return true;
-       });
-  ok = ok && L.section(root, "kinematics", [&](const toml::table& t) {
-         return load_kinematics(L, t, m.kinematics, m.tcp);
-       });
-  ok = ok && L.section(root, "work_offsets", [&](const toml::table& t) {
-         return load_work_offsets(L, t, m.work_offsets);
-       });
+    if (!L.only_keys(t, "axes.", {"X", "Y", "Z", "A", "B", "C"})) return false;
+    for (Axis a : kAllAxes) {
+      if (!L.section(t, std::string(1, letter(a)),
+                     [&](const toml::table& at) { return load_axis(L, at, a, m.axis(a)); }))
+        return false;
+    }
+    return true;
+  });
+  ok = ok && L.section(root, "kinematics",
+                       [&](const toml::table& t) { return load_kinematics(L, t, m.kinematics, m.tcp); });
+  ok = ok && L.section(root, "work_offsets",
+                       [&](const toml::table& t) { return load_work_offsets(L, t, m.work_offsets); });
   ok = ok && L.section(root, "tools", [&](const toml::table& t) { return load_tools(L, t, m.tools); });
   if (!ok) return L.err;
   const std::filesystem::path config_dir = std::filesystem::path(name).parent_path();
@@ -675,8 +675,7 @@ Result<MachineConfig> parse_machine_config(std::string_view text, const std::str
 
 Result<MachineConfig> load_machine_config(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in)
-    return make_error(ErrorCode::FileNotFound, "cannot open machine config '" + path + "'", path);
+  if (!in) return make_error(ErrorCode::FileNotFound, "cannot open machine config '" + path + "'", path);
   std::ostringstream buf;
   buf << in.rdbuf();
   return parse_machine_config(buf.str(), path);

@@ -46,12 +46,12 @@ struct PitchTable {
 struct AxisConfig {
   bool present = false;
   Axis axis = Axis::X;
-  double min = 0.0;               // mm or deg (machine coordinates)
-  double max = 0.0;               // mm or deg
-  double max_velocity = 0.0;      // mm/s or deg/s
-  double max_acceleration = 0.0;  // mm/s² or deg/s²
-  double steps_per_unit = 1000.0; // steps per mm or per degree
-  bool wrap = false;              // rotary, continuous: position kept in [min, max)
+  double min = 0.0;                // mm or deg (machine coordinates)
+  double max = 0.0;                // mm or deg
+  double max_velocity = 0.0;       // mm/s or deg/s
+  double max_acceleration = 0.0;   // mm/s² or deg/s²
+  double steps_per_unit = 1000.0;  // steps per mm or per degree
+  bool wrap = false;               // rotary, continuous: position kept in [min, max)
   // Largest |commanded − measured| position before the machine stops with a
   // following error naming the axis, mm or deg; 0: not checked (a machine
   // without feedback, as the simulated one). Only where there is feedback:
@@ -69,9 +69,7 @@ struct AxisConfig {
   PitchTable pitch_compensation{};
 
   // Default min: the switch sits at the low end of travel.
-  [[nodiscard]] double home_position_or_default() const noexcept {
-    return home_position.value_or(min);
-  }
+  [[nodiscard]] double home_position_or_default() const noexcept { return home_position.value_or(min); }
   // Default −0.1·max_velocity: toward min at a tenth of full speed.
   [[nodiscard]] double home_search_velocity_or_default() const noexcept {
     return home_search_velocity.value_or(-0.1 * max_velocity);
@@ -96,9 +94,7 @@ struct DdaConfig {
   std::uint32_t magnitude_bits = 4;  // pulses per period: 0 .. 2^bits - 1
   std::uint32_t capacity = 30;       // N: clock ticks per period
 
-  [[nodiscard]] std::uint32_t max_pulses() const noexcept {
-    return (1u << magnitude_bits) - 1u;
-  }
+  [[nodiscard]] std::uint32_t max_pulses() const noexcept { return (1u << magnitude_bits) - 1u; }
 };
 
 struct LaserConfig {
@@ -114,8 +110,8 @@ inline constexpr std::array<const char*, kWorkOffsetCount> kWorkOffsetNames = {
 // G43 applies its offset (machine = program + offsets + tool offset); its
 // diameter is the kerf width cutter compensation will use.
 struct ToolConfig {
-  int number = 0;                 // the T word: 1 … kMaxToolNumber
-  Pose offset = Pose::Zero();     // tool length offset: X Y Z mm (A B C stay 0)
+  int number = 0;              // the T word: 1 … kMaxToolNumber
+  Pose offset = Pose::Zero();  // tool length offset: X Y Z mm (A B C stay 0)
   double diameter_mm = 0.0;
   std::string description;
 };

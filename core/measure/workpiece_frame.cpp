@@ -16,9 +16,7 @@ namespace {
 constexpr double kMinSpanMm = 1e-3;
 constexpr double kMinSine = 1e-6;
 
-Diagnostic degenerate(const std::string& why) {
-  return make_error(ErrorCode::MeasureDegenerate, why);
-}
+Diagnostic degenerate(const std::string& why) { return make_error(ErrorCode::MeasureDegenerate, why); }
 
 std::string mm(const Vec3& p) {
   char b[96];
@@ -32,7 +30,8 @@ void finish(FrameFit& f) {
     f.max_residual_mm = std::max(f.max_residual_mm, r);
     sum2 += r * r;
   }
-  f.rms_residual_mm = f.residuals_mm.empty() ? 0.0 : std::sqrt(sum2 / static_cast<double>(f.residuals_mm.size()));
+  f.rms_residual_mm =
+      f.residuals_mm.empty() ? 0.0 : std::sqrt(sum2 / static_cast<double>(f.residuals_mm.size()));
 }
 
 }  // namespace
@@ -77,8 +76,8 @@ Result<FrameFit> fit_321(const std::array<Vec3, 3>& p, const std::array<Vec3, 2>
 
 Result<FrameFit> fit_best(const std::vector<Vec3>& nominal, const std::vector<Vec3>& measured) {
   if (nominal.size() != measured.size())
-    return degenerate(std::to_string(nominal.size()) + " nominal points for " + std::to_string(measured.size()) +
-                      " measured: each measured point needs its nominal");
+    return degenerate(std::to_string(nominal.size()) + " nominal points for " +
+                      std::to_string(measured.size()) + " measured: each measured point needs its nominal");
   if (nominal.size() < 3)
     return degenerate("a best fit needs at least 3 points, " + std::to_string(nominal.size()) + " given");
   // Kabsch on the 3 × 3 moments (fixed-size algebra: the dynamic-size SVD
@@ -103,7 +102,8 @@ Result<FrameFit> fit_best(const std::vector<Vec3>& nominal, const std::vector<Ve
   const double sv0 = std::sqrt(std::max(0.0, eig.eigenvalues()(2)));
   const double sv1 = std::sqrt(std::max(0.0, eig.eigenvalues()(1)));
   if (sv0 < kMinSpanMm || sv1 < kMinSine * sv0 * 1e3)
-    return degenerate("the nominal points are collinear or coincide: a rigid fit needs 3 points not on one line");
+    return degenerate(
+        "the nominal points are collinear or coincide: a rigid fit needs 3 points not on one line");
   // the rotation R minimising Σ|R s + t − d|²: cross = U Σ Vᵀ, R = V D Uᵀ
   // with D flipping the last axis when that would be a reflection
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(cross, Eigen::ComputeFullU | Eigen::ComputeFullV);
@@ -139,12 +139,14 @@ Result<FrameFit> fit_faces(const std::vector<FacePoint>& points, const Eigen::Is
     }
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(jtj);
     if (eig.eigenvalues()(0) < 1e-9 * std::max(1.0, eig.eigenvalues()(5)))
-      return degenerate("the probed faces leave the workpiece free to move: points on three faces that are "
-                        "not parallel, at least 3 on one and 2 on another, pin it");
+      return degenerate(
+          "the probed faces leave the workpiece free to move: points on three faces that are "
+          "not parallel, at least 3 on one and 2 on another, pin it");
     const Vec6 d = jtj.ldlt().solve(-jtr);
     const Vec3 dtheta = d.head<3>();
     Eigen::Isometry3d delta = Eigen::Isometry3d::Identity();
-    if (dtheta.norm() > 0) delta.linear() = Eigen::AngleAxisd(dtheta.norm(), dtheta.normalized()).toRotationMatrix();
+    if (dtheta.norm() > 0)
+      delta.linear() = Eigen::AngleAxisd(dtheta.norm(), dtheta.normalized()).toRotationMatrix();
     delta.translation() = d.tail<3>();
     t = t * delta;
     if (d.norm() < 1e-12) break;
@@ -152,7 +154,8 @@ Result<FrameFit> fit_faces(const std::vector<FacePoint>& points, const Eigen::Is
   FrameFit f;
   f.work_to_machine = t;
   const Eigen::Isometry3d inv = t.inverse();
-  for (const FacePoint& p : points) f.residuals_mm.push_back(std::abs(p.normal.dot(inv * p.measured) - p.offset));
+  for (const FacePoint& p : points)
+    f.residuals_mm.push_back(std::abs(p.normal.dot(inv * p.measured) - p.offset));
   finish(f);
   return f;
 }

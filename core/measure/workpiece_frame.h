@@ -50,8 +50,7 @@ struct FrameFit {
                                        const std::array<Vec3, 2>& secondary, const Vec3& tertiary);
 
 // nominal[i] (workpiece frame) measured at measured[i] (machine), N ≥ 3.
-[[nodiscard]] Result<FrameFit> fit_best(const std::vector<Vec3>& nominal,
-                                        const std::vector<Vec3>& measured);
+[[nodiscard]] Result<FrameFit> fit_best(const std::vector<Vec3>& nominal, const std::vector<Vec3>& measured);
 
 // A point probed on a face of the drawing: the face is the plane
 // normal·x = offset of the workpiece frame (normal a unit vector).

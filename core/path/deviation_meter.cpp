@@ -13,8 +13,8 @@ bool DeviationMeter::load_next() {
     return false;
   }
   const double tol = seg.path_mode != PathMode::Blend ? 0.0
-                     : seg.blend_tolerance_mm > 0.0 ? seg.blend_tolerance_mm
-                                                    : default_tolerance_mm_;
+                     : seg.blend_tolerance_mm > 0.0   ? seg.blend_tolerance_mm
+                                                      : default_tolerance_mm_;
   window_.push_back(Entry{loaded_++, SegmentGeometry(seg), tol, seg.line});
   return true;
 }

@@ -37,10 +37,12 @@ class DeviationMeter {
   // rounding_mm: the distance a point's rounding to steps may add.
   // extra_mm: added to every point's tolerance (under tool-centre-point
   // control, the tip's own tolerance on the joint lines it becomes).
-  explicit DeviationMeter(SegmentSource source, double default_tolerance_mm = 0.0,
-                          double rounding_mm = 0.0, double extra_mm = 0.0)
-      : source_(std::move(source)), default_tolerance_mm_(default_tolerance_mm),
-        rounding_mm_(rounding_mm), extra_mm_(extra_mm) {}
+  explicit DeviationMeter(SegmentSource source, double default_tolerance_mm = 0.0, double rounding_mm = 0.0,
+                          double extra_mm = 0.0)
+      : source_(std::move(source)),
+        default_tolerance_mm_(default_tolerance_mm),
+        rounding_mm_(rounding_mm),
+        extra_mm_(extra_mm) {}
 
   // Adds an executed point that belongs to segment `index`; returns its deviation.
   double add(const Vec3& point, std::uint32_t index);

@@ -43,9 +43,9 @@ inline constexpr std::uint16_t kOutputFlood = 1u << (kDigitalOutputs + 1);
 // segment (Segment::feed_control, bits; M48–M53 set them). 0: the override
 // acts, no adaptive feed, the feed-hold input stops the motion — the
 // defaults.
-inline constexpr std::uint8_t kFeedOverrideOff = 1u;  // M50 P0, M49: runs at 100 % whatever the override
-inline constexpr std::uint8_t kAdaptiveFeed = 2u;     // M52 P1: the adaptive-feed input (0 … 1) scales it
-inline constexpr std::uint8_t kFeedHoldInputOff = 4u; // M53 P0: the feed-hold input does not stop it
+inline constexpr std::uint8_t kFeedOverrideOff = 1u;   // M50 P0, M49: runs at 100 % whatever the override
+inline constexpr std::uint8_t kAdaptiveFeed = 2u;      // M52 P1: the adaptive-feed input (0 … 1) scales it
+inline constexpr std::uint8_t kFeedHoldInputOff = 4u;  // M53 P0: the feed-hold input does not stop it
 
 enum class LaserMode : std::uint8_t {
   Off,       // M5
@@ -69,12 +69,12 @@ struct Segment {
   bool clockwise = false;
   std::uint32_t extra_turns = 0;
 
-  double feed_mm_s = 0.0;     // programmed path speed (mm/s, or deg/s for a pure rotary move); 0 on rapids
-  double duration_s = 0.0;    // G93 inverse-time: the move takes this long; 0 otherwise
-  double dwell_s = 0.0;       // Dwell only
+  double feed_mm_s = 0.0;   // programmed path speed (mm/s, or deg/s for a pure rotary move); 0 on rapids
+  double duration_s = 0.0;  // G93 inverse-time: the move takes this long; 0 otherwise
+  double dwell_s = 0.0;     // Dwell only
 
   PathMode path_mode = PathMode::ExactPath;
-  double blend_tolerance_mm = 0.0;  // G64 P (0 = as fast as possible within the machine default)
+  double blend_tolerance_mm = 0.0;      // G64 P (0 = as fast as possible within the machine default)
   double naive_cam_tolerance_mm = 0.0;  // G64 Q
 
   LaserMode laser = LaserMode::Off;

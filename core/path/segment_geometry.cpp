@@ -120,7 +120,7 @@ void SegmentGeometry::set(const Segment& seg) {
     w_ = n.cross(u_);
     const double y = rb.dot(w_), x = rb.dot(u_);
     r_end = rb.norm();
-    double sweep = atan2_small(y, x);     // (−π, π]
+    double sweep = atan2_small(y, x);                    // (−π, π]
     if (sweep <= path::kFullTurnAngle) sweep += two_pi;  // end == start: one full turn
     sweep_ = sweep + two_pi * seg.extra_turns;
     set_sin_cos_sweep(y, x);
@@ -143,9 +143,8 @@ void SegmentGeometry::set_spiral(double r_end) {
   inv_length_ = length_ > 0.0 ? 1.0 / length_ : 0.0;
 }
 
-void SegmentGeometry::set_circular_arc(const Pose& start, const Pose& end, const Vec3& center,
-                                       const Vec3& u, const Vec3& w, double radius,
-                                       double sin_sweep, double cos_sweep) {
+void SegmentGeometry::set_circular_arc(const Pose& start, const Pose& end, const Vec3& center, const Vec3& u,
+                                       const Vec3& w, double radius, double sin_sweep, double cos_sweep) {
   start_ = start;
   end_ = end;
   arc_ = true;
@@ -187,8 +186,8 @@ Pose SegmentGeometry::tangent_at_angle(double f, double sin_phi, double cos_phi)
   Pose t = (end_ - start_) * inv_length_;
   if (arc_) {
     const double dphi_ds = sweep_ * inv_length_;
-    t.head<3>() = (radius_ + f * dr_) * dphi_ds * (-sin_phi * u_ + cos_phi * w_) +
-                  (helix_h_ * inv_length_) * axis_n_;
+    t.head<3>() =
+        (radius_ + f * dr_) * dphi_ds * (-sin_phi * u_ + cos_phi * w_) + (helix_h_ * inv_length_) * axis_n_;
     if (dr_ != 0.0) t.head<3>() += (dr_ * inv_length_) * (cos_phi * u_ + sin_phi * w_);
   }
   return t;
@@ -203,9 +202,7 @@ Pose SegmentGeometry::tangent(double s) const {
 // angle_at(0) is 0 and angle_at(length_) is sweep_ exactly (s / L is 0 and 1).
 Pose SegmentGeometry::start_tangent() const { return tangent_at_angle(0.0, 0.0, 1.0); }
 
-Pose SegmentGeometry::end_tangent() const {
-  return tangent_at_angle(1.0, sin_sweep_, cos_sweep_);
-}
+Pose SegmentGeometry::end_tangent() const { return tangent_at_angle(1.0, sin_sweep_, cos_sweep_); }
 
 // P''(φ)·(dφ/ds)² with P''(φ) = −r(φ)·e_r + 2·(Δr/sweep)·e_θ
 Pose SegmentGeometry::curvature(double s) const {
@@ -281,7 +278,8 @@ std::vector<Pose> arc_chord_ends(const Segment& arc, double sag_mm) {
   const auto n = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(g.sweep_rad() / dphi)));
   std::vector<Pose> out;
   out.reserve(n);
-  for (std::size_t k = 1; k < n; ++k) out.push_back(g.at(g.length() * static_cast<double>(k) / static_cast<double>(n)));
+  for (std::size_t k = 1; k < n; ++k)
+    out.push_back(g.at(g.length() * static_cast<double>(k) / static_cast<double>(n)));
   out.push_back(arc.end);
   return out;
 }

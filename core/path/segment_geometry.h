@@ -81,8 +81,8 @@ class SegmentGeometry {
   // are given (0 < sweep < 2π) from unit u toward unit w (w ⊥ u); rotary
   // axes linear from start to end.
   // (Set in place: a blend's geometry goes straight where it is kept.)
-  void set_circular_arc(const Pose& start, const Pose& end, const Vec3& center, const Vec3& u,
-                        const Vec3& w, double radius, double sin_sweep, double cos_sweep);
+  void set_circular_arc(const Pose& start, const Pose& end, const Vec3& center, const Vec3& u, const Vec3& w,
+                        double radius, double sin_sweep, double cos_sweep);
 
   [[nodiscard]] double length() const noexcept { return length_; }
   [[nodiscard]] bool is_arc() const noexcept { return arc_; }
@@ -155,9 +155,9 @@ class SegmentGeometry {
   Vec3 axis_n_ = Vec3::Zero();  // helix direction (unit) or zero
   double helix_h_ = 0.0;        // travel along axis_n_
   double radius_ = 0.0, sweep_ = 0.0, length_ = 0.0, plane_ratio_ = 0.0;
-  double dr_ = 0.0;             // spiral: end radius − start radius (0: a circle)
+  double dr_ = 0.0;  // spiral: end radius − start radius (0: a circle)
   double spiral_excess_ = 0.0;
-  double inv_length_ = 0.0;  // 1/length_ (0 for no length): at() is asked every period
+  double inv_length_ = 0.0;                   // 1/length_ (0 for no length): at() is asked every period
   double sin_sweep_ = 0.0, cos_sweep_ = 1.0;  // of sweep_ (arcs): the end tangent, the limits
 };
 
@@ -175,8 +175,7 @@ inline void SegmentGeometry::at(double s, Pose& p) const {
   p.tail<3>() = start_.tail<3>() + (end_.tail<3>() - start_.tail<3>()) * f;
   double sin_phi, cos_phi;
   detail::sin_cos(sweep_ * f, sin_phi, cos_phi);
-  p.head<3>() =
-      center_ + (radius_ + f * dr_) * (cos_phi * u_ + sin_phi * w_) + (f * helix_h_) * axis_n_;
+  p.head<3>() = center_ + (radius_ + f * dr_) * (cos_phi * u_ + sin_phi * w_) + (f * helix_h_) * axis_n_;
 }
 
 // The chord end points of an arc (its end included, its start not) whose

@@ -8,8 +8,7 @@
 
 namespace lcnc {
 
-void set_blend_arc(const Segment& a, const Segment& b, const Pose& q0, const Pose& q2,
-                   Segment& arc) {
+void set_blend_arc(const Segment& a, const Segment& b, const Pose& q0, const Pose& q2, Segment& arc) {
   arc = a;
   arc.kind = MotionKind::Arc;
   arc.clockwise = false;
@@ -23,8 +22,7 @@ bool arc_transition(const Segment& a, const Segment& b, double la, double lb, do
                     double max_trim_a, double max_trim_b, ArcTransition& t, Segment& arc,
                     SegmentGeometry& geo) {
   t.blended = false;
-  if (la <= plan::kMinSegmentLength || lb <= plan::kMinSegmentLength || tolerance_mm <= 0.0)
-    return false;
+  if (la <= plan::kMinSegmentLength || lb <= plan::kMinSegmentLength || tolerance_mm <= 0.0) return false;
   const Vec3 p = b.start.head<3>();
   const double inv_la = 1.0 / la, inv_lb = 1.0 / lb;
   // The unit directions and their cross product coordinate by coordinate:
@@ -81,8 +79,8 @@ bool arc_transition(const Segment& a, const Segment& b, double la, double lb, do
   return true;
 }
 
-ArcTransition arc_transition(const Segment& a, const Segment& b, double tolerance_mm,
-                             double max_trim_a, double max_trim_b) {
+ArcTransition arc_transition(const Segment& a, const Segment& b, double tolerance_mm, double max_trim_a,
+                             double max_trim_b) {
   ArcTransition t;
   SegmentGeometry geo{Segment{}};
   const double la = (a.end.head<3>() - a.start.head<3>()).norm();

@@ -22,14 +22,13 @@ struct ArcTransition {
   bool blended = false;
   double trim = 0.0;  // l: length cut off the end of the first and the start of the second line
   Pose q0 = Pose::Zero(), q2 = Pose::Zero();
-  Segment arc;        // Plane::Free arc from q0 to q2
+  Segment arc;  // Plane::Free arc from q0 to q2
 };
 
 // Sets `arc` to the blend arc's segment from q0 to q2: feed, laser and modes
 // from `a`, the source line of `b`; the caller sets its plane, centre and
 // turning sense.
-void set_blend_arc(const Segment& a, const Segment& b, const Pose& q0, const Pose& q2,
-                   Segment& arc);
+void set_blend_arc(const Segment& a, const Segment& b, const Pose& q0, const Pose& q2, Segment& arc);
 
 // `a` ends where `b` starts; both are lines with X Y Z motion. The arc takes
 // its feed, laser and modes from `a`. Not blended when the lines are
@@ -61,8 +60,7 @@ namespace lcnc {
 // the planes G17/G18/G19 with no helix and no rotary motion; anything else is
 // not blended. The trimmed neighbours are `a` ending at q0 and `b` starting at
 // q2; the fillet takes its feed, laser and modes from `a`.
-[[nodiscard]] ArcTransition fillet_transition(const Segment& a, const Segment& b,
-                                              double tolerance_mm, double max_trim_a,
-                                              double max_trim_b);
+[[nodiscard]] ArcTransition fillet_transition(const Segment& a, const Segment& b, double tolerance_mm,
+                                              double max_trim_a, double max_trim_b);
 
 }  // namespace lcnc

@@ -27,9 +27,9 @@ namespace lcnc {
 
 struct PeriodSample : EntrySignals {
   PeriodSample() noexcept { kind = MotionKind::Dwell; }  // at rest until sampled
-  double t_s = 0.0;          // end of the period
-  Pose pose = Pose::Zero();  // commanded pose at t_s (mm, deg)
-  double speed = 0.0;        // path speed at t_s
+  double t_s = 0.0;                                      // end of the period
+  Pose pose = Pose::Zero();                              // commanded pose at t_s (mm, deg)
+  double speed = 0.0;                                    // path speed at t_s
   // The signals: the segment's (pause and the M66 wait on its first sample
   // only, as PeriodIncrement's).
 };

@@ -24,9 +24,7 @@ struct Curve {
   double length = 0.0;
 
   // Unit tangent (direction of travel) at a point x on the curve.
-  [[nodiscard]] V2 tangent(const V2& x) const {
-    return line ? d : V2(sigma * perp(x - c) / radius);
-  }
+  [[nodiscard]] V2 tangent(const V2& x) const { return line ? d : V2(sigma * perp(x - c) / radius); }
 };
 
 // Points of the curve offset by r toward the side `side` (+1 left of travel).
@@ -125,8 +123,8 @@ bool curve_of(const Segment& s, const PlaneAxes& pa, Curve& out) {
 
 }  // namespace
 
-ArcTransition fillet_transition(const Segment& a, const Segment& b, double tolerance_mm,
-                                double max_trim_a, double max_trim_b) {
+ArcTransition fillet_transition(const Segment& a, const Segment& b, double tolerance_mm, double max_trim_a,
+                                double max_trim_b) {
   ArcTransition t;
   if (tolerance_mm <= 0.0) return t;
   const Segment& arc = a.kind == MotionKind::Arc ? a : b;

@@ -22,7 +22,7 @@ JerkLimit jerk_limit(const MachineConfig& m) {
     a_sqr += a * a;
   }
   if (a_top <= 0.0) return lim;
-  const double norm_ratio = std::sqrt(a_sqr) / a_top;           // |a| / a_top
+  const double norm_ratio = std::sqrt(a_sqr) / a_top;   // |a| / a_top
   const double swing = 2.0 + plan::kJunctionJumpShare;  // Δa_in / a, eq. (1)
   const double budget = jerk_filter_budget_mm(m);
   // e_f of a window of `taps` when the largest axis acceleration is `a`, eq. (2)
@@ -37,8 +37,8 @@ JerkLimit jerk_limit(const MachineConfig& m) {
     // a = J·M·T/swing, and e_f then grows as M³: take the largest M whose
     // e_f fits the budget (below the M above, where a ≥ a_top).
     auto accel_for = [&](double n) { return jerk * n * period / swing; };
-    taps = std::floor(std::cbrt(24.0 * budget * swing /
-                                (norm_ratio * jerk * period * period * period))) + 1.0;
+    taps =
+        std::floor(std::cbrt(24.0 * budget * swing / (norm_ratio * jerk * period * period * period))) + 1.0;
     while (taps > 2.0 && error(taps, accel_for(taps)) > budget) taps -= 1.0;
     scale = std::min(1.0, accel_for(taps) / a_top);
   }
@@ -68,20 +68,17 @@ double hold_periods(const JerkLimit& limit) {
 }  // namespace
 
 StopHolds::StopHolds(PlannedSource source, const JerkLimit& limit, double period_s)
-    : source_(std::move(source)),
-      enabled_(limit.enabled()),
-      half_s_(hold_periods(limit) * period_s) {}
+    : source_(std::move(source)), enabled_(limit.enabled()), half_s_(hold_periods(limit) * period_s) {}
 
 PlannedSegment StopHolds::half(const PlannedSegment& neighbour, bool stand, const Pose& at) const {
   PlannedSegment h = neighbour;
   Segment& s = h.seg;
   // A zero-length line or rapid: the interpolator samples it at `at`, with
   // the neighbour's laser (M3 on, M4 0 at speed 0, rapids dark).
-  s.kind = stand ? MotionKind::Dwell
-                 : (s.kind == MotionKind::Rapid ? MotionKind::Rapid : MotionKind::Linear);
+  s.kind = stand ? MotionKind::Dwell : (s.kind == MotionKind::Rapid ? MotionKind::Rapid : MotionKind::Linear);
   s.start = s.end = at;
   s.dwell_s = stand ? half_s_ : 0.0;
-  s.pause = false;  // a pause's own segment holds, not the stops around it
+  s.pause = false;    // a pause's own segment holds, not the stops around it
   s.wait_input = -1;  // and an M66's
   if (stand) s.laser = LaserMode::Off;
   h.geo.set(s);

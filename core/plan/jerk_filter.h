@@ -122,9 +122,9 @@ class StopHolds {
   double half_s_;  // duration of one half: (⌈M/2⌉ + 1)·T, so ≥ ⌈M/2⌉ samples each
   std::array<PlannedSegment, 3> queue_;
   std::size_t front_ = 0, count_ = 0;
-  PlannedSegment last_;       // the last segment handed out that takes time
+  PlannedSegment last_;  // the last segment handed out that takes time
   bool have_last_ = false;
-  bool at_rest_ = true;       // last_ ends at speed 0 (or there is none yet)
+  bool at_rest_ = true;  // last_ ends at speed 0 (or there is none yet)
   bool done_ = false;
   SourceStatus end_status_ = SourceStatus::End;
 };
@@ -140,7 +140,7 @@ class JerkFilter {
 
  private:
   std::uint32_t taps_;
-  std::uint32_t delay_;          // ⌊M/2⌋: where the window's centre is
+  std::uint32_t delay_;             // ⌊M/2⌋: where the window's centre is
   std::vector<PeriodSample> ring_;  // the last M inputs; ring_[next_] is the oldest
   std::size_t next_ = 0;
   bool started_ = false;

@@ -48,8 +48,8 @@ class LineMerger {
 
   SegmentSource source_;
   bool have_run_ = false;
-  IndexedSegment run_;                             // the run so far, as one line
-  std::array<Vec3, kMaxMergeRun> inner_{};          // its inner points
+  IndexedSegment run_;                      // the run so far, as one line
+  std::array<Vec3, kMaxMergeRun> inner_{};  // its inner points
   std::size_t inner_count_ = 0;
   IndexedSegment read_;  // the segment read while a run is held
   std::uint32_t count_ = 0;

@@ -20,14 +20,12 @@ namespace {
 // accelerations of max(v0, v1) overshoots (they are the largest); the peak
 // at the accelerations of that overshoot is safe (theirs are no larger than
 // at the final speed) and within a hair of the optimum.
-void fit_profile(const SegmentLimits& lim, double v_max, double L, double v0, double v1,
-                 Trapezoid& out) {
+void fit_profile(const SegmentLimits& lim, double v_max, double L, double v0, double v1, Trapezoid& out) {
   auto fits = [&](double vc, const Accel& a) {
-    return (vc * vc - v0 * v0) / a.accel + (vc * vc - v1 * v1) / a.decel <= 2.0 * L * (1.0 + plan::kProfileFitRel);
+    return (vc * vc - v0 * v0) / a.accel + (vc * vc - v1 * v1) / a.decel <=
+           2.0 * L * (1.0 + plan::kProfileFitRel);
   };
-  auto peak = [&](const Accel& a) {
-    return std::sqrt(Trapezoid::peak_sqr(L, a.accel, a.decel, v0, v1));
-  };
+  auto peak = [&](const Accel& a) { return std::sqrt(Trapezoid::peak_sqr(L, a.accel, a.decel, v0, v1)); };
   auto at = [&](double vc) { return lim.at(vc, v0, v1); };
   const double lo = std::max(v0, v1);
   double vc = std::max(lo, v_max);
@@ -69,10 +67,10 @@ double Lookahead::junction_limit(const PlannedSegment& a, const PlannedSegment& 
   double v = std::numeric_limits<double>::infinity();
   for (int i = 0; i < kAxisCount; ++i) {
     const double jump = std::abs(tb[i] - (*ta)[i]);
-    if (jump <= plan::kTangentJump) continue;          // tangent (blends, tangent arcs)
-    if (jump > plan::kMaxJunctionJump) return 0.0;     // a corner: stop there
-    v = std::min(v, plan::kJunctionJumpShare * machine_.axes[i].max_acceleration *
-                        machine_.period_s() / jump);
+    if (jump <= plan::kTangentJump) continue;       // tangent (blends, tangent arcs)
+    if (jump > plan::kMaxJunctionJump) return 0.0;  // a corner: stop there
+    v = std::min(v,
+                 plan::kJunctionJumpShare * machine_.axes[i].max_acceleration * machine_.period_s() / jump);
   }
   return v;
 }
@@ -169,8 +167,8 @@ bool Lookahead::fill() {
     if (k > 0) {
       Node& before = node(k - 1);
       if (in->tangent_in) back_end_tangent_.reset();  // not looked at
-      const double v = in->tangent_in ? std::numeric_limits<double>::infinity()
-                                      : junction_limit(segment(k - 1), p);
+      const double v =
+          in->tangent_in ? std::numeric_limits<double>::infinity() : junction_limit(segment(k - 1), p);
       before.x_junction_geo = v * v;
       before.x_junction = std::min({before.x_junction_geo, before.x_max, n.x_max});
       tail_length_ += n.length;
@@ -201,9 +199,7 @@ void Lookahead::plan_and_release() {
     Node& s = node(k);
     const double exit = (k + 1 == n) ? 0.0 : std::min(s.x_junction, next_entry);
     // the reach is at least the exit: no need to ask when that covers x_max
-    const double reach = s.dwell             ? 0.0
-                         : exit >= s.x_max ? exit
-                                           : s.lim.reach_down_sqr(exit, s.length);
+    const double reach = s.dwell ? 0.0 : exit >= s.x_max ? exit : s.lim.reach_down_sqr(exit, s.length);
     const double entry = std::min(s.x_max, reach);
     s.entry_by_reach = reach < s.x_max;
     const bool unchanged = s.planned_back && entry == s.x_entry_back;

@@ -43,8 +43,8 @@
 
 #include "machine/machine_config.h"
 #include "plan/path_blender.h"
-#include "plan/segment_limits.h"
 #include "plan/planned_segment.h"
+#include "plan/segment_limits.h"
 
 namespace lcnc {
 
@@ -78,7 +78,9 @@ class Lookahead {
   // (some 600 bytes each, touched only when they come in and go out): the
   // passes sweep the window several times, and a compact one stays in cache.
   struct Node {
-    Node() {}  // NOLINT(modernize-use-equals-default): user-provided, so the vector does not zero the whole node first
+    // user-provided, so that the vector does not zero the whole node first
+    // NOLINTNEXTLINE(modernize-use-equals-default)
+    Node() {}
     // Speeds as their squares (x = v², the phase plane): the passes chain
     // reaches with no square root between segments.
     double length = 0.0;
@@ -123,9 +125,7 @@ class Lookahead {
   std::size_t head_ = 0, size_ = 0, mask_ = 0;
   std::size_t released_ = 0, handed_ = 0;
   [[nodiscard]] Node& node(std::size_t k) noexcept { return nodes_[(head_ + k) & mask_]; }
-  [[nodiscard]] PlannedSegment& segment(std::size_t k) noexcept {
-    return segments_[(head_ + k) & mask_];
-  }
+  [[nodiscard]] PlannedSegment& segment(std::size_t k) noexcept { return segments_[(head_ + k) & mask_]; }
   void grow();  // doubles the rings' capacity, the window kept in order
   // The unit tangent (dp/ds) where the window's last segment ends, when already known:
   // a line's is its start tangent, found for the junction before it.
@@ -134,8 +134,8 @@ class Lookahead {
   // Braking length from the highest top speed in the window: what a stop
   // assumed at its end may reach back over.
   double braking_length_ = 0.0;
-  double a_brake_ = 0.0;  // the weakest axis's acceleration (planned units)
-  double x_start_ = 0.0;      // speed² the last released segment ends at
+  double a_brake_ = 0.0;          // the weakest axis's acceleration (planned units)
+  double x_start_ = 0.0;          // speed² the last released segment ends at
   double x_released_from_ = 0.0;  // speed² the released segments start at
   double feed_scale_ = 1.0;
   bool source_done_ = false;

@@ -50,8 +50,8 @@ inline constexpr int kMaxAccelWindow = 512;
 
 // One quantity (an axis's velocity or acceleration) as read over the run.
 struct LimitReading {
-  double limit = 0.0;         // mm/s (mm/s²) or deg/s (deg/s²)
-  double peak = 0.0;          // the largest reading
+  double limit = 0.0;  // mm/s (mm/s²) or deg/s (deg/s²)
+  double peak = 0.0;   // the largest reading
   // The largest quantization error of any window read (see above): a
   // reading within limit + this one keeps the limit.
   double quantization = 0.0;

@@ -21,8 +21,7 @@ bool blendable_line(const Segment& s) {
 // Arcs in a G17/G18/G19 plane, without helix or rotary motion, can take part
 // in a corner (fillet_transition).
 bool blendable_arc(const Segment& s) {
-  if (s.kind != MotionKind::Arc || s.path_mode != PathMode::Blend || s.plane == Plane::Free)
-    return false;
+  if (s.kind != MotionKind::Arc || s.path_mode != PathMode::Blend || s.plane == Plane::Free) return false;
   const Pose d = s.end - s.start;
   return d[plane_axes(s.plane).normal] == 0.0 && d.tail<3>().norm() == 0.0;
 }
@@ -40,8 +39,7 @@ Vec3 rotary_rate(const Segment& s, double length) {
 
 }  // namespace
 
-PathBlender::PathBlender(const MachineConfig& machine, SegmentSource source,
-                         const ToleranceBudget& budget)
+PathBlender::PathBlender(const MachineConfig& machine, SegmentSource source, const ToleranceBudget& budget)
     : merger_(std::move(source)), budget_(budget) {
   if (machine.tcp.enabled) tip_mm_per_deg_ = tip_lever_mm(machine.kinematics) * std::numbers::pi / 180.0;
 }
@@ -96,8 +94,7 @@ SourceStatus PathBlender::next(const IndexedSegment*& out) {
       // A corner takes at most half of a line and 45 % of an arc (an arc
       // trimmed to nothing would read as a full circle).
       const double share_a = a.kind == MotionKind::Arc ? plan::kCornerArcShare : plan::kCornerLineShare;
-      const double share_b =
-          cur.seg.kind == MotionKind::Arc ? plan::kCornerArcShare : plan::kCornerLineShare;
+      const double share_b = cur.seg.kind == MotionKind::Arc ? plan::kCornerArcShare : plan::kCornerLineShare;
       const double max_a = std::min({pending_full_length_ * share_a, len_a, trim_cap});
       const double max_b = std::min(len_b * share_b, trim_cap);
       // A line–line blend goes straight into arc_, its geometry as built

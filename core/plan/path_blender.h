@@ -28,7 +28,6 @@
 
 namespace lcnc {
 
-
 class PathBlender {
  public:
   // budget: what of each corner's P the blend arc may not take.
@@ -38,7 +37,6 @@ class PathBlender {
       : PathBlender(machine, std::move(source), tolerance_budget(machine, 0.0)) {}
   // The next segment, valid until next() is called again.
   [[nodiscard]] SourceStatus next(const IndexedSegment*& out);
-
 
  private:
   // Queues s to hand out, its geometry computed unless it has it already.
@@ -57,7 +55,7 @@ class PathBlender {
   // Whether the last segment queued moves a rotary axis: the next one is
   // marked tangent to it only if it does not (IndexedSegment::tangent_in).
   bool rotary_out_ = false;
-  IndexedSegment arc_;     // the blend arc of the last corner
+  IndexedSegment arc_;    // the blend arc of the last corner
   ArcTransition corner_;  // and the rest of what its transition found
   // Segments ready to hand out, oldest first, where they are (a slot or
   // arc_): one step of next() emits at most two (a trimmed line and its

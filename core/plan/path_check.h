@@ -26,8 +26,8 @@ class PathCheck {
   // A G-code program, read again from joints options.start (the run's own
   // reading is the planner's).
   [[nodiscard]] static Result<std::unique_ptr<PathCheck>> for_program(const std::string& path,
-                                                                     const MachineConfig& machine,
-                                                                     const ReaderOptions& options);
+                                                                      const MachineConfig& machine,
+                                                                      const ReaderOptions& options);
   // Joint segments as given (a drilling job): the joints only.
   [[nodiscard]] static std::unique_ptr<PathCheck> for_segments(
       std::shared_ptr<const std::vector<Segment>> segments, const MachineConfig& machine);
@@ -38,7 +38,9 @@ class PathCheck {
 
   // Where the segment of the last pose added ends (joints X Y Z, mm): the
   // distance to go is that less the position. Nothing before a pose.
-  [[nodiscard]] std::optional<Vec3> segment_end(std::uint32_t segment) const { return joints_->end_of(segment); }
+  [[nodiscard]] std::optional<Vec3> segment_end(std::uint32_t segment) const {
+    return joints_->end_of(segment);
+  }
 
   // The largest deviation: the tool tip's under TCP, else the joints'.
   [[nodiscard]] double max_mm() const noexcept;
@@ -49,7 +51,7 @@ class PathCheck {
  private:
   PathCheck() = default;
 
-  std::unique_ptr<ProgramSource> joints_source_;           // a program's
+  std::unique_ptr<ProgramSource> joints_source_;          // a program's
   std::shared_ptr<const std::vector<Segment>> segments_;  // or a job's segments
   std::size_t next_segment_ = 0;
   std::unique_ptr<ProgramReader> tip_reader_;  // under TCP

@@ -22,8 +22,8 @@ namespace lcnc {
 // defaults, which put no bound but the ramp's own rate.
 struct RampRoom {
   float r0 = std::numeric_limits<float>::infinity();  // 1/s
-  float down = 0.0f;                                   // share of amax, 0 … 1
-  float up = 0.0f;                                     // share of amax, 0 … 1
+  float down = 0.0f;                                  // share of amax, 0 … 1
+  float up = 0.0f;                                    // share of amax, 0 … 1
 };
 
 // What a period's entry carries besides its steps: the laser, the outputs,
@@ -40,8 +40,8 @@ struct EntrySignals {
   // within the axes' limits; rapids and dwells 1). The RT runs it at
   // K = min(1, override / k_plan): faster than planned it never goes.
   float k_plan = 1.0f;
-  std::uint32_t line = 0;     // source line executing
-  std::uint32_t segment = 0;  // segment index executing (0-based)
+  std::uint32_t line = 0;                // source line executing
+  std::uint32_t segment = 0;             // segment index executing (0-based)
   MotionKind kind = MotionKind::Linear;  // Dwell entries run at the nominal period whatever the override
   bool end_of_program = false;           // the last entry of the job
   // M0/M1/M60: after this entry (at rest, a dwell's) the RT holds the job

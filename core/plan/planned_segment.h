@@ -20,8 +20,8 @@ struct PlannedSegment {
   // The feed override it is planned at: programmed_speed is the program's
   // F times this (1 for rapids and dwells), within the axes' limits.
   double k_plan = 1.0;
-  double v_limit = 0.0;  // the highest speed its axes allow (SegmentLimits::v_max)
-  std::uint32_t index = 0;        // position in the program's segment stream
+  double v_limit = 0.0;     // the highest speed its axes allow (SegmentLimits::v_max)
+  std::uint32_t index = 0;  // position in the program's segment stream
 };
 
 // Planned segments are handed out by reference (some 600 bytes each, not

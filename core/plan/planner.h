@@ -55,7 +55,7 @@ class Planner {
  private:
   JerkLimit jerk_;
   ToleranceBudget budget_;  // computed once here, from the machine and jerk_
-  MachineConfig planned_;  // the machine as the look-ahead plans it (planned_machine())
+  MachineConfig planned_;   // the machine as the look-ahead plans it (planned_machine())
   PathBlender blender_;
   Lookahead lookahead_;
   StopHolds holds_;

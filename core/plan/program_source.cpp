@@ -82,9 +82,8 @@ Result<ProgramSummary> check_job_program(const std::string& path, const MachineC
   return sum;
 }
 
-Result<std::unique_ptr<ProgramReader>> open_tip_program(const std::string& path,
-                                                         const MachineConfig& machine,
-                                                         ReaderOptions options) {
+Result<std::unique_ptr<ProgramReader>> open_tip_program(const std::string& path, const MachineConfig& machine,
+                                                        ReaderOptions options) {
   if (machine.tcp.enabled) options.start = TcpExpander::tip_start(kinematics_from(machine), options.start);
   return ProgramReader::open(path, machine, options);
 }

@@ -25,8 +25,8 @@ namespace lcnc {
 class ProgramSource {
  public:
   [[nodiscard]] static Result<std::unique_ptr<ProgramSource>> open(const std::string& path,
-                                                                  const MachineConfig& machine,
-                                                                  ReaderOptions options);
+                                                                   const MachineConfig& machine,
+                                                                   ReaderOptions options);
   [[nodiscard]] SourceStatus next(Segment& out);
   // After Error: the reader's or the expander's diagnostic, with the file.
   [[nodiscard]] Diagnostic error() const;
@@ -49,8 +49,7 @@ class ProgramSource {
 // joints reach within the travel (the reader checks the tip's coordinates,
 // which under TCP are not the joints'); the summary's lengths are then the
 // joints'.
-[[nodiscard]] Result<ProgramSummary> check_job_program(const std::string& path,
-                                                       const MachineConfig& machine,
+[[nodiscard]] Result<ProgramSummary> check_job_program(const std::string& path, const MachineConfig& machine,
                                                        const ReaderOptions& options = {});
 
 // Under tool-centre-point control, the program as written: the tool tip's

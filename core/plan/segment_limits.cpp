@@ -22,8 +22,7 @@ constexpr double kPi = 3.14159265358979323846;
 // Within kSweepExtremumRel·(|a| + |b|) of either boundary it counts as inside — the
 // extremum is then that close to an end, so the range widens by a relative
 // 1e-18 at most, to the safe side.
-void sinusoid_range(double a, double b, double amp, const SegmentGeometry& geo, double& lo,
-                    double& hi) {
+void sinusoid_range(double a, double b, double amp, const SegmentGeometry& geo, double& lo, double& hi) {
   const double cs = geo.cos_sweep(), sn = geo.sin_sweep();
   const double end = a * cs + b * sn;
   lo = std::min(a, end);
@@ -48,10 +47,10 @@ namespace {
 
 // Per linear axis an arc moves in: what its two bounds need.
 struct ArcAxis {
-  double a_axis = 0.0;  // amax_i
-  double g = 0.0;       // sqrt(u_i² + w_i²)
+  double a_axis = 0.0;                                    // amax_i
+  double g = 0.0;                                         // sqrt(u_i² + w_i²)
   double t_lo = 0.0, t_hi = 0.0, n_lo = 0.0, n_hi = 0.0;  // ranges over the sweep
-  std::array<double, 2> t_end{}, n_end{};  // t_i, n_i at the two ends of the sweep
+  std::array<double, 2> t_end{}, n_end{};                 // t_i, n_i at the two ends of the sweep
 };
 
 // The box bounds of one axis as lines in a_n, x = ±t over the sweep (+
@@ -83,7 +82,6 @@ void box_lines(const ArcAxis& x, double rho, double c, ArcAxisBound& b) {
   }
 }
 
-
 // The box at the two ends of a short sweep (≤ kEndBoxSweep). Per bound σ
 // (+1: the axis's acceleration ≤ amax, −1: ≥ −amax) the axis sees
 // f(φ) = σ·(ρ·a_t·t_i(φ) + a_n·n_i(φ)), a sinusoid in φ of amplitude at most
@@ -103,8 +101,7 @@ void box_lines(const ArcAxis& x, double rho, double c, ArcAxisBound& b) {
 // a-free bounds hold at v_max; else box_lines. Returns whether it was used.
 constexpr double kEndBoxSweep = 0.1;  // rad: μ ≤ 0.00125·g
 
-bool end_box_lines(const ArcAxis& x, double rho, double c, double x_max, double sweep,
-                   ArcAxisBound& b) {
+bool end_box_lines(const ArcAxis& x, double rho, double c, double x_max, double sweep, ArcAxisBound& b) {
   if (sweep > kEndBoxSweep) return false;
   const double mu = x.g * sweep * sweep / 8.0;
   const double a_n_max = c * x_max;

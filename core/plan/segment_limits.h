@@ -76,10 +76,10 @@ struct SegmentLimits {
     Accel a{a_linear, a_linear};
     for (int j = 0; j < axis_count; ++j) {
       const ArcAxisBound& ax = axes[j];
-      const double up = std::min(line(ax.p_up[0], ax.q_up[0], x, x_acc),
-                                 line(ax.p_up[1], ax.q_up[1], x, x_acc));
-      const double down = std::min(line(ax.p_down[0], ax.q_down[0], x, x_dec),
-                                   line(ax.p_down[1], ax.q_down[1], x, x_dec));
+      const double up =
+          std::min(line(ax.p_up[0], ax.q_up[0], x, x_acc), line(ax.p_up[1], ax.q_up[1], x, x_acc));
+      const double down =
+          std::min(line(ax.p_down[0], ax.q_down[0], x, x_dec), line(ax.p_down[1], ax.q_down[1], x, x_dec));
       double n = 0.0;  // the norm bound, needed only where a box bound falls below its cap
       if (up < ax.cap || down < ax.cap) {
         const double cx = c * x;
@@ -108,16 +108,12 @@ struct SegmentLimits {
   }
   // The same in the phase plane, speeds squared (x = v²): the look-ahead's
   // passes chain these with no square root between segments.
-  [[nodiscard]] double reach_up_sqr(double x, double L) const noexcept {
-    return reach_sqr(x, L, true);
-  }
-  [[nodiscard]] double reach_down_sqr(double x, double L) const noexcept {
-    return reach_sqr(x, L, false);
-  }
+  [[nodiscard]] double reach_up_sqr(double x, double L) const noexcept { return reach_sqr(x, L, true); }
+  [[nodiscard]] double reach_down_sqr(double x, double L) const noexcept { return reach_sqr(x, L, false); }
 
   // What at() and reach() need, per segment.
-  double a_linear = 0.0;  // the linearly moving axes' bound (planned units)
-  double c = 0.0;         // the norm bounds' a_n per x
+  double a_linear = 0.0;             // the linearly moving axes' bound (planned units)
+  double c = 0.0;                    // the norm bounds' a_n per x
   std::array<ArcAxisBound, 3> axes;  // [0, axis_count) are set
   int axis_count = 0;
 
@@ -156,8 +152,7 @@ struct SegmentLimits {
 // of a few hundred bytes per segment). No motion (v_max 0) for a segment of
 // no length or one that moves an absent axis.
 void segment_limits(const SegmentGeometry& geo, const MachineConfig& machine, SegmentLimits& lim);
-[[nodiscard]] inline SegmentLimits segment_limits(const SegmentGeometry& geo,
-                                                  const MachineConfig& machine) {
+[[nodiscard]] inline SegmentLimits segment_limits(const SegmentGeometry& geo, const MachineConfig& machine) {
   SegmentLimits lim;
   segment_limits(geo, machine, lim);
   return lim;
@@ -166,7 +161,7 @@ void segment_limits(const SegmentGeometry& geo, const MachineConfig& machine, Se
 // The speed to plan for: rapid → v_max; feed → min(F, v_max); G93 → L/duration.
 // A feed move's speed is scaled by feed_scale (the feed override planned
 // for, ≥ 1), still within v_max; a rapid's is v_max whatever the override.
-[[nodiscard]] double target_speed(const Segment& seg, const SegmentGeometry& geo,
-                                  const SegmentLimits& lim, double feed_scale = 1.0);
+[[nodiscard]] double target_speed(const Segment& seg, const SegmentGeometry& geo, const SegmentLimits& lim,
+                                  double feed_scale = 1.0);
 
 }  // namespace lcnc

@@ -40,7 +40,6 @@ struct ToleranceBudget {
 
 // m and e_f for a machine; jerk_filter_mm is JerkLimit::error_mm of the
 // machine's jerk limit (0 when it has none).
-[[nodiscard]] ToleranceBudget tolerance_budget(const MachineConfig& machine,
-                                               double jerk_filter_mm) noexcept;
+[[nodiscard]] ToleranceBudget tolerance_budget(const MachineConfig& machine, double jerk_filter_mm) noexcept;
 
 }  // namespace lcnc

@@ -7,8 +7,7 @@
 
 namespace lcnc {
 
-void Trapezoid::set(double length, double accel, double decel, double v0, double v_target,
-                    double v1) {
+void Trapezoid::set(double length, double accel, double decel, double v0, double v_target, double v1) {
   Trapezoid& p = *this;  // (the parameters bear the members' names)
   p.length = length;
   p.accel = accel;

@@ -28,12 +28,11 @@ struct Trapezoid {
   double t_acc = 0.0, t_cruise = 0.0, t_dec = 0.0;
   double s_acc = 0.0, s_cruise = 0.0;  // path length of the first two phases
 
-  [[nodiscard]] static Trapezoid plan(double length, double accel, double v0, double v_target,
-                                      double v1) {
+  [[nodiscard]] static Trapezoid plan(double length, double accel, double v0, double v_target, double v1) {
     return plan(length, accel, accel, v0, v_target, v1);
   }
-  [[nodiscard]] static Trapezoid plan(double length, double accel, double decel, double v0,
-                                      double v_target, double v1) {
+  [[nodiscard]] static Trapezoid plan(double length, double accel, double decel, double v0, double v_target,
+                                      double v1) {
     Trapezoid p;
     p.set(length, accel, decel, v0, v_target, v1);
     return p;

@@ -5,13 +5,11 @@ namespace lcnc::drivers {
 Result<std::unique_ptr<LaserSourceSim>> LaserSourceSim::create(DeviceMap map, SlaveConfig config,
                                                                LaserSourceParams params) {
   if (Status s = require(map, "laser_source",
-                         {"enable", "alarm_reset", "ready", "emission", "alarm",
-                          "power_setpoint_pct", "status", "alarm_code", "output_power_w",
-                          "temperature_c", "rated_power_w"});
+                         {"enable", "alarm_reset", "ready", "emission", "alarm", "power_setpoint_pct",
+                          "status", "alarm_code", "output_power_w", "temperature_c", "rated_power_w"});
       !s)
     return s.error();
-  return std::unique_ptr<LaserSourceSim>(
-      new LaserSourceSim(std::move(map), std::move(config), params));
+  return std::unique_ptr<LaserSourceSim>(new LaserSourceSim(std::move(map), std::move(config), params));
 }
 
 LaserSourceSim::LaserSourceSim(DeviceMap map, SlaveConfig config, LaserSourceParams params)
@@ -51,10 +49,10 @@ void LaserSourceSim::tick(double dt, RegisterBank& b) {
   }
   output_w_.store(power_w_, std::memory_order_relaxed);
 
-  const LaserStatus status = alarm_      ? LaserStatus::Alarm
-                             : emitting  ? LaserStatus::Emitting
-                             : enabled   ? LaserStatus::Ready
-                                         : LaserStatus::Standby;
+  const LaserStatus status = alarm_     ? LaserStatus::Alarm
+                             : emitting ? LaserStatus::Emitting
+                             : enabled  ? LaserStatus::Ready
+                                        : LaserStatus::Standby;
   b.set_clamped(b.def("status"), static_cast<double>(status));
   b.set_clamped(b.def("alarm_code"), alarm_ ? kAlarmOverTemperature : 0);
   b.set_clamped(b.def("alarm"), alarm_ ? 1 : 0);

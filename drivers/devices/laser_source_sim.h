@@ -21,12 +21,12 @@ namespace lcnc::drivers {
 
 struct LaserSourceParams {
   double rated_power_w = 50.0;
-  double power_tau_s = 0.005;    // output follows the setpoint
+  double power_tau_s = 0.005;  // output follows the setpoint
   double ambient_c = 25.0;
   double rise_at_full_c = 30.0;  // steady-state temperature rise at rated power
   double thermal_tau_s = 20.0;
-  double alarm_c = 45.0;         // over-temperature trip
-  double reset_below_c = 40.0;   // alarm_reset works below this
+  double alarm_c = 45.0;        // over-temperature trip
+  double reset_below_c = 40.0;  // alarm_reset works below this
 };
 
 // Status register values (register map: laser_source.status).
@@ -35,14 +35,12 @@ inline constexpr std::uint16_t kAlarmOverTemperature = 1u << 0;
 
 class LaserSourceSim final : public VirtualDevice {
  public:
-  [[nodiscard]] static Result<std::unique_ptr<LaserSourceSim>> create(
-      DeviceMap map, SlaveConfig config = {}, LaserSourceParams params = {});
+  [[nodiscard]] static Result<std::unique_ptr<LaserSourceSim>> create(DeviceMap map, SlaveConfig config = {},
+                                                                      LaserSourceParams params = {});
   ~LaserSourceSim() override;
 
   // The optical output now (W), for the power meter in its beam (any thread).
-  [[nodiscard]] double output_power_w() const noexcept {
-    return output_w_.load(std::memory_order_relaxed);
-  }
+  [[nodiscard]] double output_power_w() const noexcept { return output_w_.load(std::memory_order_relaxed); }
 
  private:
   LaserSourceSim(DeviceMap map, SlaveConfig config, LaserSourceParams params);

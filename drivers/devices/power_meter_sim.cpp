@@ -6,9 +6,9 @@ namespace lcnc::drivers {
 
 Result<std::unique_ptr<PowerMeterSim>> PowerMeterSim::create(DeviceMap map, SlaveConfig config,
                                                              PowerMeterParams params) {
-  if (Status s = require(map, "power_meter",
-                         {"zero", "over_range", "wavelength_nm", "power_w", "full_scale_w",
-                          "sample_counter"});
+  if (Status s =
+          require(map, "power_meter",
+                  {"zero", "over_range", "wavelength_nm", "power_w", "full_scale_w", "sample_counter"});
       !s)
     return s.error();
   return std::unique_ptr<PowerMeterSim>(

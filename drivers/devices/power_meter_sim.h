@@ -15,9 +15,9 @@
 namespace lcnc::drivers {
 
 struct PowerMeterParams {
-  double tau_s = 0.3;            // thermopile response time constant
-  double noise_w = 0.02;         // σ of the reading noise
-  double dark_w = 0.05;          // thermal offset before zeroing
+  double tau_s = 0.3;     // thermopile response time constant
+  double noise_w = 0.02;  // σ of the reading noise
+  double dark_w = 0.05;   // thermal offset before zeroing
   double full_scale_w = 100.0;
   std::uint64_t seed = 1;
   // The true optical power on the head (W), e.g. a LaserSourceSim's output;
@@ -27,8 +27,8 @@ struct PowerMeterParams {
 
 class PowerMeterSim final : public VirtualDevice {
  public:
-  [[nodiscard]] static Result<std::unique_ptr<PowerMeterSim>> create(
-      DeviceMap map, SlaveConfig config = {}, PowerMeterParams params = {});
+  [[nodiscard]] static Result<std::unique_ptr<PowerMeterSim>> create(DeviceMap map, SlaveConfig config = {},
+                                                                     PowerMeterParams params = {});
   ~PowerMeterSim() override;
 
  private:

@@ -17,8 +17,7 @@ namespace lcnc::drivers {
 Result<std::unique_ptr<Probe3dSim>> Probe3dSim::create(DeviceMap map, SlaveConfig config,
                                                        Probe3dParams params) {
   if (Status s = require(map, "probe_3d",
-                         {"trigger", "busy", "valid", "measurement_id", "x_mm", "y_mm", "z_mm",
-                          "status"});
+                         {"trigger", "busy", "valid", "measurement_id", "x_mm", "y_mm", "z_mm", "status"});
       !s)
     return s.error();
   return std::unique_ptr<Probe3dSim>(new Probe3dSim(std::move(map), std::move(config), std::move(params)));
@@ -31,9 +30,7 @@ Probe3dSim::Probe3dSim(DeviceMap map, SlaveConfig config, Probe3dParams params)
 
 Probe3dSim::~Probe3dSim() { stop(); }
 
-void Probe3dSim::set_position(double x_mm, double y_mm, double z_mm) {
-  set_pose(x_mm, y_mm, z_mm, 0.0, 0.0);
-}
+void Probe3dSim::set_position(double x_mm, double y_mm, double z_mm) { set_pose(x_mm, y_mm, z_mm, 0.0, 0.0); }
 
 void Probe3dSim::set_pose(double x_mm, double y_mm, double z_mm, double a_deg, double c_deg) {
   std::lock_guard lock(mutex_);
@@ -116,8 +113,8 @@ std::string Probe3dSim::answer(const std::string& line) {
     // Tell the host at once rather than let it time out; keep the text short
     // enough for one sentence.
     const bool checksum = msg.error().code == ErrorCode::SerialChecksum;
-    return probe::encode(probe::ErrorReply{0, probe::ProbeError::BadRequest,
-                                           checksum ? "bad checksum" : "malformed request"});
+    return probe::encode(
+        probe::ErrorReply{0, probe::ProbeError::BadRequest, checksum ? "bad checksum" : "malformed request"});
   }
   if (const auto* m = std::get_if<probe::MeasureRequest>(&msg.value())) {
     std::this_thread::sleep_for(p_.latency);  // the probe's own measuring time

@@ -45,7 +45,7 @@ struct WorkpieceBlock {
 struct Probe3dParams {
   SurfaceModel surface;
   std::optional<WorkpieceBlock> block;  // probed instead of the surface when given
-  double reach_mm = 10.0;  // the tip finds the surface up to this far below it
+  double reach_mm = 10.0;               // the tip finds the surface up to this far below it
   double noise_mm = 0.001;
   std::chrono::milliseconds latency{5};
   std::uint64_t seed = 3;
@@ -55,8 +55,8 @@ struct Probe3dParams {
 
 class Probe3dSim final : public VirtualDevice {
  public:
-  [[nodiscard]] static Result<std::unique_ptr<Probe3dSim>> create(
-      DeviceMap map, SlaveConfig config = {}, Probe3dParams params = {});
+  [[nodiscard]] static Result<std::unique_ptr<Probe3dSim>> create(DeviceMap map, SlaveConfig config = {},
+                                                                  Probe3dParams params = {});
   ~Probe3dSim() override;
 
   // Starts the Modbus slave and the serial side (a new pty).

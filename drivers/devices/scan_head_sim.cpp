@@ -7,10 +7,9 @@ namespace lcnc::drivers {
 Result<std::unique_ptr<ScanHeadSim>> ScanHeadSim::create(DeviceMap map, SlaveConfig config,
                                                          ScanHeadParams params) {
   if (Status s = require(map, "scan_head",
-                         {"run", "running", "fault", "start_radius_mm", "end_radius_mm",
-                          "radius_turns", "scan_speed_mm_s", "wedge_speed_rpm", "beam_offset_mm",
-                          "process_id", "status", "actual_wedge_rpm", "current_radius_mm",
-                          "turns_done"});
+                         {"run", "running", "fault", "start_radius_mm", "end_radius_mm", "radius_turns",
+                          "scan_speed_mm_s", "wedge_speed_rpm", "beam_offset_mm", "process_id", "status",
+                          "actual_wedge_rpm", "current_radius_mm", "turns_done"});
       !s)
     return s.error();
   return std::unique_ptr<ScanHeadSim>(new ScanHeadSim(std::move(map), std::move(config), params));

@@ -27,8 +27,8 @@ enum class ScanHeadStatus : std::uint8_t { Idle = 0, SpinningUp = 1, Scanning = 
 
 class ScanHeadSim final : public VirtualDevice {
  public:
-  [[nodiscard]] static Result<std::unique_ptr<ScanHeadSim>> create(
-      DeviceMap map, SlaveConfig config = {}, ScanHeadParams params = {});
+  [[nodiscard]] static Result<std::unique_ptr<ScanHeadSim>> create(DeviceMap map, SlaveConfig config = {},
+                                                                   ScanHeadParams params = {});
   ~ScanHeadSim() override;
 
  private:

@@ -25,14 +25,14 @@ ModbusException VirtualDevice::on_write(std::span<const RegisterWrite>, Register
 Status VirtualDevice::require(const DeviceMap& map, std::string_view device,
                               std::initializer_list<std::string_view> names) {
   if (map.name != device)
-    return make_error(ErrorCode::RegisterMapInvalid,
-                      "the " + std::string(device) + " simulator was given the map of device '" +
-                          map.name + "'");
+    return make_error(
+        ErrorCode::RegisterMapInvalid,
+        "the " + std::string(device) + " simulator was given the map of device '" + map.name + "'");
   for (std::string_view n : names)
     if (auto r = map.lookup(n); !r)
-      return make_error(ErrorCode::RegisterMapInvalid,
-                        "the " + std::string(device) + " simulator needs register '" +
-                            std::string(n) + "': " + r.error().message);
+      return make_error(ErrorCode::RegisterMapInvalid, "the " + std::string(device) +
+                                                           " simulator needs register '" + std::string(n) +
+                                                           "': " + r.error().message);
   return {};
 }
 

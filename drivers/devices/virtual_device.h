@@ -33,17 +33,16 @@ inline constexpr std::chrono::milliseconds kDeviceTick{10};
 // tilted plane with a gentle waviness — enough shape for the six-point and
 // focal-length workflows to have something to find.
 struct SurfaceModel {
-  double z0_mm = 20.0;          // z at x = y = 0
-  double slope_x = 0.002;       // dz/dx
-  double slope_y = -0.001;      // dz/dy
-  double wave_amp_mm = 0.05;    // amplitude of the waviness
-  double wave_len_mm = 200.0;   // its wavelength in x and y
+  double z0_mm = 20.0;         // z at x = y = 0
+  double slope_x = 0.002;      // dz/dx
+  double slope_y = -0.001;     // dz/dy
+  double wave_amp_mm = 0.05;   // amplitude of the waviness
+  double wave_len_mm = 200.0;  // its wavelength in x and y
 
   [[nodiscard]] double z_at(double x_mm, double y_mm) const noexcept {
     constexpr double kTwoPi = 6.283185307179586;
     return z0_mm + slope_x * x_mm + slope_y * y_mm +
-           wave_amp_mm * std::sin(kTwoPi * x_mm / wave_len_mm) *
-               std::sin(kTwoPi * y_mm / wave_len_mm);
+           wave_amp_mm * std::sin(kTwoPi * x_mm / wave_len_mm) * std::sin(kTwoPi * y_mm / wave_len_mm);
   }
 };
 

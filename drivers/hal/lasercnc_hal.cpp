@@ -130,7 +130,8 @@ class HalSink final : public PulseSink {
     *pins_->laser_power = frame.power_pct / 100.0f;
     *pins_->laser_on = frame.power_pct > 0.0f;
     for (int n = 0; n < kDigitalOutputs; ++n) *pins_->digital_out[n] = (frame.outputs >> n) & 1u;
-    for (int n = 0; n < kAnalogOutputs; ++n) *pins_->analog_out[n] = frame.analog[static_cast<std::size_t>(n)];
+    for (int n = 0; n < kAnalogOutputs; ++n)
+      *pins_->analog_out[n] = frame.analog[static_cast<std::size_t>(n)];
     *pins_->mist = (frame.outputs & kOutputMist) != 0;
     *pins_->flood = (frame.outputs & kOutputFlood) != 0;
   }
@@ -232,8 +233,8 @@ void update(void* arg, long period_ns) {
     c->stopped = true;
   }
   const rt::MachineState st = c->kernel->state();
-  *c->pins->on_path = st == rt::MachineState::Running || st == rt::MachineState::FeedHold ||
-                      st == rt::MachineState::Stopping;
+  *c->pins->on_path =
+      st == rt::MachineState::Running || st == rt::MachineState::FeedHold || st == rt::MachineState::Stopping;
   *c->pins->segment = static_cast<std::int32_t>(c->hb->port.segment.load(std::memory_order_relaxed));
   *c->pins->line = static_cast<std::int32_t>(c->hb->port.line.load(std::memory_order_relaxed));
 }
@@ -261,7 +262,8 @@ int setup(Component& c) {
     return -ENOENT;
   }
   if (!map_segment(name + ".hal", sizeof(shm::HalBlock), c.hal)) {
-    rtapi_print_msg(RTAPI_MSG_ERR, "lasercnc: no segment %s.hal: lasercncd runs without --hal\n", name.c_str());
+    rtapi_print_msg(RTAPI_MSG_ERR, "lasercnc: no segment %s.hal: lasercncd runs without --hal\n",
+                    name.c_str());
     return -ENOENT;
   }
   c.block = static_cast<shm::ShmBlock*>(c.main.at);
@@ -271,7 +273,8 @@ int setup(Component& c) {
     rtapi_print_msg(RTAPI_MSG_ERR, "lasercnc: %s.hal is not this version's (rebuild both)\n", name.c_str());
     return -EINVAL;
   }
-  Result<MachineConfig> m = load_machine_config(std::string(h.machine_path, strnlen(h.machine_path, sizeof h.machine_path)));
+  Result<MachineConfig> m =
+      load_machine_config(std::string(h.machine_path, strnlen(h.machine_path, sizeof h.machine_path)));
   if (!m) {
     rtapi_print_msg(RTAPI_MSG_ERR, "lasercnc: %s\n", m.error().to_string().c_str());
     return -EINVAL;

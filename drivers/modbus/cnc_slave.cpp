@@ -25,9 +25,10 @@ constexpr CommandCoil kCommands[] = {{"cmd_start", CncCommand::Start},
                                      {"cmd_reset", CncCommand::Reset}};
 
 constexpr std::string_view kStatusRegisters[] = {
-    "state", "fault_code", "x_mm", "y_mm", "z_mm", "a_deg", "c_deg", "feed_override_pct",
-    "job_line", "buffer_fill_pct", "underruns", "estop", "homed", "laser_on", "fault",
-    "feed_override_set_pct"};
+    "state",    "fault_code",      "x_mm",      "y_mm",
+    "z_mm",     "a_deg",           "c_deg",     "feed_override_pct",
+    "job_line", "buffer_fill_pct", "underruns", "estop",
+    "homed",    "laser_on",        "fault",     "feed_override_set_pct"};
 
 }  // namespace
 
@@ -37,8 +38,8 @@ Result<std::unique_ptr<CncSlave>> CncSlave::create(DeviceMap map, SlaveConfig co
                       "the CNC slave was given the map of device '" + map.name + "'");
   auto need = [&](std::string_view n) -> Status {
     if (auto r = map.lookup(n); !r)
-      return make_error(ErrorCode::RegisterMapInvalid, "the CNC slave needs register '" +
-                                                           std::string(n) + "': " + r.error().message);
+      return make_error(ErrorCode::RegisterMapInvalid,
+                        "the CNC slave needs register '" + std::string(n) + "': " + r.error().message);
     return {};
   };
   for (const HoleField& f : kHoleFields)
@@ -100,27 +101,20 @@ Status write_status(const CncStatusSnapshot& s, RegisterBank& b) {
   Status result;
   [&] {
     const std::pair<std::string_view, double> values[] = {
-        {"state", s.state},
-        {"fault_code", s.fault_code},
-        {"x_mm", s.position[0]},
-        {"y_mm", s.position[1]},
-        {"z_mm", s.position[2]},
-        {"a_deg", s.position[3]},
-        {"c_deg", s.position[4]},
-        {"feed_override_pct", s.feed_override_pct},
-        {"job_line", s.job_line},
-        {"buffer_fill_pct", s.buffer_fill_pct},
-        {"underruns", s.underruns},
-        {"estop", s.estop ? 1 : 0},
-        {"homed", s.homed ? 1 : 0},
-        {"laser_on", s.laser_on ? 1 : 0},
+        {"state", s.state},         {"fault_code", s.fault_code},
+        {"x_mm", s.position[0]},    {"y_mm", s.position[1]},
+        {"z_mm", s.position[2]},    {"a_deg", s.position[3]},
+        {"c_deg", s.position[4]},   {"feed_override_pct", s.feed_override_pct},
+        {"job_line", s.job_line},   {"buffer_fill_pct", s.buffer_fill_pct},
+        {"underruns", s.underruns}, {"estop", s.estop ? 1 : 0},
+        {"homed", s.homed ? 1 : 0}, {"laser_on", s.laser_on ? 1 : 0},
         {"fault", s.fault ? 1 : 0}};
     // Check everything first: a snapshot is published whole or not at all.
     for (const auto& [name, v] : values)
       if (!b.def(name).in_range(v)) {
         result = make_error(ErrorCode::PeripheralValueOutOfRange,
-                            "cnc status not published: " + std::string(name) + " = " +
-                                format_number(v) + " outside " + b.def(name).describe("cnc"));
+                            "cnc status not published: " + std::string(name) + " = " + format_number(v) +
+                                " outside " + b.def(name).describe("cnc"));
         return;
       }
     for (const auto& [name, v] : values) (void)b.set(b.def(name), v);
@@ -141,7 +135,6 @@ std::optional<Status> CncSlave::try_publish(const CncStatusSnapshot& s) {
   if (!slave_->try_with_bank([&](RegisterBank& b) { result = write_status(s, b); })) return std::nullopt;
   return result;
 }
-
 
 HoleParameters CncSlave::parameters() const {
   HoleParameters p;

@@ -23,8 +23,7 @@ Fault classify(int err) noexcept {
   if (err == ETIMEDOUT) return Fault::Timeout;
   if (err == EMBBADCRC) return Fault::Corrupted;
   if (err >= EMBXILFUN && err <= EMBXGTAR) return Fault::Exception;
-  if (err == EMBBADDATA || err == EMBMDATA || err == EMBBADSLAVE || err == EMBBADEXC ||
-      err == EMBUNKEXC)
+  if (err == EMBBADDATA || err == EMBMDATA || err == EMBBADSLAVE || err == EMBBADEXC || err == EMBUNKEXC)
     return Fault::Protocol;
   return Fault::Link;
 }
@@ -62,16 +61,15 @@ struct ModbusMaster::Impl {
   modbus_t* ctx = nullptr;
   bool link_up = false;
   bool ever_connected = false;
-  bool lost = false;  // the link was up once and then lost
+  bool lost = false;                 // the link was up once and then lost
   Clock::time_point next_connect{};  // no connect attempt before this
   std::string why_down;              // why the link is down, for messages
   int consecutive_failures = 0;
 
   std::atomic<bool> connected{false};  // mirror of link_up for other threads
   struct AtomicCounters {
-    std::atomic<std::uint64_t> requests{0}, ok{0}, failed{0}, retries{0}, timeouts{0},
-        crc_errors{0}, protocol_errors{0}, exceptions{0}, link_errors{0}, reconnects{0},
-        refused{0};
+    std::atomic<std::uint64_t> requests{0}, ok{0}, failed{0}, retries{0}, timeouts{0}, crc_errors{0},
+        protocol_errors{0}, exceptions{0}, link_errors{0}, reconnects{0}, refused{0};
   } n;
 
   Impl(DeviceMap m, MasterConfig c) : map(std::move(m)), cfg(std::move(c)) {
@@ -157,15 +155,13 @@ struct ModbusMaster::Impl {
       }
       case Function::WriteSingleCoil:
         return modbus_write_bit(ctx, r.address, r.data.at(0) != 0 ? TRUE : FALSE);
-      case Function::WriteSingleRegister:
-        return modbus_write_register(ctx, r.address, r.data.at(0));
+      case Function::WriteSingleRegister: return modbus_write_register(ctx, r.address, r.data.at(0));
       case Function::WriteMultipleCoils: {
         std::vector<std::uint8_t> b(r.data.begin(), r.data.end());
         return modbus_write_bits(ctx, r.address, static_cast<int>(b.size()), b.data());
       }
       case Function::WriteMultipleRegisters:
-        return modbus_write_registers(ctx, r.address, static_cast<int>(r.data.size()),
-                                      r.data.data());
+        return modbus_write_registers(ctx, r.address, static_cast<int>(r.data.size()), r.data.data());
     }
     errno = EINVAL;
     return -1;
@@ -241,8 +237,8 @@ struct ModbusMaster::Impl {
       why_down = "port reopened after " + std::to_string(consecutive_failures) + " failed requests";
       consecutive_failures = 0;
     }
-    return fail(code, r, why + " (" + std::to_string(attempts) + " attempt" +
-                             (attempts > 1 ? "s" : "") + ")");
+    return fail(code, r,
+                why + " (" + std::to_string(attempts) + " attempt" + (attempts > 1 ? "s" : "") + ")");
   }
   void run() {
     for (;;) {
@@ -344,9 +340,9 @@ Function read_function(Table t) noexcept {
 // disagree, which the caller must hear about rather than use the value.
 Result<double> checked(const DeviceMap& map, const RegisterDef& r, double v, const std::string& who) {
   if (r.in_range(v)) return v;
-  return make_error(ErrorCode::PeripheralValueOutOfRange,
-                    who + ": read " + r.name + ": device reported " + format_number(v) +
-                        " outside " + r.describe(map.name));
+  return make_error(ErrorCode::PeripheralValueOutOfRange, who + ": read " + r.name + ": device reported " +
+                                                              format_number(v) + " outside " +
+                                                              r.describe(map.name));
 }
 
 }  // namespace
@@ -385,8 +381,7 @@ void ModbusMaster::write_async(std::string_view name, double value, std::functio
   if (!r->writable())
     return refuse(make_error(ErrorCode::PeripheralReadOnly, r->describe(impl_->map.name) + " is read-only"));
   std::uint16_t raw[2] = {0, 0};
-  if (Status s = r->encode(value, std::span<std::uint16_t>(raw, r->words())); !s)
-    return refuse(s.error());
+  if (Status s = r->encode(value, std::span<std::uint16_t>(raw, r->words())); !s) return refuse(s.error());
   RawRequest req;
   req.address = r->address;
   req.data.assign(raw, raw + r->words());
@@ -404,8 +399,7 @@ std::future<Status> ModbusMaster::write(std::string_view name, double value) {
 }
 
 std::future<Result<std::vector<double>>> ModbusMaster::read_block(const std::vector<std::string>& names) {
-  return as_future<Result<std::vector<double>>>(
-      [&](auto done) { read_block_async(names, std::move(done)); });
+  return as_future<Result<std::vector<double>>>([&](auto done) { read_block_async(names, std::move(done)); });
 }
 
 void ModbusMaster::read_block_async(const std::vector<std::string>& names,
@@ -431,9 +425,8 @@ void ModbusMaster::read_block_async(const std::vector<std::string>& names,
   for (const RegisterDef* r : regs) {
     if (r->table != regs[0]->table) {
       refuse(ErrorCode::PeripheralBadRequest,
-             r->name + " is in table " + std::string(table_name(r->table)) + ", " +
-                 regs[0]->name + " in " + std::string(table_name(regs[0]->table)) +
-                 "; one request reads one table");
+             r->name + " is in table " + std::string(table_name(r->table)) + ", " + regs[0]->name + " in " +
+                 std::string(table_name(regs[0]->table)) + "; one request reads one table");
       return;
     }
     lo = std::min<std::uint32_t>(lo, r->address);
@@ -446,16 +439,19 @@ void ModbusMaster::read_block_async(const std::vector<std::string>& names,
                  " inside the block holds no register; read in two requests");
       return;
     }
-  RawRequest req{read_function(regs[0]->table), static_cast<std::uint16_t>(lo),
-                 static_cast<std::uint16_t>(hi - lo), {}, "read block of " + std::to_string(regs.size())};
+  RawRequest req{read_function(regs[0]->table),
+                 static_cast<std::uint16_t>(lo),
+                 static_cast<std::uint16_t>(hi - lo),
+                 {},
+                 "read block of " + std::to_string(regs.size())};
   submit(std::move(req), [done = std::move(done), regs, lo, impl = impl_](Result<RawReply> res) {
     if (!res) return done(res.error());
     std::vector<double> out;
     for (const RegisterDef* r : regs) {
-      auto v = checked(impl->map, *r,
-                       r->decode(std::span<const std::uint16_t>(res.value().data() + (r->address - lo),
-                                                                r->words())),
-                       impl->who());
+      auto v = checked(
+          impl->map, *r,
+          r->decode(std::span<const std::uint16_t>(res.value().data() + (r->address - lo), r->words())),
+          impl->who());
       if (!v) return done(v.error());
       out.push_back(v.value());
     }
@@ -509,10 +505,10 @@ void ModbusMaster::write_block_async(const std::vector<std::pair<std::string, do
       return;
     }
     if (r.address != next) {
-      refuse(ErrorCode::PeripheralBadRequest,
-             "not contiguous: " + r.name + " at " + std::to_string(r.address) + ", expected " +
-                 std::to_string(next) + "; a block is written with one FC" +
-                 std::to_string(static_cast<int>(req.function)));
+      refuse(ErrorCode::PeripheralBadRequest, "not contiguous: " + r.name + " at " +
+                                                  std::to_string(r.address) + ", expected " +
+                                                  std::to_string(next) + "; a block is written with one FC" +
+                                                  std::to_string(static_cast<int>(req.function)));
       return;
     }
     std::uint16_t raw[2];
@@ -531,10 +527,9 @@ void ModbusMaster::write_block_async(const std::vector<std::pair<std::string, do
 
 MasterCounters ModbusMaster::counters() const noexcept {
   const auto& n = impl_->n;
-  return {n.requests.load(),   n.ok.load(),         n.failed.load(),
-          n.retries.load(),    n.timeouts.load(),   n.crc_errors.load(),
-          n.protocol_errors.load(), n.exceptions.load(), n.link_errors.load(),
-          n.reconnects.load(), n.refused.load()};
+  return {n.requests.load(),    n.ok.load(),         n.failed.load(),          n.retries.load(),
+          n.timeouts.load(),    n.crc_errors.load(), n.protocol_errors.load(), n.exceptions.load(),
+          n.link_errors.load(), n.reconnects.load(), n.refused.load()};
 }
 
 bool ModbusMaster::connected() const noexcept { return impl_->connected.load(); }

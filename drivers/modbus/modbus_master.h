@@ -42,24 +42,24 @@ struct MasterConfig {
   int unit_id = -1;   // −1: the map's unit_id
   std::chrono::milliseconds response_timeout{200};
   std::chrono::milliseconds byte_timeout{50};  // between bytes of one answer
-  int retries = 2;    // further attempts after a timeout, corruption or lost link
+  int retries = 2;                             // further attempts after a timeout, corruption or lost link
   std::chrono::milliseconds reconnect_interval{200};
-  int rtu_reopen_after = 3;        // consecutive failed requests before reopening the port
+  int rtu_reopen_after = 3;          // consecutive failed requests before reopening the port
   std::size_t queue_capacity = 256;  // requests beyond it are refused at once
 };
 
 struct MasterCounters {
-  std::uint64_t requests = 0;      // completed, either way
+  std::uint64_t requests = 0;  // completed, either way
   std::uint64_t ok = 0;
   std::uint64_t failed = 0;
-  std::uint64_t retries = 0;       // extra attempts made
-  std::uint64_t timeouts = 0;      // attempts without an answer in time
-  std::uint64_t crc_errors = 0;    // answers with a bad CRC
+  std::uint64_t retries = 0;          // extra attempts made
+  std::uint64_t timeouts = 0;         // attempts without an answer in time
+  std::uint64_t crc_errors = 0;       // answers with a bad CRC
   std::uint64_t protocol_errors = 0;  // garbled answers (bad length, unit, function)
-  std::uint64_t exceptions = 0;    // exception answers
-  std::uint64_t link_errors = 0;   // connection lost, refused, port gone
-  std::uint64_t reconnects = 0;    // links re-established after a loss
-  std::uint64_t refused = 0;       // refused before the wire (queue full, stopped, range)
+  std::uint64_t exceptions = 0;       // exception answers
+  std::uint64_t link_errors = 0;      // connection lost, refused, port gone
+  std::uint64_t reconnects = 0;       // links re-established after a loss
+  std::uint64_t refused = 0;          // refused before the wire (queue full, stopped, range)
 };
 
 // One request in protocol terms. Bits travel as 0/1 words.
@@ -107,8 +107,7 @@ class ModbusMaster {
   // A parameter block: registers of one writable table that are contiguous
   // once sorted by address, written with one FC16 (holding) or FC15 (coils).
   // All values are range-checked first; one bad value sends nothing.
-  [[nodiscard]] std::future<Status> write_block(
-      const std::vector<std::pair<std::string, double>>& values);
+  [[nodiscard]] std::future<Status> write_block(const std::vector<std::pair<std::string, double>>& values);
   void write_block_async(const std::vector<std::pair<std::string, double>>& values,
                          std::function<void(Status)> done);
 

@@ -86,8 +86,7 @@ Status ModbusSlave::Impl::open() {
   if (ep.transport == Transport::Rtu) {
     ctx = modbus_new_rtu(ep.device.c_str(), ep.baud, ep.parity, 8, 1);
     if (ctx == nullptr)
-      return make_error(ErrorCode::PeripheralSetup,
-                        who() + ": bad RTU settings: " + modbus_strerror(errno));
+      return make_error(ErrorCode::PeripheralSetup, who() + ": bad RTU settings: " + modbus_strerror(errno));
     modbus_set_slave(ctx, unit);
     if (modbus_connect(ctx) != 0) {
       const std::string why = modbus_strerror(errno);
@@ -97,8 +96,7 @@ Status ModbusSlave::Impl::open() {
     }
   } else {
     ctx = modbus_new_tcp(ep.host.c_str(), ep.port);  // framing only: we own the sockets
-    if (ctx == nullptr)
-      return make_error(ErrorCode::PeripheralSetup, who() + ": " + modbus_strerror(errno));
+    if (ctx == nullptr) return make_error(ErrorCode::PeripheralSetup, who() + ": " + modbus_strerror(errno));
     sockaddr_in addr{};
     addr.sin_family = AF_INET;
     addr.sin_port = htons(ep.port);
@@ -122,8 +120,8 @@ Status ModbusSlave::Impl::open() {
     cfg.endpoint.port = bound_port;
   }
   modbus_set_error_recovery(ctx, MODBUS_ERROR_RECOVERY_PROTOCOL);  // flush after a bad frame
-  modbus_set_byte_timeout(ctx, 0, static_cast<std::uint32_t>(
-                                      std::chrono::microseconds(kTcpByteTimeout).count()));  // RTU
+  modbus_set_byte_timeout(
+      ctx, 0, static_cast<std::uint32_t>(std::chrono::microseconds(kTcpByteTimeout).count()));  // RTU
   wake_fd = ::eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK);
   return {};
 }
@@ -192,8 +190,8 @@ void ModbusSlave::Impl::read_from(Connection& c) noexcept {
       handler.count_malformed();
     } else {
       modbus_set_socket(ctx, c.fd);
-      const Received r = handler.answer_tcp_frame(
-          ctx, std::span<const std::uint8_t>(c.buf.data(), cut.size), unit, write_hook, &mutex);
+      const Received r = handler.answer_tcp_frame(ctx, std::span<const std::uint8_t>(c.buf.data(), cut.size),
+                                                  unit, write_hook, &mutex);
       modbus_set_socket(ctx, -1);
       if (r.kind == Received::Kind::Broken) {  // the answer could not go out
         close(c);
@@ -331,10 +329,14 @@ bool ModbusSlave::try_with_bank(const std::function<void(RegisterBank&)>& fn) {
 
 SlaveCounters ModbusSlave::counters() const noexcept {
   const SlaveRequestHandler::Counts c = impl_->handler.counts();
-  return {c.requests,          c.exceptions,
-          c.refused,           c.crc_errors,
-          impl_->connections.load(), c.malformed,
-          impl_->idle_closed.load(), impl_->frame_timeouts.load(),
+  return {c.requests,
+          c.exceptions,
+          c.refused,
+          c.crc_errors,
+          impl_->connections.load(),
+          c.malformed,
+          impl_->idle_closed.load(),
+          impl_->frame_timeouts.load(),
           impl_->evicted.load()};
 }
 

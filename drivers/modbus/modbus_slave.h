@@ -66,8 +66,8 @@ inline constexpr std::chrono::milliseconds kTcpIdleTimeout{60'000};
 inline constexpr int kTcpMaxClients = 8;
 
 struct SlaveConfig {
-  Endpoint endpoint;           // TCP 127.0.0.1:0 (any free port) by default
-  int unit_id = -1;            // −1: the map's unit_id (RTU answers only it; TCP it, 0 and 255)
+  Endpoint endpoint;                 // TCP 127.0.0.1:0 (any free port) by default
+  int unit_id = -1;                  // −1: the map's unit_id (RTU answers only it; TCP it, 0 and 255)
   int max_clients = kTcpMaxClients;  // TCP connections served at once (≥ 1)
   std::chrono::milliseconds idle_timeout = kTcpIdleTimeout;  // TCP: a silent connection is closed
   // TCP: a frame's bytes may be this far apart, and it must be whole this
@@ -78,15 +78,15 @@ struct SlaveConfig {
 };
 
 struct SlaveCounters {
-  std::uint64_t requests = 0;     // well-framed requests received
-  std::uint64_t exceptions = 0;   // answered with an exception, or not a request (fc ≥ 0x80)
+  std::uint64_t requests = 0;        // well-framed requests received
+  std::uint64_t exceptions = 0;      // answered with an exception, or not a request (fc ≥ 0x80)
   std::uint64_t refused_writes = 0;  // writes refused (exceptions 02/03/hook)
-  std::uint64_t crc_errors = 0;   // RTU frames dropped for a bad CRC
-  std::uint64_t connections = 0;  // TCP connections accepted
-  std::uint64_t malformed = 0;    // TCP frames refused for their MBAP header (slave_request.h)
-  std::uint64_t idle_closed = 0;  // TCP connections closed after the idle timeout
+  std::uint64_t crc_errors = 0;      // RTU frames dropped for a bad CRC
+  std::uint64_t connections = 0;     // TCP connections accepted
+  std::uint64_t malformed = 0;       // TCP frames refused for their MBAP header (slave_request.h)
+  std::uint64_t idle_closed = 0;     // TCP connections closed after the idle timeout
   std::uint64_t frame_timeouts = 0;  // TCP connections closed for a frame left unfinished
-  std::uint64_t evicted = 0;      // TCP connections dropped for a new client at the limit
+  std::uint64_t evicted = 0;         // TCP connections dropped for a new client at the limit
 };
 
 // Called every tick_period with the seconds since the last call.

@@ -14,9 +14,7 @@ RegisterBank::RegisterBank(DeviceMap map) : map_(std::move(map)) {
   for (const RegisterDef& r : map_.registers) set_clamped(r, 0.0);
 }
 
-std::vector<std::uint8_t>& RegisterBank::bits(Table t) noexcept {
-  return bits_[t == Table::Coil ? 0 : 1];
-}
+std::vector<std::uint8_t>& RegisterBank::bits(Table t) noexcept { return bits_[t == Table::Coil ? 0 : 1]; }
 
 std::vector<std::uint16_t>& RegisterBank::words(Table t) noexcept {
   return words_[t == Table::Holding ? 0 : 1];

@@ -66,9 +66,9 @@ std::string format_number(double v) {
 
 Status RegisterDef::encode(double value, std::span<std::uint16_t> out) const {
   if (!std::isfinite(value) || !in_range(value))
-    return make_error(ErrorCode::PeripheralValueOutOfRange,
-                      name + " = " + fmt(value) + " " + unit + " is outside " + fmt(min) + " … " +
-                          fmt(max) + " " + unit);
+    return make_error(
+        ErrorCode::PeripheralValueOutOfRange,
+        name + " = " + fmt(value) + " " + unit + " is outside " + fmt(min) + " … " + fmt(max) + " " + unit);
   if (type == ValueType::Bool) {
     out[0] = value != 0.0 ? 1 : 0;
     return {};
@@ -94,11 +94,9 @@ double RegisterDef::decode(std::span<const std::uint16_t> raw) const noexcept {
     case ValueType::Bool: return raw[0] != 0 ? 1.0 : 0.0;
     case ValueType::U16: return raw[0] / scale;
     case ValueType::I16: return static_cast<std::int16_t>(raw[0]) / scale;
-    case ValueType::U32:
-      return ((static_cast<std::uint32_t>(raw[0]) << 16) | raw[1]) / scale;
+    case ValueType::U32: return ((static_cast<std::uint32_t>(raw[0]) << 16) | raw[1]) / scale;
     case ValueType::I32:
-      return static_cast<std::int32_t>((static_cast<std::uint32_t>(raw[0]) << 16) | raw[1]) /
-             scale;
+      return static_cast<std::int32_t>((static_cast<std::uint32_t>(raw[0]) << 16) | raw[1]) / scale;
   }
   return 0.0;
 }
@@ -133,9 +131,8 @@ Result<const RegisterDef*> DeviceMap::lookup(std::string_view reg_name) const {
   if (const RegisterDef* r = find(reg_name)) return r;
   std::string names;
   for (const RegisterDef& r : registers) names += (names.empty() ? "" : ", ") + r.name;
-  return make_error(ErrorCode::PeripheralUnknownRegister,
-                    "device '" + name + "' has no register '" + std::string(reg_name) +
-                        "'; it has: " + names);
+  return make_error(ErrorCode::PeripheralUnknownRegister, "device '" + name + "' has no register '" +
+                                                              std::string(reg_name) + "'; it has: " + names);
 }
 
 const DeviceMap* RegisterMap::device(std::string_view name) const noexcept {
@@ -149,8 +146,7 @@ Result<DeviceMap> RegisterMap::device_copy(std::string_view name) const {
   std::string names;
   for (const DeviceMap& d : devices) names += (names.empty() ? "" : ", ") + d.name;
   return make_error(ErrorCode::PeripheralUnknownRegister,
-                    "register map " + file + " has no device '" + std::string(name) +
-                        "'; it has: " + names);
+                    "register map " + file + " has no device '" + std::string(name) + "'; it has: " + names);
 }
 
 namespace {
@@ -177,21 +173,20 @@ struct MapLoader {
       if (std::find(allowed.begin(), allowed.end(), key.str()) != allowed.end()) continue;
       std::string list;
       for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-      return fail(node.source(), where + ": unknown key '" + std::string(key.str()) +
-                                     "'; expected one of: " + list);
+      return fail(node.source(),
+                  where + ": unknown key '" + std::string(key.str()) + "'; expected one of: " + list);
     }
     return true;
   }
 
-  bool string(const toml::table& t, const std::string& where, std::string_view key,
-              std::string& out, bool required) {
+  bool string(const toml::table& t, const std::string& where, std::string_view key, std::string& out,
+              bool required) {
     const toml::node* n = t.get(key);
     if (n == nullptr) {
       if (!required) return true;
       return fail(t.source(), where + ": missing key '" + std::string(key) + "'");
     }
-    if (!n->is_string())
-      return fail(n->source(), where + ": '" + std::string(key) + "' must be a string");
+    if (!n->is_string()) return fail(n->source(), where + ": '" + std::string(key) + "' must be a string");
     out = *n->value<std::string>();
     return true;
   }
@@ -226,38 +221,37 @@ struct MapLoader {
                 where + ": " + std::string(key) + " = '" + s + "'; expected one of: " + list);
   }
 
-  bool parse_register(const toml::table& t, const std::string& device, std::size_t index,
-                      RegisterDef& r) {
+  bool parse_register(const toml::table& t, const std::string& device, std::size_t index, RegisterDef& r) {
     std::string where = device + ".registers[" + std::to_string(index) + "]";
     if (!only_keys(t, where,
-                   {"name", "table", "address", "type", "unit", "scale", "min", "max", "access",
-                    "doc"}) ||
+                   {"name", "table", "address", "type", "unit", "scale", "min", "max", "access", "doc"}) ||
         !string(t, where, "name", r.name, true))
       return false;
     where = device + "." + r.name;
     if (r.name.empty() || !std::all_of(r.name.begin(), r.name.end(), [](char c) {
           return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
         }))
-      return fail(t.get("name")->source(),
-                  where + ": name must be non-empty snake_case (a–z, 0–9, _)");
+      return fail(t.get("name")->source(), where + ": name must be non-empty snake_case (a–z, 0–9, _)");
     r.line = t.source().begin.line;
     double address = -1;
-    if (!choice<Table>(t, where, "table",
-                       r.table, {{"coil", Table::Coil}, {"discrete", Table::Discrete},
-                                 {"holding", Table::Holding}, {"input", Table::Input}}) ||
+    if (!choice<Table>(t, where, "table", r.table,
+                       {{"coil", Table::Coil},
+                        {"discrete", Table::Discrete},
+                        {"holding", Table::Holding},
+                        {"input", Table::Input}}) ||
         !choice<ValueType>(t, where, "type", r.type,
-                           {{"bool", ValueType::Bool}, {"u16", ValueType::U16},
-                            {"i16", ValueType::I16}, {"u32", ValueType::U32},
+                           {{"bool", ValueType::Bool},
+                            {"u16", ValueType::U16},
+                            {"i16", ValueType::I16},
+                            {"u32", ValueType::U32},
                             {"i32", ValueType::I32}}) ||
-        !choice<Access>(t, where, "access", r.access,
-                        {{"r", Access::Read}, {"rw", Access::ReadWrite}}) ||
+        !choice<Access>(t, where, "access", r.access, {{"r", Access::Read}, {"rw", Access::ReadWrite}}) ||
         !number(t, where, "address", address, true) || !string(t, where, "doc", r.doc, false))
       return false;
-    if (address < 0 || address != std::floor(address) ||
-        address + word_count(r.type) > 65536)
-      return fail(t.get("address")->source(),
-                  where + ": address = " + fmt(address) + "; expected an integer 0 … " +
-                      std::to_string(65536 - word_count(r.type)));
+    if (address < 0 || address != std::floor(address) || address + word_count(r.type) > 65536)
+      return fail(t.get("address")->source(), where + ": address = " + fmt(address) +
+                                                  "; expected an integer 0 … " +
+                                                  std::to_string(65536 - word_count(r.type)));
     r.address = static_cast<std::uint16_t>(address);
 
     const bool bit_table = is_bit_table(r.table);
@@ -268,14 +262,14 @@ struct MapLoader {
                       (bit_table ? "; coils and discrete inputs are bool"
                                  : "; holding and input registers are u16, i16, u32 or i32"));
     if ((r.table == Table::Discrete || r.table == Table::Input) && r.writable())
-      return fail(t.get("access")->source(),
-                  where + ": access = 'rw' in table " + std::string(table_name(r.table)) +
-                      ", which is read-only in Modbus; expected 'r'");
+      return fail(t.get("access")->source(), where + ": access = 'rw' in table " +
+                                                 std::string(table_name(r.table)) +
+                                                 ", which is read-only in Modbus; expected 'r'");
     if (r.type == ValueType::Bool) {
       for (std::string_view k : {"unit", "scale", "min", "max"})
         if (t.get(k) != nullptr)
-          return fail(t.get(k)->source(), where + ": '" + std::string(k) +
-                                              "' given for a bool register; bools have none");
+          return fail(t.get(k)->source(),
+                      where + ": '" + std::string(k) + "' given for a bool register; bools have none");
       r.scale = 1.0;
       r.min = 0.0;
       r.max = 1.0;
@@ -285,19 +279,17 @@ struct MapLoader {
         !number(t, where, "min", r.min, true) || !number(t, where, "max", r.max, true))
       return false;
     if (!(r.scale > 0.0) || !std::isfinite(r.scale))
-      return fail(t.get("scale")->source(), where + ": scale = " + fmt(r.scale) +
-                                                "; expected a finite number > 0");
+      return fail(t.get("scale")->source(),
+                  where + ": scale = " + fmt(r.scale) + "; expected a finite number > 0");
     if (!(r.min <= r.max))
-      return fail(t.get("min")->source(),
-                  where + ": min = " + fmt(r.min) + " > max = " + fmt(r.max));
+      return fail(t.get("min")->source(), where + ": min = " + fmt(r.min) + " > max = " + fmt(r.max));
     const RawRange rr = raw_range(r.type);
     const double lo = std::round(r.min * r.scale), hi = std::round(r.max * r.scale);
     if (lo < rr.lo || hi > rr.hi)
-      return fail(t.get("max")->source(),
-                  where + ": range " + fmt(r.min) + " … " + fmt(r.max) + " at scale " +
-                      fmt(r.scale) + " needs raw " + fmt(lo) + " … " + fmt(hi) + ", which a " +
-                      std::string(type_name(r.type)) + " cannot hold (" + fmt(rr.lo) + " … " +
-                      fmt(rr.hi) + ")");
+      return fail(t.get("max")->source(), where + ": range " + fmt(r.min) + " … " + fmt(r.max) +
+                                              " at scale " + fmt(r.scale) + " needs raw " + fmt(lo) + " … " +
+                                              fmt(hi) + ", which a " + std::string(type_name(r.type)) +
+                                              " cannot hold (" + fmt(rr.lo) + " … " + fmt(rr.hi) + ")");
     return true;
   }
 
@@ -316,26 +308,26 @@ struct MapLoader {
     if (regs_node == nullptr) return fail(t.source(), where + ": missing key 'registers'");
     const toml::array* regs = regs_node->as_array();
     if (regs == nullptr || regs->empty())
-      return fail(regs_node->source(),
-                  where + ": 'registers' must be a non-empty array of inline tables");
+      return fail(regs_node->source(), where + ": 'registers' must be a non-empty array of inline tables");
     for (std::size_t i = 0; i < regs->size(); ++i) {
       const toml::table* rt = regs->get(i)->as_table();
       if (rt == nullptr)
-        return fail(regs->get(i)->source(), where + ".registers[" + std::to_string(i) +
-                                                "]: expected an inline table { name = … }");
+        return fail(regs->get(i)->source(),
+                    where + ".registers[" + std::to_string(i) + "]: expected an inline table { name = … }");
       RegisterDef r;
       if (!parse_register(*rt, name, i, r)) return false;
       for (const RegisterDef& o : d.registers) {
         if (o.name == r.name)
-          return fail(rt->source(), where + "." + r.name + ": name already used on line " +
-                                        std::to_string(o.line));
-        const bool overlap = o.table == r.table && r.address < o.address + o.words() &&
-                             o.address < r.address + r.words();
+          return fail(rt->source(),
+                      where + "." + r.name + ": name already used on line " + std::to_string(o.line));
+        const bool overlap =
+            o.table == r.table && r.address < o.address + o.words() && o.address < r.address + r.words();
         if (overlap)
           return fail(rt->get("address")->source(),
                       where + "." + r.name + ": " + std::string(table_name(r.table)) + " " +
-                          std::to_string(r.address) + (r.words() == 2 ? "–" + std::to_string(r.address + 1) : "") +
-                          " overlaps " + o.name + " (line " + std::to_string(o.line) + ")");
+                          std::to_string(r.address) +
+                          (r.words() == 2 ? "–" + std::to_string(r.address + 1) : "") + " overlaps " +
+                          o.name + " (line " + std::to_string(o.line) + ")");
       }
       d.registers.push_back(std::move(r));
     }
@@ -351,8 +343,8 @@ Result<RegisterMap> parse_register_map(std::string_view text, std::string_view f
   try {
     root = toml::parse(text, file_name);
   } catch (const toml::parse_error& e) {
-    return make_error(ErrorCode::RegisterMapSyntax, std::string(e.description()), name,
-                      e.source().begin.line, e.source().begin.column);
+    return make_error(ErrorCode::RegisterMapSyntax, std::string(e.description()), name, e.source().begin.line,
+                      e.source().begin.column);
   }
   MapLoader L{name, {}, false};
   RegisterMap map;
@@ -362,11 +354,10 @@ Result<RegisterMap> parse_register_map(std::string_view text, std::string_view f
       !L.number(root, "register map", "version", version, true))
     return L.err;
   if (version != kMapVersion)
-    return make_error(ErrorCode::RegisterMapInvalid,
-                      "version = " + fmt(version) + "; this build reads version " +
-                          std::to_string(kMapVersion),
-                      name, root.get("version")->source().begin.line,
-                      root.get("version")->source().begin.column);
+    return make_error(
+        ErrorCode::RegisterMapInvalid,
+        "version = " + fmt(version) + "; this build reads version " + std::to_string(kMapVersion), name,
+        root.get("version")->source().begin.line, root.get("version")->source().begin.column);
   const toml::table* devices = root.get("devices") ? root.get("devices")->as_table() : nullptr;
   if (devices == nullptr || devices->empty())
     return make_error(ErrorCode::RegisterMapInvalid,
@@ -381,9 +372,8 @@ Result<RegisterMap> parse_register_map(std::string_view text, std::string_view f
     if (!L.parse_device(*dt, std::string(key.str()), d)) return L.err;
     for (const DeviceMap& o : map.devices)
       if (o.unit_id == d.unit_id) {
-        L.fail(dt->get("unit_id")->source(), "devices." + d.name + ": unit_id " +
-                                                 std::to_string(d.unit_id) + " already used by " +
-                                                 o.name);
+        L.fail(dt->get("unit_id")->source(),
+               "devices." + d.name + ": unit_id " + std::to_string(d.unit_id) + " already used by " + o.name);
         return L.err;
       }
     map.devices.push_back(std::move(d));
@@ -402,9 +392,7 @@ Result<RegisterMap> load_register_map(const std::string& path) {
   return parse_register_map(text.str(), path);
 }
 
-std::string default_register_map_path() {
-  return share_path("modbus/register_map.toml");
-}
+std::string default_register_map_path() { return share_path("modbus/register_map.toml"); }
 
 Result<DeviceMap> shipped_device(std::string_view name) {
   static std::once_flag once;

@@ -29,7 +29,7 @@ inline constexpr std::size_t kTableCount = 4;
 enum class ValueType : std::uint8_t { Bool, U16, I16, U32, I32 };
 enum class Access : std::uint8_t { Read, ReadWrite };
 
-[[nodiscard]] std::string_view table_name(Table t) noexcept;     // "holding"
+[[nodiscard]] std::string_view table_name(Table t) noexcept;  // "holding"
 // A value for messages: shortest form, up to 10 significant digits ("12.5").
 [[nodiscard]] std::string format_number(double v);
 [[nodiscard]] std::string_view type_name(ValueType t) noexcept;  // "u32"
@@ -57,9 +57,7 @@ struct RegisterDef {
 
   [[nodiscard]] std::uint16_t words() const noexcept { return word_count(type); }
   [[nodiscard]] bool writable() const noexcept { return access == Access::ReadWrite; }
-  [[nodiscard]] bool in_range(double value) const noexcept {
-    return value >= min && value <= max;
-  }
+  [[nodiscard]] bool in_range(double value) const noexcept { return value >= min && value <= max; }
   // value → raw words (1 or 2, high word first) in `out`. Fails with
   // PeripheralValueOutOfRange naming the register, value and range.
   [[nodiscard]] Status encode(double value, std::span<std::uint16_t> out) const;
@@ -97,8 +95,7 @@ struct RegisterMap {
 [[nodiscard]] std::string default_register_map_path();
 [[nodiscard]] Result<RegisterMap> load_register_map(const std::string& path);
 // `file_name` is only used in messages.
-[[nodiscard]] Result<RegisterMap> parse_register_map(std::string_view toml_text,
-                                                     std::string_view file_name);
+[[nodiscard]] Result<RegisterMap> parse_register_map(std::string_view toml_text, std::string_view file_name);
 // One device of the shipped map (loaded once, thread-safe), or the error of
 // loading it / of a device name it does not have.
 [[nodiscard]] Result<DeviceMap> shipped_device(std::string_view name);

@@ -17,9 +17,7 @@ constexpr std::uint16_t kMaxReadBits = 2000;
 constexpr std::uint16_t kMaxWriteRegisters = 123;
 constexpr std::uint16_t kMaxWriteBits = 1968;
 
-std::uint16_t be16(const std::uint8_t* p) noexcept {
-  return static_cast<std::uint16_t>((p[0] << 8) | p[1]);
-}
+std::uint16_t be16(const std::uint8_t* p) noexcept { return static_cast<std::uint16_t>((p[0] << 8) | p[1]); }
 
 bool is_write(std::uint8_t fc) noexcept { return fc == 5 || fc == 6 || fc == 15 || fc == 16; }
 
@@ -39,17 +37,20 @@ TcpFrameCut cut_tcp_frame(std::span<const std::uint8_t> bytes) noexcept {
 std::size_t request_pdu_length(std::span<const std::uint8_t> pdu) noexcept {
   if (pdu.empty()) return 1;
   switch (pdu[0]) {
-    case 1: case 2: case 3: case 4: case 5: case 6:
-      return 5;  // fc, address, count or value
-    case 15: case 16:
-      return pdu.size() < 6 ? 6 : 6 + std::size_t{pdu[5]};  // fc, address, count, byte count, data
-    default:
-      return 0;
+    case 1:
+    case 2:
+    case 3:
+    case 4:
+    case 5:
+    case 6: return 5;  // fc, address, count or value
+    case 15:
+    case 16: return pdu.size() < 6 ? 6 : 6 + std::size_t{pdu[5]};  // fc, address, count, byte count, data
+    default: return 0;
   }
 }
 
-ModbusException check_slave_request(const DeviceMap& map, int header_length, const std::uint8_t* q,
-                                    int len, std::vector<RegisterWrite>& writes) {
+ModbusException check_slave_request(const DeviceMap& map, int header_length, const std::uint8_t* q, int len,
+                                    std::vector<RegisterWrite>& writes) {
   const int o = header_length;
   if (len < o + 1) return ModbusException::IllegalDataValue;
   // The function first (an unknown one is 01 however short), then its fields.
@@ -67,8 +68,11 @@ ModbusException check_slave_request(const DeviceMap& map, int header_length, con
   };
 
   switch (fc) {
-    case 1: case 2: case 3: case 4: {
-      const Table t = fc == 1 ? Table::Coil
+    case 1:
+    case 2:
+    case 3:
+    case 4: {
+      const Table t = fc == 1   ? Table::Coil
                       : fc == 2 ? Table::Discrete
                       : fc == 3 ? Table::Holding
                                 : Table::Input;
@@ -85,8 +89,7 @@ ModbusException check_slave_request(const DeviceMap& map, int header_length, con
     }
     case 6: {
       const RegisterDef* r = map.at(Table::Holding, addr);
-      if (r == nullptr || !r->writable() || r->words() != 1)
-        return ModbusException::IllegalDataAddress;
+      if (r == nullptr || !r->writable() || r->words() != 1) return ModbusException::IllegalDataAddress;
       const double v = r->decode(std::span<const std::uint16_t>(&n, 1));
       if (!r->in_range(v)) return ModbusException::IllegalDataValue;
       writes.push_back({r, v});
@@ -126,8 +129,7 @@ ModbusException check_slave_request(const DeviceMap& map, int header_length, con
       }
       return verdict;
     }
-    default:
-      return ModbusException::IllegalFunction;
+    default: return ModbusException::IllegalFunction;
   }
 }
 
@@ -261,8 +263,7 @@ RawFrameLoop::~RawFrameLoop() {
 }
 
 RawFrameLoop::Exchange RawFrameLoop::deliver(SlaveRequestHandler& handler,
-                                             std::span<const std::uint8_t> frame,
-                                             const WriteHook& hook) {
+                                             std::span<const std::uint8_t> frame, const WriteHook& hook) {
   Exchange x;
   int fds[2];  // [0] the handler's end, [1] the sender's
   if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, fds) != 0) return x;
@@ -314,7 +315,8 @@ std::vector<std::uint8_t> RawFrameLoop::rtu_frame(std::uint8_t unit, std::span<c
   std::uint16_t crc = 0xFFFF;  // Modbus CRC-16 (polynomial 0xA001 reflected)
   for (std::uint8_t b : f) {
     crc ^= b;
-    for (int i = 0; i < 8; ++i) crc = (crc & 1u) ? static_cast<std::uint16_t>((crc >> 1) ^ 0xA001u) : crc >> 1;
+    for (int i = 0; i < 8; ++i)
+      crc = (crc & 1u) ? static_cast<std::uint16_t>((crc >> 1) ^ 0xA001u) : crc >> 1;
   }
   f.push_back(static_cast<std::uint8_t>(crc & 0xFF));  // low byte first
   f.push_back(static_cast<std::uint8_t>(crc >> 8));

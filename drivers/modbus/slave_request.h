@@ -81,15 +81,15 @@ struct TcpFrameCut {
 // What came of one receive on a connection.
 struct Received {
   enum class Kind : std::uint8_t {
-    Answered,   // a request, answered (`exception` None) or refused
-    OtherUnit,  // a frame for another unit, ignored
-    Malformed,  // TCP: dropped for its MBAP header (no answer), counted
+    Answered,     // a request, answered (`exception` None) or refused
+    OtherUnit,    // a frame for another unit, ignored
+    Malformed,    // TCP: dropped for its MBAP header (no answer), counted
     NotARequest,  // a function code ≥ 0x80 (an exception response's): not
                   // answered — libmodbus would echo it as fc + 0x80 mod 256,
                   // which reads as a normal answer of another function
-    BadCrc,     // RTU: dropped
-    Broken,     // the peer closed or broke the framing, or the answer could
-                // not be sent (TCP: close it)
+    BadCrc,       // RTU: dropped
+    Broken,       // the peer closed or broke the framing, or the answer could
+                  // not be sent (TCP: close it)
   };
   Kind kind = Kind::Broken;
   ModbusException exception = ModbusException::None;
@@ -124,8 +124,7 @@ class SlaveRequestHandler {
   // `bank_lock`, when given, is held from the check to the reply (not while
   // waiting for the frame's bytes). The counts move before the answer goes
   // out: a peer that has its answer sees them counted.
-  Received receive_and_answer(modbus_t* ctx, const WriteHook& hook,
-                              std::mutex* bank_lock = nullptr) noexcept;
+  Received receive_and_answer(modbus_t* ctx, const WriteHook& hook, std::mutex* bank_lock = nullptr) noexcept;
 
   // Answers one whole TCP frame (cut_tcp_frame's Frame) on `ctx`'s socket
   // (a TCP context; the socket set). Units other than `unit`, 0 and 255

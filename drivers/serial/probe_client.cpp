@@ -33,8 +33,8 @@ Result<probe::Message> ProbeClient::transact(const probe::Message& request, std:
       return make_error(s.error().code, "probe_3d: " + s.error().message);
     const auto deadline = std::chrono::steady_clock::now() + cfg_.timeout;
     for (;;) {  // read answers until ours, a bad one, or the deadline
-      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-          deadline - std::chrono::steady_clock::now());
+      const auto left =
+          std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
       auto line = port_.read_line(std::max(left, std::chrono::milliseconds(0)), probe::kMaxSentence + 16);
       if (!line) {
         if (line.error().code == ErrorCode::PeripheralTimeout) {
@@ -111,7 +111,8 @@ Result<probe::PongReply> ProbeClient::ping() {
   auto answer = transact(probe::PingRequest{}, 0);
   if (!answer) return answer.error();
   if (const auto* p = std::get_if<probe::PongReply>(&answer.value())) return *p;
-  return make_error(ErrorCode::PeripheralProtocol, "probe_3d (" + cfg_.device + "): answer to $PING is not $PONG");
+  return make_error(ErrorCode::PeripheralProtocol,
+                    "probe_3d (" + cfg_.device + "): answer to $PING is not $PONG");
 }
 
 }  // namespace lcnc::drivers

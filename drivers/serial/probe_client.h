@@ -35,8 +35,8 @@ struct ProbeCounters {
   std::uint64_t checksum_errors = 0;  // answers with a bad checksum
   std::uint64_t syntax_errors = 0;    // malformed answers
   std::uint64_t timeouts = 0;
-  std::uint64_t device_errors = 0;    // $ERR answers
-  std::uint64_t stale = 0;            // answers to an earlier request, skipped
+  std::uint64_t device_errors = 0;  // $ERR answers
+  std::uint64_t stale = 0;          // answers to an earlier request, skipped
 };
 
 class ProbeClient {

@@ -25,8 +25,10 @@ Diagnostic syntax(std::string_view source, std::size_t col, std::string msg) {
 std::string shown(std::string_view line) {
   std::string s;
   for (char c : line) {
-    if (c == '\r') s += "\\r";
-    else if (c == '\n') s += "\\n";
+    if (c == '\r')
+      s += "\\r";
+    else if (c == '\n')
+      s += "\\n";
     else if (c < 0x20 || c > 0x7E) {
       char b[8];
       std::snprintf(b, sizeof b, "\\x%02X", static_cast<unsigned char>(c));
@@ -95,8 +97,7 @@ Result<Sentence> parse_sentence(std::string_view line, std::string_view source) 
                   "'" + shown(line) + "' does not end in '*HH' (two hex digits of checksum)");
   const int hi = hex_value(line[star + 1]), lo = hex_value(line[star + 2]);
   if (hi < 0 || lo < 0)
-    return syntax(source, star + 2, "checksum '" + shown(line.substr(star + 1)) +
-                                        "' is not two hex digits");
+    return syntax(source, star + 2, "checksum '" + shown(line.substr(star + 1)) + "' is not two hex digits");
   const std::string_view body = line.substr(1, star - 1);
   for (std::size_t i = 0; i < body.size(); ++i) {
     const char c = body[i];
@@ -108,17 +109,20 @@ Result<Sentence> parse_sentence(std::string_view line, std::string_view source) 
   if (got != want) {
     char b[96];
     std::snprintf(b, sizeof b, "checksum *%02X does not match the body's *%02X", got, want);
-    return make_error(ErrorCode::SerialChecksum, "'" + shown(line) + "': " + b, std::string(source),
-                      0, static_cast<std::uint32_t>(star + 2));
+    return make_error(ErrorCode::SerialChecksum, "'" + shown(line) + "': " + b, std::string(source), 0,
+                      static_cast<std::uint32_t>(star + 2));
   }
   Sentence s;
   std::size_t start = 0;
   bool first = true;
   for (;;) {
     const std::size_t comma = body.find(',', start);
-    const std::string_view f = body.substr(start, comma == std::string_view::npos ? body.npos : comma - start);
-    if (first) s.type = std::string(f);
-    else s.fields.emplace_back(f);
+    const std::string_view f =
+        body.substr(start, comma == std::string_view::npos ? body.npos : comma - start);
+    if (first)
+      s.type = std::string(f);
+    else
+      s.fields.emplace_back(f);
     first = false;
     if (comma == std::string_view::npos) break;
     start = comma + 1;
@@ -146,8 +150,8 @@ std::string encode(const Message& m) {
     std::string operator()(const ErrorReply& r) const {
       std::string text;
       for (char c : r.text) text += (c == ',' || c == '*' || c == '$' || c < 0x20 || c > 0x7E) ? ' ' : c;
-      return frame("ERR," + std::to_string(r.id) + "," +
-                   std::to_string(static_cast<int>(r.code)) + "," + text);
+      return frame("ERR," + std::to_string(r.id) + "," + std::to_string(static_cast<int>(r.code)) + "," +
+                   text);
     }
     std::string operator()(const PongReply& r) const { return frame("PONG," + r.model + "," + r.firmware); }
   };
@@ -158,9 +162,7 @@ Result<Message> decode(std::string_view line, std::string_view source) {
   auto s = parse_sentence(line, source);
   if (!s) return s.error();
   const Sentence& sen = s.value();
-  auto bad = [&](std::string what) {
-    return syntax(source, 2, "$" + sen.type + ": " + std::move(what));
-  };
+  auto bad = [&](std::string what) { return syntax(source, 2, "$" + sen.type + ": " + std::move(what)); };
   auto count = [&](std::size_t n) -> bool { return sen.fields.size() == n; };
   if (sen.type == "MEAS") {
     MeasureRequest r;
@@ -186,9 +188,11 @@ Result<Message> decode(std::string_view line, std::string_view source) {
   }
   if (sen.type == "ERR") {
     ErrorReply r;
-    if (!count(3)) return bad("expected 3 fields (id, code, text), found " + std::to_string(sen.fields.size()));
+    if (!count(3))
+      return bad("expected 3 fields (id, code, text), found " + std::to_string(sen.fields.size()));
     std::uint16_t code = 0;
-    if (!parse_id(sen.fields[0], r.id, true)) return bad("id '" + sen.fields[0] + "' is not an integer 0 … 65535");
+    if (!parse_id(sen.fields[0], r.id, true))
+      return bad("id '" + sen.fields[0] + "' is not an integer 0 … 65535");
     if (!parse_id(sen.fields[1], code, false) || code > 3)
       return bad("code '" + sen.fields[1] + "' is not 1, 2 or 3");
     r.code = static_cast<ProbeError>(code);

@@ -82,8 +82,7 @@ Status SerialPort::open(const std::string& path, int baud) {
   close();
   const int fd = ::open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0)
-    return make_error(ErrorCode::PeripheralSetup, "cannot open serial port " + path + ": " +
-                                                      errno_text());
+    return make_error(ErrorCode::PeripheralSetup, "cannot open serial port " + path + ": " + errno_text());
   if (Status s = make_raw(fd, baud, path); !s) {
     ::close(fd);
     return s;
@@ -116,8 +115,7 @@ Status SerialPort::write_all(std::string_view bytes) {
     }
     if (n < 0 && errno == EAGAIN) {
       pollfd p{fd_, POLLOUT, 0};
-      if (::poll(&p, 1, 100) <= 0)
-        return make_error(ErrorCode::PeripheralTimeout, path_ + ": write blocked");
+      if (::poll(&p, 1, 100) <= 0) return make_error(ErrorCode::PeripheralTimeout, path_ + ": write blocked");
       continue;
     }
     if (n < 0 && errno == EINTR) continue;
@@ -134,18 +132,17 @@ Result<std::string> SerialPort::read_line(std::chrono::milliseconds timeout, std
       std::string line = pending_.substr(0, nl + 1);
       pending_.erase(0, nl + 1);
       if (line.size() > max_len)
-        return make_error(ErrorCode::SerialSyntax, path_ + ": line of " +
-                                                       std::to_string(line.size()) +
+        return make_error(ErrorCode::SerialSyntax, path_ + ": line of " + std::to_string(line.size()) +
                                                        " bytes; at most " + std::to_string(max_len));
       return line;
     }
     if (pending_.size() > max_len) {
       pending_.clear();
-      return make_error(ErrorCode::SerialSyntax, path_ + ": no line end within " +
-                                                     std::to_string(max_len) + " bytes");
+      return make_error(ErrorCode::SerialSyntax,
+                        path_ + ": no line end within " + std::to_string(max_len) + " bytes");
     }
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-        deadline - std::chrono::steady_clock::now());
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0)
       return make_error(ErrorCode::PeripheralTimeout,
                         path_ + ": no answer within " + std::to_string(timeout.count()) + " ms");
@@ -162,8 +159,8 @@ Result<std::string> SerialPort::read_line(std::chrono::milliseconds timeout, std
       return make_error(ErrorCode::PeripheralDisconnected, path_ + ": read failed: " + errno_text());
     } else if (n == 0 || (p.revents & (POLLHUP | POLLERR))) {
       // The other side hung up: wait out the timeout rather than spin.
-      const auto rest = std::chrono::duration_cast<std::chrono::milliseconds>(
-          deadline - std::chrono::steady_clock::now());
+      const auto rest =
+          std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
       if (rest.count() > 0) ::poll(nullptr, 0, static_cast<int>(std::min<long>(rest.count(), 10)));
     }
   }

@@ -46,8 +46,7 @@ class SerialPort {
   // Reads one line ending in '\n' (returned with its "\r\n"), or fails with
   // PeripheralTimeout when none completes within `timeout`, or SerialSyntax
   // when a line grows beyond `max_len` bytes (it is then discarded).
-  [[nodiscard]] Result<std::string> read_line(std::chrono::milliseconds timeout,
-                                              std::size_t max_len = 256);
+  [[nodiscard]] Result<std::string> read_line(std::chrono::milliseconds timeout, std::size_t max_len = 256);
   [[nodiscard]] const std::string& path() const noexcept { return path_; }
 
  private:

@@ -56,8 +56,9 @@ TEST_F(CncSlaveTest, PublishesStatusWhole) {
   s.homed = true;
   s.laser_on = true;
   ASSERT_TRUE(cnc_->publish(s).ok());
-  auto v = master_->read_block({"state", "fault_code", "x_mm", "y_mm", "z_mm", "a_deg", "c_deg",
-                                "feed_override_pct", "job_line"})
+  auto v = master_
+               ->read_block({"state", "fault_code", "x_mm", "y_mm", "z_mm", "a_deg", "c_deg",
+                             "feed_override_pct", "job_line"})
                .get();
   ASSERT_TRUE(v.ok()) << v.error().to_string();
   EXPECT_EQ(v.value(), (std::vector<double>{1, 0, 512.25, 100.5, 20, -45.5, 359.999, 120, 1234567}));
@@ -94,10 +95,10 @@ TEST_F(CncSlaveTest, CommandsReachTheOwnerAndRefusalsAreException04) {
 }
 
 TEST_F(CncSlaveTest, ParameterBlockIsHandedOverWhole) {
-  ASSERT_TRUE(master_->write_block({{"hole_number", 12}, {"hole_x_mm", 100}, {"hole_y_mm", 200},
-                                    {"hole_z_mm", 30}})
-                  .get()
-                  .ok());
+  ASSERT_TRUE(
+      master_->write_block({{"hole_number", 12}, {"hole_x_mm", 100}, {"hole_y_mm", 200}, {"hole_z_mm", 30}})
+          .get()
+          .ok());
   ASSERT_TRUE(master_->write("laser_power_pct", 55.5).get().ok());  // a partial write
   {
     std::lock_guard lock(mutex_);

@@ -34,8 +34,8 @@ TEST(LasercncDevicesApp, StartsTheDevicesAndStopsOnSigterm) {
   posix_spawn_file_actions_init(&fa);
   posix_spawn_file_actions_adddup2(&fa, out[1], STDOUT_FILENO);
   posix_spawn_file_actions_addclose(&fa, out[0]);
-  char* argv[] = {const_cast<char*>(kExe.c_str()), const_cast<char*>("--seconds"),
-                  const_cast<char*>("30"), nullptr};
+  char* argv[] = {const_cast<char*>(kExe.c_str()), const_cast<char*>("--seconds"), const_cast<char*>("30"),
+                  nullptr};
   pid_t pid = 0;
   ASSERT_EQ(posix_spawn(&pid, kExe.c_str(), &fa, nullptr, argv, environ), 0);
   posix_spawn_file_actions_destroy(&fa);

@@ -180,8 +180,7 @@ TEST(ModbusFaults, ExceptionIsFinalAndNamed) {
   auto r = p->master->request({Function::ReadInputRegisters, 40, 1, {}, "read input 40"}).get();
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.error().code, ErrorCode::PeripheralException);
-  EXPECT_NE(r.error().message.find("read input 40: exception 02 (illegal data address)"),
-            std::string::npos)
+  EXPECT_NE(r.error().message.find("read input 40: exception 02 (illegal data address)"), std::string::npos)
       << r.error().message;
   EXPECT_EQ(p->master->counters().retries, 0u);  // the device has spoken: no retry
   EXPECT_TRUE(p->master->read("status").get().ok());
@@ -200,8 +199,8 @@ TEST(ModbusFaults, CallerNeverBlocksWhileTheLinkIsDown) {
       (v.ok() ? answered : (v.error().code == ErrorCode::PeripheralStopped ? refused : answered))++;
     });
   EXPECT_LT(Clock::now() - t0, 100ms);  // eight submissions, no wait on the wire (8 × 150 ms)
-  EXPECT_GE(refused.load(), 3);        // beyond the queue's capacity: refused at once
-  p->master->stop();                   // the queued ones fail with PeripheralStopped
+  EXPECT_GE(refused.load(), 3);         // beyond the queue's capacity: refused at once
+  p->master->stop();                    // the queued ones fail with PeripheralStopped
   EXPECT_EQ(answered.load() + refused.load(), 8);
   auto after = p->master->read("status").get();
   ASSERT_FALSE(after.ok());
@@ -352,16 +351,17 @@ TEST(ModbusFaults, SoakOfInjectedFaultsEveryLinkRecoversAndTheCountersAddUp) {
     EXPECT_EQ(c.refused, 0u);
   }
   const MasterCounters r = rtu->master->counters(), t = tcp.counters();
-  std::printf("modbus soak: %d faults (answer corrupted %d, request corrupted %d, cable pulled %d, "
-              "exception %d, device off/on %d) in %.1f s; 0 hangs; RTU master %llu requests, %llu ok, "
-              "%llu crc errors, %llu timeouts, %llu retries; TCP master %llu requests, %llu ok, "
-              "%llu exceptions, %llu link errors, %llu reconnects\n",
-              faults, kinds[0], kinds[1], kinds[2], kinds[3], kinds[4], seconds,
-              static_cast<unsigned long long>(r.requests), static_cast<unsigned long long>(r.ok),
-              static_cast<unsigned long long>(r.crc_errors), static_cast<unsigned long long>(r.timeouts),
-              static_cast<unsigned long long>(r.retries), static_cast<unsigned long long>(t.requests),
-              static_cast<unsigned long long>(t.ok), static_cast<unsigned long long>(t.exceptions),
-              static_cast<unsigned long long>(t.link_errors), static_cast<unsigned long long>(t.reconnects));
+  std::printf(
+      "modbus soak: %d faults (answer corrupted %d, request corrupted %d, cable pulled %d, "
+      "exception %d, device off/on %d) in %.1f s; 0 hangs; RTU master %llu requests, %llu ok, "
+      "%llu crc errors, %llu timeouts, %llu retries; TCP master %llu requests, %llu ok, "
+      "%llu exceptions, %llu link errors, %llu reconnects\n",
+      faults, kinds[0], kinds[1], kinds[2], kinds[3], kinds[4], seconds,
+      static_cast<unsigned long long>(r.requests), static_cast<unsigned long long>(r.ok),
+      static_cast<unsigned long long>(r.crc_errors), static_cast<unsigned long long>(r.timeouts),
+      static_cast<unsigned long long>(r.retries), static_cast<unsigned long long>(t.requests),
+      static_cast<unsigned long long>(t.ok), static_cast<unsigned long long>(t.exceptions),
+      static_cast<unsigned long long>(t.link_errors), static_cast<unsigned long long>(t.reconnects));
   EXPECT_EQ(rtu->link->corruptions(), static_cast<std::uint64_t>(kinds[0] + kinds[1]));
   EXPECT_GE(r.crc_errors, static_cast<std::uint64_t>(kinds[0]));
   EXPECT_EQ(t.exceptions, static_cast<std::uint64_t>(kinds[3]));

@@ -77,7 +77,7 @@ TEST_P(ModbusRoundTrip, Fc6WritesOneRegisterScaled) {
   EXPECT_DOUBLE_EQ(slave().get("laser_power_pct").value(), 37.25);
   auto raw16 = raw(Function::ReadHoldingRegisters, 16, 1);
   ASSERT_TRUE(raw16.ok());
-  EXPECT_EQ(raw16.value()[0], 3725);  // scale 100
+  EXPECT_EQ(raw16.value()[0], 3725);                               // scale 100
   ASSERT_TRUE(master().write("beam_offset_mm", -1.5).get().ok());  // i16, negative
   EXPECT_DOUBLE_EQ(master().read("beam_offset_mm").get().value(), -1.5);
 }
@@ -96,12 +96,12 @@ TEST_P(ModbusRoundTrip, Fc15WritesCoils) {
 // The hole parameter block of docs/design.md §6, written at once (Shao 2022: FC16).
 TEST_P(ModbusRoundTrip, Fc16WritesTheHoleParameterBlock) {
   const std::vector<std::pair<std::string, double>> block = {
-      {"hole_number", 17},        {"hole_x_mm", 512.25},       {"hole_y_mm", 100.5},
-      {"hole_z_mm", 20},          {"hole_a_deg", -45.5},       {"hole_c_deg", 359.999},
-      {"feed_mm_min", 1500},      {"layer_feed_mm", 0.05},     {"layer_count", 20},
-      {"total_depth_mm", 1},      {"laser_power_pct", 80},     {"scan_start_radius_mm", 0.2},
-      {"scan_end_radius_mm", 0.4}, {"scan_radius_turns", 10},  {"scan_speed_mm_s", 2500.5},
-      {"wedge_speed_rpm", 12000}, {"beam_offset_mm", 0.125},   {"process_id", 1}};
+      {"hole_number", 17},         {"hole_x_mm", 512.25},     {"hole_y_mm", 100.5},
+      {"hole_z_mm", 20},           {"hole_a_deg", -45.5},     {"hole_c_deg", 359.999},
+      {"feed_mm_min", 1500},       {"layer_feed_mm", 0.05},   {"layer_count", 20},
+      {"total_depth_mm", 1},       {"laser_power_pct", 80},   {"scan_start_radius_mm", 0.2},
+      {"scan_end_radius_mm", 0.4}, {"scan_radius_turns", 10}, {"scan_speed_mm_s", 2500.5},
+      {"wedge_speed_rpm", 12000},  {"beam_offset_mm", 0.125}, {"process_id", 1}};
   const Status s = master().write_block(block).get();
   ASSERT_TRUE(s.ok()) << s.error().to_string();
   std::vector<std::string> names;
@@ -130,8 +130,8 @@ TEST_P(ModbusRoundTrip, OutOfRangeBlockGetsException03AndChangesNothing) {
   ASSERT_TRUE(master().write_block({{"hole_number", 5}, {"hole_x_mm", 10}, {"hole_y_mm", 20}}).get().ok());
   // hole_y_mm = 451 mm (raw 451000) is beyond 450: the raw request bypasses
   // the master's own range check so that the slave's is tested.
-  auto r = raw(Function::WriteMultipleRegisters, 0, 5,
-               {6, 0x0000, 0x4E20 /*20 mm*/, 0x0006, 0xE1B8 /*451 mm*/});
+  auto r =
+      raw(Function::WriteMultipleRegisters, 0, 5, {6, 0x0000, 0x4E20 /*20 mm*/, 0x0006, 0xE1B8 /*451 mm*/});
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.error().message.find("exception 03 (illegal data value)"), std::string::npos)
       << r.error().message;
@@ -154,15 +154,15 @@ TEST_P(ModbusRoundTrip, MasterRefusesOutOfRangeBeforeTheWire) {
   const Status b = master().write_block({{"hole_number", 1}, {"hole_x_mm", 2000}}).get();
   ASSERT_FALSE(b.ok());
   EXPECT_NE(b.error().message.find("nothing sent"), std::string::npos);
-  EXPECT_FALSE(master().write("state", 1).get().ok());        // input register: read-only
+  EXPECT_FALSE(master().write("state", 1).get().ok());  // input register: read-only
   EXPECT_FALSE(master().read("no_such_register").get().ok());
   EXPECT_EQ(slave().counters().requests, before);
 }
 
 TEST_P(ModbusRoundTrip, HalfOfA32BitRegisterOrAGapIsRefused) {
   ASSERT_TRUE(slave().set("hole_x_mm", 1).ok());
-  EXPECT_FALSE(raw(Function::WriteSingleRegister, 1, 1, {0}).ok());           // high word of hole_x_mm
-  EXPECT_FALSE(raw(Function::WriteMultipleRegisters, 2, 2, {0, 0}).ok());     // low word + next high
+  EXPECT_FALSE(raw(Function::WriteSingleRegister, 1, 1, {0}).ok());        // high word of hole_x_mm
+  EXPECT_FALSE(raw(Function::WriteMultipleRegisters, 2, 2, {0, 0}).ok());  // low word + next high
   EXPECT_EQ(slave().get("hole_x_mm").value(), 1.0);
 }
 
@@ -183,8 +183,8 @@ TEST_P(ModbusRoundTrip, OwnersWriteHookCanVeto) {
   EXPECT_TRUE(master().write("cmd_hold", 1).get().ok());
 }
 
-INSTANTIATE_TEST_SUITE_P(Transports, ModbusRoundTrip,
-                         ::testing::Values(Transport::Rtu, Transport::Tcp), transport_name);
+INSTANTIATE_TEST_SUITE_P(Transports, ModbusRoundTrip, ::testing::Values(Transport::Rtu, Transport::Tcp),
+                         transport_name);
 
 // Function codes outside 1–6, 15, 16 (here 22 and 23, sent with plain
 // libmodbus) get exception 01 and change nothing.

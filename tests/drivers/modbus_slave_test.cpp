@@ -153,8 +153,17 @@ TEST(ModbusSlaveService, ATricklingClientDoesNotStopAnotherClientsPolls) {
   int answered = 0;
   for (int i = 0; i < kPolls; ++i) {
     const auto tid = static_cast<std::uint16_t>(1000 + i);
-    const Bytes want = {static_cast<std::uint8_t>(tid >> 8), static_cast<std::uint8_t>(tid), 0, 0, 0, 5,
-                        kCncUnit, 3, 2, 0, 120};
+    const Bytes want = {static_cast<std::uint8_t>(tid >> 8),
+                        static_cast<std::uint8_t>(tid),
+                        0,
+                        0,
+                        0,
+                        5,
+                        kCncUnit,
+                        3,
+                        2,
+                        0,
+                        120};
     ASSERT_TRUE(poller.send(mbap(tid, kCncUnit, kReadOverride)));
     if (poller.answer(tid, 5s) == want) ++answered;
   }
@@ -207,7 +216,7 @@ TEST(ModbusSlaveService, AnIdleConnectionIsClosedAfterTheIdleTimeout) {
   }
   EXPECT_TRUE(quiet.closed_within(0ms));
   EXPECT_GE(Clock::now() - start, sc.idle_timeout);  // not before its time
-  EXPECT_GE(tid, 10);  // the busy one polled through it, and is still served
+  EXPECT_GE(tid, 10);                                // the busy one polled through it, and is still served
   ASSERT_TRUE(busy.send(mbap(++tid, kCncUnit, kReadOverride)));
   EXPECT_FALSE(busy.answer(tid, 5000ms).empty());
   EXPECT_EQ(s.slave->counters().idle_closed, 1u);

@@ -23,8 +23,7 @@ TEST(ProbeProtocol, ChecksumIsTheXorOfTheBodyAsInNmea) {
 }
 
 TEST(ProbeProtocol, EveryMessageRoundTrips) {
-  const std::vector<Message> all = {MeasureRequest{65535}, PingRequest{},
-                                    PointReply{3, -1.5, 0, 499.9999},
+  const std::vector<Message> all = {MeasureRequest{65535}, PingRequest{}, PointReply{3, -1.5, 0, 499.9999},
                                     ErrorReply{4, ProbeError::NoSurface, "no surface in range"},
                                     PongReply{"M", "2.1"}};
   for (const Message& m : all) {
@@ -118,8 +117,7 @@ TEST_F(ProbeOverPty, NoSurfaceInReachIsADeviceError) {
   auto p = client_->measure();
   ASSERT_FALSE(p.ok());
   EXPECT_EQ(p.error().code, ErrorCode::PeripheralException);
-  EXPECT_NE(p.error().message.find("no surface in range (code 1"), std::string::npos)
-      << p.error().message;
+  EXPECT_NE(p.error().message.find("no surface in range (code 1"), std::string::npos) << p.error().message;
   EXPECT_EQ(client_->counters().device_errors, 1u);
 }
 

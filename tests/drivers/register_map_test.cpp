@@ -17,8 +17,8 @@ namespace {
 TEST(RegisterMap, ShippedMapLoadsWithEveryDevice) {
   auto m = load_register_map(default_register_map_path());
   ASSERT_TRUE(m.ok()) << m.error().to_string();
-  for (const char* d : {"cnc", "laser_source", "power_meter", "scan_head", "displacement_sensor",
-                        "probe_3d"}) {
+  for (const char* d :
+       {"cnc", "laser_source", "power_meter", "scan_head", "displacement_sensor", "probe_3d"}) {
     const DeviceMap* dev = m->device(d);
     ASSERT_NE(dev, nullptr) << d;
     EXPECT_FALSE(dev->registers.empty()) << d;
@@ -62,8 +62,7 @@ TEST(RegisterBank, StartsInRangeAndRefusesOutOfRange) {
   EXPECT_EQ(b.get("scan_radius_turns").value(), 1.0);
   const Status s = b.set("hole_a_deg", -95.5);
   ASSERT_FALSE(s.ok());
-  EXPECT_NE(s.error().message.find("cnc.hole_a_deg = -95.5 deg is outside -95 … 95 deg"),
-            std::string::npos)
+  EXPECT_NE(s.error().message.find("cnc.hole_a_deg = -95.5 deg is outside -95 … 95 deg"), std::string::npos)
       << s.error().message;
   EXPECT_FALSE(b.get("nope").ok());
 }
@@ -77,8 +76,7 @@ struct BadMap {
 };
 
 std::string map_text(const char* registers) {
-  return std::string("version = 1\n[devices.dev]\nunit_id = 7\nregisters = [\n") + registers +
-         "\n]\n";
+  return std::string("version = 1\n[devices.dev]\nunit_id = 7\nregisters = [\n") + registers + "\n]\n";
 }
 
 class RegisterMapErrors : public ::testing::TestWithParam<BadMap> {};
@@ -98,36 +96,45 @@ INSTANTIATE_TEST_SUITE_P(
     Cases, RegisterMapErrors,
     ::testing::Values(
         BadMap{"overlap",
-               "{ name = \"a\", table = \"holding\", address = 0, type = \"u32\", unit = \"\", scale = 1, min = 0, max = 1, access = \"rw\" },\n"
-               "{ name = \"b\", table = \"holding\", address = 1, type = \"u16\", unit = \"\", scale = 1, min = 0, max = 1, access = \"rw\" },",
+               "{ name = \"a\", table = \"holding\", address = 0, type = \"u32\", unit = \"\", scale = 1, "
+               "min = 0, max = 1, access = \"rw\" },\n"
+               "{ name = \"b\", table = \"holding\", address = 1, type = \"u16\", unit = \"\", scale = 1, "
+               "min = 0, max = 1, access = \"rw\" },",
                "devices.dev.b: holding 1 overlaps a (line 5)", 6},
         BadMap{"duplicate name",
                "{ name = \"a\", table = \"coil\", address = 0, type = \"bool\", access = \"rw\" },\n"
                "{ name = \"a\", table = \"coil\", address = 1, type = \"bool\", access = \"rw\" },",
                "devices.dev.a: name already used on line 5", 6},
         BadMap{"range does not fit the type",
-               "{ name = \"p\", table = \"holding\", address = 0, type = \"u16\", unit = \"%\", scale = 1000, min = 0, max = 100, access = \"rw\" },",
+               "{ name = \"p\", table = \"holding\", address = 0, type = \"u16\", unit = \"%\", scale = "
+               "1000, min = 0, max = 100, access = \"rw\" },",
                "dev.p: range 0 … 100 at scale 1000 needs raw 0 … 100000, which a u16 cannot hold", 5},
         BadMap{"bool in a word table",
                "{ name = \"p\", table = \"input\", address = 0, type = \"bool\", access = \"r\" },",
                "dev.p: type bool in table input", 5},
         BadMap{"writable input",
-               "{ name = \"p\", table = \"input\", address = 0, type = \"u16\", unit = \"\", scale = 1, min = 0, max = 1, access = \"rw\" },",
+               "{ name = \"p\", table = \"input\", address = 0, type = \"u16\", unit = \"\", scale = 1, min "
+               "= 0, max = 1, access = \"rw\" },",
                "access = 'rw' in table input", 5},
         BadMap{"unknown key",
-               "{ name = \"p\", table = \"coil\", address = 0, type = \"bool\", access = \"rw\", units = \"x\" },",
+               "{ name = \"p\", table = \"coil\", address = 0, type = \"bool\", access = \"rw\", units = "
+               "\"x\" },",
                "dev.registers[0]: unknown key 'units'", 5},
         BadMap{"unknown table",
-               "{ name = \"p\", table = \"holdings\", address = 0, type = \"u16\", unit = \"\", scale = 1, min = 0, max = 1, access = \"rw\" },",
+               "{ name = \"p\", table = \"holdings\", address = 0, type = \"u16\", unit = \"\", scale = 1, "
+               "min = 0, max = 1, access = \"rw\" },",
                "dev.p: table = 'holdings'; expected one of: coil, discrete, holding, input", 5},
         BadMap{"min above max",
-               "{ name = \"p\", table = \"holding\", address = 0, type = \"i16\", unit = \"mm\", scale = 1, min = 5, max = 1, access = \"rw\" },",
+               "{ name = \"p\", table = \"holding\", address = 0, type = \"i16\", unit = \"mm\", scale = 1, "
+               "min = 5, max = 1, access = \"rw\" },",
                "dev.p: min = 5 > max = 1", 5},
         BadMap{"missing scale",
-               "{ name = \"p\", table = \"holding\", address = 0, type = \"i16\", unit = \"mm\", min = 0, max = 1, access = \"rw\" },",
+               "{ name = \"p\", table = \"holding\", address = 0, type = \"i16\", unit = \"mm\", min = 0, "
+               "max = 1, access = \"rw\" },",
                "dev.p: missing key 'scale'", 5},
         BadMap{"address beyond 65535 for a u32",
-               "{ name = \"p\", table = \"holding\", address = 65535, type = \"u32\", unit = \"\", scale = 1, min = 0, max = 1, access = \"rw\" },",
+               "{ name = \"p\", table = \"holding\", address = 65535, type = \"u32\", unit = \"\", scale = "
+               "1, min = 0, max = 1, access = \"rw\" },",
                "dev.p: address = 65535; expected an integer 0 … 65534", 5},
         BadMap{"bad name",
                "{ name = \"Power W\", table = \"coil\", address = 0, type = \"bool\", access = \"rw\" },",
@@ -145,8 +152,10 @@ TEST(RegisterMap, SyntaxErrorHasLineAndColumn) {
 TEST(RegisterMap, DuplicateUnitIdAndMissingFileAreErrors) {
   auto m = parse_register_map(
       "version = 1\n"
-      "[devices.a]\nunit_id = 3\nregisters = [{ name = \"x\", table = \"coil\", address = 0, type = \"bool\", access = \"rw\" }]\n"
-      "[devices.b]\nunit_id = 3\nregisters = [{ name = \"x\", table = \"coil\", address = 0, type = \"bool\", access = \"rw\" }]\n",
+      "[devices.a]\nunit_id = 3\nregisters = [{ name = \"x\", table = \"coil\", address = 0, type = "
+      "\"bool\", access = \"rw\" }]\n"
+      "[devices.b]\nunit_id = 3\nregisters = [{ name = \"x\", table = \"coil\", address = 0, type = "
+      "\"bool\", access = \"rw\" }]\n",
       "dup.toml");
   ASSERT_FALSE(m.ok());
   EXPECT_NE(m.error().message.find("unit_id 3 already used by a"), std::string::npos)
@@ -170,8 +179,7 @@ TEST(RegisterMap, UnknownDeviceAndRegisterListWhatExists) {
   ASSERT_TRUE(laser.ok());
   auto r = laser->lookup("power");
   ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.error().message.find("no register 'power'; it has: enable, alarm_reset"),
-            std::string::npos)
+  EXPECT_NE(r.error().message.find("no register 'power'; it has: enable, alarm_reset"), std::string::npos)
       << r.error().message;
 }
 

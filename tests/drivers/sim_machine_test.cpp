@@ -117,8 +117,8 @@ TEST(SimMachine, HomeSwitchIsACamFromItsTripPointOnItsSide) {
     std::int64_t pos;
     bool active;
   };
-  const Probe probes[] = {{0, 101, false}, {0, 100, true}, {0, 99, true}, {0, -1'000'000, true},
-                          {0, 101, false}, {1, -51, false}, {1, -50, true}, {1, -49, true},
+  const Probe probes[] = {{0, 101, false},      {0, 100, true},  {0, 99, true},  {0, -1'000'000, true},
+                          {0, 101, false},      {1, -51, false}, {1, -50, true}, {1, -49, true},
                           {1, 1'000'000, true}, {1, -51, false}};
   for (const Probe& p : probes) {
     move_to(sim, p.axis, p.pos);
@@ -138,9 +138,9 @@ TEST(SimMachine, HardLimitsAreActiveAtOrBeyond) {
     std::int64_t pos;
     bool min, max;
   };
-  const Probe probes[] = {{0, false, false},       {-1999, false, false}, {-2000, true, false},
-                          {-2001, true, false},    {501'999, false, false}, {502'000, false, true},
-                          {600'000, false, true},  {250'000, false, false}};
+  const Probe probes[] = {{0, false, false},      {-1999, false, false},   {-2000, true, false},
+                          {-2001, true, false},   {501'999, false, false}, {502'000, false, true},
+                          {600'000, false, true}, {250'000, false, false}};
   for (const Probe& p : probes) {
     move_to(sim, 2, p.pos);
     const MachineInputs in = sim.read_inputs();

@@ -48,8 +48,7 @@ TEST(SlaveRequest, ABlockWithOneValueOutOfRangeIsRefusedWhole) {
   Loop l;
   const double number = l.get("hole_number"), x_mm = l.get("hole_x_mm");
   // hole_number 3 (ok), hole_x_mm 2000.000 mm (max 1000): exception 03
-  const auto x = l.tcp_loop->deliver(
-      l.handler, tcp(1, {16, 0, 0, 0, 3, 6, 0, 3, 0x00, 0x1E, 0x84, 0x80}));
+  const auto x = l.tcp_loop->deliver(l.handler, tcp(1, {16, 0, 0, 0, 3, 6, 0, 3, 0x00, 0x1E, 0x84, 0x80}));
   EXPECT_EQ(x.received.exception, ModbusException::IllegalDataValue);
   EXPECT_TRUE(x.received.write);
   EXPECT_EQ(x.reply, (Bytes{0, 1, 0, 0, 0, 3, 1, 0x90, 3}));

@@ -130,9 +130,12 @@ TEST(ScanHeadSim, RunsThePatternAndRefusesChangesWhileRunning) {
 
   // Process fields 12–18 as one block (FC16): a helix from 0.1 to 0.4 mm
   // over 50 turns at 30000 rpm = 500 turns/s, 0.1 s.
-  const Status s = m->write_block({{"start_radius_mm", 0.1}, {"end_radius_mm", 0.4},
-                                   {"radius_turns", 50}, {"scan_speed_mm_s", 1200},
-                                   {"wedge_speed_rpm", 30000}, {"beam_offset_mm", 0.05},
+  const Status s = m->write_block({{"start_radius_mm", 0.1},
+                                   {"end_radius_mm", 0.4},
+                                   {"radius_turns", 50},
+                                   {"scan_speed_mm_s", 1200},
+                                   {"wedge_speed_rpm", 30000},
+                                   {"beam_offset_mm", 0.05},
                                    {"process_id", 0}})
                        .get();
   ASSERT_TRUE(s.ok()) << s.error().to_string();
@@ -146,7 +149,7 @@ TEST(ScanHeadSim, RunsThePatternAndRefusesChangesWhileRunning) {
   EXPECT_EQ(read(*m, "turns_done"), 50.0);
   EXPECT_DOUBLE_EQ(read(*m, "current_radius_mm"), 0.4);
   EXPECT_EQ(read(*m, "run"), 0.0);
-  EXPECT_EQ(read(*m, "end_radius_mm"), 0.4);  // the refused write changed nothing
+  EXPECT_EQ(read(*m, "end_radius_mm"), 0.4);               // the refused write changed nothing
   EXPECT_TRUE(m->write("end_radius_mm", 0.2).get().ok());  // idle again: accepted
 }
 

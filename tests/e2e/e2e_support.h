@@ -3,8 +3,8 @@
 // of the test's own.
 #pragma once
 
-#include <algorithm>
 #include <gtest/gtest.h>
+#include <algorithm>
 
 #include <fcntl.h>
 #include <signal.h>
@@ -43,9 +43,8 @@ inline std::string slurp(const fs::path& p) {
 }
 
 inline fs::path temp_dir() {
-  fs::path d = fs::temp_directory_path() /
-               ("lasercnc_e2e_" + std::to_string(::getpid()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  fs::path d = fs::temp_directory_path() / ("lasercnc_e2e_" + std::to_string(::getpid()) + "_" +
+                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
   fs::create_directories(d);
   return d;
 }
@@ -101,7 +100,8 @@ inline std::vector<std::string> leaked_segments() {
 class NoLeakedSegments : public ::testing::Environment {
  public:
   void TearDown() override {
-    for (const std::string& n : leaked_segments()) ADD_FAILURE() << "shared memory left behind: /dev/shm/" << n;
+    for (const std::string& n : leaked_segments())
+      ADD_FAILURE() << "shared memory left behind: /dev/shm/" << n;
   }
 };
 
@@ -218,8 +218,8 @@ inline std::vector<TraceRow> read_trace(const fs::path& file) {
   EXPECT_EQ(line, "t,x,y,z,a,b,c,power");
   while (std::getline(in, line)) {
     TraceRow r;
-    if (std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &r.t, &r.x, &r.y, &r.z, &r.a,
-                    &r.b, &r.c, &r.power) != 8) {
+    if (std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &r.t, &r.x, &r.y, &r.z, &r.a, &r.b, &r.c,
+                    &r.power) != 8) {
       ADD_FAILURE() << "bad trace row: " << line;
       break;
     }

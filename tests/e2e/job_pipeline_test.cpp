@@ -21,8 +21,8 @@
 
 #include "app/planner_feed.h"
 #include "app/run_job.h"
-#include "plan/motion_check.h"
 #include "drivers/sim_machine.h"
+#include "plan/motion_check.h"
 #include "rt/rt_kernel.h"
 #include "rt/rt_log.h"
 
@@ -66,8 +66,8 @@ std::string random_program(std::uint32_t seed, int moves = 25) {
       // an arc: the centre on the chord's bisector, so both radii are equal
       const double t = bow(rng);
       const double ccx = (x + nx) / 2 - t * (ny - y), ccy = (y + ny) / 2 + t * (nx - x);
-      std::snprintf(buf, sizeof buf, "G%d X%.4f Y%.4f I%.4f J%.4f F%.0f\n", rng() % 2 ? 2 : 3, nx,
-                    ny, ccx - x, ccy - y, feed(rng));
+      std::snprintf(buf, sizeof buf, "G%d X%.4f Y%.4f I%.4f J%.4f F%.0f\n", rng() % 2 ? 2 : 3, nx, ny,
+                    ccx - x, ccy - y, feed(rng));
     }
     p += buf;
     x = nx;
@@ -160,8 +160,8 @@ TEST(JobPipeline, RandomProgramsUnderRandomOverrideChangesLoseNoStep) {
 // machine stops gradually exactly where the last good line ends, never dead
 // and never past it, and the error names the line and the axis.
 TEST(JobPipeline, AProgramFailingMidWayStopsAtRestAtItsLastGoodLine) {
-  const fs::path prog = write("past_limit.ngc",
-                              "G21 G90\nG0 X900 Y100\nM3 S50\nG1 X990 F30000\nG1 X1200\nM2\n");
+  const fs::path prog =
+      write("past_limit.ngc", "G21 G90\nG0 X900 Y100\nM3 S50\nG1 X990 F30000\nG1 X1200\nM2\n");
   const Result<ProgramSummary> checked = check_program(prog.string(), machine());
   ASSERT_FALSE(static_cast<bool>(checked));  // what lasercnc run says before running
   EXPECT_EQ(checked.error().code, ErrorCode::GcodeBeyondTravel);
@@ -378,7 +378,8 @@ TEST(JobPipeline, OverrideRaisedTo150AndLoweredTo40MidJobKeepsEveryLimitAndStep)
   };
   auto range = [&](std::uint64_t from, std::uint64_t to) {
     double lo = 1e300, hi = 0.0;
-    for (std::size_t k = std::max<std::uint64_t>(from, 40); k < std::min<std::uint64_t>(to, recs.size()); ++k) {
+    for (std::size_t k = std::max<std::uint64_t>(from, 40); k < std::min<std::uint64_t>(to, recs.size());
+         ++k) {
       lo = std::min(lo, speed(k));
       hi = std::max(hi, speed(k));
     }
@@ -462,11 +463,12 @@ TEST(JobPipeline, SoakOfRandomJobsUnderOverrideHoldsAndResumesLosesNoStep) {
     ++jobs;
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("rt soak: %llu periods (%llu held) in %llu random jobs, %.0f s of machine time in %.0f s; "
-              "%llu override changes, %llu holds; every step exact, 0 underruns, 0 faults\n",
-              static_cast<unsigned long long>(periods), static_cast<unsigned long long>(held),
-              static_cast<unsigned long long>(jobs), machine_s, wall,
-              static_cast<unsigned long long>(changes), static_cast<unsigned long long>(holds));
+  std::printf(
+      "rt soak: %llu periods (%llu held) in %llu random jobs, %.0f s of machine time in %.0f s; "
+      "%llu override changes, %llu holds; every step exact, 0 underruns, 0 faults\n",
+      static_cast<unsigned long long>(periods), static_cast<unsigned long long>(held),
+      static_cast<unsigned long long>(jobs), machine_s, wall, static_cast<unsigned long long>(changes),
+      static_cast<unsigned long long>(holds));
   EXPECT_GT(holds, 0u);
   EXPECT_GT(held, 0u);
 }

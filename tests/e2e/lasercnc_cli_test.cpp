@@ -33,8 +33,7 @@ double expect_within_velocity_limits(const std::vector<TraceRow>& rows) {
   double peak_x = 0.0;
   for (std::size_t k = w; k < rows.size(); ++k) {
     const double dt = rows[k].t - rows[k - w].t;
-    const double d[3] = {rows[k].x - rows[k - w].x, rows[k].y - rows[k - w].y,
-                         rows[k].z - rows[k - w].z};
+    const double d[3] = {rows[k].x - rows[k - w].x, rows[k].y - rows[k - w].y, rows[k].z - rows[k - w].z};
     for (int a = 0; a < 3; ++a) {
       const double v = std::abs(d[a]) / dt;
       if (a == 0) peak_x = std::max(peak_x, v);
@@ -61,15 +60,14 @@ TEST(LasercncRun, AProgramWhoseNameIsNotUtf8StillGetsItsJsonReport) {
   const CmdResult r = lasercnc("run '" + prog.string() + "' --json --no-progress --fast");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  EXPECT_NE(j["program"].get<std::string>().find("part_\xEF\xBF\xBD.ngc"), std::string::npos)
-      << j["program"];
+  EXPECT_NE(j["program"].get<std::string>().find("part_\xEF\xBF\xBD.ngc"), std::string::npos) << j["program"];
   EXPECT_TRUE(j["steps_match"].get<bool>());
 }
 
 TEST(LasercncRun, SampleJobRunsWithExactStepsAndAnHonestReport) {
   const fs::path trace = temp_dir() / "trace.csv";
-  const CmdResult r = lasercnc("run " + kShare + "/examples/bracket.ngc --json --no-progress --fast --trace " +
-                               trace.string());
+  const CmdResult r = lasercnc("run " + kShare +
+                               "/examples/bracket.ngc --json --no-progress --fast --trace " + trace.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_TRUE(j["steps_match"].get<bool>());
@@ -152,8 +150,7 @@ TEST(LasercncRun, FeedOverrideScalesTheCycleTimeAndKeepsEveryStep) {
     EXPECT_EQ(j["bad_frames"].get<long long>(), 0) << pct;
     for (const auto& [name, ax] : j["axes"].items()) {
       EXPECT_EQ(ax["steps_sent"].get<long long>(), ax["steps_commanded"].get<long long>()) << name;
-      EXPECT_EQ(ax["steps_sent"].get<long long>(),
-                runs[100]["axes"][name]["steps_sent"].get<long long>());
+      EXPECT_EQ(ax["steps_sent"].get<long long>(), runs[100]["axes"][name]["steps_sent"].get<long long>());
     }
     // every period lasted T/K, K = min(1, override); the last row ends the cycle
     const double nominal = j["periods"].get<double>() * T / std::min(1.0, pct / 100.0);
@@ -253,8 +250,7 @@ TEST(LasercncRun, ArcsWhoseRadiiDifferRunAsSpiralsWithinTheLimits) {
   // step: a jump onto an arc's end would
   for (std::size_t k = 1; k < rows.size(); ++k) {
     const double dt = rows[k].t - rows[k - 1].t;
-    ASSERT_LE(std::hypot(rows[k].x - rows[k - 1].x, rows[k].y - rows[k - 1].y),
-              500.0 * dt + 0.0015)
+    ASSERT_LE(std::hypot(rows[k].x - rows[k - 1].x, rows[k].y - rows[k - 1].y), 500.0 * dt + 0.0015)
         << "row " << k;
   }
 }
@@ -263,8 +259,9 @@ TEST(LasercncRun, ArcsWhoseRadiiDifferRunAsSpiralsWithinTheLimits) {
 // input 3 high times out without `--input 3` (a fault, exit 3) and goes on
 // at once with it; `--adaptive-feed 0.5` halves the feed after M52 P1.
 TEST(LasercncRun, TheSimulatedInputsAreSetFromTheCommandLine) {
-  const fs::path prog = write_file("inputs.ngc", "G21 G90\nG0 X10 Y10 Z20\nM66 P3 L3 Q0.3\nM52 P1\n"
-                                                 "G1 X60 F3000\nM2\n");
+  const fs::path prog = write_file("inputs.ngc",
+                                   "G21 G90\nG0 X10 Y10 Z20\nM66 P3 L3 Q0.3\nM52 P1\n"
+                                   "G1 X60 F3000\nM2\n");
   const CmdResult none = lasercnc("run " + prog.string() + " --no-progress --fast");
   EXPECT_EQ(none.exit_code, 3);
   EXPECT_NE(none.out.find("M66 wait for an input timed out at line 3"), std::string::npos) << none.out;
@@ -287,15 +284,16 @@ TEST(LasercncRun, TextReportNamesEveryFigure) {
   const fs::path prog = write_file("square.ngc", "G21 G90 G61\nG0 X10 Y10 Z5\nG1 X20 F1200\nG1 Y20\nM2\n");
   const CmdResult r = lasercnc("run " + prog.string() + " --no-progress");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* key : {"feed override", "cycle time", "path length", "max deviation",
-                          "peak velocity", "steps sent", "underruns", "RT latency", "p50", "p99"})
+  for (const char* key : {"feed override", "cycle time", "path length", "max deviation", "peak velocity",
+                          "steps sent", "underruns", "RT latency", "p50", "p99"})
     EXPECT_NE(r.out.find(key), std::string::npos) << key << "\n" << r.out;
   EXPECT_NE(r.out.find("sent = commanded on every axis"), std::string::npos) << r.out;
 }
 
 TEST(LasercncRun, LimitsFromTheCommandLineOverrideTheConfig) {
   const fs::path prog = write_file("line.ngc", "G0 X100 Y10 Z5\nM2\n");
-  const CmdResult r = lasercnc("run " + prog.string() + " --json --no-progress --fast --vmax 100 --amax 1000");
+  const CmdResult r =
+      lasercnc("run " + prog.string() + " --json --no-progress --fast --vmax 100 --amax 1000");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   // planned at the limits given: 100 mm at 100 mm/s with a = 1000: 1 s + 0.1 s
@@ -366,9 +364,11 @@ TEST(LasercncRun, AJobThatSetsAWorkOffsetAfterItsMovesPassesItsOwnCheck) {
   cfg.replace(cfg.find("[machine]\n"), 10, "[machine]\nparameter_file = \"moved.var\"\n");
   const fs::path m = write_file("moved.toml", cfg);
   const fs::path var = temp_dir() / "moved.var";
-  const fs::path prog = write_file("moves_then_g10.ngc", "G21 G90\nG1 X2 Y1 F1200\nG1 X0 Y0\nG10 L2 P1 X1\nM30\n");
+  const fs::path prog =
+      write_file("moves_then_g10.ngc", "G21 G90\nG1 X2 Y1 F1200\nG1 X0 Y0\nG10 L2 P1 X1\nM30\n");
   for (int run = 0; run < 2; ++run) {  // with no parameter file yet, then with the one it wrote
-    const CmdResult r = lasercnc("run " + prog.string() + " --json --no-progress --fast --machine " + m.string());
+    const CmdResult r =
+        lasercnc("run " + prog.string() + " --json --no-progress --fast --machine " + m.string());
     ASSERT_EQ(r.exit_code, 0) << "run " << run << "\n" << r.out << r.err;
     const auto j = nlohmann::json::parse(r.out);
     EXPECT_TRUE(j["check"]["passed"].get<bool>()) << j["check"].dump();
@@ -438,7 +438,8 @@ TEST(LasercncRun, BadMachineConfigIsRejectedWithTheKey) {
 // wall time, so the two are not combined: a usage error naming why.
 TEST(LasercncCli, FastIsRefusedWithDevicesThatKeepWallTime) {
   const fs::path prog = write_file("p.ngc", "G0 X1\nM2\n");
-  for (const std::string devices : {"--devices", "--laser tcp:127.0.0.1:1", "--power-meter tcp:127.0.0.1:1"}) {
+  for (const std::string devices :
+       {"--devices", "--laser tcp:127.0.0.1:1", "--power-meter tcp:127.0.0.1:1"}) {
     const CmdResult r = lasercnc("run " + prog.string() + " --fast " + devices);
     EXPECT_EQ(r.exit_code, 2) << devices;
     EXPECT_NE(r.err.find("keep wall time"), std::string::npos) << r.err;
@@ -473,7 +474,9 @@ TEST(LasercncCli, FeedOverrideOutsideItsRangeIsAUsageError) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("1 <= PCT <= 120"), std::string::npos) << r.err;
   EXPECT_EQ(lasercnc("run " + prog.string() + " --no-progress --fast --machine " + m.string() +
-                     " --feed-override 120").exit_code, 0);
+                     " --feed-override 120")
+                .exit_code,
+            0);
 }
 
 TEST(LasercncCli, UsageErrorsExitWithTwo) {

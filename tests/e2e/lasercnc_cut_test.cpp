@@ -113,9 +113,8 @@ TEST(LasercncCut, SamplePlateHolesFirstKerfOffsetLeadInsAndItRuns) {
   const fs::path ngc = dir / "plate.ngc", svg = dir / "plate.svg";
   const double kerf = 0.2;
   const Vec2 origin(10, 10);
-  const e2e::CmdResult r =
-      lasercnc("cut " + kSample + " -o " + ngc.string() + " --svg " + svg.string() +
-               " --kerf 0.2 --feed 24000 --pierce 0.05 --power 70 --origin 10,10");
+  const e2e::CmdResult r = lasercnc("cut " + kSample + " -o " + ngc.string() + " --svg " + svg.string() +
+                                    " --kerf 0.2 --feed 24000 --pierce 0.05 --power 70 --origin 10,10");
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
   EXPECT_NE(r.out.find("7 contours: 1 outlines, 6 holes"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("estimated time"), std::string::npos) << r.out;
@@ -156,8 +155,10 @@ TEST(LasercncCut, SamplePlateHolesFirstKerfOffsetLeadInsAndItRuns) {
     EXPECT_EQ(lcnc::cut::inside(s.pierce, poly), s.hole) << "contour " << s.contour;
     EXPECT_GT(dist(s.pierce), kerf / 2 + 0.5) << "contour " << s.contour;
   }
-  std::printf("[ measured ] %.0f cut points and chord midpoints: max |distance - kerf/2| = %.6f mm "
-              "(tolerance %.4f)\n", points, worst, tol);
+  std::printf(
+      "[ measured ] %.0f cut points and chord midpoints: max |distance - kerf/2| = %.6f mm "
+      "(tolerance %.4f)\n",
+      points, worst, tol);
 
   // the machine runs it
   const e2e::CmdResult run = lasercnc("run " + ngc.string() + " --no-progress --fast");
@@ -174,7 +175,8 @@ void write_file(const fs::path& p, const char* text) {
 fs::path tiny_square_without_units(const fs::path& dir) {
   // 0.5 × 0.5 drawing units, no $INSUNITS: half an inch is a plausible part
   const fs::path p = dir / "tiny.dxf";
-  write_file(p, "0\nSECTION\n2\nENTITIES\n0\nLWPOLYLINE\n8\nCUT\n90\n4\n70\n1\n"
+  write_file(p,
+             "0\nSECTION\n2\nENTITIES\n0\nLWPOLYLINE\n8\nCUT\n90\n4\n70\n1\n"
              "10\n0\n20\n0\n10\n0.5\n20\n0\n10\n0.5\n20\n0.5\n10\n0\n20\n0.5\n0\nENDSEC\n0\nEOF\n");
   return p;
 }
@@ -209,8 +211,8 @@ TEST(LasercncCut, ProcessTableSetsTheLayersFeedPowerAndKerf) {
 
 // A drawing in mm with the given entities.
 std::string dxf_mm(const std::string& entities) {
-  return "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n" +
-         entities + "0\nENDSEC\n0\nEOF\n";
+  return "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n" + entities +
+         "0\nENDSEC\n0\nEOF\n";
 }
 
 // A closed LWPOLYLINE; `bulges` (if given) per vertex.
@@ -259,12 +261,12 @@ TEST(LasercncCut, CrossingTouchingAndAbsurdDrawingsAreRefusedZeroSizeOnesNamed) 
   EXPECT_FALSE(fs::exists(ngc));
   // a line of zero length and a polyline folded onto one point: said, then
   // the square is cut
-  r = cut("dots.dxf", dxf_mm(lwpoly({{0, 0}, {20, 0}, {20, 20}, {0, 20}}) +
-                             "0\nLINE\n8\nCUT\n10\n40\n20\n5\n11\n40\n21\n5\n" +
-                             lwpoly({{50, 5}, {50, 5}, {50, 5}})));
+  r = cut("dots.dxf",
+          dxf_mm(lwpoly({{0, 0}, {20, 0}, {20, 20}, {0, 20}}) +
+                 "0\nLINE\n8\nCUT\n10\n40\n20\n5\n11\n40\n21\n5\n" + lwpoly({{50, 5}, {50, 5}, {50, 5}})));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("warning: 2 entities of zero length, not cut: LINE at DXF line"),
-            std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("warning: 2 entities of zero length, not cut: LINE at DXF line"), std::string::npos)
+      << r.out;
   EXPECT_NE(r.out.find("LWPOLYLINE at DXF line"), std::string::npos) << r.out;
   EXPECT_TRUE(fs::exists(ngc));
 }
@@ -291,8 +293,8 @@ TEST(LasercncCut, BadInputNamesWhereAndBadCommandLinesExit2) {
   EXPECT_FALSE(fs::exists(ngc));
   r = lasercnc("cut --help");
   EXPECT_EQ(r.exit_code, 0);
-  for (const char* opt : {"-o ", "--svg", "--process", "--feed", "--power", "--pierce", "--kerf",
-                          "--lead-in", "--lead-out", "--direction", "--units", "--origin"}) {
+  for (const char* opt : {"-o ", "--svg", "--process", "--feed", "--power", "--pierce", "--kerf", "--lead-in",
+                          "--lead-out", "--direction", "--units", "--origin"}) {
     EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
   }
   EXPECT_NE(lasercnc("--help").out.find("lasercnc cut PART.dxf"), std::string::npos);

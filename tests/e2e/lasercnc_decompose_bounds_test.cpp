@@ -24,8 +24,7 @@ constexpr const char* kMemoryBound = "ulimit -v 524288 && ";
 #endif
 
 e2e::CmdResult bounded(const std::string& args) {
-  return e2e::run_program(std::string(kMemoryBound) + "exec timeout 30 " + LASERCNC_EXE,
-                          "decompose " + args);
+  return e2e::run_program(std::string(kMemoryBound) + "exec timeout 30 " + LASERCNC_EXE, "decompose " + args);
 }
 
 TEST(LasercncDecomposeBounds, AHugeSpeedIsRefusedWithWhatTheAxesReach) {

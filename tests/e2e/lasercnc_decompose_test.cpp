@@ -19,8 +19,7 @@ TEST(LasercncDecompose, SamplePartWritesReportTableAndPictures) {
   const fs::path dir = e2e::temp_dir();
   const fs::path csv = dir / "table.csv", svg = dir / "paths.svg", acc = dir / "accel.svg";
   const e2e::CmdResult r = lasercnc("decompose " + kSample + " --speed 6m/min --step 0.05 --csv " +
-                                    csv.string() + " --svg " + svg.string() + " --accel-svg " +
-                                    acc.string());
+                                    csv.string() + " --svg " + svg.string() + " --accel-svg " + acc.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("7 contours"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("6.00 m/min"), std::string::npos) << r.out;
@@ -86,8 +85,7 @@ TEST(LasercncDecompose, RunCutsThePartWithTwoAxisGroupsAndDrawsTheAxisCurves) {
   const e2e::CmdResult r = lasercnc("decompose " + kStar + " --step 0.05 --run --fast " +
                                     "--origin 200,100 --run-svg " + svg.string());
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
-  EXPECT_NE(r.out.find("main X, Y ('default'), auxiliary P, Q ('aux_stage')"), std::string::npos)
-      << r.out;
+  EXPECT_NE(r.out.find("main X, Y ('default'), auxiliary P, Q ('aux_stage')"), std::string::npos) << r.out;
   // on the simulated clock: nothing under-ran, no wake-up measured
   EXPECT_NE(r.out.find("simulated clock: no RT wake-up measured"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("RT wake-up p99.9"), std::string::npos) << r.out;
@@ -105,8 +103,7 @@ TEST(LasercncDecompose, RunCutsThePartWithTwoAxisGroupsAndDrawsTheAxisCurves) {
 }
 
 TEST(LasercncDecompose, RunBeyondTheTravelIsRefusedNamingTheContour) {
-  const e2e::CmdResult r =
-      lasercnc("decompose " + kStar + " --step 0.05 --run --fast --origin 995,0");
+  const e2e::CmdResult r = lasercnc("decompose " + kStar + " --step 0.05 --run --fast --origin 995,0");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("E612"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("contour"), std::string::npos) << r.err;

@@ -29,8 +29,7 @@ fs::path job(const std::string& text) {
 
 // 1.5 s of cutting at 60 % (30 W of the simulator's 50 W): long enough for
 // the thermopile (τ 0.3 s) to settle.
-const char* kCut =
-    "G21 G90\nG0 X10 Y10\nM3 S60\nG1 X160 F6000\nG1 Y20\nG1 X10\nM5\nG0 X0 Y0\nM2\n";
+const char* kCut = "G21 G90\nG0 X10 Y10\nM3 S60\nG1 X160 F6000\nG1 Y20\nG1 X10\nM5\nG0 X0 Y0\nM2\n";
 
 TEST(LasercncRunDevices, SetpointFollowsTheJobAndTheMeterSeesTheBeam) {
   const CmdResult r = lasercnc("run " + job(kCut).string() + " --devices --json --no-realtime");
@@ -87,12 +86,13 @@ TEST(LasercncRunDevices, ALaserInAlarmRefusesTheRunBeforeAnythingMoves) {
     ASSERT_TRUE(alarmed);
   }
   const fs::path trace = temp_dir() / "trace.csv";
-  const CmdResult r = lasercnc("run " + job(kCut).string() + " --laser tcp:127.0.0.1:" +
-                               std::to_string(ep.port) + " --trace " + trace.string() + " --no-realtime");
+  const CmdResult r =
+      lasercnc("run " + job(kCut).string() + " --laser tcp:127.0.0.1:" + std::to_string(ep.port) +
+               " --trace " + trace.string() + " --no-realtime");
   EXPECT_EQ(r.exit_code, 1) << r.out;
   EXPECT_NE(r.err.find("laser_source (unit 2, tcp 127.0.0.1:"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("exception 04"), std::string::npos) << r.err;
-  EXPECT_EQ(r.out, "");  // no report: nothing ran
+  EXPECT_EQ(r.out, "");                                          // no report: nothing ran
   EXPECT_TRUE(!fs::exists(trace) || fs::file_size(trace) < 64);  // at most the CSV header
   (*laser)->stop();
 }
@@ -107,8 +107,7 @@ TEST(LasercncRunDevices, NoDeviceAtTheEndpointIsAClearErrorWithinTheTimeouts) {
 }
 
 // About 6.5 s of cutting at 60 %: time for the source to fail in the middle.
-const char* kLongCut =
-    "G21 G90\nG0 X10 Y10\nM3 S60\nG1 X160 F3000\nG1 Y20\nG1 X10\nM5\nG0 X0 Y0\nM2\n";
+const char* kLongCut = "G21 G90\nG0 X10 Y10\nM3 S60\nG1 X160 F3000\nG1 Y20\nG1 X10\nM5\nG0 X0 Y0\nM2\n";
 constexpr double kLongCutS = 6.3;  // at least, without a fault
 
 // Runs kLongCut against `laser` (a source this test holds) while `fail`
@@ -128,9 +127,9 @@ FailedRun run_while_failing(lcnc::drivers::LaserSourceSim& laser, Fail fail) {
     std::this_thread::sleep_for(std::chrono::milliseconds(800));
     fail();
   });
-  out.r = lasercnc("run " + job(kLongCut).string() + " --laser tcp:127.0.0.1:" +
-                   std::to_string(laser.endpoint().port) + " --trace " + trace.string() +
-                   " --json --no-realtime");
+  out.r = lasercnc("run " + job(kLongCut).string() +
+                   " --laser tcp:127.0.0.1:" + std::to_string(laser.endpoint().port) + " --trace " +
+                   trace.string() + " --json --no-realtime");
   breaker.join();
   out.j = nlohmann::json::parse(out.r.out, nullptr, false);
   std::ifstream csv(trace);
@@ -166,7 +165,7 @@ TEST(LasercncRunDevices, ALaserSourceLostMidJobStopsTheJobWithTheBeamOff) {
   EXPECT_NE(fault.find("lost"), std::string::npos) << fault;
   EXPECT_FALSE(f.j["succeeded"].get<bool>());
   EXPECT_LT(f.end_t, kLongCutS - 2.0);  // stopped well short of the end
-  EXPECT_GT(f.last_lasing_t, 0.5);              // it was cutting …
+  EXPECT_GT(f.last_lasing_t, 0.5);      // it was cutting …
   // … and the beam went off at the fault, while the axes still braked
   // along the path (without the RT's inhibit it would follow the job's
   // power to rest)

@@ -73,8 +73,9 @@ TEST(LasercncDrill, BadTableIsRefusedWithItsLineAndColumn) {
 
 TEST(LasercncDrill, HoleBeyondTheTravelIsRefusedBeforeAnythingMoves) {
   // Z 499: its clearance point (5 mm above, plus the head's pivot) leaves the travel
-  const fs::path t = table("11,100,100,20,0,0,2000,0.1,2,0.2,80,0.5,0.5,1,200,3000,0,helix,\n"
-                           "12,120,100,499,0,0,2000,0.1,2,0.2,80,0.5,0.5,1,200,3000,0,helix,\n");
+  const fs::path t = table(
+      "11,100,100,20,0,0,2000,0.1,2,0.2,80,0.5,0.5,1,200,3000,0,helix,\n"
+      "12,120,100,499,0,0,2000,0.1,2,0.2,80,0.5,0.5,1,200,3000,0,helix,\n");
   const CmdResult r = lasercnc("drill " + t.string() + " --fast");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("holes.csv:3:1:"), std::string::npos) << r.err;  // the row of hole 12

@@ -37,8 +37,8 @@ TEST(LasercncTcp, TiltingCutRunsWithEveryStepSent) {
   const fs::path prog = temp_dir() / "bevel.ngc";
   std::ofstream(prog) << "G21 G90 G64 P0.01\nG0 X100 Y100 Z20 A0 C0\nM3 S80\n"
                          "G1 X120 A10 F3000\nG1 Y110 C45\nG1 X100 A0\nM5\nM2\n";
-  const CmdResult r = lasercnc("run " + prog.string() + " --machine " + tcp_machine("pole_smoothed").string() +
-                               " --json --fast");
+  const CmdResult r = lasercnc("run " + prog.string() + " --machine " +
+                               tcp_machine("pole_smoothed").string() + " --json --fast");
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
   const nlohmann::json j = nlohmann::json::parse(r.out, nullptr, false);
   ASSERT_TRUE(j.is_object()) << r.out;
@@ -74,8 +74,8 @@ TEST(LasercncTcp, AWrappingSwingTakesEveryShorterTurnAndKeepsTheTip) {
     std::ofstream p(prog);
     p << "G21 G90 G64 P0.05\nG0 X100 Y100 Z20 A-30 C0\nF3000\n";
     for (int k = 0; k <= 12; ++k)
-      p << "G1 X" << 100 + 10 * k << " Y" << 100 + 5 * (k % 3) << " A" << -30 + 5 * k << " C" << (37 * k) % 360
-        << "\n";
+      p << "G1 X" << 100 + 10 * k << " Y" << 100 + 5 * (k % 3) << " A" << -30 + 5 * k << " C"
+        << (37 * k) % 360 << "\n";
     p << "M30\n";
   }
   nlohmann::json j = run_json(prog, "");
@@ -89,7 +89,8 @@ TEST(LasercncTcp, AWrappingSwingTakesEveryShorterTurnAndKeepsTheTip) {
   std::ofstream(tcp_prog) << "G21 G90 G64 P0.05\nG0 X100 Y100 Z-180 A15 C333\nF3000\n"
                              "G1 X110 Y105 A20 C10\nG1 X120 Y100 A25 C47\nM30\n";
   const fs::path trace = temp_dir() / "swing_tcp.csv";
-  j = run_json(tcp_prog, " --machine " + tcp_machine("pole_smoothed").string() + " --trace " + trace.string());
+  j = run_json(tcp_prog,
+               " --machine " + tcp_machine("pole_smoothed").string() + " --trace " + trace.string());
   ASSERT_TRUE(j.is_object());
   EXPECT_TRUE(j["succeeded"].get<bool>());
   EXPECT_LE(j["axes"]["C"]["peak_velocity"].get<double>(), 360.0);

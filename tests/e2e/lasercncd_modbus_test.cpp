@@ -12,9 +12,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "daemon_status.h"
 #include "drivers/modbus/modbus_master.h"
 #include "drivers/modbus/register_map.h"
-#include "daemon_status.h"
 #include "e2e_support.h"
 
 namespace {
@@ -98,7 +98,7 @@ TEST(LasercncdModbus, APlcRunsHoldsResumesAndOverridesAJob) {
   // hold and resume by coil
   ASSERT_TRUE(plc->write("cmd_hold", 1).get().ok());
   ASSERT_TRUE(wait_for(*plc, "state", 2.0));  // feed hold
-  ASSERT_TRUE(wait_machine_time(shm, 0.4));  // the ramp is over: at rest
+  ASSERT_TRUE(wait_machine_time(shm, 0.4));   // the ramp is over: at rest
   const double x_held = read(*plc, "x_mm");
   EXPECT_GT(x_held, 10.0);
   ASSERT_TRUE(wait_machine_time(shm, 0.1));
@@ -122,12 +122,12 @@ TEST(LasercncdModbus, HoleParameterBlockIsCheckedWholeAndRefusalsStoreNothing) {
   ASSERT_GT(port, 0) << d.log();
   auto plc = master_for(port);
   std::vector<std::pair<std::string, double>> block = {
-      {"hole_number", 7},          {"hole_x_mm", 120.5},         {"hole_y_mm", 80.25},
-      {"hole_z_mm", 30},           {"hole_a_deg", -20},          {"hole_c_deg", 90},
-      {"feed_mm_min", 600},        {"layer_feed_mm", 0.1},       {"layer_count", 10},
-      {"total_depth_mm", 1.0},     {"laser_power_pct", 80},      {"scan_start_radius_mm", 0.5},
-      {"scan_end_radius_mm", 0.3}, {"scan_radius_turns", 3},     {"scan_speed_mm_s", 200},
-      {"wedge_speed_rpm", 3000},   {"beam_offset_mm", 0},        {"process_id", 0}};
+      {"hole_number", 7},          {"hole_x_mm", 120.5},     {"hole_y_mm", 80.25},
+      {"hole_z_mm", 30},           {"hole_a_deg", -20},      {"hole_c_deg", 90},
+      {"feed_mm_min", 600},        {"layer_feed_mm", 0.1},   {"layer_count", 10},
+      {"total_depth_mm", 1.0},     {"laser_power_pct", 80},  {"scan_start_radius_mm", 0.5},
+      {"scan_end_radius_mm", 0.3}, {"scan_radius_turns", 3}, {"scan_speed_mm_s", 200},
+      {"wedge_speed_rpm", 3000},   {"beam_offset_mm", 0},    {"process_id", 0}};
   ASSERT_TRUE(plc->write_block(block).get().ok());
   EXPECT_EQ(read(*plc, "hole_number"), 7.0);
   EXPECT_EQ(read(*plc, "total_depth_mm"), 1.0);

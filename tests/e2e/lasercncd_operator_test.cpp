@@ -206,7 +206,8 @@ TEST(LasercncdOperator, MdiMovesInTheModesTheLastCommandLeft) {
     std::this_thread::sleep_for(5ms);
   }
   EXPECT_GT(at(s, "distance_to_go", 0), 1.0);
-  EXPECT_NEAR(at(s, "distance_to_go", 0), 400.0 - at(s, "position", 0), 1.0);  // the status and job blocks differ by a few periods
+  EXPECT_NEAR(at(s, "distance_to_go", 0), 400.0 - at(s, "position", 0),
+              1.0);  // the status and job blocks differ by a few periods
   EXPECT_NEAR(at(s, "distance_to_go", 1), 0.0, 1e-9);
   ASSERT_EQ(send(shm, "stop").exit_code, 0);
 }
@@ -230,13 +231,13 @@ TEST(LasercncdOperator, AnMdiMoveWithWaitReturnsAfterItsMoveNeverBefore) {
 }
 
 constexpr const char* kBlocks =
-    "G21 G90 G64 P0.01\n"   // 1
-    "G0 X10 Y10\n"          // 2
-    "G1 X40 F6000\n"        // 3
-    "G1 Y30\n"              // 4
-    "G1 X10\n"              // 5
-    "G0 X0 Y0\n"            // 6
-    "M2\n";                 // 7
+    "G21 G90 G64 P0.01\n"  // 1
+    "G0 X10 Y10\n"         // 2
+    "G1 X40 F6000\n"       // 3
+    "G1 Y30\n"             // 4
+    "G1 X10\n"             // 5
+    "G0 X0 Y0\n"           // 6
+    "M2\n";                // 7
 
 TEST_F(LasercncdJob, SingleBlockStopsAfterEachBlock) {
   ASSERT_EQ(send(shm, "load " + write_program("blocks.ngc", kBlocks).string()).exit_code, 0);
@@ -268,15 +269,15 @@ TEST_F(LasercncdJob, SingleBlockStopsAfterEachBlock) {
 TEST_F(LasercncdJob, RunFromLineStartsThereInTheProgramsModes) {
   // before line 6: G55 set to X+200 and selected, inches, incremental, a feed
   const char* program =
-      "G21 G90 G64 P0.01\n"        // 1
-      "G10 L2 P2 X200 Y50\n"       // 2
-      "G55 G0 X0 Y0 Z1\n"          // 3
-      "G20 G91 F100\n"             // 4  (100 in/min)
-      "G1 X1\n"                    // 5
-      "G1 Y1\n"                    // 6
-      "G1 X-1\n"                   // 7
-      "G90 G21 G0 Z20\n"           // 8
-      "M2\n";                      // 9
+      "G21 G90 G64 P0.01\n"   // 1
+      "G10 L2 P2 X200 Y50\n"  // 2
+      "G55 G0 X0 Y0 Z1\n"     // 3
+      "G20 G91 F100\n"        // 4  (100 in/min)
+      "G1 X1\n"               // 5
+      "G1 Y1\n"               // 6
+      "G1 X-1\n"              // 7
+      "G90 G21 G0 Z20\n"      // 8
+      "M2\n";                 // 9
   ASSERT_EQ(send(shm, "load " + write_program("from_line.ngc", program).string()).exit_code, 0);
   ASSERT_EQ(send(shm, "mdi G53 G0 X10 Y10 Z5 --wait").exit_code, 0);
   // single block too: the first stop is the end of line 6 after the approach
@@ -320,16 +321,16 @@ TEST_F(LasercncdJob, RunFromLineStartsThereInTheProgramsModes) {
 
 TEST_F(LasercncdJob, DryRunAndFramingKeepTheBeamOff) {
   const char* program =
-      "G21 G90 G64 P0.01\n"   // 1
-      "G0 X50 Y20\n"          // 2
-      "M3 S80\n"              // 3
-      "G1 X250 F12000\n"      // 4
-      "G3 X250 Y120 J50\n"    // 5  (bulges to X 300)
-      "G1 X50\n"              // 6
-      "G1 Y20\n"              // 7
-      "M5\n"                  // 8
-      "G0 X0 Y0\n"            // 9
-      "M2\n";                 // 10
+      "G21 G90 G64 P0.01\n"  // 1
+      "G0 X50 Y20\n"         // 2
+      "M3 S80\n"             // 3
+      "G1 X250 F12000\n"     // 4
+      "G3 X250 Y120 J50\n"   // 5  (bulges to X 300)
+      "G1 X50\n"             // 6
+      "G1 Y20\n"             // 7
+      "M5\n"                 // 8
+      "G0 X0 Y0\n"           // 9
+      "M2\n";                // 10
   ASSERT_EQ(send(shm, "load " + write_program("plate.ngc", program).string()).exit_code, 0);
   ASSERT_EQ(send(shm, "mdi G0 X20 Y5 --wait").exit_code, 0);
   // framing: the cuts' box X 50 … 300, Y 20 … 120, traced on its outline
@@ -343,7 +344,8 @@ TEST_F(LasercncdJob, DryRunAndFramingKeepTheBeamOff) {
     if (st.state == lshm::MachineState::Running && st.line >= 4 && st.line <= 7) {
       const double x = st.pos[0], y = st.pos[1];
       lo_x = std::min(lo_x, x), hi_x = std::max(hi_x, x), lo_y = std::min(lo_y, y), hi_y = std::max(hi_y, y);
-      const double d_edge = std::min({std::abs(x - 50), std::abs(x - 300), std::abs(y - 20), std::abs(y - 120)});
+      const double d_edge =
+          std::min({std::abs(x - 50), std::abs(x - 300), std::abs(y - 20), std::abs(y - 120)});
       off_outline = std::max(off_outline, d_edge);
       ++on_outline;
     }
@@ -365,7 +367,8 @@ TEST_F(LasercncdJob, DryRunAndFramingKeepTheBeamOff) {
     const CmdResult started = send(shm, "start" + how);
     EXPECT_EQ(started.exit_code, 0) << started.err;
     double peak = 0.0;
-    EXPECT_TRUE(sample_job(*w->client, [&](const lshm::Status& st) { peak = std::max<double>(peak, st.power_pct); }));
+    EXPECT_TRUE(
+        sample_job(*w->client, [&](const lshm::Status& st) { peak = std::max<double>(peak, st.power_pct); }));
     return peak;
   };
   EXPECT_EQ(peak_power(" --dry-run"), 0.0);
@@ -384,8 +387,8 @@ namespace {
 TEST(LasercncdOperator, ABadParameterFileIsRefusedAtStart) {
   const fs::path params = temp_dir() / "bad.var";
   std::ofstream(params) << "5221 100\n5222 forty\n";
-  const CmdResult r = run_program(LASERCNCD_EXE, "--shm " + shm_name() + " --no-realtime --parameter-file " +
-                                                    params.string());
+  const CmdResult r = run_program(
+      LASERCNCD_EXE, "--shm " + shm_name() + " --no-realtime --parameter-file " + params.string());
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("bad.var:2:"), std::string::npos) << r.err;
 }

@@ -5,8 +5,8 @@
 
 #include <fcntl.h>
 #include <signal.h>
-#include <sys/mman.h>
 #include <spawn.h>
+#include <sys/mman.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -15,17 +15,17 @@
 
 #include <atomic>
 #include <chrono>
-#include <future>
-#include <random>
-#include <set>
-#include <vector>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <future>
+#include <random>
+#include <set>
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -122,8 +122,9 @@ TEST(Lasercncd, ASubroutineFileBesideTheProgramIsFound) {
   write_program("subs_beside/pierce_square.ngc",
                 "o<pierce_square> sub\nG0 X#1 Y#1\nM3 S60\nG1 X[#1 + 10] F6000\nG1 Y[#1 + 10]\n"
                 "M5\no<pierce_square> endsub\n");
-  const fs::path job = write_program(
-      "subs_beside/job.ngc", "G21 G90 G64 P0.01\no<pierce_square> call [10]\no<pierce_square> call [30]\nM2\n");
+  const fs::path job =
+      write_program("subs_beside/job.ngc",
+                    "G21 G90 G64 P0.01\no<pierce_square> call [10]\no<pierce_square> call [30]\nM2\n");
   CmdResult r = lasercnc("send load " + job.string() + " --shm " + shm);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   r = lasercnc("send start --wait --shm " + shm);
@@ -143,10 +144,12 @@ TEST(Lasercncd, RunsAHoleTableAsADrillingJob) {
   ASSERT_TRUE(d.ready()) << d.log();
   const std::string header =
       "hole,x_mm,y_mm,z_mm,a_deg,c_deg,feed_mm_min,layer_feed_mm,layer_count,total_depth_mm,power_pct,"
-      "start_radius_mm,end_radius_mm,radius_turns,scan_speed_mm_s,wedge_speed_rpm,beam_offset_mm,process,shape\n";
-  const fs::path table = write_program("holes.csv", header +
-      "1,100,100,20,0,0,600,0.1,2,0.2,80,0.5,0.5,1,200,3000,0,helix,\n"
-      "2,130,100,20,30,45,600,0.05,2,0.1,70,0.2,0.8,2,150,6000,0,circle,\n");
+      "start_radius_mm,end_radius_mm,radius_turns,scan_speed_mm_s,wedge_speed_rpm,beam_offset_mm,process,"
+      "shape\n";
+  const fs::path table =
+      write_program("holes.csv", header +
+                                     "1,100,100,20,0,0,600,0.1,2,0.2,80,0.5,0.5,1,200,3000,0,helix,\n"
+                                     "2,130,100,20,30,45,600,0.05,2,0.1,70,0.2,0.8,2,150,6000,0,circle,\n");
   CmdResult r = lasercnc("send load " + table.string() + " --shm " + shm);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("2 lines"), std::string::npos) << r.out;  // a line per hole
@@ -156,9 +159,10 @@ TEST(Lasercncd, RunsAHoleTableAsADrillingJob) {
   EXPECT_EQ(status(shm)["jobs_ended"], 1);
   // a row out of the travel: refused naming its line, the good table stays loaded
   // hole 7 at X 999.9: its pattern leaves the travel
-  const fs::path bad = write_program("bad_holes.csv", header +
-      "1,100,100,20,0,0,600,0.1,2,0.2,80,0.5,0.5,1,200,3000,0,helix,\n"
-      "7,999.9,100,20,0,0,600,0.1,2,0.2,80,0.5,0.5,1,200,3000,0,helix,\n");
+  const fs::path bad =
+      write_program("bad_holes.csv", header +
+                                         "1,100,100,20,0,0,600,0.1,2,0.2,80,0.5,0.5,1,200,3000,0,helix,\n"
+                                         "7,999.9,100,20,0,0,600,0.1,2,0.2,80,0.5,0.5,1,200,3000,0,helix,\n");
   r = lasercnc("send load " + bad.string() + " --shm " + shm);
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("bad_holes.csv:3"), std::string::npos) << r.err;
@@ -179,8 +183,8 @@ TEST(Lasercncd, HoldResumeEStopResetAndJog) {
   const std::string shm = shm_name();
   Daemon d(shm);
   ASSERT_TRUE(d.ready()) << d.log();
-  const fs::path prog = write_program("long.ngc",
-                                      "G21 G90\nG0 X10 Y10\nM3 S50\nG1 X300 F1200\nG1 Y200\nG1 X10\nM5\nM2\n");
+  const fs::path prog =
+      write_program("long.ngc", "G21 G90\nG0 X10 Y10\nM3 S50\nG1 X300 F1200\nG1 Y200\nG1 X10\nM5\nM2\n");
   ASSERT_EQ(lasercnc("send load " + prog.string() + " --shm " + shm).exit_code, 0);
   ASSERT_EQ(lasercnc("send start --shm " + shm).exit_code, 0);
   ASSERT_TRUE(wait_state(shm, "running"));
@@ -260,8 +264,7 @@ TEST(Lasercncd, SecondDaemonRefusedStaleSegmentRecovered) {
     ASSERT_TRUE(first.ready()) << first.log();
     Daemon second(shm);
     EXPECT_EQ(second.wait_exit(), 1);
-    EXPECT_NE(second.log().find("already owned by running process"), std::string::npos)
-        << second.log();
+    EXPECT_NE(second.log().find("already owned by running process"), std::string::npos) << second.log();
     EXPECT_EQ(first.stop(SIGKILL, true), -1);  // crashes: the segment stays behind
   }
   ASSERT_TRUE(fs::exists("/dev/shm" + shm));
@@ -342,8 +345,8 @@ TEST(Lasercncd, ACorruptCommandRingIsDroppedAndTheDaemonAnswersOn) {
   // the command is taken when send returns; the status shows it from the
   // next publish on, which a loaded machine can delay
   double target = 0.0;
-  for (const auto until = std::chrono::steady_clock::now() + 2s;
-       std::chrono::steady_clock::now() < until; std::this_thread::sleep_for(5ms)) {
+  for (const auto until = std::chrono::steady_clock::now() + 2s; std::chrono::steady_clock::now() < until;
+       std::this_thread::sleep_for(5ms)) {
     target = status(shm)["feed_override_target"].get<double>();
     if (std::abs(target - 1.2) <= 1e-12) break;
   }
@@ -377,7 +380,8 @@ std::uint32_t send_frame(lcnc::shm::ShmClient& c, lcnc::shm::CommandType type, c
   return c.send(cmd);
 }
 
-lcnc::shm::Answer wait_answer(lcnc::shm::ShmClient& c, std::uint32_t seq, std::chrono::milliseconds t = 5000ms) {
+lcnc::shm::Answer wait_answer(lcnc::shm::ShmClient& c, std::uint32_t seq,
+                              std::chrono::milliseconds t = 5000ms) {
   lcnc::shm::Answer a;
   const auto until = std::chrono::steady_clock::now() + t;
   while (!c.answer(seq, a) && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(1ms);
@@ -439,11 +443,13 @@ TEST(LasercncdEStop, ActsWhileALoadOfAFifoIsAsked) {
   EXPECT_EQ(a.seq, seq);
   EXPECT_NE(std::string(a.message).find("named pipe"), std::string::npos) << a.message;
   // the CLI refuses it itself, without sending
-  const CmdResult r = run_program(std::string("timeout 10 ") + LASERCNC_EXE, "send load " + fifo.string() + " --shm " + shm.name());
+  const CmdResult r = run_program(std::string("timeout 10 ") + LASERCNC_EXE,
+                                  "send load " + fifo.string() + " --shm " + shm.name());
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("named pipe"), std::string::npos) << r.err;
   // a directory likewise
-  const lcnc::shm::Answer dir = wait_answer(c, send_frame(c, lcnc::shm::CommandType::Load, temp_dir().string()));
+  const lcnc::shm::Answer dir =
+      wait_answer(c, send_frame(c, lcnc::shm::CommandType::Load, temp_dir().string()));
   EXPECT_NE(std::string(dir.message).find("a directory"), std::string::npos) << dir.message;
   EXPECT_EQ(d.stop(SIGTERM), 0) << d.log();
 }
@@ -461,7 +467,8 @@ TEST(LasercncdEStop, ActsWhileAnotherProcessHoldsTheSendersLock) {
   expect_estop_stops_a_jog(shm, [&] { locked = pthread_mutex_lock(lock) == 0; });
   ASSERT_TRUE(locked);
   const auto t0 = std::chrono::steady_clock::now();
-  const CmdResult r = run_program(std::string("timeout 10 ") + LASERCNC_EXE, "send override 50 --timeout 0.3 --shm " + shm.name());
+  const CmdResult r = run_program(std::string("timeout 10 ") + LASERCNC_EXE,
+                                  "send override 50 --timeout 0.3 --shm " + shm.name());
   const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("senders' lock"), std::string::npos) << r.err;
@@ -543,7 +550,8 @@ TEST(Lasercncd, RunsTheProgramAsLoadedWhateverTheFileBecomes) {
   // replaced while it runs: the same
   ASSERT_EQ(lasercnc("send jog X -2 --shm " + shm.name()).exit_code, 0);
   ASSERT_TRUE(wait_state(shm, "idle"));
-  auto job = std::async(std::launch::async, [&] { return lasercnc("send start --wait --shm " + shm.name()); });
+  auto job =
+      std::async(std::launch::async, [&] { return lasercnc("send start --wait --shm " + shm.name()); });
   std::ofstream(prog.string() + ".new") << "G21 G90\nG1 X9999 F3000\nM2\n";
   fs::rename(prog.string() + ".new", prog);
   r = job.get();
@@ -569,7 +577,10 @@ TEST(Lasercncd, LoadsOnlyProgramsTheSenderMayReadAndNeverEchoesOtherFiles) {
   EXPECT_EQ(r.err.find("s3cr3t"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("root"), std::string::npos) << r.err;
   const fs::path bin = dir / "blob.ngc";
-  std::ofstream(bin, std::ios::binary) << std::string("G1\x7f" "ELF\x02\x01\x01\x00s3cr3t", 16);
+  std::ofstream(bin, std::ios::binary) << std::string(
+      "G1\x7f"
+      "ELF\x02\x01\x01\x00s3cr3t",
+      16);
   r = lasercnc("send load " + bin.string() + " --shm " + shm.name());
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("not a G-code program"), std::string::npos) << r.err;
@@ -634,8 +645,12 @@ TEST(Lasercncd, ASubroutineFileIsReadOnlyUnderTheLoadsPolicy) {
   EXPECT_EQ(a.code, 0) << a.message;
   // the findings: MDI of an absolute path and of ../, a loaded program
   // calling a root-only file and one behind a link out of the folder
-  const std::vector<std::string> names{(out / "outer").string(), "../outside/outer", "../programs/root_only",
-                                       "root_only", "link_out", "/etc/passwd"};
+  const std::vector<std::string> names{(out / "outer").string(),
+                                       "../outside/outer",
+                                       "../programs/root_only",
+                                       "root_only",
+                                       "link_out",
+                                       "/etc/passwd"};
   std::mt19937 rng(7);
   for (std::size_t k = 0; k < 2 * names.size() + 16; ++k) {
     // every name by either route, then 16 random ones
@@ -664,14 +679,16 @@ TEST(Lasercncd, ALongLoadIsCancelledByStopAndSigtermEndsTheDaemonDuringOne) {
   std::string cfg = slurp(std::string(LCNC_SOURCE_DIR) + "/share/machines/default.toml");
   cfg.replace(cfg.find("[machine]\n"), 10, "[machine]\nprogram_time_limit_h = 100000\n");
   const fs::path machine = write_program("patient.toml", cfg);
-  const fs::path endless = write_program("endless.ngc", "G21 G90 F6000\no1 while [1]\nG1 X10\nG1 X0\no1 endwhile\nM2\n");
+  const fs::path endless =
+      write_program("endless.ngc", "G21 G90 F6000\no1 while [1]\nG1 X10\nG1 X0\no1 endwhile\nM2\n");
   Daemon d(shm, {"--machine", machine.string()});
   ASSERT_TRUE(d.ready()) << d.log();
   auto c = client(shm);
   const std::uint32_t load = send_frame(c, lcnc::shm::CommandType::Load, endless.string());
   // the load is in progress: a second one is refused for it (an event, not a wait)
   const auto load_in_progress = [&] {
-    const lcnc::shm::Answer other = wait_answer(c, send_frame(c, lcnc::shm::CommandType::Load, endless.string()));
+    const lcnc::shm::Answer other =
+        wait_answer(c, send_frame(c, lcnc::shm::CommandType::Load, endless.string()));
     return std::string(other.message).find("another load is in progress") != std::string::npos;
   };
   EXPECT_TRUE(load_in_progress());
@@ -717,7 +734,8 @@ TEST(Lasercncd, ConcurrentSendersEachGetTheirOwnAnswer) {
   for (int i = 0; i < 20; ++i) {
     const CmdResult r = clients[i].get();
     EXPECT_EQ(r.exit_code, 0) << i << ": " << r.err;
-    EXPECT_NE(r.out.find("override " + std::to_string(100 + i) + " %"), std::string::npos) << i << ": " << r.out;
+    EXPECT_NE(r.out.find("override " + std::to_string(100 + i) + " %"), std::string::npos)
+        << i << ": " << r.out;
   }
   EXPECT_EQ(d.stop(SIGTERM), 0) << d.log();
 }
@@ -750,7 +768,8 @@ TEST(Lasercncd, AStoppedJobIsReportedStopped) {
   ASSERT_TRUE(d.ready()) << d.log();
   const fs::path prog = write_program("long.ngc", "G21 G90\nM3 S50\nG1 X300 F1200\nM5\nM2\n");
   ASSERT_EQ(lasercnc("send load " + prog.string() + " --shm " + shm.name()).exit_code, 0);
-  auto job = std::async(std::launch::async, [&] { return lasercnc("send start --wait --shm " + shm.name()); });
+  auto job =
+      std::async(std::launch::async, [&] { return lasercnc("send start --wait --shm " + shm.name()); });
   ASSERT_TRUE(wait_state(shm, "running"));
   std::this_thread::sleep_for(200ms);
   ASSERT_EQ(lasercnc("send stop --shm " + shm.name()).exit_code, 0);

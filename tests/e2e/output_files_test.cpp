@@ -138,8 +138,10 @@ TEST(OutputFiles, EveryPathToAnyInputIsRefusedAsAnOutput) {
       case 3: out = job.dir / "dir_link" / name; break;
       default: {
         out = job.dir / ("link_" + std::to_string(k));
-        if (rng() % 2 == 0) fs::create_symlink(in, out);
-        else fs::create_hard_link(in, out);
+        if (rng() % 2 == 0)
+          fs::create_symlink(in, out);
+        else
+          fs::create_hard_link(in, out);
       }
     }
     SCOPED_TRACE(out.string() + " -> " + in.string());
@@ -191,8 +193,7 @@ TEST(OutputFiles, ATraceThatCannotBeWrittenIsAnErrorNamingTheFileAndTheCause) {
   EXPECT_NE(r.err.find("E103"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
   // a directory that cannot be written: refused before anything moves
-  const CmdResult r2 =
-      lasercnc("run " + prog.string() + kRun + " --trace /proc/no_such_dir/trace.csv");
+  const CmdResult r2 = lasercnc("run " + prog.string() + kRun + " --trace /proc/no_such_dir/trace.csv");
   EXPECT_EQ(r2.exit_code, 1);
   EXPECT_NE(r2.err.find("trace.csv"), std::string::npos) << r2.err;
 }
@@ -202,8 +203,7 @@ TEST(OutputFiles, DrillRefusesATraceThatIsItsTable) {
   const fs::path table = dir / "holes.csv";
   fs::copy_file(kShare + "/examples/holes.csv", table);
   const std::string before = slurp(table);
-  const CmdResult r =
-      lasercnc("drill " + table.string() + kRun + " --trace " + table.string());
+  const CmdResult r = lasercnc("drill " + table.string() + kRun + " --trace " + table.string());
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("E102"), std::string::npos) << r.err;
   EXPECT_EQ(slurp(table), before);
@@ -218,8 +218,8 @@ TEST(OutputFiles, DecomposeRefusesAnOutputThatIsTheDrawingOrAnotherOutput) {
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("E102"), std::string::npos) << r.err;
   EXPECT_EQ(slurp(part), before);
-  r = lasercnc("decompose " + part.string() + " --step 0.05 --csv " + (dir / "a").string() +
-               " --svg " + (dir / "." / "a").string());
+  r = lasercnc("decompose " + part.string() + " --step 0.05 --csv " + (dir / "a").string() + " --svg " +
+               (dir / "." / "a").string());
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("E102"), std::string::npos) << r.err;
   EXPECT_EQ(listing(dir), (std::set<std::string>{"part.dxf"}));
@@ -231,8 +231,8 @@ TEST(OutputFiles, ARefusedDecomposeRunWritesNoneOfItsOutputs) {
   const fs::path csv = write(dir / "a.csv", old);
   // the part at the machine's origin corner leaves the main axes' travel:
   // refused before anything moves
-  const CmdResult r = lasercnc("decompose " + kPlate + " --step 0.05 --csv " + csv.string() +
-                               " --svg " + (dir / "a.svg").string() + " --run --origin -1000,-1000");
+  const CmdResult r = lasercnc("decompose " + kPlate + " --step 0.05 --csv " + csv.string() + " --svg " +
+                               (dir / "a.svg").string() + " --run --origin -1000,-1000");
   EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
   EXPECT_NE(r.err.find("E612"), std::string::npos) << r.err;
   EXPECT_EQ(slurp(csv), old);
@@ -246,9 +246,8 @@ TEST(OutputFiles, ADashIsTheStandardOutputEvenWhenItIsARedirectedFile) {
   const fs::path dir = temp_dir();
   const fs::path prog = write(dir / "p.ngc", kProgram);
   const fs::path out = dir / "out.txt";
-  const std::string cmd = "{ echo before; " + std::string(LASERCNC_EXE) + " check " +
-                          prog.string() + " --moves -; echo after; } >" + out.string() +
-                          " 2>/dev/null </dev/null";
+  const std::string cmd = "{ echo before; " + std::string(LASERCNC_EXE) + " check " + prog.string() +
+                          " --moves -; echo after; } >" + out.string() + " 2>/dev/null </dev/null";
   ASSERT_EQ(std::system(cmd.c_str()), 0);
   EXPECT_EQ(slurp(out), "before\n2 feed 2 1 0 0 0 0\n3 feed 0 0 0 0 0 0\nafter\n");
   EXPECT_TRUE(fs::is_symlink("/dev/stdout"));

@@ -53,14 +53,14 @@ void expect_same_run(const std::string& args) {
     EXPECT_EQ(ax["peak_acceleration"], wall["axes"][name]["peak_acceleration"]) << name;
   }
   EXPECT_EQ(fast["segments"], wall["segments"]);
-  const bool wall_slowed = wall["starvations"].get<long long>() > 0 ||
-                           wall["underruns"].get<long long>() > 0;
+  const bool wall_slowed = wall["starvations"].get<long long>() > 0 || wall["underruns"].get<long long>() > 0;
   if (wall_slowed) {
     // the wall-clock planner fell behind on this computer: its run is the
     // plan slowed down
-    std::printf("wall-clock run slowed by the load (%lld starvations, %lld underruns): "
-                "compared as no longer than it\n",
-                wall["starvations"].get<long long>(), wall["underruns"].get<long long>());
+    std::printf(
+        "wall-clock run slowed by the load (%lld starvations, %lld underruns): "
+        "compared as no longer than it\n",
+        wall["starvations"].get<long long>(), wall["underruns"].get<long long>());
     EXPECT_LE(fast["cycle_time_s"].get<double>(), wall["cycle_time_s"].get<double>() + 1e-9);
     EXPECT_LE(fast["periods"].get<long long>(), wall["periods"].get<long long>());
     return;
@@ -76,9 +76,7 @@ void expect_same_run(const std::string& args) {
   }
 }
 
-TEST(SimulatedClock, TheSampleJobRunsAsOnTheWallClock) {
-  expect_same_run(kShare + "/examples/bracket.ngc");
-}
+TEST(SimulatedClock, TheSampleJobRunsAsOnTheWallClock) { expect_same_run(kShare + "/examples/bracket.ngc"); }
 
 TEST(SimulatedClock, TheFiveAxisExampleRunsAsOnTheWallClock) {
   const fs::path machine = temp_dir() / "tcp.toml";

@@ -33,15 +33,17 @@ std::string mutate(const std::vector<std::string>& corpus, std::mt19937_64& rng)
   const auto pick = [&](std::size_t n) { return n == 0 ? 0 : static_cast<std::size_t>(rng() % n); };
   std::string s = corpus[pick(corpus.size())];
   const int edits = 1 + static_cast<int>(rng() % 8);
-  static const char interesting[] = {'\0', '\n', '\r', ' ', ',', '.', '-', '+', 'e', 'E', '9', '0', '=', '"',
-                                     '[', ']', '{', '}', '#', ';', '(', ')', '$', '*', '\xff', '\x80', 'G', 'X'};
+  static const char interesting[] = {'\0', '\n', '\r', ' ', ',',    '.',    '-', '+', 'e', 'E',
+                                     '9',  '0',  '=',  '"', '[',    ']',    '{', '}', '#', ';',
+                                     '(',  ')',  '$',  '*', '\xff', '\x80', 'G', 'X'};
   for (int e = 0; e < edits; ++e) {
     switch (rng() % 6) {
       case 0:  // flip a bit
         if (!s.empty()) s[pick(s.size())] ^= static_cast<char>(1u << (rng() % 8));
         break;
       case 1:  // insert an interesting byte
-        s.insert(s.begin() + static_cast<std::ptrdiff_t>(pick(s.size() + 1)), interesting[pick(sizeof interesting)]);
+        s.insert(s.begin() + static_cast<std::ptrdiff_t>(pick(s.size() + 1)),
+                 interesting[pick(sizeof interesting)]);
         break;
       case 2: {  // delete a run
         if (s.empty()) break;
@@ -64,7 +66,8 @@ std::string mutate(const std::vector<std::string>& corpus, std::mt19937_64& rng)
         break;
       }
       default: {  // overwrite a digit run with an extreme number
-        static const char* numbers[] = {"1e308", "-1e308", "nan", "inf", "99999999999999999999", "-0", "1e-320", "0x7fffffff"};
+        static const char* numbers[] = {"1e308", "-1e308", "nan",       "inf", "99999999999999999999",
+                                        "-0",    "1e-320", "0x7fffffff"};
         const std::string n = numbers[pick(std::size(numbers))];
         s.insert(pick(s.size() + 1), n);
         break;
@@ -121,6 +124,7 @@ int main(int argc, char** argv) {
   for (const std::string& c : corpus) run(c);
   for (long n = 0; n < mutations; ++n) run(mutate(corpus, rng));
   std::remove(keep.c_str());
-  std::printf("fuzz %s: %zu corpus inputs and %ld mutations, every one returned\n", t->name, corpus.size(), mutations);
+  std::printf("fuzz %s: %zu corpus inputs and %ld mutations, every one returned\n", t->name, corpus.size(),
+              mutations);
   return 0;
 }

@@ -6,25 +6,25 @@
 // (fuzz_driver.cpp) as the CI's smoke under ASan+UBSan.
 #include "tests/fuzz/fuzz_targets.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cmath>
 #include <cstring>
-#include <new>
-#include <type_traits>
-#include <algorithm>
 #include <memory>
+#include <new>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "app/control_client.h"
-#include "dxf/dxf_reader.h"
 #include "drivers/modbus/register_map.h"
 #include "drivers/modbus/slave_request.h"
 #include "drivers/serial/probe_protocol.h"
+#include "dxf/dxf_reader.h"
 #include "gcode/program_reader.h"
 #include "holes/hole_table.h"
 #include "machine/machine_config.h"
@@ -40,7 +40,8 @@ std::string_view text(const std::uint8_t* data, std::size_t size) {
 
 const MachineConfig& machine() {
   static const MachineConfig m = [] {
-    Result<MachineConfig> c = load_machine_config(std::string(LCNC_SOURCE_DIR) + "/share/machines/default.toml");
+    Result<MachineConfig> c =
+        load_machine_config(std::string(LCNC_SOURCE_DIR) + "/share/machines/default.toml");
     return c ? *c : MachineConfig{};
   }();
   return m;
@@ -80,7 +81,6 @@ int register_map(const std::uint8_t* data, std::size_t size) {
   return 0;
 }
 
-
 // A broken invariant is a finding: say which and abort (the fuzzer keeps
 // the input).
 [[noreturn]] void finding(const std::string& what) {
@@ -109,7 +109,8 @@ struct ModbusHarness {
     }();
     return h;
   }
-  explicit ModbusHarness(drivers::DeviceMap map) : handler(std::move(map)), unit(handler.bank().map().unit_id) {
+  explicit ModbusHarness(drivers::DeviceMap map)
+      : handler(std::move(map)), unit(handler.bank().map().unit_id) {
     auto t = drivers::RawFrameLoop::open(drivers::Transport::Tcp, unit);
     auto r = drivers::RawFrameLoop::open(drivers::Transport::Rtu, unit);
     if (!t || !r) finding("cannot open the frame loops");
@@ -235,10 +236,14 @@ int shm_status(const std::uint8_t* data, std::size_t size) {
 
 const Target* find_target(std::string_view name) {
   static const Target targets[] = {
-      {"gcode", gcode},           {"dxf", dxf},
-      {"machine_config", machine_config}, {"hole_table", hole_table},
-      {"probe_sentence", probe_sentence}, {"register_map", register_map},
-      {"modbus_request", modbus_request}, {"shm_commands", shm_commands},
+      {"gcode", gcode},
+      {"dxf", dxf},
+      {"machine_config", machine_config},
+      {"hole_table", hole_table},
+      {"probe_sentence", probe_sentence},
+      {"register_map", register_map},
+      {"modbus_request", modbus_request},
+      {"shm_commands", shm_commands},
       {"shm_status", shm_status},
   };
   for (const Target& t : targets)

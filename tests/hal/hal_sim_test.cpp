@@ -15,10 +15,10 @@
 
 #include <cerrno>
 #include <cmath>
-#include <cstring>
-#include <iostream>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -133,7 +133,8 @@ class HalSession {
   // The threads run with the component in them, at real-time priority.
   bool ready() const {
     for (int i = 0; i < 300; ++i) {
-      if (halcmd("getp lasercnc.update.time").exit_code == 0 && halcmd("getp sampler.0.enable").exit_code == 0) {
+      if (halcmd("getp lasercnc.update.time").exit_code == 0 &&
+          halcmd("getp sampler.0.enable").exit_code == 0) {
         real_time_threads();
         return true;
       }
@@ -166,7 +167,8 @@ class HalSession {
         sched_param sp{};
         sp.sched_priority = sched_get_priority_max(SCHED_FIFO) - 1 - std::atoi(comm.c_str() + at + 3);
         if (sched_setscheduler(std::stoi(task.path().filename().string()), SCHED_FIFO, &sp) != 0)
-          std::cerr << "HAL thread " << comm << " stays at ordinary priority: " << std::strerror(errno) << "\n";
+          std::cerr << "HAL thread " << comm << " stays at ordinary priority: " << std::strerror(errno)
+                    << "\n";
       }
     }
   }
@@ -213,13 +215,15 @@ class Sampling {
       std::istringstream s(line);
       Sample r;
       int e = 0, en = 0, op = 0;
-      if (s >> r.n >> r.pos[0] >> r.pos[1] >> r.pos[2] >> e >> en >> op >> r.segment >> r.line >> r.fb[0] >> r.fb[1] >> r.fb[2]) {
+      if (s >> r.n >> r.pos[0] >> r.pos[1] >> r.pos[2] >> e >> en >> op >> r.segment >> r.line >> r.fb[0] >>
+          r.fb[1] >> r.fb[2]) {
         r.estop_in = e != 0;
         r.enable = en != 0;
         r.on_path = op != 0;
         out.push_back(r);
       } else if (!out.empty()) {
-        out.push_back(Sample{-1});  // "overrun": a gap (before the first sample: the tags of an earlier sampling)
+        out.push_back(
+            Sample{-1});  // "overrun": a gap (before the first sample: the tags of an earlier sampling)
       }
     }
     return out;
@@ -315,8 +319,10 @@ class HalSim : public ::testing::Test {
     const char* axes[] = {"x", "y", "z"};
     for (int i = 0; i < kAxes; ++i) {
       const std::int64_t cmd = std::stoll(getp(std::string("lasercnc.") + axes[i] + ".counts"));
-      EXPECT_TRUE(wait_for([&] { return std::stoll(getp("stepgen." + std::to_string(i) + ".counts")) == cmd; }, 5))
-          << axes[i] << ": stepgen " << getp("stepgen." + std::to_string(i) + ".counts") << ", commanded " << cmd;
+      EXPECT_TRUE(
+          wait_for([&] { return std::stoll(getp("stepgen." + std::to_string(i) + ".counts")) == cmd; }, 5))
+          << axes[i] << ": stepgen " << getp("stepgen." + std::to_string(i) + ".counts") << ", commanded "
+          << cmd;
       EXPECT_NEAR(std::stod(getp(std::string("lasercnc.") + axes[i] + ".pos-cmd")), cmd / kStepsPerMm, 1e-9);
       offset[i] = cmd - st["position_steps"][i].get<std::int64_t>();
     }
@@ -405,8 +411,8 @@ TEST_F(HalSim, SampleAndDenseChordJobsEndOnTheCommandedCountsWithinLimitsAndPath
     double dev = 0.0;
     judge(sampling.samples(), program, machine, offset, &dev);
     EXPECT_LE(dev, 0.02);
-    std::printf("%s: cycle %.3f s, path deviation from sampled pos-cmd %.4f mm\n",
-                program.filename().c_str(), st["last_cycle_time_s"].get<double>(), dev);
+    std::printf("%s: cycle %.3f s, path deviation from sampled pos-cmd %.4f mm\n", program.filename().c_str(),
+                st["last_cycle_time_s"].get<double>(), dev);
   }
 }
 
@@ -462,7 +468,8 @@ TEST_F(HalSim, AFollowingErrorStopsTheMachineAndNamesTheAxis) {
   std::ofstream(prog) << "G21 G90 G64 P0.02\nG1 Y100 F1800\nM2\n";
   ASSERT_EQ(send("load " + prog.string()).exit_code, 0);
   ASSERT_EQ(send("start").exit_code, 0);
-  ASSERT_TRUE(wait_for([&] { return status(shm_.name()).value("state", "") == "e-stop"; }, 30)) << slurp_logs();
+  ASSERT_TRUE(wait_for([&] { return status(shm_.name()).value("state", "") == "e-stop"; }, 30))
+      << slurp_logs();
   const nlohmann::json st = status(shm_.name());
   EXPECT_EQ(st["fault_axis"], "Y") << st.dump();
   EXPECT_NE(st["fault"].get<std::string>().find("following error"), std::string::npos) << st.dump();
@@ -477,7 +484,8 @@ TEST_F(HalSim, AFollowingErrorStopsTheMachineAndNamesTheAxis) {
 
 TEST_F(HalSim, AnAmpFaultStopsTheMachineUntilItClearsAndIsReset) {
   ASSERT_EQ(halcmd("setp lasercnc.amp-fault 1").exit_code, 0);
-  ASSERT_TRUE(wait_for([&] { return status(shm_.name()).value("state", "") == "e-stop"; }, 5)) << slurp_logs();
+  ASSERT_TRUE(wait_for([&] { return status(shm_.name()).value("state", "") == "e-stop"; }, 5))
+      << slurp_logs();
   EXPECT_EQ(getp("lasercnc.enable"), "FALSE");
   nlohmann::json st = status(shm_.name());
   EXPECT_NE(st["fault"].get<std::string>().find("drive reports a fault"), std::string::npos) << st.dump();
@@ -551,10 +559,10 @@ TEST_F(HalSim, TheAdaptiveFeedAndFeedHoldPinsActOnTheMovesUnderM52AndM53) {
   ASSERT_EQ(send("load " + prog.string()).exit_code, 0);
   ASSERT_EQ(send("start").exit_code, 0);
   ASSERT_TRUE(wait_for([&] { return getp("lasercnc.line") == "4"; }, 30))
-      << status(shm_.name()).dump() << "\n" << slurp_logs();
-  ASSERT_TRUE(wait_for([&] {
-    return std::abs(status(shm_.name()).value("feed_override", 0.0) - 0.5) < 1e-6;
-  }, 10));
+      << status(shm_.name()).dump() << "\n"
+      << slurp_logs();
+  ASSERT_TRUE(
+      wait_for([&] { return std::abs(status(shm_.name()).value("feed_override", 0.0) - 0.5) < 1e-6; }, 10));
   ASSERT_EQ(halcmd("setp lasercnc.feed-hold 1").exit_code, 0);
   ASSERT_TRUE(wait_for([&] { return status(shm_.name()).value("feed_override", 1.0) < 0.01; }, 10));
   const double x = std::stod(getp("lasercnc.x.pos-cmd"));
@@ -576,10 +584,11 @@ TEST_F(HalSim, TheShippedConfigurationsNameOnlyPinsTheComponentHas) {
     std::string line;
     for (int n = 1; std::getline(in, line); ++n) {
       if (line.rfind("#", 0) == 0) continue;
-      for (std::size_t at = line.find("lasercnc."); at != std::string::npos; at = line.find("lasercnc.", at + 1)) {
+      for (std::size_t at = line.find("lasercnc."); at != std::string::npos;
+           at = line.find("lasercnc.", at + 1)) {
         std::size_t end = at;
-        while (end < line.size() && (std::isalnum(static_cast<unsigned char>(line[end])) || line[end] == '.' ||
-                                     line[end] == '-' || line[end] == '_'))
+        while (end < line.size() && (std::isalnum(static_cast<unsigned char>(line[end])) ||
+                                     line[end] == '.' || line[end] == '-' || line[end] == '_'))
           ++end;
         std::string name = line.substr(at, end - at);
         if (name.rfind("lasercnc.so", 0) == 0) continue;

@@ -104,9 +104,8 @@ int expect(const std::string& in_path, const std::string& out_path) {
     std::fprintf(stderr, "%s: write failed\n", out_path.c_str());
     return 1;
   }
-  std::printf("%s: %zu periods, %llu pulses, N = %u, %u bits, %d axes\n", out_path.c_str(),
-              vf.periods.size(), static_cast<unsigned long long>(total), cfg.capacity,
-              cfg.magnitude_bits, axes);
+  std::printf("%s: %zu periods, %llu pulses, N = %u, %u bits, %d axes\n", out_path.c_str(), vf.periods.size(),
+              static_cast<unsigned long long>(total), cfg.capacity, cfg.magnitude_bits, axes);
   return 0;
 }
 
@@ -134,9 +133,8 @@ int compare(const std::string& expected_path, const std::string& actual_path) {
     if (e != nullptr && e->rfind("P ", 0) == 0) period_line = *e;
     if (e != nullptr && a != nullptr && *e == *a) continue;
     if (differ < kShown) {
-      std::fprintf(stderr, "line %zu (in %s): expected '%s', actual '%s'\n", i + 1,
-                   period_line.c_str(), e != nullptr ? e->c_str() : "<end of file>",
-                   a != nullptr ? a->c_str() : "<end of file>");
+      std::fprintf(stderr, "line %zu (in %s): expected '%s', actual '%s'\n", i + 1, period_line.c_str(),
+                   e != nullptr ? e->c_str() : "<end of file>", a != nullptr ? a->c_str() : "<end of file>");
     }
     ++differ;
   }
@@ -260,14 +258,14 @@ int generate(const std::string& kind, const std::string& out_path) {
   // the paper's software timing (15 us response, 5 us of port writes) where
   // the shortest period leaves room for it.
   const Preset presets[] = {
-      {"seed", "the paper's preset: 4 axes, 4 bits, N = 30, 400 kHz at 50 MHz (D = 125), 75 us",
-       4, 4, 30, 125, 80, 250, 40, 20, 20, "response_ns=15000 port_ns=5000", 150, 1},
-      {"fast", "the fast preset: 6 axes, 8 bits, N = 255, D >= 9 at 50 MHz: one pulse per tick at n = 255",
-       6, 8, 255, 12, 9, 30, 4, 3, 2, "step_dir=true response_ns=15000 port_ns=5000", 60, 2},
-      {"default", "the default machine's preset (share/machines/default.toml): 6 axes, 8 bits, N = 300",
-       6, 8, 300, 12, 2, 24, 1, 0, 0, "step_dir=true response_ns=2000 port_ns=1000", 60, 3},
-      {"odd", "a small odd preset: 3 axes, 3 bits, N = 7 (odd: preset N/2 rounds down)",
-       3, 3, 7, 4, 2, 9, 1, 0, 0, "response_ns=0 port_ns=0", 400, 4},
+      {"seed", "the paper's preset: 4 axes, 4 bits, N = 30, 400 kHz at 50 MHz (D = 125), 75 us", 4, 4, 30,
+       125, 80, 250, 40, 20, 20, "response_ns=15000 port_ns=5000", 150, 1},
+      {"fast", "the fast preset: 6 axes, 8 bits, N = 255, D >= 9 at 50 MHz: one pulse per tick at n = 255", 6,
+       8, 255, 12, 9, 30, 4, 3, 2, "step_dir=true response_ns=15000 port_ns=5000", 60, 2},
+      {"default", "the default machine's preset (share/machines/default.toml): 6 axes, 8 bits, N = 300", 6, 8,
+       300, 12, 2, 24, 1, 0, 0, "step_dir=true response_ns=2000 port_ns=1000", 60, 3},
+      {"odd", "a small odd preset: 3 axes, 3 bits, N = 7 (odd: preset N/2 rounds down)", 3, 3, 7, 4, 2, 9, 1,
+       0, 0, "response_ns=0 port_ns=0", 400, 4},
   };
   for (const Preset& p : presets) {
     if (kind != p.kind) continue;
@@ -285,8 +283,8 @@ int generate(const std::string& kind, const std::string& out_path) {
     std::fprintf(f,
                  "#! axes=%d mag_width=%d capacity=%d reset_divider=%d min_divider=%d "
                  "pulse_width=%d dir_setup=%d dir_hold=%d %s\n",
-                 p.axes, p.mag_width, p.capacity, p.d100, p.d_min, p.pulse_width, p.dir_setup,
-                 p.dir_hold, p.software);
+                 p.axes, p.mag_width, p.capacity, p.d100, p.d_min, p.pulse_width, p.dir_setup, p.dir_hold,
+                 p.software);
     VectorWriter w(f, p.axes, p.mag_width, p.seed);
     common_segments(w, p.d100, p.d_min, p.d_max, p.random_periods);
     if (std::fclose(f) != 0) return 1;

@@ -26,11 +26,11 @@ using namespace lcnc;
 
 int main(int argc, char** argv) {
   if (argc < 5) {
-    std::fprintf(stderr, "usage: job_increments MACHINE.toml PROGRAM.ngc OUT.inc OUT.totals [KEY=VALUE ...]\n");
+    std::fprintf(stderr,
+                 "usage: job_increments MACHINE.toml PROGRAM.ngc OUT.inc OUT.totals [KEY=VALUE ...]\n");
     return 2;
   }
-  const std::string machine_path = argv[1], program = argv[2], inc_path = argv[3],
-                    totals_path = argv[4];
+  const std::string machine_path = argv[1], program = argv[2], inc_path = argv[3], totals_path = argv[4];
   std::string extra;
   long divider = 1;
   for (int i = 5; i < argc; ++i) {
@@ -71,8 +71,8 @@ int main(int argc, char** argv) {
                "# The increment stream of %s on %s (machine '%s'), written by job_increments:\n"
                "# ProgramReader -> Planner -> EntryStream, as `lasercnc run` plans it.\n",
                program.c_str(), machine_path.c_str(), machine.name.c_str());
-  std::fprintf(out, "#! axes=%d mag_width=%u capacity=%u%s\n", kAxisCount,
-               machine.dda.magnitude_bits, machine.dda.capacity, extra.c_str());
+  std::fprintf(out, "#! axes=%d mag_width=%u capacity=%u%s\n", kAxisCount, machine.dda.magnitude_bits,
+               machine.dda.capacity, extra.c_str());
 
   std::array<std::int64_t, kAxisCount> sum{};
   std::uint64_t periods = 0, pulses = 0;
@@ -108,8 +108,8 @@ int main(int argc, char** argv) {
   for (int i = 0; i < kAxisCount; ++i) {
     const std::int64_t commanded = stream.commanded(i) - stream.start_steps(i);
     if (sum[i] != commanded) {  // the quantizer's own invariant; never expected to fire
-      std::fprintf(stderr, "axis %c: increments sum to %lld, commanded %lld steps\n",
-                   kAxisLetters[i], static_cast<long long>(sum[i]), static_cast<long long>(commanded));
+      std::fprintf(stderr, "axis %c: increments sum to %lld, commanded %lld steps\n", kAxisLetters[i],
+                   static_cast<long long>(sum[i]), static_cast<long long>(commanded));
       std::fclose(tot);
       return 1;
     }

@@ -25,7 +25,7 @@ struct VectorPeriod {
 };
 
 struct VectorFile {
-  std::map<std::string, std::string> generics;  // from the "#!" line
+  std::map<std::string, std::string> generics;         // from the "#!" line
   std::int64_t axes = 0, mag_width = 0, capacity = 0;  // the DDA preset among them
   std::vector<VectorPeriod> periods;
 };
@@ -49,8 +49,8 @@ inline bool read_vector_file(const std::string& path, VectorFile& out) {
       while (ss >> kv) {
         const auto eq = kv.find('=');
         if (eq == std::string::npos || eq == 0) {
-          std::fprintf(stderr, "%s:%d: expected key=value in the #! line, found '%s'\n",
-                       path.c_str(), line_no, kv.c_str());
+          std::fprintf(stderr, "%s:%d: expected key=value in the #! line, found '%s'\n", path.c_str(),
+                       line_no, kv.c_str());
           return false;
         }
         out.generics[kv.substr(0, eq)] = kv.substr(eq + 1);
@@ -79,7 +79,7 @@ inline bool read_vector_file(const std::string& path, VectorFile& out) {
     out.periods.push_back(std::move(p));
   }
   for (auto [key, value] : {std::pair{"axes", &out.axes}, std::pair{"mag_width", &out.mag_width},
-                             std::pair{"capacity", &out.capacity}}) {
+                            std::pair{"capacity", &out.capacity}}) {
     const auto it = out.generics.find(key);
     char* end = nullptr;
     if (it != out.generics.end()) *value = std::strtoll(it->second.c_str(), &end, 10);
@@ -93,14 +93,14 @@ inline bool read_vector_file(const std::string& path, VectorFile& out) {
   const std::int64_t max_n = (std::int64_t{1} << out.mag_width) - 1;
   for (const VectorPeriod& p : out.periods) {
     if (static_cast<std::int64_t>(p.steps.size()) > axes) {
-      std::fprintf(stderr, "%s:%d: %zu increments for %lld axes\n", path.c_str(), p.line,
-                   p.steps.size(), static_cast<long long>(axes));
+      std::fprintf(stderr, "%s:%d: %zu increments for %lld axes\n", path.c_str(), p.line, p.steps.size(),
+                   static_cast<long long>(axes));
       return false;
     }
     for (std::int64_t s : p.steps) {
       if (s > max_n || s < -max_n) {
-        std::fprintf(stderr, "%s:%d: increment %lld outside ±%lld (mag_width)\n", path.c_str(),
-                     p.line, static_cast<long long>(s), static_cast<long long>(max_n));
+        std::fprintf(stderr, "%s:%d: increment %lld outside ±%lld (mag_width)\n", path.c_str(), p.line,
+                     static_cast<long long>(s), static_cast<long long>(max_n));
         return false;
       }
     }

@@ -37,7 +37,8 @@ TEST(AdjustScreen, SetsPowerGatesEmissionWritesTheHeadAndShowsTheLinks) {
   ASSERT_EQ(links->rowCount(), 3);
   EXPECT_TRUE(wait_until([&] {
     page.refresh();
-    return links->item(0, 1)->text() == "up" && links->item(1, 1)->text() == "up" && links->item(2, 1)->text() == "up";
+    return links->item(0, 1)->text() == "up" && links->item(1, 1)->text() == "up" &&
+           links->item(2, 1)->text() == "up";
   }));
   EXPECT_EQ(page.findChild<QLabel*>("laserStateLabel")->text(), "standby");  // not enabled
   // 40 % of the rated 50 W, emission on: the source and then the meter follow

@@ -49,7 +49,7 @@ int pixels_of(const QImage& img, Hue h) {
     for (int x = 0; x < img.width(); ++x) {
       const QColor p = img.pixelColor(x, y);
       const int r = p.red(), g = p.green(), b = p.blue();
-      const bool hit = h == Hue::Red ? r - std::max(g, b) > 80
+      const bool hit = h == Hue::Red     ? r - std::max(g, b) > 80
                        : h == Hue::Green ? g - std::max(r, b) > 50
                                          : b - std::max(r, g) > 80;
       n += hit ? 1 : 0;

@@ -44,10 +44,10 @@ TEST(FocalWorkflow, MeasuresEachHolesFocusOffsetOnTheSimulatedMachine) {
   ASSERT_TRUE(static_cast<bool>(sensor)) << sensor.error().to_string();
   MachineMover mover(shm, e2e::temp_dir() / "moves");
   // the surface is z = 20 mm at 0,0, tilted and wavy; holes planned at z 20
-  const std::vector<HoleRecord> holes = {hole(1, 100, 50, 20), hole(2, 400, 300, 20),
-                                         hole(3, 700, 120, 21.5),
-                                         hole(4, 200, 200, 480),   // 50 mm above: Z 530 beyond the travel
-                                         hole(5, 300, 100, 0.0)};  // sensor at 50: the surface ~20 mm off, out of range
+  const std::vector<HoleRecord> holes = {
+      hole(1, 100, 50, 20), hole(2, 400, 300, 20), hole(3, 700, 120, 21.5),
+      hole(4, 200, 200, 480),   // 50 mm above: Z 530 beyond the travel
+      hole(5, 300, 100, 0.0)};  // sensor at 50: the surface ~20 mm off, out of range
   int calls = 0;
   const std::vector<FocalReading> r =
       run_focal(holes, mover, **sensor, FocalConfig{}, [&](int done, int total) {
@@ -106,7 +106,8 @@ TEST(FocalWorkflow, ALostLinkEndsTheRunAndSaysSo) {
   MachineMover mover(shm, e2e::temp_dir() / "moves");  // no daemon at all
   FocalConfig c;
   c.move_timeout = std::chrono::milliseconds(300);
-  const std::vector<FocalReading> r = run_focal({hole(1, 100, 50, 20), hole(2, 200, 50, 20)}, mover, **sensor, c);
+  const std::vector<FocalReading> r =
+      run_focal({hole(1, 100, 50, 20), hole(2, 200, 50, 20)}, mover, **sensor, c);
   ASSERT_EQ(r.size(), 2u);
   EXPECT_NE(r[0].error.find("no link to lasercncd"), std::string::npos) << r[0].error;
   EXPECT_NE(r[1].error.find("not measured"), std::string::npos) << r[1].error;
@@ -138,7 +139,7 @@ TEST(FocalScreen, MeasuresTheTickedHolesShowsEachAndSavesTheOffsets) {
   const double truth = (*sims)->surface().z_at(100, 50) - 20.0;
   EXPECT_NEAR(t->item(0, 6)->text().toDouble(), truth, 0.005) << t->item(0, 7)->text().toStdString();
   EXPECT_EQ(t->item(0, 7)->text(), "measured");
-  EXPECT_TRUE(t->item(1, 6)->text().isEmpty());                 // not ticked
+  EXPECT_TRUE(t->item(1, 6)->text().isEmpty());  // not ticked
   EXPECT_TRUE(t->item(2, 7)->text().contains("travel")) << t->item(2, 7)->text().toStdString();
   EXPECT_TRUE(page.message().contains("1 measured, 1 not")) << page.message().toStdString();
   ASSERT_TRUE(page.findChild<QPushButton*>("saveButton")->isEnabled());

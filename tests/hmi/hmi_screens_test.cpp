@@ -6,38 +6,38 @@
 
 #include <fcntl.h>
 #include <signal.h>
-#include <sys/mman.h>
 #include <spawn.h>
+#include <sys/mman.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <QAbstractItemModelTester>
-#include <QDoubleSpinBox>
-#include <QTableWidget>
 #include <QApplication>
+#include <QComboBox>
+#include <QDoubleSpinBox>
 #include <QElapsedTimer>
 #include <QImage>
 #include <QLabel>
+#include <QLineEdit>
 #include <QPushButton>
 #include <QSignalSpy>
-#include <QTest>
-#include <QTableView>
-#include <QTabWidget>
-#include <QComboBox>
-#include <QLineEdit>
 #include <QSlider>
+#include <QTabWidget>
+#include <QTableView>
+#include <QTableWidget>
+#include <QTest>
 #include <QTime>
 
 #include <filesystem>
 #include <fstream>
 #include <string>
 
-#include "holes/hole_table.h"
-#include "hmi/machine_link.h"
 #include "hmi/hole_table_model.h"
+#include "hmi/machine_link.h"
 #include "hmi/machine_page.h"
 #include "hmi/main_window.h"
 #include "hmi/process_db_page.h"
+#include "holes/hole_table.h"
 #include "tests/e2e/e2e_support.h"
 #include "tests/hmi/hmi_test_support.h"
 
@@ -63,7 +63,6 @@ std::unique_ptr<ProcessDatabase> db_with_holes(const fs::path& dir, int n) {
   return std::move(db).value();
 }
 
-
 TEST(HoleTableModel, PassesTheModelTesterAndRefusesOutOfRangeEdits) {
   const fs::path dir = temp_dir();
   auto db = db_with_holes(dir, 3);
@@ -76,7 +75,8 @@ TEST(HoleTableModel, PassesTheModelTesterAndRefusesOutOfRangeEdits) {
   const QModelIndex a = model.index(1, HoleTableModel::kA);
   EXPECT_FALSE(model.setData(a, 120.0));
   ASSERT_EQ(refused.count(), 1);
-  EXPECT_TRUE(refused.at(0).at(0).toString().contains("hole 2: field 5 A = 120")) << refused.at(0).at(0).toString().toStdString();
+  EXPECT_TRUE(refused.at(0).at(0).toString().contains("hole 2: field 5 A = 120"))
+      << refused.at(0).at(0).toString().toStdString();
   EXPECT_EQ((*db->hole(2))->params.position[3], 0.0);  // nothing stored
   EXPECT_EQ(model.data(a).toDouble(), 0.0);
   EXPECT_TRUE(model.setData(a, -30.0));
@@ -93,7 +93,8 @@ TEST(ProcessDbScreen, ImportShowsWhereTheFileIsWrongAndAddsHoles) {
   ASSERT_NE(table, nullptr);
   EXPECT_EQ(table->model()->rowCount(), 2);
   std::ofstream(dir / "bad.csv") << "hole,x_mm\n";
-  EXPECT_FALSE(page.import_file(QString::fromStdString((dir / "bad.csv").string()), ProcessDatabase::ImportMode::Merge));
+  EXPECT_FALSE(page.import_file(QString::fromStdString((dir / "bad.csv").string()),
+                                ProcessDatabase::ImportMode::Merge));
   auto* message = page.findChild<QLabel*>("messageLabel");
   ASSERT_NE(message, nullptr);
   EXPECT_TRUE(message->text().contains("bad.csv:1:1")) << message->text().toStdString();
@@ -104,7 +105,8 @@ TEST(ProcessDbScreen, ImportShowsWhereTheFileIsWrongAndAddsHoles) {
   EXPECT_EQ(table->model()->rowCount(), 3);
   EXPECT_EQ(page.model().record(2).params.hole_number, 3u);
   EXPECT_TRUE(page.export_file(QString::fromStdString((dir / "out.csv").string())));
-  EXPECT_TRUE(page.import_file(QString::fromStdString((dir / "out.csv").string()), ProcessDatabase::ImportMode::Replace));
+  EXPECT_TRUE(page.import_file(QString::fromStdString((dir / "out.csv").string()),
+                               ProcessDatabase::ImportMode::Replace));
   EXPECT_EQ(table->model()->rowCount(), 3);
 }
 
@@ -150,8 +152,8 @@ TEST(ProcessDbScreen, PlotsTheHolesAndShowsTheColumnsByGroup) {
   const int n = table->model()->columnCount();
   columns->setCurrentIndex(1);
   EXPECT_FALSE(table->isColumnHidden(0));
-  EXPECT_FALSE(table->isColumnHidden(1));  // X
-  EXPECT_TRUE(table->isColumnHidden(6));   // feed
+  EXPECT_FALSE(table->isColumnHidden(1));      // X
+  EXPECT_TRUE(table->isColumnHidden(6));       // feed
   EXPECT_FALSE(table->isColumnHidden(n - 1));  // the focus offset
   columns->setCurrentIndex(2);
   EXPECT_TRUE(table->isColumnHidden(1));
@@ -180,9 +182,10 @@ TEST(MainWindow, ScreenshotCommandWritesEachScreen) {
   const fs::path dir = temp_dir();
   // (detect_leaks=0: under ASan, Qt's offscreen platform leaks its screen
   // objects at exit; the suite's own main suppresses exactly those)
-  const std::string cmd = std::string("QT_QPA_PLATFORM=offscreen ASAN_OPTIONS=detect_leaks=0 ") + LASERCNC_HMI_EXE + " --db " +
-                          (dir / "p.db").string() + " --shm /lcnc_hmi_none --screenshot " +
-                          (dir / "shots").string() + " > " + (dir / "out.txt").string() + " 2>&1";
+  const std::string cmd = std::string("QT_QPA_PLATFORM=offscreen ASAN_OPTIONS=detect_leaks=0 ") +
+                          LASERCNC_HMI_EXE + " --db " + (dir / "p.db").string() +
+                          " --shm /lcnc_hmi_none --screenshot " + (dir / "shots").string() + " > " +
+                          (dir / "out.txt").string() + " 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0);
   EXPECT_GT(fs::file_size(dir / "shots" / "machinePage.png"), 1000u);
   EXPECT_GT(fs::file_size(dir / "shots" / "processDbPage.png"), 1000u);
@@ -227,11 +230,13 @@ TEST(ProcessDbScreen, SendsTheHolesWithTheirFocusOffsetsToTheController) {
   ASSERT_TRUE(db->set_focus_offset(1, 0.4).ok());
   ProcessDbPage page(*db, shm);
   std::string sent;
-  EXPECT_TRUE(wait_until([&] { return !(sent = page.send_to_controller()).empty(); })) << page.message().toStdString();
+  EXPECT_TRUE(wait_until([&] { return !(sent = page.send_to_controller()).empty(); }))
+      << page.message().toStdString();
   // sent again at once (a double click): the table is replaced whole, so
   // the daemon, reading the first, never sees it half-written
   EXPECT_EQ(page.send_to_controller(), sent);
-  EXPECT_TRUE(page.message().contains("2 holes (1 with a measured focus offset)")) << page.message().toStdString();
+  EXPECT_TRUE(page.message().contains("2 holes (1 with a measured focus offset)"))
+      << page.message().toStdString();
   Result<std::vector<HoleProcessParams>> rows = read_hole_table(sent);
   ASSERT_TRUE(static_cast<bool>(rows)) << rows.error().to_string();
   ASSERT_EQ(rows->size(), 2u);
@@ -263,26 +268,53 @@ TEST(MachineScreen, JogsHomesAndListsTheAlarms) {
   auto* step = page.findChild<QDoubleSpinBox*>("jogStepSpin");
   auto* alarms = page.findChild<QTableWidget*>("alarmTable");
   ASSERT_TRUE(state && dro_x && step && alarms);
-  EXPECT_TRUE(wait_until([&] { page.refresh(); return state->text().contains("idle"); }));
+  EXPECT_TRUE(wait_until([&] {
+    page.refresh();
+    return state->text().contains("idle");
+  }));
   step->setValue(2.5);
   page.findChild<QPushButton*>("jogPlusButton")->click();
-  EXPECT_TRUE(wait_until([&] { page.refresh(); return dro_x->text() == "2.500"; })) << dro_x->text().toStdString();
-  EXPECT_TRUE(wait_until([&] { page.refresh(); return state->text().contains("idle"); }));
+  EXPECT_TRUE(wait_until([&] {
+    page.refresh();
+    return dro_x->text() == "2.500";
+  })) << dro_x->text().toStdString();
+  EXPECT_TRUE(wait_until([&] {
+    page.refresh();
+    return state->text().contains("idle");
+  }));
   page.findChild<QPushButton*>("jogMinusButton")->click();
-  EXPECT_TRUE(wait_until([&] { page.refresh(); return dro_x->text() == "0.000"; })) << dro_x->text().toStdString();
-  EXPECT_TRUE(wait_until([&] { page.refresh(); return state->text().contains("idle"); }));
+  EXPECT_TRUE(wait_until([&] {
+    page.refresh();
+    return dro_x->text() == "0.000";
+  })) << dro_x->text().toStdString();
+  EXPECT_TRUE(wait_until([&] {
+    page.refresh();
+    return state->text().contains("idle");
+  }));
   const auto row_with = [&](const QString& what) {
     for (int r = 0; r < alarms->rowCount(); ++r)
-      if (alarms->item(r, 3)->text().contains(what, Qt::CaseInsensitive) || alarms->item(r, 1)->text() == what)
+      if (alarms->item(r, 3)->text().contains(what, Qt::CaseInsensitive) ||
+          alarms->item(r, 1)->text() == what)
         return r;
     return -1;
   };
   step->setValue(5.0);
   page.findChild<QPushButton*>("jogPlusButton")->click();
-  EXPECT_TRUE(wait_until([&] { page.refresh(); return dro_x->text() == "5.000"; })) << dro_x->text().toStdString();
-  EXPECT_TRUE(wait_until([&] { page.refresh(); return state->text().contains("idle"); }));
+  EXPECT_TRUE(wait_until([&] {
+    page.refresh();
+    return dro_x->text() == "5.000";
+  })) << dro_x->text().toStdString();
+  EXPECT_TRUE(wait_until([&] {
+    page.refresh();
+    return state->text().contains("idle");
+  }));
   page.findChild<QPushButton*>("homeButton")->click();  // X: search, back off, latch
-  EXPECT_TRUE(wait_until([&] { page.refresh(); return row_with("homed") >= 0; }, 30000))
+  EXPECT_TRUE(wait_until(
+      [&] {
+        page.refresh();
+        return row_with("homed") >= 0;
+      },
+      30000))
       << page.findChild<QLabel*>("jobLabel")->text().toStdString();
   // an e-stop: a fault row, in the alarm colour
   page.findChild<QPushButton*>("estopButton")->click();
@@ -313,30 +345,46 @@ TEST(MachineScreen, TouchOffMdiAndTheControlsTheStateAllows) {
   auto* mach_x = page.findChild<QLabel*>("droMachX");
   const auto button = [&](const char* name) { return page.findChild<QPushButton*>(name); };
   ASSERT_TRUE(state && dro_x && mach_x && button("touchOffButton") && button("mdiSendButton"));
-  const auto idle = [&] { page.refresh(); return state->text().contains("idle") && button("cycleStartButton") != nullptr && button("jogPlusButton")->isEnabled(); };
+  const auto idle = [&] {
+    page.refresh();
+    return state->text().contains("idle") && button("cycleStartButton") != nullptr &&
+           button("jogPlusButton")->isEnabled();
+  };
   EXPECT_TRUE(wait_until(idle));
   page.findChild<QDoubleSpinBox*>("jogStepSpin")->setValue(20.0);
   button("jogPlusButton")->click();
-  EXPECT_TRUE(wait_until([&] { page.refresh(); return mach_x->text() == "20.000"; })) << mach_x->text().toStdString();
+  EXPECT_TRUE(wait_until([&] {
+    page.refresh();
+    return mach_x->text() == "20.000";
+  })) << mach_x->text().toStdString();
   EXPECT_TRUE(wait_until(idle));
   // touch-off: here reads X 5
   page.findChild<QComboBox*>("touchOffAxisCombo")->setCurrentIndex(0);
   page.findChild<QDoubleSpinBox*>("touchOffSpin")->setValue(5.0);
   button("touchOffButton")->click();
-  EXPECT_TRUE(wait_until([&] { page.refresh(); return dro_x->text() == "5.000"; })) << dro_x->text().toStdString();
+  EXPECT_TRUE(wait_until([&] {
+    page.refresh();
+    return dro_x->text() == "5.000";
+  })) << dro_x->text().toStdString();
   EXPECT_EQ(mach_x->text(), "20.000");
   // MDI to the work zero: machine X 15
   page.findChild<QLineEdit*>("mdiEdit")->setText("G0 X0");
   button("mdiSendButton")->click();
-  EXPECT_TRUE(wait_until([&] { page.refresh(); return mach_x->text() == "15.000" && dro_x->text() == "0.000"; }))
-      << mach_x->text().toStdString() << " " << dro_x->text().toStdString();
+  EXPECT_TRUE(wait_until([&] {
+    page.refresh();
+    return mach_x->text() == "15.000" && dro_x->text() == "0.000";
+  })) << mach_x->text().toStdString()
+      << " " << dro_x->text().toStdString();
   EXPECT_TRUE(wait_until(idle));
   EXPECT_FALSE(button("cycleStartButton")->isEnabled());  // nothing loaded
   EXPECT_FALSE(button("holdButton")->isEnabled());
   EXPECT_FALSE(button("resetButton")->isEnabled());
   // a long move: no start, jog, home, MDI or touch-off while it runs; hold and stop offered
   ASSERT_TRUE(page.send_mdi("M8 G1 X300 F600"));
-  EXPECT_TRUE(wait_until([&] { page.refresh(); return state->text().contains("running"); })) << state->text().toStdString();
+  EXPECT_TRUE(wait_until([&] {
+    page.refresh();
+    return state->text().contains("running");
+  })) << state->text().toStdString();
   auto* to_go = page.findChild<QLabel*>("toGoX");
   EXPECT_TRUE(wait_until([&] {
     page.refresh();
@@ -345,9 +393,12 @@ TEST(MachineScreen, TouchOffMdiAndTheControlsTheStateAllows) {
     return ok && left > 10.0 && left < 285.0;  // X 15 → 300, under way
   })) << to_go->text().toStdString();
   auto* gas = page.findChild<QLabel*>("gasLabel");
-  EXPECT_TRUE(wait_until([&] { page.refresh(); return gas->text().contains("high"); })) << gas->text().toStdString();
-  for (const char* off : {"cycleStartButton", "jogPlusButton", "jogMinusButton", "homeButton", "mdiSendButton",
-                          "touchOffButton", "resumeButton", "resetButton", "frameButton"})
+  EXPECT_TRUE(wait_until([&] {
+    page.refresh();
+    return gas->text().contains("high");
+  })) << gas->text().toStdString();
+  for (const char* off : {"cycleStartButton", "jogPlusButton", "jogMinusButton", "homeButton",
+                          "mdiSendButton", "touchOffButton", "resumeButton", "resetButton", "frameButton"})
     EXPECT_FALSE(button(off)->isEnabled()) << off;
   EXPECT_TRUE(button("holdButton")->isEnabled());
   EXPECT_TRUE(button("stopButton")->isEnabled());
@@ -357,9 +408,15 @@ TEST(MachineScreen, TouchOffMdiAndTheControlsTheStateAllows) {
   MachineLink other(shm);
   ASSERT_TRUE(wait_until([&] { return other.poll(); }));
   ASSERT_NE(other.send(shm::CommandType::Override, 1.2), 0u);
-  EXPECT_TRUE(wait_until([&] { page.refresh(); return slider->value() == 120; })) << slider->value();
+  EXPECT_TRUE(wait_until([&] {
+    page.refresh();
+    return slider->value() == 120;
+  })) << slider->value();
   button("holdButton")->click();
-  EXPECT_TRUE(wait_until([&] { page.refresh(); return button("resumeButton")->isEnabled(); }));
+  EXPECT_TRUE(wait_until([&] {
+    page.refresh();
+    return button("resumeButton")->isEnabled();
+  }));
   EXPECT_FALSE(button("jogPlusButton")->isEnabled());
   button("stopButton")->click();
   EXPECT_TRUE(wait_until(idle));
@@ -367,7 +424,8 @@ TEST(MachineScreen, TouchOffMdiAndTheControlsTheStateAllows) {
   EXPECT_TRUE(state->styleSheet().contains("#2e7d32")) << state->styleSheet().toStdString();
   auto* alarms = page.findChild<QTableWidget*>("alarmTable");
   ASSERT_GT(alarms->rowCount(), 0);
-  EXPECT_TRUE(QTime::fromString(alarms->item(0, 0)->text(), "HH:mm:ss").isValid()) << alarms->item(0, 0)->text().toStdString();
+  EXPECT_TRUE(QTime::fromString(alarms->item(0, 0)->text(), "HH:mm:ss").isValid())
+      << alarms->item(0, 0)->text().toStdString();
 }
 
 }  // namespace

@@ -28,7 +28,8 @@ TEST(ControlsEnabled, FollowTheMachineState) {
   EXPECT_FALSE(controls_enabled(view(S::Idle, false, false)).frame);
 
   const ControlsEnabled running = controls_enabled(view(S::Running, true));
-  EXPECT_FALSE(running.start || running.jog || running.home || running.mdi || running.touch_off || running.frame);
+  EXPECT_FALSE(running.start || running.jog || running.home || running.mdi || running.touch_off ||
+               running.frame);
   EXPECT_TRUE(running.hold && running.stop && running.override_feed);
   EXPECT_FALSE(running.resume);
 

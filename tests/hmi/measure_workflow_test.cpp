@@ -42,11 +42,11 @@ TEST(MeasureWorkflow, PlansSixPointsWithTheToolAxisAlongEachFacesNormal) {
   Result<std::vector<ProbePoint>> pts = plan_321(plan);
   ASSERT_TRUE(static_cast<bool>(pts));
   ASSERT_EQ(pts->size(), 6u);
-  EXPECT_EQ((*pts)[0].approach[3], 0.0);                // top: straight down
-  EXPECT_NEAR((*pts)[0].approach[2], 65.0, 1e-9);       // 5 mm above the top
+  EXPECT_EQ((*pts)[0].approach[3], 0.0);                     // top: straight down
+  EXPECT_NEAR((*pts)[0].approach[2], 65.0, 1e-9);            // 5 mm above the top
   EXPECT_NEAR(std::abs((*pts)[3].approach[3]), 90.0, 1e-9);  // the front face: tilted
-  EXPECT_NEAR((*pts)[3].approach[1], 145.0, 1e-9);      // 5 mm in front of it
-  EXPECT_NEAR((*pts)[5].approach[0], 395.0, 1e-9);      // 5 mm left of the left face
+  EXPECT_NEAR((*pts)[3].approach[1], 145.0, 1e-9);           // 5 mm in front of it
+  EXPECT_NEAR((*pts)[5].approach[0], 395.0, 1e-9);           // 5 mm left of the left face
   plan.block_mm = Vec3(0, 1, 1);
   EXPECT_FALSE(static_cast<bool>(plan_321(plan)));
 }

@@ -33,9 +33,9 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path temp_db(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() /
-                     ("lcnc_pdb_" + std::to_string(getpid()) + "_" +
-                      ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  const fs::path d =
+      fs::temp_directory_path() / ("lcnc_pdb_" + std::to_string(getpid()) + "_" +
+                                   ::testing::UnitTest::GetInstance()->current_test_info()->name());
   fs::create_directories(d);
   const fs::path p = d / name;
   for (const char* ext : {"", "-wal", "-shm"}) fs::remove(p.string() + ext);
@@ -156,16 +156,18 @@ TEST(ProcessDatabase, TheSchemaRefusesOutOfRangeEvenFromRawSql) {
   const fs::path p = temp_db("c.db");
   auto db = open_db(p);
   with_raw_sql(p, [](QSqlQuery& q) {
-    EXPECT_FALSE(q.exec("INSERT INTO holes (hole, x_mm, y_mm, z_mm, a_deg, c_deg, feed_mm_min, "
-                        "layer_feed_mm, layer_count, total_depth_mm, power_pct, start_radius_mm, "
-                        "end_radius_mm, radius_turns, scan_speed_mm_s, wedge_speed_rpm, beam_offset_mm, "
-                        "process) VALUES (5, 100, 50, 20, 0, 0, 600, 0.1, 10, 2.0, 80, 0.5, 0.5, 1, 200, "
-                        "3000, 0, 0)"));  // depth ≠ layers × layer feed
-    EXPECT_FALSE(q.exec("INSERT INTO holes (hole, x_mm, y_mm, z_mm, a_deg, c_deg, feed_mm_min, "
-                        "layer_feed_mm, layer_count, total_depth_mm, power_pct, start_radius_mm, "
-                        "end_radius_mm, radius_turns, scan_speed_mm_s, wedge_speed_rpm, beam_offset_mm, "
-                        "process) VALUES (5, 100, 50, 20, 0, 0, 600, 0.1, 10, 1.0, 130, 0.5, 0.5, 1, 200, "
-                        "3000, 0, 0)"));  // power 130 %
+    EXPECT_FALSE(
+        q.exec("INSERT INTO holes (hole, x_mm, y_mm, z_mm, a_deg, c_deg, feed_mm_min, "
+               "layer_feed_mm, layer_count, total_depth_mm, power_pct, start_radius_mm, "
+               "end_radius_mm, radius_turns, scan_speed_mm_s, wedge_speed_rpm, beam_offset_mm, "
+               "process) VALUES (5, 100, 50, 20, 0, 0, 600, 0.1, 10, 2.0, 80, 0.5, 0.5, 1, 200, "
+               "3000, 0, 0)"));  // depth ≠ layers × layer feed
+    EXPECT_FALSE(
+        q.exec("INSERT INTO holes (hole, x_mm, y_mm, z_mm, a_deg, c_deg, feed_mm_min, "
+               "layer_feed_mm, layer_count, total_depth_mm, power_pct, start_radius_mm, "
+               "end_radius_mm, radius_turns, scan_speed_mm_s, wedge_speed_rpm, beam_offset_mm, "
+               "process) VALUES (5, 100, 50, 20, 0, 0, 600, 0.1, 10, 1.0, 130, 0.5, 0.5, 1, 200, "
+               "3000, 0, 0)"));  // power 130 %
   });
   EXPECT_EQ(count(*db), 0u);
 }
@@ -203,8 +205,7 @@ TEST(ProcessDatabase, RefusesEachFieldOutOfRangeNamingItAndLosesNothing) {
   Result<std::vector<HoleRecord>> all = again->holes();
   ASSERT_TRUE(static_cast<bool>(all));
   ASSERT_EQ(all->size(), 1u);
-  for (const HoleField& f : kHoleFields)
-    EXPECT_EQ(f.get((*all)[0].params), f.get(stored.params)) << f.column;
+  for (const HoleField& f : kHoleFields) EXPECT_EQ(f.get((*all)[0].params), f.get(stored.params)) << f.column;
   EXPECT_EQ((*all)[0].focus_offset_mm, std::optional<double>(0.25));
 }
 
@@ -254,13 +255,14 @@ CREATE TABLE holes (
   process         INTEGER NOT NULL CHECK (process IN (0, 1, 2)),
   shape           TEXT NOT NULL DEFAULT '',
   focus_offset_mm REAL CHECK (focus_offset_mm IS NULL OR abs(focus_offset_mm) <= 50)
-))"))
-        << q.lastError().text().toStdString();
+))")) << q.lastError().text().toStdString();
     ASSERT_TRUE(q.exec("PRAGMA user_version = 1"));
-    ASSERT_TRUE(q.exec("INSERT INTO holes VALUES (4, 123.5, 50, 20, -10, 45, 600, 0.1, 10, 1.0, 80, "
-                       "0.5, 0.3, 1, 200, 3000, 0.125, 0, '', -0.5)"));
-    ASSERT_TRUE(q.exec("INSERT INTO holes VALUES (7, 100, 50, 20, 0, 0, 300, 0.1, 5, 0.5, 90, 0.5, 0.5, "
-                       "1, 100, 3000, 0, 2, '0.8@0;0.5@120;0.8@240', NULL)"));
+    ASSERT_TRUE(
+        q.exec("INSERT INTO holes VALUES (4, 123.5, 50, 20, -10, 45, 600, 0.1, 10, 1.0, 80, "
+               "0.5, 0.3, 1, 200, 3000, 0.125, 0, '', -0.5)"));
+    ASSERT_TRUE(
+        q.exec("INSERT INTO holes VALUES (7, 100, 50, 20, 0, 0, 300, 0.1, 5, 0.5, 90, 0.5, 0.5, "
+               "1, 100, 3000, 0, 2, '0.8@0;0.5@120;0.8@240', NULL)"));
   });
   auto db = open_db(p);
   ASSERT_NE(db, nullptr);
@@ -392,7 +394,8 @@ TEST(ProcessDatabase, KilledWriterLosesNoCommittedRowAndCorruptsNothing) {
   // the kills came while the writer was writing, after it had committed some
   EXPECT_GT(committed_total, 0u);
   EXPECT_EQ(kills_mid_job, static_cast<std::size_t>(kKills));
-  std::printf("killed %d writers mid-job; %zu rows they had committed, all present\n", kKills, committed_total);
+  std::printf("killed %d writers mid-job; %zu rows they had committed, all present\n", kKills,
+              committed_total);
 }
 
 }  // namespace

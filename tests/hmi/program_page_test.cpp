@@ -185,7 +185,8 @@ TEST(ProgramScreen, DrawsIn3DWithTheToolAxisAndShowsTheGcodeLine) {
   EXPECT_TRUE(page.toolpath()->tilted);
   double max_tilt_deg = 0;
   for (const ToolpathPoint& p : page.toolpath()->points)
-    max_tilt_deg = std::max(max_tilt_deg, std::acos(std::clamp(p.axis.z(), -1.0, 1.0)) * 180.0 / 3.14159265358979);
+    max_tilt_deg =
+        std::max(max_tilt_deg, std::acos(std::clamp(p.axis.z(), -1.0, 1.0)) * 180.0 / 3.14159265358979);
   EXPECT_NEAR(max_tilt_deg, 20.0, 0.5);
 }
 

@@ -58,7 +58,8 @@ TEST(Translations, EveryOperatorTextHasAChineseAndARussianTranslation) {
                             fresh.string() + " > " + (dir / "lupdate.txt").string() + " 2>&1";
     ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(dir / "lupdate.txt");
     const std::string out = slurp(dir / "lupdate.txt");
-    EXPECT_NE(out.find("(0 new and"), std::string::npos) << lang << ": texts not in the translation file\n" << out;
+    EXPECT_NE(out.find("(0 new and"), std::string::npos) << lang << ": texts not in the translation file\n"
+                                                         << out;
     const std::string ts = slurp(fresh);
     EXPECT_EQ(ts.find("type=\"unfinished\""), std::string::npos) << lang << ": untranslated texts";
     EXPECT_EQ(ts.find("<translation></translation>"), std::string::npos) << lang;
@@ -68,7 +69,8 @@ TEST(Translations, EveryOperatorTextHasAChineseAndARussianTranslation) {
 }
 
 TEST(Translations, TheScreensSpeakRussianAndChinese) {
-  auto db = ProcessDatabase::open((fs::temp_directory_path() / ("lcnc_tr_" + std::to_string(getpid()) + ".db")).string());
+  auto db = ProcessDatabase::open(
+      (fs::temp_directory_path() / ("lcnc_tr_" + std::to_string(getpid()) + ".db")).string());
   ASSERT_TRUE(static_cast<bool>(db));
   const auto tab_titles = [&] {
     MainWindow w(**db, "/lcnc_tr_none");
@@ -101,7 +103,8 @@ std::map<std::string, QString> visible_texts(QWidget& root) {
   const auto path_of = [&root](const QObject* o) {
     std::string p;
     for (; o != nullptr && o != &root; o = o->parent())
-      p = (o->objectName().isEmpty() ? std::string(o->metaObject()->className()) : o->objectName().toStdString()) +
+      p = (o->objectName().isEmpty() ? std::string(o->metaObject()->className())
+                                     : o->objectName().toStdString()) +
           "/" + p;
     return p;
   };
@@ -142,12 +145,14 @@ bool language_neutral(const QString& text) {
 // it reads in English (a text never marked, marked in another context, or
 // not translated), and the window fits a 1280 × 800 panel in every language.
 TEST(Translations, NoScreenShowsAnUntranslatedText) {
-  auto db = ProcessDatabase::open((fs::temp_directory_path() / ("lcnc_tr3_" + std::to_string(getpid()) + ".db")).string());
+  auto db = ProcessDatabase::open(
+      (fs::temp_directory_path() / ("lcnc_tr3_" + std::to_string(getpid()) + ".db")).string());
   ASSERT_TRUE(static_cast<bool>(db));
   const auto render = [&](const char* language) {
     EXPECT_TRUE(install_language(language));
     MainWindow w(**db, "/lcnc_tr_none");
-    w.screenshot_all(QString::fromStdString((fs::temp_directory_path() / ("lcnc_tr3_" + std::to_string(getpid()))).string()));
+    w.screenshot_all(QString::fromStdString(
+        (fs::temp_directory_path() / ("lcnc_tr3_" + std::to_string(getpid()))).string()));
     EXPECT_LE(w.minimumSizeHint().width(), 1280) << language;
     EXPECT_LE(w.minimumSizeHint().height(), 800) << language;
     for (int i = 0; i < w.screens()->count(); ++i) {
@@ -175,7 +180,8 @@ TEST(Translations, NoScreenShowsAnUntranslatedText) {
 // one — the hole table's and the decomposition's headers stayed English in
 // Russian and Chinese before.
 TEST(Translations, TableHeadersFromTheCodesOwnListsAreTranslated) {
-  auto db = ProcessDatabase::open((fs::temp_directory_path() / ("lcnc_trh_" + std::to_string(getpid()) + ".db")).string());
+  auto db = ProcessDatabase::open(
+      (fs::temp_directory_path() / ("lcnc_trh_" + std::to_string(getpid()) + ".db")).string());
   ASSERT_TRUE(static_cast<bool>(db));
   ASSERT_TRUE(install_language("ru"));
   {

@@ -66,8 +66,7 @@ struct Ramped {
   std::vector<double> k;
   std::vector<double> t_start_s;
 };
-Ramped run_ramp(const FeedOverrideRamp& r, double period_s, double k0, double target,
-                std::size_t periods) {
+Ramped run_ramp(const FeedOverrideRamp& r, double period_s, double k0, double target, std::size_t periods) {
   Ramped out;
   double k = k0, t = 0.0;
   for (std::size_t i = 0; i < periods; ++i) {
@@ -162,18 +161,17 @@ struct Plan {
 };
 
 struct Executed {
-  double peak_accel = 0.0;   // the largest axis acceleration
-  double peak_after = 0.0;   // from the change of target on
-  bool held = false;         // came to a hold (K = 0) for good
-  double hold_at_tau = 0.0;  // the plan time it held at
+  double peak_accel = 0.0;    // the largest axis acceleration
+  double peak_after = 0.0;    // from the change of target on
+  bool held = false;          // came to a hold (K = 0) for good
+  double hold_at_tau = 0.0;   // the plan time it held at
   double hold_after_s = 0.0;  // machine time from the change of target to the hold
 };
 
 // Executes the planned poses `at(τ)` (X and Y) for τ in [0, end] from K = k0
 // (a period scale, ≤ 1); from plan time tau_change on the target is `target`.
 template <class PoseAt>
-Executed execute(const MachineConfig& m, PoseAt at, double end, double k0, double target,
-                 double tau_change) {
+Executed execute(const MachineConfig& m, PoseAt at, double end, double k0, double target, double tau_change) {
   const FeedOverrideRamp r(m);
   const double T = m.period_s();
   // the planner's entries: poses at n·T and each one's room
@@ -216,8 +214,7 @@ Executed execute(const MachineConfig& m, PoseAt at, double end, double k0, doubl
   return out;
 }
 
-Executed execute(const MachineConfig& m, const Plan& plan, double k0, double target,
-                 double tau_change) {
+Executed execute(const MachineConfig& m, const Plan& plan, double k0, double target, double tau_change) {
   const auto at = [&plan](double tau) {
     Pose p = Pose::Zero();
     p[0] = plan.x(tau);
@@ -288,7 +285,7 @@ TEST(FeedOverrideRamp, AResumeRisesWhenAnAxisStartsToMoveAtFullAcceleration) {
   Pose p = Pose::Zero();
   RampRoom room;
   for (int k = 1; k <= 3; ++k) {
-    p[0] = 500.0 * T * k;                  // X at 500 mm/s
+    p[0] = 500.0 * T * k;                                        // X at 500 mm/s
     p[1] = 0.5 * 5000.0 * (k - 2) * (k - 2) * T * T * (k >= 2);  // Y starts at 5000 mm/s²
     room = meter.next(p);
   }

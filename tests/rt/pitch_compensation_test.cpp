@@ -40,8 +40,7 @@ double reference_steps(const PitchTable& t, double spu, std::int64_t commanded_s
   for (std::size_t k = 0; k + 1 < n; ++k) {
     const double x0 = t.start + static_cast<double>(k) * t.interval;
     const double x1 = t.start + static_cast<double>(k + 1) * t.interval;
-    if (x <= x1)
-      return (t.values[k] + (t.values[k + 1] - t.values[k]) * (x - x0) / (x1 - x0)) * spu;
+    if (x <= x1) return (t.values[k] + (t.values[k + 1] - t.values[k]) * (x - x0) / (x1 - x0)) * spu;
   }
   return t.values.back() * spu;
 }
@@ -60,7 +59,7 @@ TEST(PitchCompensation, InterpolatesBetweenPointsAndHoldsTheEnds) {
   EXPECT_FALSE(pc.empty());
   EXPECT_EQ(pc.correction_steps(-900'000), 0);  // below the table: first value
   EXPECT_EQ(pc.correction_steps(10'000), 0);
-  EXPECT_EQ(pc.correction_steps(20'000), 10);   // halfway to +20
+  EXPECT_EQ(pc.correction_steps(20'000), 10);  // halfway to +20
   EXPECT_EQ(pc.correction_steps(30'000), 20);
   EXPECT_EQ(pc.correction_steps(35'000), 10);
   EXPECT_EQ(pc.correction_steps(40'000), 0);
@@ -105,8 +104,7 @@ TEST(PitchCompensation, MatchesTheReferenceAndStaysWithinItsSlope) {
   const int tables = 200 * fuzz_scale();
   for (int n = 0; n < tables; ++n) {
     std::uniform_int_distribution<int> count(2, 40);
-    std::uniform_real_distribution<double> interval(0.5, 50.0), start(-500.0, 0.0),
-        value(-0.2, 0.2);
+    std::uniform_real_distribution<double> interval(0.5, 50.0), start(-500.0, 0.0), value(-0.2, 0.2);
     PitchTable t{start(rng), interval(rng), {}};
     t.values.resize(static_cast<std::size_t>(count(rng)));
     for (double& v : t.values) v = value(rng);

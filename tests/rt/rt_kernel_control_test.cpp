@@ -68,8 +68,8 @@ TEST(RtKernelControl, EStopStopsMotionAndLaserFromTheNextPeriod) {
   EXPECT_FALSE(r.kernel->fault().active);
   bool refused = false;
   for (const RtLogRecord& l : r.logs())
-    refused = refused || (l.code == RtLogCode::Refused &&
-                          l.value == static_cast<std::int64_t>(RtCommandType::StartJob));
+    refused = refused ||
+              (l.code == RtLogCode::Refused && l.value == static_cast<std::int64_t>(RtCommandType::StartJob));
   EXPECT_TRUE(refused);
   const std::int64_t at = r.kernel->position_steps(0);
   for (int i = 0; i < 100; ++i) ASSERT_TRUE(r.buffer->try_push(step_x(3)));
@@ -139,7 +139,8 @@ TEST(RtKernelControl, EStopWordActsInTheNextPeriod) {
   ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::EStop; }));
   std::uint64_t at = 0;
   for (const RtLogRecord& l : r.logs())
-    if (l.code == RtLogCode::StateChange && l.value == static_cast<std::int64_t>(MachineState::EStop)) at = l.period;
+    if (l.code == RtLogCode::StateChange && l.value == static_cast<std::int64_t>(MachineState::EStop))
+      at = l.period;
   // the period under way at the request may have read the word already; the
   // next one takes it
   EXPECT_GE(at, before);
@@ -182,7 +183,8 @@ TEST(RtKernelControl, LastJobCompletedSaysWhetherTheJobRanToItsEnd) {
   }
   r.start_idle();
   r.send(RtCommandType::StartJob);
-  ASSERT_TRUE(wait_for([&] { return r.kernel->jobs_ended() == 1 && r.kernel->state() == MachineState::Idle; }));
+  ASSERT_TRUE(
+      wait_for([&] { return r.kernel->jobs_ended() == 1 && r.kernel->state() == MachineState::Idle; }));
   EXPECT_TRUE(r.kernel->last_job_completed());
   for (int i = 0; i < 12000; ++i) ASSERT_TRUE(r.buffer->try_push(step_x(20)));
   r.send(RtCommandType::StartJob);
@@ -252,8 +254,8 @@ TEST(RtKernelControl, FeedHoldAndResumeAreStates) {
   // before a loaded computer lets this thread look)
   ASSERT_TRUE(wait_for([&] { return r.kernel->commands_taken(); }));
   ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::Idle; }))
-      << "state " << static_cast<int>(r.kernel->state()) << " at " << r.kernel->position_steps(0)
-      << " of " << sum << ", underruns " << r.kernel->underruns();
+      << "state " << static_cast<int>(r.kernel->state()) << " at " << r.kernel->position_steps(0) << " of "
+      << sum << ", underruns " << r.kernel->underruns();
   EXPECT_EQ(r.kernel->position_steps(0), sum);
   EXPECT_EQ(r.sim->position_steps(0), sum);
   EXPECT_EQ(r.kernel->underruns(), 0u);
@@ -400,7 +402,8 @@ TEST(RtKernelControl, EntriesWithTheOverrideOffRunAtFullSpeedWhateverTheOverride
   r.kernel->set_feed_override(0.5);
   r.start_idle();
   r.send(RtCommandType::StartJob);
-  ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::Idle && r.kernel->periods() > 9000; }));
+  ASSERT_TRUE(
+      wait_for([&] { return r.kernel->state() == MachineState::Idle && r.kernel->periods() > 9000; }));
   r.drain();
   ASSERT_GE(r.records.size(), 9000u);
   std::map<std::uint32_t, std::vector<double>> k_by_line;
@@ -416,8 +419,8 @@ TEST(RtKernelControl, EntriesWithTheOverrideOffRunAtFullSpeedWhateverTheOverride
     prev = rec.feed_override;
   }
   EXPECT_NEAR(k_by_line[1].back(), 0.5, 1e-9);
-  EXPECT_EQ(k_by_line[2].back(), 1.0);  // the last of the 5000: long since at 1
-  EXPECT_LT(k_by_line[2].front(), 0.51);  // it started from the override …
+  EXPECT_EQ(k_by_line[2].back(), 1.0);          // the last of the 5000: long since at 1
+  EXPECT_LT(k_by_line[2].front(), 0.51);        // it started from the override …
   EXPECT_NEAR(k_by_line[3].back(), 0.5, 1e-9);  // … and goes back to it
   EXPECT_EQ(r.kernel->position_steps(0), 90000);
   r.kernel->shutdown();
@@ -439,7 +442,7 @@ TEST(RtKernelControl, TheFeedInputsActOnTheEntriesTheProgramPutsUnderThem) {
   r.start_idle();
   r.send(RtCommandType::StartJob);
   ASSERT_TRUE(wait_for([&] { return r.kernel->position_steps(0) > 10000; }));
-  r.sim->set_feed_hold_input(true);  // line 1 obeys it
+  r.sim->set_feed_hold_input(true);    // line 1 obeys it
   std::this_thread::sleep_for(150ms);  // the ramp to 0 takes 0.05 s of machine time
   const std::int64_t held_at = r.kernel->position_steps(0);
   std::this_thread::sleep_for(30ms);
@@ -543,7 +546,8 @@ TEST(RtKernelControl, JogMovesExactlyAndStopsShortAtTheSoftLimit) {
   EXPECT_EQ(r.kernel->position_steps(0), 62'345);
   EXPECT_EQ(r.sim->position_steps(0), 62'345);
   r.send(RtCommandType::Jog, 1, -5.0);  // Y at 0: the soft limit — no move
-  ASSERT_TRUE(wait_for([&] { return r.kernel->commands_taken() && r.kernel->state() == MachineState::Idle; }));
+  ASSERT_TRUE(
+      wait_for([&] { return r.kernel->commands_taken() && r.kernel->state() == MachineState::Idle; }));
   r.send(RtCommandType::Jog, 0, 1000.0);  // far past X max
   ASSERT_TRUE(wait_for([&] { return r.kernel->position_steps(0) == 100'000; }));
   ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::Idle; }));
@@ -695,7 +699,8 @@ TEST(RtKernelControl, HomingFindsTheSwitchAndRebasesTheAxis) {
   EXPECT_TRUE(homed);
   // jogs now stop at the true travel
   r.send(RtCommandType::Jog, 0, -10.0);
-  ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::Idle && r.kernel->position_steps(0) == 0; }));
+  ASSERT_TRUE(
+      wait_for([&] { return r.kernel->state() == MachineState::Idle && r.kernel->position_steps(0) == 0; }));
   r.kernel->shutdown();
 }
 

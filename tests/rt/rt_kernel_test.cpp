@@ -4,8 +4,8 @@
 
 #include <dlfcn.h>
 #include <linux/filter.h>
-#include <pthread.h>
 #include <linux/seccomp.h>
+#include <pthread.h>
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/syscall.h>
@@ -14,15 +14,15 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstddef>
 #include <cstdlib>
-#include <memory>
-#include <new>
-#include <cmath>
 #include <iterator>
+#include <memory>
+#include <mutex>
+#include <new>
 #include <random>
 #include <thread>
-#include <mutex>
 #include <vector>
 
 #include "drivers/sim_machine.h"
@@ -45,7 +45,7 @@ struct Rig : test::KernelRig {
 
 // Fills the buffer with random increments; returns their per-axis sum.
 std::array<std::int64_t, kAxisCount> fill(PositionBuffer& buf, std::size_t n, std::uint32_t seed,
-                                           float k_plan = 1.0f) {
+                                          float k_plan = 1.0f) {
   std::mt19937 rng(seed);
   std::array<std::int64_t, kAxisCount> sum{};
   for (std::size_t k = 0; k < n; ++k) {
@@ -90,16 +90,15 @@ class OverrideChanger {
         k = opening[n][0];
         ms = opening[n][1];
       } else {
-        const double choices[] = {0.0, 1e-3, 0.3, 1.0, 1.5,
-                                  std::uniform_real_distribution<>(0, 1.5)(rng)};
+        const double choices[] = {0.0, 1e-3, 0.3, 1.0, 1.5, std::uniform_real_distribution<>(0, 1.5)(rng)};
         k = choices[rng() % std::size(choices)];
         ms = 2 + static_cast<double>(rng() % 24);
       }
       ++n;
       kernel.set_feed_override(k);
       changes_.fetch_add(1);
-      const auto until = std::chrono::steady_clock::now() +
-                         std::chrono::microseconds(static_cast<int>(ms * 1000));
+      const auto until =
+          std::chrono::steady_clock::now() + std::chrono::microseconds(static_cast<int>(ms * 1000));
       while (!done_ && !kernel.finished() && std::chrono::steady_clock::now() < until)
         std::this_thread::sleep_for(std::chrono::microseconds(500));
     }
@@ -331,8 +330,8 @@ TEST(RtKernel, RandomOverrideChangesAndHoldsLoseNoStep) {
   EXPECT_GT(held, 100u);
   EXPECT_EQ(k_top, 1.0);  // 150 % over entries planned at 100 %: as planned, no faster
   // the laser is on exactly in the moving periods (every entry has power)
-  const double moving_ns = static_cast<double>(r.kernel->machine_time_ns()) -
-                          static_cast<double>(held) * r.m.period_ns;
+  const double moving_ns =
+      static_cast<double>(r.kernel->machine_time_ns()) - static_cast<double>(held) * r.m.period_ns;
   EXPECT_NEAR(static_cast<double>(r.kernel->laser_on_ns()), moving_ns, 2.0);
 }
 
@@ -512,8 +511,7 @@ TEST(RtKernel, ConstantOverrideRunsEveryEntryInTOverK) {
     const auto t0 = std::chrono::steady_clock::now();
     r.kernel->start(RtOptions{false, 0, {}, {}});
     r.kernel->join();
-    const double wall_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     for (int a = 0; a < 3; ++a) EXPECT_EQ(r.sim->position_steps(a), sum[a]);
     EXPECT_NEAR(r.kernel->feed_override(), k * c.k_plan, 1e-6);  // what the machine runs at
     EXPECT_EQ(r.kernel->held_periods(), 0u);

@@ -35,8 +35,7 @@ Block make(std::uint64_t n) {
 
 bool consistent(const Block& b) {
   Block e = make(b.n);
-  return b.twice == e.twice && b.third == e.third && b.low == e.low &&
-         std::equal(b.tag, b.tag + 19, e.tag);
+  return b.twice == e.twice && b.third == e.third && b.low == e.low && std::equal(b.tag, b.tag + 19, e.tag);
 }
 
 TEST(Seqlock, ReadsWhatWasWritten) {

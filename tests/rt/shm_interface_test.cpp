@@ -10,12 +10,12 @@
 #include <unistd.h>
 
 #include <array>
-#include <cstring>
 #include <chrono>
+#include <cstring>
 #include <set>
-#include <vector>
 #include <string>
 #include <thread>
+#include <vector>
 
 namespace lcnc::shm {
 namespace {
@@ -89,7 +89,8 @@ TEST(ShmInterface, ManySendersInManyProcessesTakeTurnsWithUniqueNumbers) {
   std::set<std::uint32_t> seqs;
   std::array<int, kSenders> next{};  // each sender's commands arrive in its order
   const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(20);
-  while (seqs.size() < static_cast<std::size_t>(kSenders * kEach) && std::chrono::steady_clock::now() < until) {
+  while (seqs.size() < static_cast<std::size_t>(kSenders * kEach) &&
+         std::chrono::steady_clock::now() < until) {
     Command c;
     if (!owner->block().commands.try_pop(c)) {
       std::this_thread::sleep_for(std::chrono::microseconds(20));

@@ -4,8 +4,8 @@
 
 #include <atomic>
 #include <cstdint>
-#include <cstring>
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <thread>
 
@@ -42,12 +42,12 @@ TEST(SpscRing, IndicesSitOnSeparateCacheLines) {
     return v;
   };
   ASSERT_TRUE(ring->try_push(0xABCDu));
-  EXPECT_EQ(word(kCacheLine), 1u);  // tail_, moved by the push
-  EXPECT_EQ(word(0), 0u);           // head_, not
+  EXPECT_EQ(word(kCacheLine), 1u);           // tail_, moved by the push
+  EXPECT_EQ(word(0), 0u);                    // head_, not
   EXPECT_EQ(word(2 * kCacheLine), 0xABCDu);  // slot 0
   std::uint64_t v = 0;
   ASSERT_TRUE(ring->try_pop(v));
-  EXPECT_EQ(word(0), 1u);           // head_, moved by the pop
+  EXPECT_EQ(word(0), 1u);  // head_, moved by the pop
   EXPECT_EQ(word(kCacheLine), 1u);
 }
 
@@ -58,7 +58,8 @@ TEST(SpscRing, IndicesSitOnSeparateCacheLines) {
 TEST(SpscRing, ACorruptIndexIsDroppedNotServedAndTheRingRecovers) {
   using Ring = SpscRing<int, 8>;
   auto ring = std::make_unique<Ring>();
-  auto& tail = *reinterpret_cast<std::atomic<std::uint64_t>*>(reinterpret_cast<char*>(ring.get()) + kCacheLine);
+  auto& tail =
+      *reinterpret_cast<std::atomic<std::uint64_t>*>(reinterpret_cast<char*>(ring.get()) + kCacheLine);
   ASSERT_TRUE(ring->try_push(1));
   ASSERT_TRUE(ring->try_push(2));
   ASSERT_EQ(tail.load(), 2u);

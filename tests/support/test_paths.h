@@ -9,13 +9,13 @@
 #pragma once
 
 namespace lcnc::test_paths {
-const char* source_dir();          // the checkout
-const char* binary_dir();          // the build tree
-const char* lasercnc_exe();        // the programs the end-to-end tests run
+const char* source_dir();    // the checkout
+const char* binary_dir();    // the build tree
+const char* lasercnc_exe();  // the programs the end-to-end tests run
 const char* lasercncd_exe();
 const char* lasercnc_devices_exe();
 const char* lasercnc_hmi_exe();
-const char* lupdate_exe();         // Qt Linguist's, for the translation test
+const char* lupdate_exe();          // Qt Linguist's, for the translation test
 const char* lasercnc_hal_module();  // the HAL component
 }  // namespace lcnc::test_paths
 

@@ -58,13 +58,11 @@ Command make_command(std::uint32_t seq) {
 
 bool matches(const Command& c, std::uint32_t seq) {
   const Command e = make_command(seq);
-  return c.type == e.type && c.seq == seq && c.value == e.value &&
-         std::strcmp(c.text, e.text) == 0;
+  return c.type == e.type && c.seq == seq && c.value == e.value && std::strcmp(c.text, e.text) == 0;
 }
 
 TEST(ShmBlockStress, KernelHmiAndViewersShareTheBlock) {
-  void* mem = mmap(nullptr, sizeof(ShmBlock), PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS,
-                   -1, 0);
+  void* mem = mmap(nullptr, sizeof(ShmBlock), PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
   ASSERT_NE(mem, MAP_FAILED);
   ShmBlock* block = new (mem) ShmBlock();
 
@@ -110,8 +108,7 @@ TEST(ShmBlockStress, KernelHmiAndViewersShareTheBlock) {
       while (block->events.try_pop(e)) {
         char text[sizeof e.text];
         std::snprintf(text, sizeof text, "ack %u", e.command_seq);
-        const bool ok = e.period > last_period &&
-                        static_cast<std::int64_t>(e.command_seq) > last_seq &&
+        const bool ok = e.period > last_period && static_cast<std::int64_t>(e.command_seq) > last_seq &&
                         e.line == static_cast<std::uint32_t>(mix(e.command_seq)) &&
                         std::strcmp(e.text, text) == 0;
         hmi_bad_events += !ok;
@@ -136,8 +133,7 @@ TEST(ShmBlockStress, KernelHmiAndViewersShareTheBlock) {
   });
 
   // viewers
-  std::vector<std::uint64_t> viewer_reads(2), viewer_torn(2), viewer_backwards(2),
-      viewer_stale_beat(2);
+  std::vector<std::uint64_t> viewer_reads(2), viewer_torn(2), viewer_backwards(2), viewer_stale_beat(2);
   std::vector<std::thread> viewers;
   for (std::size_t v = 0; v < 2; ++v) {
     viewers.emplace_back([&, v] {
@@ -151,8 +147,7 @@ TEST(ShmBlockStress, KernelHmiAndViewersShareTheBlock) {
         last = s.periods;
         // The kernel bumped the heartbeat for every earlier status before
         // storing this one: the seqlock's release/acquire carries that too.
-        viewer_stale_beat[v] +=
-            block->header.heartbeat.load(std::memory_order_relaxed) + 1 < s.periods;
+        viewer_stale_beat[v] += block->header.heartbeat.load(std::memory_order_relaxed) + 1 < s.periods;
       }
     });
   }

@@ -20,11 +20,11 @@
 
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <new>
-#include <chrono>
 #include <thread>
 
 #include "stress_scale.h"
@@ -57,8 +57,8 @@ bool matches(const Item& it, std::uint64_t seq) {
 
 struct Outcome {
   std::uint64_t received = 0;
-  std::uint64_t out_of_order = 0;   // wrong sequence number
-  std::uint64_t corrupt = 0;        // right number, wrong content
+  std::uint64_t out_of_order = 0;     // wrong sequence number
+  std::uint64_t corrupt = 0;          // right number, wrong content
   std::uint64_t full = 0, empty = 0;  // how often each side found the ring so
   bool empty_at_end = false;
   int full_pause = 0;  // the consumer's pause is done

@@ -80,10 +80,10 @@ std::vector<std::pair<Chord, Chord>> reference_crossings(const std::vector<IPoly
         const IPoint& shared = (r.j + 1) % n == s.j ? r.c.b : r.c.a;
         const IPoint& x = (r.j + 1) % n == s.j ? r.c.a : r.c.b;
         const IPoint& y = (r.j + 1) % n == s.j ? s.c.b : s.c.a;
-        const bool back = orient(x, shared, y) == 0 &&
-                          (x.first - shared.first) * (y.first - shared.first) +
-                                  (x.second - shared.second) * (y.second - shared.second) >
-                              0;
+        const bool back =
+            orient(x, shared, y) == 0 && (x.first - shared.first) * (y.first - shared.first) +
+                                                 (x.second - shared.second) * (y.second - shared.second) >
+                                             0;
         if (back) out.push_back({r.c, s.c});
         continue;
       }
@@ -187,8 +187,7 @@ TEST(CutCrossingProperty, CrossingsAreRefusedWhereTheyAreAndSimpleDrawingsCutWho
     const std::vector<std::pair<Chord, Chord>> truth = reference_crossings(polys);
     if (!truth.empty()) {
       ++refused;
-      ASSERT_FALSE(plan.ok()) << "trial " << trial << ": " << truth.size()
-                              << " crossings, yet cut\n" << text;
+      ASSERT_FALSE(plan.ok()) << "trial " << trial << ": " << truth.size() << " crossings, yet cut\n" << text;
       // two closed polylines through one point: chaining finds the branch
       // there before the crossing check
       ASSERT_TRUE(plan.error().code == ErrorCode::DxfCrossing ||

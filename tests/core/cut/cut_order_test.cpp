@@ -23,9 +23,8 @@ std::size_t pos(const std::vector<std::size_t>& order, std::size_t i) {
 
 TEST(CutOrder, EveryContourAfterAllThatLieInsideIt) {
   // plate 0 ⊃ window 1 ⊃ part 2 ⊃ hole 3; hole 4 in the plate; plate 5
-  const std::vector<std::vector<Vec2>> p = {square(0, 0, 100),  square(10, 10, 60),
-                                            square(20, 20, 30), square(30, 30, 5),
-                                            square(80, 80, 10), square(200, 0, 50)};
+  const std::vector<std::vector<Vec2>> p = {square(0, 0, 100), square(10, 10, 60), square(20, 20, 30),
+                                            square(30, 30, 5), square(80, 80, 10), square(200, 0, 50)};
   const std::vector<std::size_t> order = order_of(p, Vec2(0, 0));
   ASSERT_EQ(order.size(), p.size());
   const Nesting n = nest_contours(p);
@@ -45,9 +44,8 @@ TEST(CutOrder, EveryContourAfterAllThatLieInsideIt) {
 
 TEST(CutOrder, SiblingsNearestFirstFromWhereTheBeamIs) {
   // four holes in a row in a plate; starting at the right end they go right to left
-  const std::vector<std::vector<Vec2>> p = {square(0, 0, 100), square(10, 10, 5),
-                                            square(30, 10, 5), square(50, 10, 5),
-                                            square(70, 10, 5)};
+  const std::vector<std::vector<Vec2>> p = {square(0, 0, 100), square(10, 10, 5), square(30, 10, 5),
+                                            square(50, 10, 5), square(70, 10, 5)};
   EXPECT_EQ(order_of(p, Vec2(100, 0)), (std::vector<std::size_t>{4, 3, 2, 1, 0}));
   EXPECT_EQ(order_of(p, Vec2(0, 0)), (std::vector<std::size_t>{1, 2, 3, 4, 0}));
 }

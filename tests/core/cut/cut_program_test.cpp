@@ -2,8 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include "cut/contour_polygon.h"
 #include "core/dxf/dxf_test_util.h"
+#include "cut/contour_polygon.h"
 
 namespace lcnc::cut {
 namespace {
@@ -14,8 +14,8 @@ using test::dxf_lwpoly;
 
 // A 40 × 30 plate with a round and a square hole.
 dxf::Drawing plate(bool with_units = true) {
-  std::string text = dxf_doc(dxf_lwpoly({{0, 0}, {40, 0}, {40, 30}, {0, 30}}) +
-                             dxf_circle(10, 15, 4) + dxf_lwpoly({{25, 10}, {33, 10}, {33, 20}, {25, 20}}));
+  std::string text = dxf_doc(dxf_lwpoly({{0, 0}, {40, 0}, {40, 30}, {0, 30}}) + dxf_circle(10, 15, 4) +
+                             dxf_lwpoly({{25, 10}, {33, 10}, {33, 20}, {25, 20}}));
   if (!with_units) text.replace(text.find("9\n$INSUNITS\n70\n4\n"), 17, "");
   Result<dxf::ReadResult> r = dxf::read_dxf_text(text, "plate.dxf");
   EXPECT_TRUE(r.ok()) << (r.ok() ? "" : r.error().to_string());

@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <random>
 
+#include "core/cut/cut_test_util.h"
 #include "cut/contour_polygon.h"
 #include "cut/cut_tolerances.h"
-#include "core/cut/cut_test_util.h"
 
 namespace lcnc::cut {
 namespace {
@@ -58,7 +58,7 @@ TEST(KerfOffset, CircleGrowsAndShrinksByTheDistance) {
 TEST(KerfOffset, AHoleNarrowerThanTheKerfVanishesAndAWaistSplits) {
   EXPECT_TRUE(offset_polygon(test::square(0, 0, 0.3), -0.2).empty());
   // two 4 mm squares joined by a 0.2 mm wide neck
-  const std::vector<Vec2> dumbbell = {{0, 0}, {4, 0}, {4, 1.9}, {6, 1.9}, {6, 0}, {10, 0},
+  const std::vector<Vec2> dumbbell = {{0, 0},  {4, 0}, {4, 1.9}, {6, 1.9}, {6, 0}, {10, 0},
                                       {10, 4}, {6, 4}, {6, 2.1}, {4, 2.1}, {4, 4}, {0, 4}};
   EXPECT_EQ(offset_polygon(dumbbell, -0.15).size(), 2u);
 }
@@ -84,7 +84,7 @@ TEST(KerfOffset, ThinningKeepsEveryVertexWithinItsToleranceAndDropsTheRest) {
   for (int trial = 0; trial < 30; ++trial) {
     std::vector<Vec2> poly = test::ngon(0, 0, 20.0 + trial, 20000 + 1000 * trial);
     for (Vec2& p : poly) p += Vec2(noise(rng), noise(rng));  // within ±0.04 µm
-    if (trial % 3 == 1) {  // a square corner in it
+    if (trial % 3 == 1) {                                    // a square corner in it
       for (std::size_t i = 0; i < poly.size() / 4; ++i) poly[i] = Vec2(30.0 + trial, 30.0 + trial);
       poly.erase(poly.begin() + 1, poly.begin() + static_cast<long>(poly.size() / 4));
     }

@@ -2,9 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include "core/cut/cut_test_util.h"
 #include "cut/contour_polygon.h"
 #include "cut/kerf_offset.h"
-#include "core/cut/cut_test_util.h"
 
 namespace lcnc::cut {
 namespace {

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <numbers>
 
+#include "common/error.h"
 #include "core/dxf/dxf_test_util.h"
 #include "decompose/part_decomposition.h"
-#include "common/error.h"
 
 namespace lcnc::decompose {
 namespace {
@@ -53,10 +53,10 @@ TEST(SeedDecomposition, EquationsSixToThirteen) {
   for (std::size_t i = 1; i < t.size(); ++i) {
     const Vec2 ds = t.beam[i] - t.beam[i - 1];
     const Vec2 ds1 = t.main[i] - t.main[i - 1];
-    const double h1 = ds1.norm(), h2 = (ds - ds1).norm();  // S2 = S − S1, step by step
+    const double h1 = ds1.norm(), h2 = (ds - ds1).norm();   // S2 = S − S1, step by step
     const double k1 = h1 / (h1 + h2), k2 = h2 / (h1 + h2);  // eq. 7, 8
-    EXPECT_NEAR(t.v_main[i], 2 * 50.0 * k1, 1e-9);           // eq. 9
-    EXPECT_NEAR(t.v_aux[i], 2 * 50.0 * k2, 1e-9);            // eq. 10
+    EXPECT_NEAR(t.v_main[i], 2 * 50.0 * k1, 1e-9);          // eq. 9
+    EXPECT_NEAR(t.v_aux[i], 2 * 50.0 * k2, 1e-9);           // eq. 10
     EXPECT_NEAR(t.v_main[i] + t.v_aux[i], 100.0, 1e-9);
     EXPECT_NEAR(t.t_s[i] - t.t_s[i - 1], (h1 + h2) / 100.0, 1e-15);  // eq. 11
     const double dt = t.t_s[i] - t.t_s[i - 1];

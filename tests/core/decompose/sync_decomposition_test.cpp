@@ -8,9 +8,9 @@
 #include <cmath>
 #include <random>
 
+#include "common/error.h"
 #include "core/dxf/dxf_test_util.h"
 #include "decompose/part_decomposition.h"
-#include "common/error.h"
 
 namespace lcnc::decompose {
 namespace {
@@ -70,7 +70,7 @@ TEST(SyncDecomposition, MainAxesStartAndEndAtRestWithTheAuxCentred) {
 // decomposition either keeps all limits or is refused — never a table that
 // breaks one. LCNC_FUZZ_N scales it.
 TEST(SyncDecomposition, LimitsAndFieldAreNeverExceeded) {
-  const std::string files[] = {"line_square.dxf", "arc_slot.dxf", "lwpolyline_bulge.dxf",
+  const std::string files[] = {"line_square.dxf",   "arc_slot.dxf",        "lwpolyline_bulge.dxf",
                                "spline_closed.dxf", "polyline_vertex.dxf", "insert_array.dxf"};
   const char* env = std::getenv("LCNC_FUZZ_N");
   const int n = env ? std::atoi(env) : 24;
@@ -109,7 +109,9 @@ TEST(SyncDecomposition, InfeasibleSpeedIsReportedWithTheHighestFeasible) {
   Result<PartResult> r = run(test::sample_part(), o);
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.error().code, ErrorCode::DecomposeInfeasible);
-  EXPECT_MENTIONS(r.error(), "contour 1 (LWPOLYLINE at DXF line 59, layer CUT): contour speed 1000.0 mm/s (60.00 m/min) exceeds");
+  EXPECT_MENTIONS(
+      r.error(),
+      "contour 1 (LWPOLYLINE at DXF line 59, layer CUT): contour speed 1000.0 mm/s (60.00 m/min) exceeds");
   EXPECT_MENTIONS(r.error(), "the highest feasible is");
   // The highest feasible speed of that contour works, and a little more does not.
   Result<PreparedPart> prep = prepare_part(test::read_ok(test::sample_part()), 0.01);

@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "core/dxf/dxf_test_util.h"
 #include "common/error.h"
+#include "core/dxf/dxf_test_util.h"
 
 namespace lcnc::dxf {
 namespace {
@@ -36,8 +36,8 @@ TEST(ContourChain, ReversedEntitiesAreTurnedAround) {
 }
 
 TEST(ContourChain, GapsBelowTheJoinToleranceClose) {
-  Result<std::vector<Contour>> cs = chain_text(
-      dxf_line(0, 0, 10, 0) + dxf_line(10.0004, 0, 10, 10) + dxf_line(10, 10, 0, 0.0003));
+  Result<std::vector<Contour>> cs =
+      chain_text(dxf_line(0, 0, 10, 0) + dxf_line(10.0004, 0, 10, 10) + dxf_line(10, 10, 0, 0.0003));
   ASSERT_TRUE(cs.ok()) << cs.error().to_string();
   EXPECT_EQ(cs->size(), 1u);
 }
@@ -56,8 +56,8 @@ TEST(ContourChain, OpenContourNamesTheContourAndThePoint) {
 }
 
 TEST(ContourChain, GapAboveTheJoinToleranceIsOpen) {
-  Result<std::vector<Contour>> cs = chain_text(
-      dxf_line(0, 0, 10, 0) + dxf_line(10.002, 0, 10, 10) + dxf_line(10, 10, 0, 0));
+  Result<std::vector<Contour>> cs =
+      chain_text(dxf_line(0, 0, 10, 0) + dxf_line(10.002, 0, 10, 10) + dxf_line(10, 10, 0, 0));
   ASSERT_FALSE(cs.ok());
   EXPECT_MENTIONS(cs.error(), "is open");
 }
@@ -72,9 +72,8 @@ TEST(ContourChain, ThreeEndsAtOnePointBranch) {
 }
 
 TEST(ContourChain, ContoursAreNumberedInDrawingOrder) {
-  Result<std::vector<Contour>> cs =
-      chain_text(test::dxf_circle(50, 50, 5) + dxf_line(0, 0, 10, 0) + dxf_line(10, 0, 0, 10) +
-                 dxf_line(0, 10, 0, 0));
+  Result<std::vector<Contour>> cs = chain_text(test::dxf_circle(50, 50, 5) + dxf_line(0, 0, 10, 0) +
+                                               dxf_line(10, 0, 0, 10) + dxf_line(0, 10, 0, 0));
   ASSERT_TRUE(cs.ok());
   ASSERT_EQ(cs->size(), 2u);
   EXPECT_EQ((*cs)[0].first_kind, EntityKind::Circle);

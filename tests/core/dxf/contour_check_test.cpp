@@ -5,9 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include "common/error.h"
 #include "core/dxf/dxf_test_util.h"
 #include "dxf/contour_chain.h"
-#include "common/error.h"
 
 namespace lcnc::dxf {
 namespace {
@@ -32,7 +32,8 @@ TEST(ContourCheck, BowTieCrossesItself) {
   const Status s = check_drawing(test::read_ok(test::dxf_data("crossing_self.dxf")));
   ASSERT_FALSE(s.ok());
   EXPECT_EQ(s.error().code, ErrorCode::DxfCrossing);
-  EXPECT_MENTIONS(s.error(), "contour 1 (LWPOLYLINE at DXF line 19, layer CUT) crosses itself at (5.000, 5.000)");
+  EXPECT_MENTIONS(s.error(),
+                  "contour 1 (LWPOLYLINE at DXF line 19, layer CUT) crosses itself at (5.000, 5.000)");
 }
 
 TEST(ContourCheck, OverlappingCirclesCrossEachOther) {
@@ -63,10 +64,10 @@ TEST(ContourCheck, NestedAndSeparateContoursPass) {
 TEST(ContourCheck, ContoursAFewMicronsApartPass) {
   // 5 µm apart at step 1 µm.
   EXPECT_TRUE(check_drawing(test::read_ok(test::dxf_data("line_square.dxf")), 0.001).ok());
-  Result<ReadResult> r = read_dxf_text(
-      test::dxf_doc(test::dxf_lwpoly({{0, 0}, {10, 0}, {10, 10}, {0, 10}}) +
-                    test::dxf_lwpoly({{10.005, 0}, {20, 0}, {20, 10}, {10.005, 10}})),
-      "gap.dxf");
+  Result<ReadResult> r =
+      read_dxf_text(test::dxf_doc(test::dxf_lwpoly({{0, 0}, {10, 0}, {10, 10}, {0, 10}}) +
+                                  test::dxf_lwpoly({{10.005, 0}, {20, 0}, {20, 10}, {10.005, 10}})),
+                    "gap.dxf");
   ASSERT_TRUE(r.ok());
   EXPECT_TRUE(check_drawing(r->drawing, 0.001).ok());
 }

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <numbers>
 
+#include "common/error.h"
 #include "core/dxf/dxf_test_util.h"
 #include "dxf/contour_chain.h"
-#include "common/error.h"
 
 namespace lcnc::dxf {
 namespace {

@@ -4,8 +4,8 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <numbers>
 #include <random>
@@ -13,11 +13,11 @@
 
 #include <Eigen/Geometry>
 
+#include "common/error.h"
 #include "core/dxf/dxf_test_util.h"
 #include "dxf/contour_chain.h"
 #include "dxf/dxf_tolerances.h"
 #include "dxf/spline_curve.h"
-#include "common/error.h"
 
 namespace lcnc::dxf {
 namespace {
@@ -274,8 +274,7 @@ TEST(DxfReader, MissingFileIsFileNotFound) {
 }
 
 TEST(DxfReader, NoEofIsTruncated) {
-  Result<ReadResult> r = read_dxf_text("0\nSECTION\n2\nENTITIES\n" + test::dxf_circle(0, 0, 1),
-                                       "t.dxf");
+  Result<ReadResult> r = read_dxf_text("0\nSECTION\n2\nENTITIES\n" + test::dxf_circle(0, 0, 1), "t.dxf");
   ASSERT_FALSE(r.ok());
   EXPECT_MENTIONS(r.error(), "inside section ENTITIES");
 }
@@ -303,7 +302,8 @@ TEST(DxfReader, ASplineKilometresLongIsRefusedNotTabulatedForMinutes) {
   EXPECT_MENTIONS(r.error(), "are the drawing's units right?");
   EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(20));  // a hang, not a speed test
   // the fuzzer's own input reads to an answer
-  std::ifstream in(std::string(LCNC_SOURCE_DIR) + "/tests/data/dxf_regress/spline_in_miles.dxf", std::ios::binary);
+  std::ifstream in(std::string(LCNC_SOURCE_DIR) + "/tests/data/dxf_regress/spline_in_miles.dxf",
+                   std::ios::binary);
   const std::string found((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   ASSERT_FALSE(found.empty());
   (void)read_dxf_text(found, "miles.dxf");
@@ -318,11 +318,11 @@ TEST(DxfReader, NestedArraysThatMultiplyIntoMillionsAreRefusedBeforeAnyIsPlaced)
   std::string blocks;
   constexpr int kLevels = 12;  // B0 … B10 each insert the next 2 × 2: 4^11 = 4.2 million lines
   for (int b = 0; b < kLevels; ++b) {
-    blocks += "0\nBLOCK\n8\n0\n2\nB" + std::to_string(b) + "\n70\n0\n10\n0\n20\n0\n3\nB" +
-              std::to_string(b) + "\n";
+    blocks +=
+        "0\nBLOCK\n8\n0\n2\nB" + std::to_string(b) + "\n70\n0\n10\n0\n20\n0\n3\nB" + std::to_string(b) + "\n";
     if (b + 1 < kLevels) {
-      blocks += "0\nINSERT\n8\n0\n2\nB" + std::to_string(b + 1) +
-                "\n10\n0\n20\n0\n70\n2\n71\n2\n44\n10\n45\n10\n";
+      blocks +=
+          "0\nINSERT\n8\n0\n2\nB" + std::to_string(b + 1) + "\n10\n0\n20\n0\n70\n2\n71\n2\n44\n10\n45\n10\n";
     } else {
       blocks += test::dxf_line(0, 0, 1, 1);
     }
@@ -378,7 +378,8 @@ TEST(DxfReader, ALineLongerThanTheReaderTakesIsAnErrorNotAHang) {
   EXPECT_MENTIONS(r.error(), "a line of 1502 characters; expected at most 1023");
   EXPECT_GT(r.error().line, 0u);
   // the fuzzer's own input, from the corpus
-  std::ifstream in(std::string(LCNC_SOURCE_DIR) + "/tests/fuzz/corpus/dxf/hang_long_line.dxf", std::ios::binary);
+  std::ifstream in(std::string(LCNC_SOURCE_DIR) + "/tests/fuzz/corpus/dxf/hang_long_line.dxf",
+                   std::ios::binary);
   const std::string found((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   ASSERT_FALSE(found.empty());
   EXPECT_FALSE(read_dxf_text(found, "hang.dxf").ok());
@@ -424,7 +425,8 @@ TEST(DxfReader, FileLargerThanTheBoundIsRefusedUpFront) {
   Result<ReadResult> r = read_dxf_file(path);
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.error().code, ErrorCode::DxfUnsupported);
-  EXPECT_MENTIONS(r.error(), "a file of 134217729 bytes; expected a DXF file of at most 134217728 bytes (128 MiB)");
+  EXPECT_MENTIONS(r.error(),
+                  "a file of 134217729 bytes; expected a DXF file of at most 134217728 bytes (128 MiB)");
   std::remove(path.c_str());
 }
 
@@ -436,8 +438,7 @@ TEST(DxfReader, ArcOfZeroRadiusIsAnError) {
 }
 
 TEST(DxfReader, ArcInsertedWithUnequalScalesIsAnError) {
-  const std::string blk = "0\nBLOCK\n2\nB\n10\n0\n20\n0\n" + test::dxf_circle(0, 0, 1) +
-                          "0\nENDBLK\n";
+  const std::string blk = "0\nBLOCK\n2\nB\n10\n0\n20\n0\n" + test::dxf_circle(0, 0, 1) + "0\nENDBLK\n";
   const std::string ins = "0\nINSERT\n2\nB\n10\n0\n20\n0\n41\n2\n42\n1\n";
   Result<ReadResult> r = read_dxf_text(test::dxf_doc(ins, blk), "i.dxf");
   ASSERT_FALSE(r.ok());
@@ -469,8 +470,8 @@ TEST(DxfReader, DamagedFilesNeverCrash) {
   const char* env = std::getenv("LCNC_FUZZ_N");
   const int n = env ? std::atoi(env) : 1000;
   std::mt19937 rng(20261122);
-  const char* junk[] = {"", "x", "-1", "1e400", "nan", "999999999", "0", "SECTION", "EOF",
-                        "ENDSEC", "-5", "1071", "2147483648", "LWPOLYLINE", "SPLINE", "BLOCK"};
+  const char* junk[] = {"",    "x",      "-1", "1e400", "nan",        "999999999",  "0",      "SECTION",
+                        "EOF", "ENDSEC", "-5", "1071",  "2147483648", "LWPOLYLINE", "SPLINE", "BLOCK"};
   int errors = 0;
   for (int it = 0; it < n; ++it) {
     std::vector<std::string> m = lines;

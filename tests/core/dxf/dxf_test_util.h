@@ -31,12 +31,12 @@ inline std::string dxf_doc(const std::string& entities, const std::string& block
   return s + "0\nSECTION\n2\nENTITIES\n" + entities + "0\nENDSEC\n0\nEOF\n";
 }
 inline std::string dxf_line(double x1, double y1, double x2, double y2) {
-  return "0\nLINE\n8\n0\n10\n" + std::to_string(x1) + "\n20\n" + std::to_string(y1) +
-         "\n11\n" + std::to_string(x2) + "\n21\n" + std::to_string(y2) + "\n";
+  return "0\nLINE\n8\n0\n10\n" + std::to_string(x1) + "\n20\n" + std::to_string(y1) + "\n11\n" +
+         std::to_string(x2) + "\n21\n" + std::to_string(y2) + "\n";
 }
 inline std::string dxf_circle(double cx, double cy, double r) {
-  return "0\nCIRCLE\n8\n0\n10\n" + std::to_string(cx) + "\n20\n" + std::to_string(cy) +
-         "\n40\n" + std::to_string(r) + "\n";
+  return "0\nCIRCLE\n8\n0\n10\n" + std::to_string(cx) + "\n20\n" + std::to_string(cy) + "\n40\n" +
+         std::to_string(r) + "\n";
 }
 // A closed LWPOLYLINE through the points (no bulges).
 inline std::string dxf_lwpoly(std::initializer_list<std::pair<double, double>> pts) {

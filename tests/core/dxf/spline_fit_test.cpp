@@ -73,8 +73,8 @@ TEST(SplineFit, TwoPointsAreAStraightLineAndOneIsRefused) {
 TEST(SplineFit, AFitPointSplineInADxfIsReadThroughItsPointsWithItsTangents) {
   // SPLINE of fit points only (73 = 0 control points), start tangent 12/22
   // up, end tangent 13/23 to the right
-  std::string sp = "0\nSPLINE\n8\nCUT\n70\n8\n71\n3\n72\n0\n73\n0\n74\n" +
-                   std::to_string(kFit.size()) + "\n12\n0.0\n22\n1.0\n32\n0.0\n13\n1.0\n23\n0.0\n33\n0.0\n";
+  std::string sp = "0\nSPLINE\n8\nCUT\n70\n8\n71\n3\n72\n0\n73\n0\n74\n" + std::to_string(kFit.size()) +
+                   "\n12\n0.0\n22\n1.0\n32\n0.0\n13\n1.0\n23\n0.0\n33\n0.0\n";
   for (const Vec2& p : kFit)
     sp += "11\n" + std::to_string(p.x()) + "\n21\n" + std::to_string(p.y()) + "\n31\n0.0\n";
   Result<ReadResult> r = read_dxf_text(test::dxf_doc(sp), "fit.dxf");

@@ -48,7 +48,7 @@ TEST(GcodeArcGeometry, LengthOfAHelix) {
 TEST(GcodeArcGeometry, BoundsIncludeOnlyTheExtremesPassed) {
   Vec3 lo, hi;
   arc_bounds(arc_xy(Vec3(10, 10, 0), 5, kPi / 4, 3 * kPi / 4, false), lo, hi);
-  EXPECT_NEAR(hi[1], 15, 1e-12);                    // passes +Y
+  EXPECT_NEAR(hi[1], 15, 1e-12);                          // passes +Y
   EXPECT_NEAR(hi[0], 10 + 5 * std::cos(kPi / 4), 1e-12);  // but not +X
   arc_bounds(arc_xy(Vec3(10, 10, 0), 5, kPi / 4, 3 * kPi / 4, true), lo, hi);
   EXPECT_NEAR(lo[1], 5, 1e-12);  // clockwise: the long way, through −Y

@@ -33,10 +33,10 @@ class GcodeCheckProgram : public ::testing::Test {
 
 TEST_F(GcodeCheckProgram, SumsLengthsAndBoundsIncludingArcs) {
   const std::string path = write(
-      "G0 X100 Y100\n"               // rapid: 90·√2
-      "G1 X110 F600\n"               // 10
-      "G2 X110 Y100 I-10 J0\n"       // full circle about (100, 100), r 10: 20π
-      "G4 P1\n"                      // dwell: no length
+      "G0 X100 Y100\n"          // rapid: 90·√2
+      "G1 X110 F600\n"          // 10
+      "G2 X110 Y100 I-10 J0\n"  // full circle about (100, 100), r 10: 20π
+      "G4 P1\n"                 // dwell: no length
       "M2\n");
   auto sum = check_program(path, test::test_machine(), start_at());
   ASSERT_TRUE(sum.ok()) << sum.error().to_string();
@@ -114,15 +114,15 @@ TEST_F(GcodeCheckProgram, FileWithoutLineEndsIsAnErrorNotAnEndlessRead) {
   ASSERT_FALSE(sum.ok());
   EXPECT_EQ(sum.error().code, ErrorCode::GcodeSyntax);
   EXPECT_EQ(sum.error().line, 1u);
-  EXPECT_NE(sum.error().message.find("longer than 65536 bytes"), std::string::npos)
-      << sum.error().message;
+  EXPECT_NE(sum.error().message.find("longer than 65536 bytes"), std::string::npos) << sum.error().message;
 }
 
 TEST(GcodeCheckProgramDevice, DevZeroIsAnErrorOnLineOne) {
   auto sum = check_program("/dev/zero", test::test_machine(), start_at());
   ASSERT_FALSE(sum.ok());
   EXPECT_EQ(sum.error().to_string().rfind("/dev/zero:1: error E201 (GcodeSyntax): found a line "
-                                          "longer than 65536 bytes", 0),
+                                          "longer than 65536 bytes",
+                                          0),
             0u)
       << sum.error().to_string();
 }

@@ -30,10 +30,10 @@ double point_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
 
 struct Case {
   std::string text;
-  std::vector<Vec2> corners;          // the programmed contour, from (10, 100)
+  std::vector<Vec2> corners;              // the programmed contour, from (10, 100)
   std::vector<std::uint32_t> first_line;  // the first program line of each side
-  std::vector<std::uint32_t> lines;   // side of each program line (index into corners)
-  int fits = 1;  // the tool fits every feature (1), not (-1), too near to tell (0)
+  std::vector<std::uint32_t> lines;       // side of each program line (index into corners)
+  int fits = 1;                           // the tool fits every feature (1), not (-1), too near to tell (0)
   bool split = false;
   double r = 0.0;
 };
@@ -63,8 +63,15 @@ Case make_case(std::mt19937& rng) {
     const double m = d * (0.6 + 0.9 * u(rng)), wide = 2.5 * d, neck = 1.0 + 3.0 * u(rng);
     c.fits = verdict(m, d, c.r);
     const double l = x0 - (wide - m) / 2.0;
-    pts.insert(pts.end(), {{x0, 0}, {x0, neck}, {l, neck}, {l, neck + h}, {l + wide, neck + h},
-                           {l + wide, neck}, {x0 + m, neck}, {x0 + m, 0}, {x0 + m + 10, 0}});
+    pts.insert(pts.end(), {{x0, 0},
+                           {x0, neck},
+                           {l, neck},
+                           {l, neck + h},
+                           {l + wide, neck + h},
+                           {l + wide, neck},
+                           {x0 + m, neck},
+                           {x0 + m, 0},
+                           {x0 + m + 10, 0}});
   } else {  // a step down
     pts.insert(pts.end(), {{x0, 0}, {x0, h}, {x0 + 10, h}});
   }
@@ -74,8 +81,8 @@ Case make_case(std::mt19937& rng) {
   g.setf(std::ios::fixed);
   g.precision(4);
   const double away = right ? 90.0 : 110.0;
-  g << "G21 G90 G17\nG0 X5 Y" << away << "\n" << (right ? "G42.1" : "G41.1") << " D" << d
-    << "\nG1 X10 Y100 F600\n";
+  g << "G21 G90 G17\nG0 X5 Y" << away << "\n"
+    << (right ? "G42.1" : "G41.1") << " D" << d << "\nG1 X10 Y100 F600\n";
   std::uint32_t line = 5;
   c.lines.assign(line, 0);
   std::uniform_int_distribution<int> pieces(1, 4);
@@ -108,8 +115,9 @@ TEST(CutterCompProperty, RefusedOrTheToolRadiusFromThePathNeverReversed) {
     if (run.last == ProgramReader::Next::Error) {
       ++refused;
       EXPECT_EQ(run.error.code, ErrorCode::GcodeCutterComp) << run.error.to_string() << "\n" << c.text;
-      EXPECT_FALSE(c.fits == 1 && !c.split) << "a feature the tool fits, refused: "
-                                       << run.error.to_string() << "\n" << c.text;
+      EXPECT_FALSE(c.fits == 1 && !c.split)
+          << "a feature the tool fits, refused: " << run.error.to_string() << "\n"
+          << c.text;
       continue;
     }
     ++accepted;
@@ -144,15 +152,14 @@ TEST(CutterCompProperty, RefusedOrTheToolRadiusFromThePathNeverReversed) {
         for (int k = 0; k <= n; ++k) samples.push_back(a + (b - a) * (static_cast<double>(k) / n));
         const std::uint32_t side = c.lines[s.line];
         const Vec2 dir = c.corners[side] - c.corners[side - 1];
-        EXPECT_GE((b - a).dot(dir.normalized()), -1e-6)
-            << "line " << s.line << " runs backwards\n" << c.text;
+        EXPECT_GE((b - a).dot(dir.normalized()), -1e-6) << "line " << s.line << " runs backwards\n" << c.text;
       }
       for (const Vec2& p : samples) {
         const double dist = to_path(p);
-        ASSERT_GE(dist, c.r - tol) << "trial " << trial << ": line " << s.line << " at ("
-                                   << p.x() << ", " << p.y() << ") gouges\n" << c.text;
-        ASSERT_LE(dist, c.r + tol) << "trial " << trial << ": line " << s.line << " strays\n"
+        ASSERT_GE(dist, c.r - tol) << "trial " << trial << ": line " << s.line << " at (" << p.x() << ", "
+                                   << p.y() << ") gouges\n"
                                    << c.text;
+        ASSERT_LE(dist, c.r + tol) << "trial " << trial << ": line " << s.line << " strays\n" << c.text;
       }
     }
   }

@@ -119,10 +119,10 @@ TEST(Expression, ParametersNumberedIndirectAndNamed) {
   p.named_values["depth"] = -1.25;
   p.named_values["_global"] = 4.0;
   EXPECT_DOUBLE_EQ(value_of("#1", p), 2.0);
-  EXPECT_DOUBLE_EQ(value_of("##1", p), 7.5);          // #[#1]
+  EXPECT_DOUBLE_EQ(value_of("##1", p), 7.5);  // #[#1]
   EXPECT_DOUBLE_EQ(value_of("#[#1 - 1]", p), 2.0);
-  EXPECT_DOUBLE_EQ(value_of("#33", p), 0.0);          // unset: 0
-  EXPECT_DOUBLE_EQ(value_of("#<Depth>", p), -1.25);   // names ignore case
+  EXPECT_DOUBLE_EQ(value_of("#33", p), 0.0);         // unset: 0
+  EXPECT_DOUBLE_EQ(value_of("#<Depth>", p), -1.25);  // names ignore case
   EXPECT_DOUBLE_EQ(value_of("[#<_global> * #2]", p), 30.0);
   EXPECT_DOUBLE_EQ(value_of("EXISTS[#<depth>]", p), 1.0);
   EXPECT_DOUBLE_EQ(value_of("EXISTS[#<nothing>]", p), 0.0);

@@ -11,8 +11,7 @@
 #include "machine/machine_config.h"
 
 // The diagnostic's message says `what` (shown whole when it does not).
-#define EXPECT_MENTIONS(diag, what) \
-  EXPECT_NE((diag).message.find(what), std::string::npos) << (diag).message
+#define EXPECT_MENTIONS(diag, what) EXPECT_NE((diag).message.find(what), std::string::npos) << (diag).message
 
 namespace lcnc::test {
 
@@ -90,8 +89,8 @@ inline std::vector<Segment> segments(const std::string& text, ReaderOptions opti
 }
 
 // Runs a program that must fail; checks code, line and column.
-inline Diagnostic expect_error(const std::string& text, ErrorCode code, std::uint32_t line,
-                               std::uint32_t col, ReaderOptions options = start_at(),
+inline Diagnostic expect_error(const std::string& text, ErrorCode code, std::uint32_t line, std::uint32_t col,
+                               ReaderOptions options = start_at(),
                                const MachineConfig& machine = test_machine()) {
   Run r = run(text, options, machine);
   EXPECT_EQ(r.last, ProgramReader::Next::Error) << "program:\n" << text;
@@ -102,12 +101,12 @@ inline Diagnostic expect_error(const std::string& text, ErrorCode code, std::uin
   return r.error;
 }
 
-#define EXPECT_POSE_NEAR(actual, expected, tol)                                        \
-  EXPECT_LT(((actual) - (expected)).cwiseAbs().maxCoeff(), (tol))                     \
+#define EXPECT_POSE_NEAR(actual, expected, tol)                   \
+  EXPECT_LT(((actual) - (expected)).cwiseAbs().maxCoeff(), (tol)) \
       << "actual   " << (actual).transpose() << "\nexpected " << (expected).transpose()
 
-#define EXPECT_VEC3_NEAR(actual, expected, tol)                                        \
-  EXPECT_LT(((actual) - (expected)).cwiseAbs().maxCoeff(), (tol))                     \
+#define EXPECT_VEC3_NEAR(actual, expected, tol)                   \
+  EXPECT_LT(((actual) - (expected)).cwiseAbs().maxCoeff(), (tol)) \
       << "actual   " << (actual).transpose() << "\nexpected " << (expected).transpose()
 
 }  // namespace lcnc::test

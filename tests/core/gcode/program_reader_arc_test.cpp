@@ -92,8 +92,7 @@ TEST(ProgramReader, FullCircleWhenIJKArcEndsAtItsStart) {
 }
 
 TEST(ProgramReader, HelixWithPTurnsAddsExtraTurnsAndMovesTheNormalAxis) {
-  const auto segs =
-      segments("G17 G3 X100 Y100 Z20 A30 I10 J0 P3 F600\n", start_at(100, 100, 10));
+  const auto segs = segments("G17 G3 X100 Y100 Z20 A30 I10 J0 P3 F600\n", start_at(100, 100, 10));
   ASSERT_EQ(segs.size(), 1u);
   const Segment& s = segs[0];
   EXPECT_EQ(s.extra_turns, 2u);
@@ -146,13 +145,13 @@ TEST(ProgramReader, RadiusFormSemicircleAndTinyShortfallAreReachable) {
   segs = segments("G2 X120.0025 Y100 R10 F600\n", start_at(100, 100, 10));
   ASSERT_EQ(segs.size(), 1u);
   EXPECT_VEC3_NEAR(segs[0].center, Vec3(110.00125, 100, 10), 1e-12);
-  Diagnostic d = expect_error("G2 X120.0026 Y100 R10 F600\n", ErrorCode::GcodeArcRadius, 1, 19,
-                              start_at(100, 100, 10));
+  Diagnostic d =
+      expect_error("G2 X120.0026 Y100 R10 F600\n", ErrorCode::GcodeArcRadius, 1, 19, start_at(100, 100, 10));
   EXPECT_MENTIONS(d, "less 0.00127 mm");
   segs = segments("G20 G2 X[100 / 25.4 + 2.00009] Y[100 / 25.4] R1 F6\n", start_at(100, 100, 10));
   ASSERT_EQ(segs.size(), 1u);
-  expect_error("G20 G2 X[100 / 25.4 + 2.00011] Y[100 / 25.4] R1 F6\n", ErrorCode::GcodeArcRadius, 1,
-               46, start_at(100, 100, 10));
+  expect_error("G20 G2 X[100 / 25.4 + 2.00011] Y[100 / 25.4] R1 F6\n", ErrorCode::GcodeArcRadius, 1, 46,
+               start_at(100, 100, 10));
 }
 
 TEST(ProgramReader, RadiusFormInG18) {
@@ -208,8 +207,8 @@ TEST(ProgramReader, ArcRadiiMayDifferByLinuxCncsCentreTolerance) {
   ASSERT_EQ(segs.size(), 1u);
   EXPECT_POSE_NEAR(segs[0].end, pose(110.028, 100, 10), 1e-12);
   EXPECT_VEC3_NEAR(segs[0].center, Vec3(105, 100, 10), 1e-12);
-  Diagnostic d = expect_error("G3 X110.029 Y100 I5 J0 F600\n", ErrorCode::GcodeArcRadius, 1,
-                              18, start_at(100, 100, 10));
+  Diagnostic d =
+      expect_error("G3 X110.029 Y100 I5 J0 F600\n", ErrorCode::GcodeArcRadius, 1, 18, start_at(100, 100, 10));
   EXPECT_MENTIONS(d, "within 0.0282843 mm");
   segs = segments("G20 G3 X5.0028 Y3 I1 J0 F10\n", start_at(76.2, 76.2, 10));
   ASSERT_EQ(segs.size(), 1u);

@@ -23,8 +23,8 @@ using test::start_at;
 TEST(ProgramReaderBounds, FeedBelowOneMicronPerMinuteIsRefused) {
   // F0.000000001 would move X at the axis' full speed after the planner's
   // clamp, or not at all: neither is what the program says.
-  const Diagnostic d = expect_error("G21 G90\nG1 X10 F0.000000001\nG1 X20 Y5 F600\nM30\n",
-                                    ErrorCode::GcodeBadValue, 2, 8);
+  const Diagnostic d =
+      expect_error("G21 G90\nG1 X10 F0.000000001\nG1 X20 Y5 F600\nM30\n", ErrorCode::GcodeBadValue, 2, 8);
   EXPECT_MENTIONS(d, "'F0.000000001'");
   EXPECT_MENTIONS(d, "expected a feed rate F from 0.001 to 1e+07 mm/min");
   expect_error("G1 X10 Y10 F0.000000000000001\n", ErrorCode::GcodeBadValue, 1, 12);
@@ -114,8 +114,7 @@ TEST(ProgramReaderBounds, HelixTurnsAreBounded) {
   Diagnostic d = expect_error("G2 X100 Y100 I10 P100000 F600\n", ErrorCode::GcodeBadValue, 1, 18,
                               start_at(100, 100, 10));
   EXPECT_MENTIONS(d, "turns from 1 to 10000");
-  expect_error("G2 X100 Y100 I10 P10001 F600\n", ErrorCode::GcodeBadValue, 1, 18,
-               start_at(100, 100, 10));
+  expect_error("G2 X100 Y100 I10 P10001 F600\n", ErrorCode::GcodeBadValue, 1, 18, start_at(100, 100, 10));
   const auto segs = segments("G2 X100 Y100 I1 P10000 F60000\n", start_at(100, 100, 10));
   ASSERT_EQ(segs.size(), 1u);
   EXPECT_EQ(segs[0].extra_turns, 9999u);
@@ -123,8 +122,8 @@ TEST(ProgramReaderBounds, HelixTurnsAreBounded) {
 
 TEST(ProgramReaderBounds, ArcLengthIsBounded) {
   // radius 200: 1257 mm a turn; 1000 turns are 1.26 km
-  Diagnostic d = expect_error("G2 X300 Y225 I200 P1000 F100000\n", ErrorCode::GcodeBadValue, 1,
-                              19, start_at(300, 225, 10));
+  Diagnostic d = expect_error("G2 X300 Y225 I200 P1000 F100000\n", ErrorCode::GcodeBadValue, 1, 19,
+                              start_at(300, 225, 10));
   EXPECT_MENTIONS(d, "an arc of 1.25664e+06 mm (radius 200 mm, 1000 turns)");
   EXPECT_MENTIONS(d, "expected an arc of at most 1e+06 mm");
   segments("G2 X300 Y225 I200 P700 F100000\n", start_at(300, 225, 10));
@@ -148,8 +147,7 @@ TEST(ProgramReaderBounds, PathToleranceIsBounded) {
 // --- line length ------------------------------------------------------------
 
 TEST(ProgramReaderBounds, OverlongLineIsAnErrorNamingTheLimit) {
-  const std::string text =
-      "G0 X20\nG0 X30\n" + std::string(gcode::kMaxLineBytes + 1, 'X') + "\nG0 X40\n";
+  const std::string text = "G0 X20\nG0 X30\n" + std::string(gcode::kMaxLineBytes + 1, 'X') + "\nG0 X40\n";
   const auto r = run(text);
   EXPECT_EQ(r.last, ProgramReader::Next::Error);
   EXPECT_EQ(r.error.code, ErrorCode::GcodeSyntax);

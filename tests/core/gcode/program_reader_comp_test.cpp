@@ -47,15 +47,14 @@ double to_square(const Pose& p, double lo, double hi) {
 
 TEST(CutterComp, AKerfOutsideASquareRoundsItsCornersAndKeepsHalfTheKerfAway) {
   // clockwise, the beam on the left: outside, 0.1 mm off the drawn square
-  const auto segs = segments(
-      "G0 X90 Y90\nG41 D1\nG1 X100 Y100 F600\nY120\nX120\nY100\nX100\nG40\nG0 X90 Y90\n",
-      test::start_at(), tool_machine());
+  const auto segs =
+      segments("G0 X90 Y90\nG41 D1\nG1 X100 Y100 F600\nY120\nX120\nY100\nX100\nG40\nG0 X90 Y90\n",
+               test::start_at(), tool_machine());
   ASSERT_EQ(segs.size(), 10u);
   expect_continuous(segs);
   // the entry ends square to itself, one radius left of (100, 100); the next
   // line's offset crosses it there: it is cut short to that crossing
-  EXPECT_POSE_NEAR(segs[1].end, pose(99.9, 100.0 + 0.1 * std::tan(std::numbers::pi / 8), 10),
-                   1e-12);
+  EXPECT_POSE_NEAR(segs[1].end, pose(99.9, 100.0 + 0.1 * std::tan(std::numbers::pi / 8), 10), 1e-12);
   EXPECT_EQ(segs[1].line, 3u);
   EXPECT_POSE_NEAR(segs[2].end, pose(99.9, 120, 10), 1e-12);
   // each corner: an arc of the kerf radius about it, clockwise (tool left)
@@ -63,8 +62,7 @@ TEST(CutterComp, AKerfOutsideASquareRoundsItsCornersAndKeepsHalfTheKerfAway) {
     ASSERT_EQ(segs[i].kind, MotionKind::Arc) << i;
     EXPECT_TRUE(segs[i].clockwise);
     EXPECT_NEAR((segs[i].end.head<2>() - segs[i].center.head<2>()).norm(), 0.1, 1e-12);
-    EXPECT_NEAR(to_square(Pose(pose(segs[i].center[0], segs[i].center[1], 10)), 100, 120), 0.0,
-                1e-12);
+    EXPECT_NEAR(to_square(Pose(pose(segs[i].center[0], segs[i].center[1], 10)), 100, 120), 0.0, 1e-12);
   }
   EXPECT_EQ(segs[3].line, 5u);  // the corner arc belongs to the move after it
   EXPECT_VEC3_NEAR(segs[3].center, Vec3(100, 120, 10), 1e-12);
@@ -84,8 +82,8 @@ TEST(CutterComp, AKerfOutsideASquareRoundsItsCornersAndKeepsHalfTheKerfAway) {
 TEST(CutterComp, InsideASquareEveryCornerCutsTheMoveBeforeShort) {
   // counter-clockwise with the tool (4 mm) on the left: inside; the entry
   // (up, the tool left of it) turns right onto X: a convex corner, an arc
-  const auto segs = segments(
-      "G0 X100 Y95\nG41.1 D4\nG1 X100 Y100 F600\nX140\nY130\nX100\nY100\nG40\nG0 X100 Y95\n");
+  const auto segs =
+      segments("G0 X100 Y95\nG41.1 D4\nG1 X100 Y100 F600\nX140\nY130\nX100\nY100\nG40\nG0 X100 Y95\n");
   expect_continuous(segs);
   ASSERT_EQ(segs.size(), 8u);
   EXPECT_POSE_NEAR(segs[1].end, pose(98, 100, 10), 1e-12);
@@ -105,15 +103,15 @@ TEST(CutterComp, InsideASquareEveryCornerCutsTheMoveBeforeShort) {
 }
 
 TEST(CutterComp, ZMovesAndDwellsWaitWithTheMoveBeforeThemAndGoWithIt) {
-  const auto segs = segments(
-      "G0 X100 Y95\nG41.1 D4\nG1 X100 Y100 F600\nX140\nZ5\nG4 P0.5\nY130\nG40\nG0 X100\n");
+  const auto segs =
+      segments("G0 X100 Y95\nG41.1 D4\nG1 X100 Y100 F600\nX140\nZ5\nG4 P0.5\nY130\nG40\nG0 X100\n");
   expect_continuous(segs);
   ASSERT_EQ(segs.size(), 8u);
   EXPECT_EQ(segs[3].line, 4u);
   EXPECT_POSE_NEAR(segs[3].end, pose(138, 102, 10), 1e-12);  // cut short by the Y line after
-  EXPECT_EQ(segs[4].line, 5u);                                // Z at the cut-short end
+  EXPECT_EQ(segs[4].line, 5u);                               // Z at the cut-short end
   EXPECT_POSE_NEAR(segs[4].end, pose(138, 102, 5), 1e-12);
-  EXPECT_EQ(segs[5].kind, MotionKind::Dwell);                 // then the dwell, there
+  EXPECT_EQ(segs[5].kind, MotionKind::Dwell);  // then the dwell, there
   EXPECT_POSE_NEAR(segs[5].start, pose(138, 102, 5), 1e-12);
   EXPECT_EQ(segs[6].line, 7u);
   EXPECT_POSE_NEAR(segs[6].end, pose(138, 130, 5), 1e-12);  // held to G40, as is
@@ -122,8 +120,8 @@ TEST(CutterComp, ZMovesAndDwellsWaitWithTheMoveBeforeThemAndGoWithIt) {
 TEST(CutterComp, ArcsAreOffsetAboutTheirCentreAndTheToolMustFitInside) {
   // a full circle of radius 10 from the inside with a 4 mm tool: radius 8,
   // the entry cut back to where it meets that circle
-  const auto segs = segments(
-      "G0 X200 Y100\nG42.1 D4\nG1 X210 Y100 F600\nG2 X210 Y100 I-10 J0\nG40\nG0 X200 Y100\n");
+  const auto segs =
+      segments("G0 X200 Y100\nG42.1 D4\nG1 X210 Y100 F600\nG2 X210 Y100 I-10 J0\nG40\nG0 X200 Y100\n");
   expect_continuous(segs);
   ASSERT_EQ(segs.size(), 4u);
   const Segment& circle = segs[2];
@@ -136,17 +134,15 @@ TEST(CutterComp, ArcsAreOffsetAboutTheirCentreAndTheToolMustFitInside) {
   EXPECT_NEAR(circle.start[1], 98.0, 1e-12);  // on the entry's offset line
   EXPECT_GT(gcode::arc_sweep_rad(circle), 1.9 * std::numbers::pi);
   // a 4 mm tool inside an arc of radius 1.5: an error at the arc
-  const Diagnostic d = expect_error(
-      "G0 X200 Y95\nG41.1 D4\nG1 X200 Y100 F600\nG1 X210\nG3 X213 Y100 R1.5\n",
-      ErrorCode::GcodeCutterComp, 5, 1);
+  const Diagnostic d = expect_error("G0 X200 Y95\nG41.1 D4\nG1 X200 Y100 F600\nG1 X210\nG3 X213 Y100 R1.5\n",
+                                    ErrorCode::GcodeCutterComp, 5, 1);
   EXPECT_MENTIONS(d, "not larger than the tool radius");
 }
 
 TEST(CutterComp, ACornerTheToolCannotReachIsAnErrorNamingTheMove) {
   // a notch 1 mm wide for a 4 mm tool: the 1 mm line would run backwards
-  const Diagnostic d = expect_error(
-      "G0 X100 Y95\nG41.1 D4\nG1 X100 Y100 F600\nX150\nY101\nX100\n",
-      ErrorCode::GcodeCutterComp, 6, 1);
+  const Diagnostic d = expect_error("G0 X100 Y95\nG41.1 D4\nG1 X100 Y100 F600\nX150\nY101\nX100\n",
+                                    ErrorCode::GcodeCutterComp, 6, 1);
   EXPECT_MENTIONS(d, "straight move of line 5 runs into a concave corner");
   EXPECT_MENTIONS(d, "gouging");
   EXPECT_MENTIONS(d, "tool radius 2 mm");
@@ -173,24 +169,26 @@ TEST(CutterComp, ANotchOrAMouthNarrowerThanTheToolIsRefusedHoweverItsMovesAreSpl
     EXPECT_FALSE(segs.empty());
   }
   // the mouth 1.9 mm wide, the slot under it 6 mm: no corner is too tight
-  const std::string slot = "G0 X95 Y110\nG41.1 D2\nG1 X100 Y100 F600\nX110\nY95\nX108\nY85\n"
-                           "X114\nY95\nX111.9\nY100\nX130\nG40\nG0 X135 Y110\n";
+  const std::string slot =
+      "G0 X95 Y110\nG41.1 D2\nG1 X100 Y100 F600\nX110\nY95\nX108\nY85\n"
+      "X114\nY95\nX111.9\nY100\nX130\nG40\nG0 X135 Y110\n";
   const test::Run r = test::run(slot);
   ASSERT_EQ(r.last, ProgramReader::Next::Error);
   EXPECT_EQ(r.error.code, ErrorCode::GcodeCutterComp);
   // found where the right wall of the mouth comes in reach of the path down
   // the left one (line 5, 0.9 mm from it)
   EXPECT_EQ(r.error.line, 10u) << r.error.to_string();
-  EXPECT_MENTIONS(r.error, "compensated path of line 5 comes within 0.9 mm of the programmed "
-                           "path of line 10, nearer than the tool radius");
+  EXPECT_MENTIONS(r.error,
+                  "compensated path of line 5 comes within 0.9 mm of the programmed "
+                  "path of line 10, nearer than the tool radius");
   std::string wide = slot;
   wide.replace(wide.find("X111.9"), 6, "X112.1");
   EXPECT_FALSE(segments(wide).empty());
 }
 
 TEST(CutterComp, TheEntryMoveMustBeLongerThanTheRadius) {
-  const Diagnostic d = expect_error("G0 X100 Y100\nG41.1 D4\nG1 X101 F600\n",
-                                    ErrorCode::GcodeCutterComp, 3, 1);
+  const Diagnostic d =
+      expect_error("G0 X100 Y100\nG41.1 D4\nG1 X101 F600\n", ErrorCode::GcodeCutterComp, 3, 1);
   EXPECT_MENTIONS(d, "entry move is 1 mm long");
   // a Z move first is no entry either (LinuxCNC's rule)
   expect_error("G0 X100 Y100\nG41.1 D4\nG1 Z5 F600\n", ErrorCode::GcodeCutterComp, 3, 1);
@@ -213,15 +211,14 @@ TEST(CutterComp, StopsAndTheProgramsEndLetTheHeldMovesGo) {
 
 TEST(CutterComp, TheRadiusComesFromTheToolTheDWordOrTheSpindleNames) {
   // T2 (4 mm) in the spindle: G41 alone takes it, G41 D1 tool 1 (0.2 mm)
-  auto segs = segments("T2 M6\nG0 X100 Y95\nG41\nG1 X100 Y100 F600\nX150\nG40\n",
-                       test::start_at(), tool_machine());
+  auto segs =
+      segments("T2 M6\nG0 X100 Y95\nG41\nG1 X100 Y100 F600\nX150\nG40\n", test::start_at(), tool_machine());
   EXPECT_NEAR(segs.back().end[1], 102.0, 1e-12);
-  segs = segments("T2 M6\nG0 X100 Y95\nG41 D1\nG1 X100 Y100 F600\nX150\nG40\n",
-                  test::start_at(), tool_machine());
+  segs = segments("T2 M6\nG0 X100 Y95\nG41 D1\nG1 X100 Y100 F600\nX150\nG40\n", test::start_at(),
+                  tool_machine());
   EXPECT_NEAR(segs.back().end[1], 100.1, 1e-12);
   // no tool in the spindle: radius 0, the path as drawn
-  segs = segments("G0 X100 Y95\nG41\nG1 X100 Y100 F600\nX150\nG40\n", test::start_at(),
-                  tool_machine());
+  segs = segments("G0 X100 Y95\nG41\nG1 X100 Y100 F600\nX150\nG40\n", test::start_at(), tool_machine());
   EXPECT_NEAR(segs.back().end[1], 100.0, 1e-12);
   // G41.1 D in inches
   segs = segments("G20\nG0 X4 Y4\nG41.1 D0.1\nG1 X4 Y5 F20\nX6\nG40\n");
@@ -231,8 +228,8 @@ TEST(CutterComp, TheRadiusComesFromTheToolTheDWordOrTheSpindleNames) {
 
 TEST(CutterComp, WhatWouldMoveThePathUnderItIsRefused) {
   const std::string on = "G0 X100 Y95\nG41.1 D2\nG1 X100 Y100 F600\n";
-  Diagnostic d = expect_error(on + "T1 M6\n", ErrorCode::GcodeModalConflict, 4, 4,
-                              test::start_at(), tool_machine());
+  Diagnostic d =
+      expect_error(on + "T1 M6\n", ErrorCode::GcodeModalConflict, 4, 4, test::start_at(), tool_machine());
   EXPECT_MENTIONS(d, "'M6' with cutter compensation on");
   EXPECT_MENTIONS(d, "expected G40");
   expect_error(on + "G55\n", ErrorCode::GcodeModalConflict, 4, 1);
@@ -259,8 +256,7 @@ TEST(CutterComp, WhatWouldMoveThePathUnderItIsRefused) {
 TEST(CutterComp, G91MovesAndMissingWordsCountFromTheProgrammedPoint) {
   // after the entry the tool stands 2 mm beside (100, 100); G91 X50 is from
   // (100, 100), and Y alone keeps the programmed X
-  const auto segs = segments(
-      "G0 X100 Y95\nG41.1 D4\nG1 X100 Y100 F600\nG91 X50\nG90 Y130\nG40\n");
+  const auto segs = segments("G0 X100 Y95\nG41.1 D4\nG1 X100 Y100 F600\nG91 X50\nG90 Y130\nG40\n");
   ASSERT_EQ(segs.size(), 5u);
   EXPECT_POSE_NEAR(segs[3].end, pose(148, 102, 10), 1e-12);
   EXPECT_POSE_NEAR(segs[4].end, pose(148, 130, 10), 1e-12);

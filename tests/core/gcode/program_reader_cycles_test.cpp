@@ -16,7 +16,10 @@ using test::start_at;
 std::string kinds(const std::vector<Segment>& segs) {
   std::string k;
   for (const Segment& s : segs)
-    k += s.kind == MotionKind::Rapid ? 'r' : s.kind == MotionKind::Linear ? 'f' : s.kind == MotionKind::Dwell ? 'd' : 'a';
+    k += s.kind == MotionKind::Rapid    ? 'r'
+         : s.kind == MotionKind::Linear ? 'f'
+         : s.kind == MotionKind::Dwell  ? 'd'
+                                        : 'a';
   return k;
 }
 
@@ -102,7 +105,8 @@ TEST(CannedCycles, RZPQAreStickyWithinACycleAndNeededAgainAfterIt) {
   ASSERT_EQ(kinds(segs), "rrfdrrfdrrrrfdr");
   EXPECT_DOUBLE_EQ(segs[7].dwell_s, 0.4);
   EXPECT_DOUBLE_EQ(segs[13].dwell_s, 0.1);
-  Diagnostic d = expect_error("G81 X20 Y30 Z1 R2 F300\nG0 Z10\nG81 X40 Z1\n", ErrorCode::GcodeMissingWord, 3, 1);
+  Diagnostic d =
+      expect_error("G81 X20 Y30 Z1 R2 F300\nG0 Z10\nG81 X40 Z1\n", ErrorCode::GcodeMissingWord, 3, 1);
   EXPECT_MENTIONS(d, "no R word");
   d = expect_error("G82 X20 Y30 Z1 R2 F300\n", ErrorCode::GcodeMissingWord, 1, 1);
   EXPECT_MENTIONS(d, "no P word");
@@ -159,7 +163,7 @@ TEST(CannedCycles, G80WithAMoveOnItsLineIsPassedOverAsLinuxCNCDoes) {
     ASSERT_GE(segs.size(), 2u) << line;
     EXPECT_EQ(segs[segs.size() - 2].kind, MotionKind::Rapid) << line;
     EXPECT_POSE_NEAR(segs[segs.size() - 2].end, pose(50, 50, 5), 1e-12) << line;  // Z at R (G99)
-    EXPECT_POSE_NEAR(segs.back().end, pose(60, 50, 5), 1e-12) << line;  // G0, not a hole
+    EXPECT_POSE_NEAR(segs.back().end, pose(60, 50, 5), 1e-12) << line;            // G0, not a hole
   }
   expect_error("G0 G1 X5\n", ErrorCode::GcodeModalConflict, 1, 4);
 }

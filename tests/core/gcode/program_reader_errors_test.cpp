@@ -21,8 +21,7 @@ TEST(ProgramReader, FeedMoveWithoutFIsError) {
   const Diagnostic d = expect_error("G1 X10\n", ErrorCode::GcodeNoFeed, 1, 1);
   EXPECT_MENTIONS(d, "found 'G1 X10' with no feed rate in effect");
   EXPECT_MENTIONS(d, "expected an F word (feed in mm/min) before or on this line");
-  EXPECT_EQ(d.to_string().rfind("test.ngc:1:1: error E301 (GcodeNoFeed)", 0), 0u)
-      << d.to_string();
+  EXPECT_EQ(d.to_string().rfind("test.ngc:1:1: error E301 (GcodeNoFeed)", 0), 0u) << d.to_string();
 }
 
 TEST(ProgramReader, FeedMoveInInchesNamesInchesPerMinute) {
@@ -96,40 +95,39 @@ TEST(ProgramReader, InchMoveBeyondTravelIsError) {
 
 TEST(ProgramReader, ArcPassingBeyondTravelIsErrorEvenWithEndsInside) {
   // Centre (10, 80), radius 20: G3 from the top passes X = -10.
-  const Diagnostic d = expect_error("G3 X10 Y60 J-20 F600\n", ErrorCode::GcodeBeyondTravel, 1, 1,
-                                    start_at(10, 100, 10));
+  const Diagnostic d =
+      expect_error("G3 X10 Y60 J-20 F600\n", ErrorCode::GcodeBeyondTravel, 1, 1, start_at(10, 100, 10));
   EXPECT_MENTIONS(d, "X to -10 mm (arc extreme)");
   // G2 between the same points passes X = 30 instead: fine.
   EXPECT_EQ(test::segments("G2 X10 Y60 J-20 F600\n", start_at(10, 100, 10)).size(), 1u);
 }
 
 TEST(ProgramReader, HelixNormalAxisBeyondTravelIsError) {
-  const Diagnostic d = expect_error("G2 X100 Y100 Z600 I10 F600\n",
-                                    ErrorCode::GcodeBeyondTravel, 1, 14, start_at(100, 100, 10));
+  const Diagnostic d = expect_error("G2 X100 Y100 Z600 I10 F600\n", ErrorCode::GcodeBeyondTravel, 1, 14,
+                                    start_at(100, 100, 10));
   EXPECT_MENTIONS(d, "Z to 600 mm");
 }
 
 // --- arcs -----------------------------------------------------------------
 
 TEST(ProgramReader, ArcRadiusTooSmallIsError) {
-  const Diagnostic d = expect_error("G2 X120 Y100 R5 F600\n", ErrorCode::GcodeArcRadius, 1, 14,
-                                    start_at(100, 100, 10));
+  const Diagnostic d =
+      expect_error("G2 X120 Y100 R5 F600\n", ErrorCode::GcodeArcRadius, 1, 14, start_at(100, 100, 10));
   EXPECT_MENTIONS(d, "'R5'");
   EXPECT_MENTIONS(d, "20 mm from the start");
   EXPECT_MENTIONS(d, "expected |R| >= 10 mm");
-  expect_error("G2 X120 Y100 R9.99 F600\n", ErrorCode::GcodeArcRadius, 1, 14,
-               start_at(100, 100, 10));
+  expect_error("G2 X120 Y100 R9.99 F600\n", ErrorCode::GcodeArcRadius, 1, 14, start_at(100, 100, 10));
 }
 
 TEST(ProgramReader, RadiusFormFullCircleIsError) {
-  const Diagnostic d = expect_error("G2 X100 Y100 R10 F600\n", ErrorCode::GcodeArcRadius, 1, 14,
-                                    start_at(100, 100, 10));
+  const Diagnostic d =
+      expect_error("G2 X100 Y100 R10 F600\n", ErrorCode::GcodeArcRadius, 1, 14, start_at(100, 100, 10));
   EXPECT_MENTIONS(d, "full circle");
 }
 
 TEST(ProgramReader, ArcRadiiToStartAndEndMustAgree) {
-  const Diagnostic d = expect_error("G2 X110 Y90 I0 J-10.1 F600\n", ErrorCode::GcodeArcRadius,
-                                    1, 13, start_at(100, 100, 10));
+  const Diagnostic d =
+      expect_error("G2 X110 Y90 I0 J-10.1 F600\n", ErrorCode::GcodeArcRadius, 1, 13, start_at(100, 100, 10));
   EXPECT_MENTIONS(d, "radius 10.1 mm to the start");
   EXPECT_MENTIONS(d, "10.0005 mm to the end");
 }
@@ -144,21 +142,20 @@ TEST(ProgramReader, ArcRadiusDifferenceAboveHardLimitIsError) {
   wide.axis(Axis::Y).max = 4100.0;
   const std::string refused = "G3 X8003.9 Y0 I4000 J0 F600\n";
   const auto col = static_cast<std::uint32_t>(refused.find('I') + 1);
-  const Diagnostic d =
-      expect_error(refused, ErrorCode::GcodeArcRadius, 1, col, start_at(0, 0, 10), wide);
+  const Diagnostic d = expect_error(refused, ErrorCode::GcodeArcRadius, 1, col, start_at(0, 0, 10), wide);
   EXPECT_MENTIONS(d, "up to 2.82843 mm");
   EXPECT_EQ(test::segments("G3 X8002.8 Y0 I4000 J0 F600\n", start_at(0, 0, 10), wide).size(), 1u);
 }
 
 TEST(ProgramReader, ArcCentreOnItsStartIsError) {
-  const Diagnostic d = expect_error("G2 X110 Y100 I0 J0 F600\n", ErrorCode::GcodeArcRadius, 1,
-                                    14, start_at(100, 100, 10));
+  const Diagnostic d =
+      expect_error("G2 X110 Y100 I0 J0 F600\n", ErrorCode::GcodeArcRadius, 1, 14, start_at(100, 100, 10));
   EXPECT_MENTIONS(d, "radius 0");
 }
 
 TEST(ProgramReader, ArcWithoutCentreOrRadiusIsError) {
-  Diagnostic d = expect_error("G2 X110 Y90 F600\n", ErrorCode::GcodeArcMissingCenter, 1, 1,
-                              start_at(100, 100, 10));
+  Diagnostic d =
+      expect_error("G2 X110 Y90 F600\n", ErrorCode::GcodeArcMissingCenter, 1, 1, start_at(100, 100, 10));
   EXPECT_MENTIONS(d, "expected I J");
   EXPECT_MENTIONS(d, "or R");
   d = expect_error("G18 G3 X20 Z20 F600\n", ErrorCode::GcodeArcMissingCenter, 1, 5);
@@ -184,24 +181,23 @@ TEST(ProgramReader, ArcWithoutAxisWordsIsAFullCircleAtTheCurrentPoint) {
 }
 
 TEST(ProgramReader, CentreWordOfTheNormalAxisIsError) {
-  const Diagnostic d = expect_error("G2 X110 Y90 J-10 K1 F600\n", ErrorCode::GcodeSyntax, 1, 18,
-                                    start_at(100, 100, 10));
+  const Diagnostic d =
+      expect_error("G2 X110 Y90 J-10 K1 F600\n", ErrorCode::GcodeSyntax, 1, 18, start_at(100, 100, 10));
   EXPECT_MENTIONS(d, "XY plane (G17)");
   expect_error("G19 G2 Y20 Z20 I5 F600\n", ErrorCode::GcodeSyntax, 1, 16);
 }
 
 TEST(ProgramReader, RadiusAndCentreTogetherIsError) {
-  const Diagnostic d = expect_error("G2 X110 Y90 I0 R10 F600\n", ErrorCode::GcodeSyntax, 1, 16,
-                                    start_at(100, 100, 10));
+  const Diagnostic d =
+      expect_error("G2 X110 Y90 I0 R10 F600\n", ErrorCode::GcodeSyntax, 1, 16, start_at(100, 100, 10));
   EXPECT_MENTIONS(d, "either R or I J");
 }
 
 TEST(ProgramReader, ArcTurnsMustBeAPositiveWholeNumber) {
-  Diagnostic d = expect_error("G2 X100 Y100 I10 P0 F600\n", ErrorCode::GcodeBadValue, 1, 18,
-                              start_at(100, 100, 10));
+  Diagnostic d =
+      expect_error("G2 X100 Y100 I10 P0 F600\n", ErrorCode::GcodeBadValue, 1, 18, start_at(100, 100, 10));
   EXPECT_MENTIONS(d, "whole number of turns");
-  expect_error("G2 X100 Y100 I10 P1.5 F600\n", ErrorCode::GcodeBadValue, 1, 18,
-               start_at(100, 100, 10));
+  expect_error("G2 X100 Y100 I10 P1.5 F600\n", ErrorCode::GcodeBadValue, 1, 18, start_at(100, 100, 10));
   // found by libFuzzer (UBSan): a P too large for any count of turns was
   // converted to an integer before it was checked
   d = expect_error("G2 X100 Y100 I10 P3482879571417046128 F600\n", ErrorCode::GcodeBadValue, 1, 18,
@@ -348,8 +344,7 @@ TEST(ProgramReader, MissingNumberIsBadNumber) {
 }
 
 TEST(ProgramReader, NumberTooLargeForADoubleIsBadNumber) {
-  const Diagnostic d =
-      expect_error("G1 X" + std::string(400, '9') + "\n", ErrorCode::GcodeBadNumber, 1, 4);
+  const Diagnostic d = expect_error("G1 X" + std::string(400, '9') + "\n", ErrorCode::GcodeBadNumber, 1, 4);
   EXPECT_MENTIONS(d, "out of range");
 }
 

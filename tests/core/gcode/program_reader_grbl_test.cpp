@@ -52,7 +52,8 @@ min = 0
 max = 400
 max_velocity = 100
 max_acceleration = 1000
-)", "grbl.toml");
+)",
+                                                 "grbl.toml");
   EXPECT_TRUE(m) << m.error().to_string();
   return *m;
 }

@@ -20,8 +20,7 @@ void expect_printable(const Diagnostic& d) {
   const std::string s = d.to_string();
   for (const char ch : s) {
     const auto c = static_cast<unsigned char>(ch);
-    EXPECT_TRUE(c >= 0x20 && c != 0x7F) << "raw byte 0x" << std::hex << unsigned{c} << " in: "
-                                        << s;
+    EXPECT_TRUE(c >= 0x20 && c != 0x7F) << "raw byte 0x" << std::hex << unsigned{c} << " in: " << s;
   }
 }
 
@@ -34,8 +33,7 @@ TEST(ProgramReaderMessages, LoneCarriageReturnEndsALine) {
   EXPECT_EQ(segs[1].line, 2u);
   // line numbers stay right: CRLF is one line end, a lone CR one more
   const Diagnostic d =
-      expect_error("G1 X20 F600\r\nG1 X30\rG1 X40\r\n\rG1 X2000\r", ErrorCode::GcodeBeyondTravel,
-                   5, 4);
+      expect_error("G1 X20 F600\r\nG1 X30\rG1 X40\r\n\rG1 X2000\r", ErrorCode::GcodeBeyondTravel, 5, 4);
   EXPECT_MENTIONS(d, "'G1 X2000'");
 }
 

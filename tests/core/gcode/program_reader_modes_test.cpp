@@ -9,11 +9,11 @@
 namespace lcnc {
 namespace {
 
+using test::expect_error;
 using test::pose;
 using test::run;
 using test::segments;
 using test::start_at;
-using test::expect_error;
 using test::test_machine;
 
 TEST(ProgramReader, M3IsConstantPowerFromS) {
@@ -170,9 +170,7 @@ TEST(ProgramReader, PercentDelimitsTheProgram) {
   EXPECT_NE(r.warnings[0].message.find("'%'"), std::string::npos);
 }
 
-TEST(ProgramReader, PercentLineMayCarryAComment) {
-  EXPECT_EQ(segments("% (start)\nG0 X20\n").size(), 1u);
-}
+TEST(ProgramReader, PercentLineMayCarryAComment) { EXPECT_EQ(segments("% (start)\nG0 X20\n").size(), 1u); }
 
 // The safety header CAM posts write: the cancels have nothing to cancel.
 TEST(ProgramReader, SafetyHeaderWithG40G49G80IsAccepted) {
@@ -237,8 +235,7 @@ TEST(ProgramReader, LettersAreCaseInsensitive) {
 }
 
 TEST(ProgramReader, NumberForms) {
-  const auto segs =
-      segments("G1 X1. Y.5 Z+1 F600\nG91 X-0.5 Y-.25\nG90 G01 X010\nG0 X11\nG1.0 X12\n");
+  const auto segs = segments("G1 X1. Y.5 Z+1 F600\nG91 X-0.5 Y-.25\nG90 G01 X010\nG0 X11\nG1.0 X12\n");
   ASSERT_EQ(segs.size(), 5u);
   EXPECT_POSE_NEAR(segs[0].end, pose(1, 0.5, 1), 1e-15);
   EXPECT_POSE_NEAR(segs[1].end, pose(0.5, 0.25, 1), 1e-15);
@@ -283,8 +280,7 @@ TEST(ProgramReader, EndAndErrorAreSticky) {
   EXPECT_EQ(reader->next(s), ProgramReader::Next::End);
   EXPECT_EQ(reader->lines_read(), 1u);
 
-  reader = ProgramReader::from_string("G0 X20\nT1\nG0 X30\n", "b.ngc", test::test_machine(),
-                                      start_at());
+  reader = ProgramReader::from_string("G0 X20\nT1\nG0 X30\n", "b.ngc", test::test_machine(), start_at());
   EXPECT_EQ(reader->next(s), ProgramReader::Next::Segment);
   EXPECT_EQ(reader->next(s), ProgramReader::Next::Error);
   EXPECT_EQ(reader->next(s), ProgramReader::Next::Error);
@@ -326,8 +322,8 @@ TEST(ProgramReader, ReadsLinesUpToTheLineBoundAcrossReadChunks) {
 // M70 saves the modal state, M72 restores it, M71 forgets it, M73 saves it
 // until the subroutine returns (LinuxCNC).
 TEST(ProgramReader, M70SavesTheModalStateAndM72RestoresIt) {
-  const auto segs = segments(
-      "F600 S50 M3 G90\nM70\nF60 S10 G91 G20 M5\nG1 X1\nM72\nG1 X20 Y20\nM72\nG1 Y30\n");
+  const auto segs =
+      segments("F600 S50 M3 G90\nM70\nF60 S10 G91 G20 M5\nG1 X1\nM72\nG1 X20 Y20\nM72\nG1 Y30\n");
   ASSERT_EQ(segs.size(), 3u);
   EXPECT_POSE_NEAR(segs[0].end, pose(10 + 25.4, 10, 10), 1e-9);  // G91 G20 X1
   EXPECT_DOUBLE_EQ(segs[0].feed_mm_s, 60.0 * 25.4 / 60.0);
@@ -363,8 +359,7 @@ TEST(ProgramReader, M72WithNothingSavedAtItsLevelIsAnError) {
   // one modal group with M3 M4 M5
   expect_error("M3 M70\n", ErrorCode::GcodeModalConflict, 1, 4);
   // a restore under cutter compensation would move the path under it
-  expect_error("M70\nG0 X100 Y95\nG41.1 D2\nG1 X100 Y100 F600\nM72\n",
-               ErrorCode::GcodeModalConflict, 5, 1);
+  expect_error("M70\nG0 X100 Y95\nG41.1 D2\nG1 X100 Y100 F600\nM72\n", ErrorCode::GcodeModalConflict, 5, 1);
 }
 
 // M62/M63 switch a digital output with the next move, M64/M65 from where
@@ -405,8 +400,8 @@ TEST(ProgramReader, OutputWordsAreCheckedAtTheirColumn) {
 // wait); the program, read ahead, sees #5399 as it will be if the job goes
 // on; a wait it cannot honour so is refused.
 TEST(ProgramReader, M66WaitsAtRestForAnInputWithATimeout) {
-  const auto segs = segments(
-      "G1 X20 F600 M3 S50\nM66 P2 L3 Q1.5\nG1 X[29 + #5399]\nM66 P0 L2 Q2\nG1 X[40 + #5399]\n");
+  const auto segs =
+      segments("G1 X20 F600 M3 S50\nM66 P2 L3 Q1.5\nG1 X[29 + #5399]\nM66 P0 L2 Q2\nG1 X[40 + #5399]\n");
   ASSERT_EQ(segs.size(), 5u);
   const Segment& w = segs[1];
   EXPECT_EQ(w.kind, MotionKind::Dwell);
@@ -426,8 +421,8 @@ TEST(ProgramReader, M66WaitsAtRestForAnInputWithATimeout) {
   expect_error("M66 P8 L3 Q1\n", ErrorCode::GcodeBadValue, 1, 5);
   expect_error("M66 E0 L3 Q1\n", ErrorCode::GcodeUnsupported, 1, 5);
   expect_error("M66 L3 Q1\n", ErrorCode::GcodeMissingWord, 1, 1);
-  expect_error("G0 X100 Y95\nG41.1 D2\nG1 X100 Y100 F600\nM66 P1 L3 Q1\n",
-               ErrorCode::GcodeModalConflict, 4, 1);
+  expect_error("G0 X100 Y95\nG41.1 D2\nG1 X100 Y100 F600\nM66 P1 L3 Q1\n", ErrorCode::GcodeModalConflict, 4,
+               1);
 }
 
 // M48 … M53 (LinuxCNC's override switches): each move carries how the
@@ -463,8 +458,7 @@ TEST(ProgramReader, OverrideSwitchWordsAreCheckedAtTheirColumn) {
   expect_error("M50 P-1\n", ErrorCode::GcodeBadValue, 1, 5);
   Diagnostic d = expect_error("M50 P0 M52\n", ErrorCode::GcodeModalConflict, 1, 8);
   EXPECT_MENTIONS(d, "M modal group 9");
-  d = expect_error("G0 X100 Y95\nG41.1 D2\nG1 X100 Y100 F600\nM50 P0\n",
-                   ErrorCode::GcodeModalConflict, 4, 1);
+  d = expect_error("G0 X100 Y95\nG41.1 D2\nG1 X100 Y100 F600\nM50 P0\n", ErrorCode::GcodeModalConflict, 4, 1);
   EXPECT_MENTIONS(d, "cutter compensation");
 }
 

@@ -127,8 +127,8 @@ TEST(ProgramReader, IncrementalInchesScaleTheIncrement) {
 TEST(ProgramReader, WorkOffsetsMapProgramToMachine) {
   const auto segs = segments("G0 X20\nG55 X10\nG56 X10 Y10 Z10 A10\nG54 X10 Y10 Z10 A10\n");
   ASSERT_EQ(segs.size(), 4u);
-  EXPECT_DOUBLE_EQ(segs[0].end[0], 20.0);                 // G54 default: zero offset
-  EXPECT_DOUBLE_EQ(segs[1].end[0], 510.0);                // G55: X+500
+  EXPECT_DOUBLE_EQ(segs[0].end[0], 20.0);                       // G54 default: zero offset
+  EXPECT_DOUBLE_EQ(segs[1].end[0], 510.0);                      // G55: X+500
   EXPECT_POSE_NEAR(segs[2].end, pose(110, 60, 30, 15), 1e-12);  // G56
   EXPECT_POSE_NEAR(segs[3].end, pose(10, 10, 10, 10), 1e-12);
 }
@@ -150,21 +150,22 @@ TEST(ProgramReader, ContinuousRotaryAxisHasNoTravelLimit) {
 // the shorter turn to it. The old reading took C 333 -> 10 the long way, -323.
 TEST(ProgramReader, AbsoluteMoveOnAContinuousAxisTakesTheShorterTurn) {
   std::string program = "G1 F600";
-  for (int k = 0; k <= 12; ++k) program += "\nX" + std::to_string(11 + k) + " C" + std::to_string((37 * k) % 360);
+  for (int k = 0; k <= 12; ++k)
+    program += "\nX" + std::to_string(11 + k) + " C" + std::to_string((37 * k) % 360);
   const auto segs = segments(program + "\n");
   ASSERT_EQ(segs.size(), 13u);
   for (std::size_t i = 1; i < segs.size(); ++i) {
     EXPECT_NEAR(segs[i].end[5] - segs[i].start[5], 37.0, 1e-9) << "move " << i;
   }
   EXPECT_NEAR(segs.back().end[5], 444.0, 1e-9);  // 12 x 37, shown as 84
-  EXPECT_DOUBLE_EQ(segs[0].end[5], 0.0);           // C 0 -> 0: X alone moves
+  EXPECT_DOUBLE_EQ(segs[0].end[5], 0.0);         // C 0 -> 0: X alone moves
 }
 
 TEST(ProgramReader, ShorterTurnCountsFromWhereTheMachineStands) {
   ReaderOptions o = start_at();
   o.start[5] = 350.0 + 720.0;  // two turns and 350
   const auto segs = segments("G0 C10\nG0 C190\nG0 C-170\nG91 C-322\n", o);
-  ASSERT_EQ(segs.size(), 3u);  // C-170 is where C190 left it: no motion
+  ASSERT_EQ(segs.size(), 3u);                         // C-170 is where C190 left it: no motion
   EXPECT_NEAR(segs[0].end[5], 1090.0, 1e-9);          // +20, not -340
   EXPECT_NEAR(segs[1].end[5], 1270.0, 1e-9);          // a half turn: the positive way
   EXPECT_NEAR(segs[2].end[5], 1270.0 - 322.0, 1e-9);  // G91 turns by what it says

@@ -36,8 +36,8 @@ MachineConfig tool_machine() {
 
 fs::path temp_dir() {
   const fs::path d = fs::temp_directory_path() /
-                     ("lcnc_offsets_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-                      ::testing::UnitTest::GetInstance()->current_test_info()->name());
+                     ("lcnc_offsets_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+                      "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
@@ -45,8 +45,7 @@ fs::path temp_dir() {
 
 TEST(ProgramOffsets, G92MakesTheCurrentPositionReadAsItsWordsAndG921G922G923ClearAndRestore) {
   // start at (10, 10, 10): G92 X1 makes X read 1 there, so X0 is machine 9
-  const auto segs = segments(
-      "G92 X1\nG0 X0\nG92.2\nG0 X0\nG92.3\nG0 X2\nG92.1\nG92.3\nG0 X5\n");
+  const auto segs = segments("G92 X1\nG0 X0\nG92.2\nG0 X0\nG92.3\nG0 X2\nG92.1\nG92.3\nG0 X5\n");
   ASSERT_EQ(segs.size(), 4u);
   EXPECT_DOUBLE_EQ(segs[0].end[0], 9.0);
   EXPECT_DOUBLE_EQ(segs[1].end[0], 0.0);   // G92.2: no offset
@@ -64,8 +63,8 @@ TEST(ProgramOffsets, G52SetsTheAxisOffsetToItsWords) {
 
 TEST(ProgramOffsets, G10L2SetsASystemAndTheSystemInEffectAtOnce) {
   // G55 is X+500 in the test machine; G10 L2 P2 moves it, P0 is G54 here
-  const auto segs = segments(
-      "G10 L2 P2 X100 Y20\nG55 G0 X0 Y0\nG54\nG10 L2 P0 X3\nG0 X0\nG10 L2 P7 X50\nG59.1 G0 X1\n");
+  const auto segs =
+      segments("G10 L2 P2 X100 Y20\nG55 G0 X0 Y0\nG54\nG10 L2 P0 X3\nG0 X0\nG10 L2 P7 X50\nG59.1 G0 X1\n");
   ASSERT_EQ(segs.size(), 3u);
   EXPECT_POSE_NEAR(segs[0].end, pose(100, 20, 10), 1e-12);
   EXPECT_DOUBLE_EQ(segs[1].end[0], 3.0);
@@ -118,8 +117,8 @@ TEST(ProgramOffsets, TwoCodesUsingTheAxisWordsAreAConflict) {
 
 TEST(ProgramTools, G43AppliesTheToolsZOffsetAndG49RemovesIt) {
   const MachineConfig m = tool_machine();
-  const auto segs = segments(
-      "T1 M6\nG43\nG0 Z0\nT4 M6 G43\nG0 Z5\nG49\nG0 Z5\nG43 H1\nG0 Z0\n", test::start_at(), m);
+  const auto segs =
+      segments("T1 M6\nG43\nG0 Z0\nT4 M6 G43\nG0 Z5\nG49\nG0 Z5\nG43 H1\nG0 Z0\n", test::start_at(), m);
   ASSERT_EQ(segs.size(), 4u);
   EXPECT_DOUBLE_EQ(segs[0].end[2], 2.5);
   EXPECT_DOUBLE_EQ(segs[1].end[2], 4.0);
@@ -142,10 +141,10 @@ TEST(ProgramTools, AToolNotInTheTableIsAnErrorAtItsWord) {
 TEST(ProgramTools, M61G431G432AndG10L1L10SetTheOffsets) {
   const MachineConfig m = tool_machine();
   const auto segs = segments(
-      "M61 Q4\nG43\nG0 Z5\n"           // −1
-      "G43.1 Z3\nG0 Z0\n"              // 3
-      "G43.2 H1\nG0 Z0\n"              // 3 + 2.5
-      "G10 L1 P1 Z7 R0.1\nG43 H1\nG0 Z0\n"  // 7
+      "M61 Q4\nG43\nG0 Z5\n"                       // −1
+      "G43.1 Z3\nG0 Z0\n"                          // 3
+      "G43.2 H1\nG0 Z0\n"                          // 3 + 2.5
+      "G10 L1 P1 Z7 R0.1\nG43 H1\nG0 Z0\n"         // 7
       "G0 Z20\nG10 L10 P4 Z10\nG43 H4\nG0 Z10\n",  // L10 at machine Z27: Z reads 10 with offset 17
       test::start_at(), m);
   ASSERT_EQ(segs.size(), 5u);
@@ -168,7 +167,7 @@ TEST(ProgramParametersOffsets, ProgramsReadPositionOffsetsAndToolsAsLinuxCncNumb
   ASSERT_EQ(segs.size(), 2u);
   EXPECT_DOUBLE_EQ(segs[1].end[0], 5.0 + 15.0 + 5.0 + 1.0 + 1.0);
   EXPECT_NEAR(segs[1].end[1], 15.0, 1e-9);  // X read 15 mm as 0.5906 in
-  EXPECT_DOUBLE_EQ(segs[1].end[2], 10.0);  // G54 is 540
+  EXPECT_DOUBLE_EQ(segs[1].end[2], 10.0);   // G54 is 540
 }
 
 TEST(ParameterFile, AJobKeepsItsOffsetsAndToolsForTheNextAndACheckWritesNothing) {
@@ -294,7 +293,8 @@ description = "nozzle 2.0, lens 150"
 z_offset = -0.5
 [work_offsets]
 "G59.3" = [1, 2, 3, 0, 0, 0]
-)", "/etc/lasercnc/m.toml");
+)",
+                                                 "/etc/lasercnc/m.toml");
   ASSERT_TRUE(m) << m.error().to_string();
   ASSERT_EQ(m->tools.size(), 2u);
   EXPECT_EQ(m->tools[0].number, 1);

@@ -64,16 +64,16 @@ TEST(ReaderModes, TouchOffMovesTheWorkOriginToTheMachine) {
 }
 
 constexpr const char* kProgram =
-    "G21 G90 G64 P0.01\n"      // 1
-    "G0 X20 Y20 Z5\n"          // 2
-    "F600 S50 M3\n"            // 3
-    "G1 X40\n"                 // 4
-    "G1 Y40\n"                 // 5
-    "G0 Z30\n"                 // 6
-    "G0 X100 Y100\n"           // 7
-    "G1 Z2 F300\n"             // 8
-    "G1 X120\n"                // 9
-    "M5 M2\n";                 // 10
+    "G21 G90 G64 P0.01\n"  // 1
+    "G0 X20 Y20 Z5\n"      // 2
+    "F600 S50 M3\n"        // 3
+    "G1 X40\n"             // 4
+    "G1 Y40\n"             // 5
+    "G0 Z30\n"             // 6
+    "G0 X100 Y100\n"       // 7
+    "G1 Z2 F300\n"         // 8
+    "G1 X120\n"            // 9
+    "M5 M2\n";             // 10
 
 TEST(RunFromLine, ReadsTheBlocksBeforeAndApproachesSafely) {
   ReaderOptions o = start_at(0, 0, 10);

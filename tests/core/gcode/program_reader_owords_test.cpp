@@ -29,8 +29,7 @@ TEST(ProgramOWords, WhileLoopRunsWhileItsConditionHolds) {
       "O100 endwhile\nG1 X99\n");
   EXPECT_EQ(xs(segs), (std::vector<double>{20, 30, 40, 99}));
   // false at once: the body is never read, not even its unsupported code
-  EXPECT_EQ(xs(segments("O1 while [0]\nG38.2 X5\nO1 endwhile\nG1 X50 F600\n")),
-            (std::vector<double>{50}));
+  EXPECT_EQ(xs(segments("O1 while [0]\nG38.2 X5\nO1 endwhile\nG1 X50 F600\n")), (std::vector<double>{50}));
 }
 
 TEST(ProgramOWords, IfElseIfElseRunsOneBranch) {
@@ -44,8 +43,7 @@ TEST(ProgramOWords, IfElseIfElseRunsOneBranch) {
     EXPECT_DOUBLE_EQ(segs[1].end[0], 99.0);
   }
   // branches not taken are not read: a code outside the subset is no error there
-  EXPECT_EQ(xs(segments("O7 if [1]\nG1 X20 F600\nO7 else\nG38.2 X5\nO7 endif\n")),
-            (std::vector<double>{20}));
+  EXPECT_EQ(xs(segments("O7 if [1]\nG1 X20 F600\nO7 else\nG38.2 X5\nO7 endif\n")), (std::vector<double>{20}));
 }
 
 TEST(ProgramOWords, DoRepeatBreakAndContinue) {
@@ -73,16 +71,15 @@ TEST(ProgramOWords, SubroutinesTakeArgumentsRestoreThemAndReturnAValue) {
       "o<square> endsub [#1 * 3]\n"
       "#1 = 7\n"
       "o<square> call [20] [50]\n"
-      "G1 X#1\n"             // #1 is the caller's again
-      "G1 X[#<_value>]\n"    // 60: what the call returned
-      "o<later> call [30]\n" // defined further down: found forward, as LinuxCNC does
+      "G1 X#1\n"              // #1 is the caller's again
+      "G1 X[#<_value>]\n"     // 60: what the call returned
+      "o<later> call [30]\n"  // defined further down: found forward, as LinuxCNC does
       "M2\n"
       "o<later> sub\nG1 X#1\no<later> endsub\n");
   EXPECT_EQ(xs(segs), (std::vector<double>{60, 40, 7, 60, 30}));
   // a local of the caller is not seen inside the call
-  const Diagnostic d = expect_error(
-      "#<depth> = 2\no<s> sub\nG1 X#<depth> F600\no<s> endsub\no<s> call\n",
-      ErrorCode::GcodeSyntax, 3, 5);
+  const Diagnostic d = expect_error("#<depth> = 2\no<s> sub\nG1 X#<depth> F600\no<s> endsub\no<s> call\n",
+                                    ErrorCode::GcodeSyntax, 3, 5);
   EXPECT_MENTIONS(d, "#<depth>");
   // return leaves the call, whatever the label on it (LinuxCNC's retval.ngc)
   EXPECT_EQ(xs(segments("o100 sub\no110 if [#1 GT 0]\no110 return [#1 * 2]\no110 endif\n"
@@ -97,8 +94,7 @@ TEST(ProgramOWords, SubroutineFilesAreFoundBesideTheProgramAndOnTheSearchPath) {
   fs::remove_all(dir);
   fs::create_directories(dir / "subs");
   auto write = [](const fs::path& p, const std::string& text) { std::ofstream(p) << text; };
-  write(dir / "job.ngc",
-        "G21 G90 F600\no<beside> call [20]\no<deep> call [30]\no<beside> call [40]\nM2\n");
+  write(dir / "job.ngc", "G21 G90 F600\no<beside> call [20]\no<deep> call [30]\no<beside> call [40]\nM2\n");
   write(dir / "beside.ngc", "%\n(a sub of its own)\no<beside> sub\nG1 X#1\no<beside> endsub\n%\n");
   write(dir / "subs" / "deep.ngc", "o<deep> sub\nG1 Y#1\nG38.2 X1\no<deep> endsub\n");
   MachineConfig m = test::test_machine();
@@ -142,8 +138,8 @@ TEST(ProgramOWords, ASubroutineNameThatIsAPathIsRefusedAtTheCall) {
                                   std::string(".."), std::string("progs\\..\\outside")}) {
     SCOPED_TRACE(name);
     std::ofstream(dir / "progs" / "job.ngc") << "G21 G90\no<" << name << "> call\nM2\n";
-    const Result<ProgramSummary> r = check_program((dir / "progs" / "job.ngc").string(),
-                                                   test::test_machine(), test::start_at());
+    const Result<ProgramSummary> r =
+        check_program((dir / "progs" / "job.ngc").string(), test::test_machine(), test::start_at());
     ASSERT_FALSE(r);
     EXPECT_EQ(r.error().line, 2u);
     EXPECT_EQ(r.error().file, (dir / "progs" / "job.ngc").string());
@@ -200,8 +196,7 @@ TEST(ProgramOWords, MismatchesAndOpenStructuresAreErrorsAtTheirLine) {
   EXPECT_MENTIONS(d, "O<nowhere> not found");
   d = expect_error("O1 return\n", ErrorCode::GcodeFlow, 1, 1);
   EXPECT_MENTIONS(d, "outside a subroutine");
-  d = expect_error("o<a> sub\no<b> sub\no<b> endsub\no<a> endsub\no<a> call\n",
-                   ErrorCode::GcodeFlow, 2, 1);
+  d = expect_error("o<a> sub\no<b> sub\no<b> endsub\no<a> endsub\no<a> call\n", ErrorCode::GcodeFlow, 2, 1);
   EXPECT_MENTIONS(d, "inside subroutine");
   d = expect_error("o<a> sub\no<a> endsub\no<a> sub\no<a> endsub\n", ErrorCode::GcodeFlow, 3, 1);
   EXPECT_MENTIONS(d, "first is on line 1");
@@ -218,8 +213,8 @@ TEST(ProgramOWords, MismatchesAndOpenStructuresAreErrorsAtTheirLine) {
 }
 
 TEST(ProgramOWords, AnEndlessLoopWithoutMotionIsAnErrorNotAHang) {
-  const Diagnostic d = expect_error("G1 X20 F600\nO1 while [1]\n#1 = [#1 + 1]\nO1 endwhile\n",
-                                    ErrorCode::GcodeFlow, 4, 1);
+  const Diagnostic d =
+      expect_error("G1 X20 F600\nO1 while [1]\n#1 = [#1 + 1]\nO1 endwhile\n", ErrorCode::GcodeFlow, 4, 1);
   EXPECT_MENTIONS(d, "endless loop");
 }
 
@@ -253,8 +248,14 @@ TEST(ProgramOWords, EveryEndlessLoopEndsWithAnError) {
   m.program_segment_limit = 2000;
   m.program_time_limit_s = 3600.0;
   std::mt19937 rng(38);
-  const char* bodies[] = {"G1 X10\nG1 X20\n", "G4 P0\n", "M0\n", "M1\n", "#1 = [#1 + 1]\n",
-                          "o<step> call\n", "G0 X15\nG4 P0.5\n", "O9 repeat [3]\nG1 X12\nG1 X20\nO9 endrepeat\n",
+  const char* bodies[] = {"G1 X10\nG1 X20\n",
+                          "G4 P0\n",
+                          "M0\n",
+                          "M1\n",
+                          "#1 = [#1 + 1]\n",
+                          "o<step> call\n",
+                          "G0 X15\nG4 P0.5\n",
+                          "O9 repeat [3]\nG1 X12\nG1 X20\nO9 endrepeat\n",
                           "O8 if [#1 LT 0]\nG1 X1\nO8 endif\n"};
   for (int k = 0; k < 24; ++k) {
     const std::string body = bodies[rng() % std::size(bodies)];
@@ -280,8 +281,8 @@ TEST(ProgramOWords, ACancelledReadingEndsAtItsNextLine) {
   std::atomic<bool> cancel{false};
   ReaderOptions o = test::start_at();
   o.cancel = &cancel;
-  auto reader = ProgramReader::from_string("G1 X20 F600\nO1 while [1]\nG1 X10\nG1 X20\nO1 endwhile\n", "test.ngc",
-                                           test::test_machine(), o);
+  auto reader = ProgramReader::from_string("G1 X20 F600\nO1 while [1]\nG1 X10\nG1 X20\nO1 endwhile\n",
+                                           "test.ngc", test::test_machine(), o);
   Segment s;
   for (int i = 0; i < 1000; ++i) ASSERT_EQ(reader->next(s), ProgramReader::Next::Segment);
   cancel = true;

@@ -12,7 +12,8 @@ using test::segments;
 
 TEST(ProgramParameters, NumberedAndNamedParametersFeedWords) {
   const auto segs = segments(
-      "#1 = 20\n#<feed> = 600\n#<_half> = [#1 / 2]\nG1 X#1 Y#<_half> F#<feed>\nG1 X[#1 + 10] Y[SIN[30] * 40]\n");
+      "#1 = 20\n#<feed> = 600\n#<_half> = [#1 / 2]\nG1 X#1 Y#<_half> F#<feed>\nG1 X[#1 + 10] Y[SIN[30] * "
+      "40]\n");
   ASSERT_EQ(segs.size(), 2u);
   EXPECT_DOUBLE_EQ(segs[0].end[0], 20.0);
   EXPECT_DOUBLE_EQ(segs[0].end[1], 10.0);
@@ -56,10 +57,11 @@ TEST(ProgramParameters, ErrorsPointAtTheColumn) {
 // what was set while the machine stood elsewhere (a program that moved "to
 // X510" with the machine at X100). An error at the setting, naming it.
 TEST(ProgramParameters, ReadOnlyParametersAreRefusedWhereTheyAreSet) {
-  for (const char* p : {"#<_x>", "#<_Y>", "#<_abs_z>", "#<_current_tool>", "#<_feed>",
-                               "#<_coord_system>", "#5420", "#5422", "#5400", "#5410", "#5399"}) {
+  for (const char* p : {"#<_x>", "#<_Y>", "#<_abs_z>", "#<_current_tool>", "#<_feed>", "#<_coord_system>",
+                        "#5420", "#5422", "#5400", "#5410", "#5399"}) {
     SCOPED_TRACE(p);
-    const Diagnostic d = expect_error(std::string("G1 X10 F600\nG0 ") + p + " = 500\n", ErrorCode::GcodeBadValue, 2, 4);
+    const Diagnostic d =
+        expect_error(std::string("G1 X10 F600\nG0 ") + p + " = 500\n", ErrorCode::GcodeBadValue, 2, 4);
     EXPECT_MENTIONS(d, "read-only");
   }
   // the reading goes on to the one that is not

@@ -40,9 +40,9 @@ constexpr double kMinFeedShare = 0.95;
 constexpr double kTurnTolerance = 1e-3;
 
 struct HoleMotion {
-  double turns = 0.0;        // signed, about the hole axis (+z of the hole frame)
+  double turns = 0.0;  // signed, about the hole axis (+z of the hole frame)
   double lasing_s = 0.0;
-  double path_mm = 0.0;      // the tip's, while lasing
+  double path_mm = 0.0;  // the tip's, while lasing
   double max_speed_mm_s = 0.0;
 };
 
@@ -128,9 +128,8 @@ void expect_rings_and_feed(const std::vector<HoleProcessParams>& rows, const Dri
                            const MachineConfig& m) {
   const std::map<std::uint32_t, HoleMotion> got = plan_and_measure(job, rows, m);
   for (const HoleProcessParams& r : rows) {
-    const std::string name = "hole " + std::to_string(r.hole_number) + " (" +
-                             process_name(r.process) + ", A " +
-                             std::to_string(r.position[index(Axis::A)]) + "°, C " +
+    const std::string name = "hole " + std::to_string(r.hole_number) + " (" + process_name(r.process) +
+                             ", A " + std::to_string(r.position[index(Axis::A)]) + "°, C " +
                              std::to_string(r.position[index(Axis::C)]) + "°)";
     const auto it = got.find(r.hole_number);
     ASSERT_NE(it, got.end()) << name << " never lased";
@@ -170,9 +169,9 @@ HoleProcessParams tilted(std::uint32_t n, double x, double a, double c, HoleProc
 TEST(DrillJobMotion, TiltedCircleScansAndHelicesRunEveryRingAtTheFeed) {
   const MachineConfig m = shipped();
   const std::vector<HoleProcessParams> rows = {
-      tilted(1, 100, 30, 45, HoleProcessId::Circle),   tilted(2, 130, -20, 300, HoleProcessId::Circle),
-      tilted(3, 160, 30, 45, HoleProcessId::Helix),    tilted(4, 190, -20, 300, HoleProcessId::Helix),
-      tilted(5, 220, 0, 0, HoleProcessId::Circle),     tilted(6, 250, 0, 0, HoleProcessId::Helix),
+      tilted(1, 100, 30, 45, HoleProcessId::Circle), tilted(2, 130, -20, 300, HoleProcessId::Circle),
+      tilted(3, 160, 30, 45, HoleProcessId::Helix),  tilted(4, 190, -20, 300, HoleProcessId::Helix),
+      tilted(5, 220, 0, 0, HoleProcessId::Circle),   tilted(6, 250, 0, 0, HoleProcessId::Helix),
   };
   Result<DrillJob> job = build_drill_job(rows, kinematics_from(m), Pose::Zero());
   ASSERT_TRUE(static_cast<bool>(job)) << job.error().to_string();

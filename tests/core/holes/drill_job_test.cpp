@@ -148,9 +148,9 @@ TEST(DrillProgress, EveryMomentOnceInOrderHoweverSeldomItIsLookedAt) {
     holes[k].end_segment = 10 * k + 9;
   }
   using K = DrillMoment::Kind;
-  const std::vector<std::pair<K, std::size_t>> expected = {
-      {K::Start, 0}, {K::Head, 0}, {K::End, 0}, {K::Start, 1}, {K::Head, 1},
-      {K::End, 1},   {K::Start, 2}, {K::Head, 2}, {K::End, 2}};
+  const std::vector<std::pair<K, std::size_t>> expected = {{K::Start, 0}, {K::Head, 0}, {K::End, 0},
+                                                           {K::Start, 1}, {K::Head, 1}, {K::End, 1},
+                                                           {K::Start, 2}, {K::Head, 2}, {K::End, 2}};
   auto run = [&](const std::vector<std::size_t>& looks) {
     DrillProgress p(holes);
     std::vector<std::pair<K, std::size_t>> got;

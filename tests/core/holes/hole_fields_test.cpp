@@ -83,8 +83,7 @@ TEST(HoleFields, TheCsvHeaderIsTheTableThenTheShape) {
   p.head.beam_offset_mm = 5.0;  // beyond the head's reach
   const auto t = parse_hole_table(write_hole_table({p}), "h.csv");
   ASSERT_FALSE(static_cast<bool>(t));
-  EXPECT_NE(t.error().message.find("field 17 beam offset = 5 mm"), std::string::npos)
-      << t.error().message;
+  EXPECT_NE(t.error().message.find("field 17 beam offset = 5 mm"), std::string::npos) << t.error().message;
 }
 
 }  // namespace
@@ -105,7 +104,7 @@ TEST(HoleFields, TheScanHeadBlockIsFields12To17InOrder) {
   h.beam_offset_mm = -0.5;
   const std::vector<std::pair<std::string, double>> block = scan_head_block(h);
   const std::vector<std::pair<std::string, double>> expected{
-      {"start_radius_mm", 1.25}, {"end_radius_mm", 0.75},   {"radius_turns", 4.0},
+      {"start_radius_mm", 1.25},  {"end_radius_mm", 0.75},     {"radius_turns", 4.0},
       {"scan_speed_mm_s", 120.0}, {"wedge_speed_rpm", 6000.0}, {"beam_offset_mm", -0.5}};
   EXPECT_EQ(block, expected);
 }

@@ -30,8 +30,8 @@ HoleProcessParams row(HoleProcessId id, double a_deg) {
 // maps back (forward kinematics, then into the hole frame) onto the hole:
 // radius within 1 µm and depth within 0 … −total. (Radius for
 // all cutting moves: these rows have a single scan radius.)
-void expect_on_hole(const HoleProgram& local, const HoleProgram& placed,
-                    const FiveAxisKinematics& kin, double radius, double depth) {
+void expect_on_hole(const HoleProgram& local, const HoleProgram& placed, const FiveAxisKinematics& kin,
+                    double radius, double depth) {
   const Eigen::Isometry3d to_local = local.frame.inverse();
   for (std::size_t i = 1; i < placed.segments.size(); ++i) {  // [0] is the approach rapid
     const Segment& s = placed.segments[i];

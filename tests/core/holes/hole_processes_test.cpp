@@ -66,7 +66,7 @@ TEST(HoleProcesses, HelixIsOneHelixOfLayerCountTurns) {
   const SegmentGeometry g(h);
   EXPECT_NEAR(g.radius(), 0.5, kUm);
   EXPECT_NEAR(g.sweep_rad(), 10 * kTwoPi, 1e-9);  // 10 turns
-  EXPECT_NEAR(h.end[2], -1.0, kUm);                // total depth
+  EXPECT_NEAR(h.end[2], -1.0, kUm);               // total depth
   const Sampled s = sample(prog);
   EXPECT_NEAR(s.min_r, 0.5, kUm);
   EXPECT_NEAR(s.max_r, 0.5, kUm);

@@ -40,8 +40,8 @@ TEST(FiveAxis, ToolAxisFollowsAThenC) {
 
 TEST(FiveAxis, InverseOfForwardIsIdentityOverTheWorkspace) {
   std::mt19937 rng(8);
-  std::uniform_real_distribution<double> x(0, 1000), y(0, 450), z(0, 500), a(-95, 95),
-      c(0, 360), jitter(-2.0, 2.0);
+  std::uniform_real_distribution<double> x(0, 1000), y(0, 450), z(0, 500), a(-95, 95), c(0, 360),
+      jitter(-2.0, 2.0);
   for (MachineVariant v : {MachineVariant::HeadHead, MachineVariant::TableTable}) {
     const FiveAxisKinematics kin = make(v);
     for (int i = 0; i < scaled(5000); ++i) {
@@ -138,15 +138,14 @@ TEST(TcpControl, TipStaysOnTheLineWhileAAndCMove) {
   for (MachineVariant v : {MachineVariant::HeadHead, MachineVariant::TableTable}) {
     const FiveAxisKinematics kin = make(v);
     const Vec3 a(10.0, 20.0, 30.0), b(60.0, -10.0, 40.0);
-    for (OrientationMethod m : {OrientationMethod::JointLinear, OrientationMethod::Vector,
-                                OrientationMethod::PoleSmoothed}) {
+    for (OrientationMethod m :
+         {OrientationMethod::JointLinear, OrientationMethod::Vector, OrientationMethod::PoleSmoothed}) {
       const Result<OrientationMove> move =
           OrientationMove::between_joints(m, {30.0, 10.0}, {-25.0, 140.0}, kin.limits());
       ASSERT_TRUE(move.ok()) << move.error().to_string();
       Segment proto;
       proto.feed_mm_s = 20.0;
-      const Result<std::vector<Segment>> segs =
-          tcp_line_segments(kin, a, b, *move, proto, 0.0005, 0.001);
+      const Result<std::vector<Segment>> segs = tcp_line_segments(kin, a, b, *move, proto, 0.0005, 0.001);
       ASSERT_TRUE(segs.ok()) << segs.error().to_string();
       ASSERT_GT(segs->size(), 4u);
       EXPECT_LT((kin.forward(segs->front().start).tip_mm - a).norm(), 1e-9);
@@ -172,8 +171,8 @@ TEST(TcpControl, TipStaysOnTheLineWhileAAndCMove) {
 
 TEST(TcpControl, FeedScalesToTheTipSpeed) {
   const FiveAxisKinematics kin = make(MachineVariant::HeadHead);
-  const Result<OrientationMove> move = OrientationMove::between_joints(
-      OrientationMethod::Vector, {20.0, 0.0}, {40.0, 30.0}, kin.limits());
+  const Result<OrientationMove> move =
+      OrientationMove::between_joints(OrientationMethod::Vector, {20.0, 0.0}, {40.0, 30.0}, kin.limits());
   ASSERT_TRUE(move.ok());
   Segment proto;
   proto.feed_mm_s = 10.0;
@@ -189,8 +188,8 @@ TEST(TcpControl, FeedScalesToTheTipSpeed) {
 
 TEST(TcpControl, RejectsZeroTolerance) {
   const FiveAxisKinematics kin;
-  const auto move = OrientationMove::between_joints(OrientationMethod::Vector, {20.0, 0.0},
-                                                    {40.0, 30.0}, kin.limits());
+  const auto move =
+      OrientationMove::between_joints(OrientationMethod::Vector, {20.0, 0.0}, {40.0, 30.0}, kin.limits());
   ASSERT_TRUE(move.ok());
   const auto segs = tcp_line_segments(kin, Vec3::Zero(), Vec3::UnitX(), *move, Segment{}, 0.0, 0.1);
   ASSERT_FALSE(segs.ok());

@@ -113,8 +113,8 @@ TEST(OrientationInterpolation, PoleSmoothedBoundsCThroughThePole) {
     EXPECT_FALSE(rv.within(lim));
 
     EXPECT_TRUE(rs.within(lim)) << "δ " << delta_deg << ": C " << rs.peak_c_vel_deg_s << " °/s, "
-                                << rs.peak_c_acc_deg_s2 << " °/s², A " << rs.peak_a_vel_deg_s
-                                << " °/s, " << rs.peak_a_acc_deg_s2 << " °/s²";
+                                << rs.peak_c_acc_deg_s2 << " °/s², A " << rs.peak_a_vel_deg_s << " °/s, "
+                                << rs.peak_a_acc_deg_s2 << " °/s²";
     EXPECT_LE(rs.max_error_deg, kin::kOrientationToleranceDeg);
     EXPECT_LE(rs.max_error_deg, delta_deg + 1e-9);
     // Through the pole on the other branch: A changes sign, C hardly moves.
@@ -133,8 +133,8 @@ TEST(OrientationInterpolation, PoleSmoothedBoundsCThroughThePole) {
 TEST(OrientationInterpolation, PoleSmoothedPropertiesNearThePole) {
   const RotaryLimits lim;
   std::mt19937 rng(88);
-  std::uniform_real_distribution<double> delta(0.0, 0.0099), psi(0.0, 360.0),
-      before(2.0, 80.0), after(2.0, 80.0), c_prev(-400.0, 400.0);
+  std::uniform_real_distribution<double> delta(0.0, 0.0099), psi(0.0, 360.0), before(2.0, 80.0),
+      after(2.0, 80.0), c_prev(-400.0, 400.0);
   const int n = testing::scaled(60);
   for (int i = 0; i < n; ++i) {
     const double d = delta(rng) * kDeg, p = psi(rng) * kDeg;
@@ -153,8 +153,8 @@ TEST(OrientationInterpolation, PoleSmoothedPropertiesNearThePole) {
     EXPECT_LE(r.max_error_deg, kin::kOrientationToleranceDeg) << i;
     if (std::min(-a0, a1) >= 20.0 * kDeg) {
       EXPECT_TRUE(smooth->pole_snapped()) << i;
-      EXPECT_TRUE(r.within(lim)) << i << ": C " << r.peak_c_vel_deg_s << " °/s "
-                                 << r.peak_c_acc_deg_s2 << " °/s²";
+      EXPECT_TRUE(r.within(lim)) << i << ": C " << r.peak_c_vel_deg_s << " °/s " << r.peak_c_acc_deg_s2
+                                 << " °/s²";
     }
   }
 }
@@ -200,8 +200,8 @@ TEST(OrientationInterpolation, StartOnThePoleLeavesWithTheNearestC) {
 }
 
 TEST(OrientationInterpolation, ToAxisEndsAtTheNearestSolution) {
-  const Result<OrientationMove> m = OrientationMove::to_axis(
-      OrientationMethod::JointLinear, {10.0, 350.0}, tool_axis(-20.0, 170.0), RotaryLimits{});
+  const Result<OrientationMove> m = OrientationMove::to_axis(OrientationMethod::JointLinear, {10.0, 350.0},
+                                                             tool_axis(-20.0, 170.0), RotaryLimits{});
   ASSERT_TRUE(m.ok());
   EXPECT_NEAR(m->end_joints().a_deg, 20.0, 1e-9);
   EXPECT_NEAR(m->end_joints().c_deg, 350.0, 1e-9);
@@ -209,8 +209,8 @@ TEST(OrientationInterpolation, ToAxisEndsAtTheNearestSolution) {
 
 TEST(OrientationInterpolation, Errors) {
   // 180° apart: no great circle.
-  Result<OrientationMove> m = OrientationMove::to_axis(OrientationMethod::Vector, {90.0, 0.0},
-                                                       Vec3(0.0, 1.0, 0.0), RotaryLimits{});
+  Result<OrientationMove> m =
+      OrientationMove::to_axis(OrientationMethod::Vector, {90.0, 0.0}, Vec3(0.0, 1.0, 0.0), RotaryLimits{});
   ASSERT_FALSE(m.ok());
   EXPECT_EQ(m.error().code, ErrorCode::GcodeBadValue);
   // Negative tolerance.

@@ -38,8 +38,8 @@ TEST(OrientationRetiming, SlowsThePolePassIntoTheLimits) {
 
 TEST(OrientationRetiming, ProgrammedCapsRuleAwayFromThePole) {
   const RotaryLimits lim;
-  const Result<OrientationMove> m = OrientationMove::between_joints(
-      OrientationMethod::JointLinear, {30.0, 0.0}, {30.0, 180.0}, lim);
+  const Result<OrientationMove> m =
+      OrientationMove::between_joints(OrientationMethod::JointLinear, {30.0, 0.0}, {30.0, 180.0}, lim);
   ASSERT_TRUE(m.ok());
   // Caps of a 1 s trapezoid with 0.25 s ramps: the same 1 s.
   const RetimedLaw law = retime(*m, lim, 4.0 / 3.0, 16.0 / 3.0);

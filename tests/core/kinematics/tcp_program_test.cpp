@@ -33,16 +33,17 @@ Result<std::vector<Segment>> expand(const std::string& text, const MachineConfig
   ReaderOptions o;
   o.start = TcpExpander::tip_start(kin, start);
   std::unique_ptr<ProgramReader> r = ProgramReader::from_string(text, "tcp.ngc", m, o);
-  TcpExpander x(kin, m.tcp,
-                [&](Segment& s) {
-                  switch (r->next(s)) {
-                    case ProgramReader::Next::Segment: return SourceStatus::Item;
-                    case ProgramReader::Next::End: return SourceStatus::End;
-                    case ProgramReader::Next::Error: return SourceStatus::Error;
-                  }
-                  return SourceStatus::Error;
-                },
-                start);
+  TcpExpander x(
+      kin, m.tcp,
+      [&](Segment& s) {
+        switch (r->next(s)) {
+          case ProgramReader::Next::Segment: return SourceStatus::Item;
+          case ProgramReader::Next::End: return SourceStatus::End;
+          case ProgramReader::Next::Error: return SourceStatus::Error;
+        }
+        return SourceStatus::Error;
+      },
+      start);
   std::vector<Segment> out;
   Segment s;
   SourceStatus st;
@@ -188,8 +189,8 @@ TEST(TcpProgram, TheConfiguredInterpolatorDecidesThePathThroughThePole) {
     const MachineConfig m = tcp_machine(methods[k]);
     const Vec3 tip = kinematics_from(m).forward(start).tip_mm;
     char prog[200];
-    std::snprintf(prog, sizeof prog, "G21 G90\nG1 X%.6f Y%.6f Z%.6f A30 C180 F600\nM2\n", tip.x() + 20, tip.y(),
-                  tip.z());
+    std::snprintf(prog, sizeof prog, "G21 G90\nG1 X%.6f Y%.6f Z%.6f A30 C180 F600\nM2\n", tip.x() + 20,
+                  tip.y(), tip.z());
     Result<std::vector<Segment>> segs = expand(prog, m, start);
     ASSERT_TRUE(static_cast<bool>(segs)) << method_name(methods[k]) << ": " << segs.error().to_string();
     for (const Segment& s : *segs) {
@@ -241,8 +242,9 @@ TEST(TcpProgram, CheckRefusesJointsBeyondTheTravelThatTheTipAloneWouldNotShow) {
 
 TEST(TcpConfig, KeysAreReadAndChecked) {
   const std::string axis = "[axes.X]\nmin = 0\nmax = 100\nmax_velocity = 10\nmax_acceleration = 100\n";
-  auto m = parse_machine_config(axis + "[kinematics]\ntcp = true\norientation = \"vector\"\n"
-                                       "tip_tolerance_mm = 0.002\norientation_tolerance_deg = 0.05\n",
+  auto m = parse_machine_config(axis +
+                                    "[kinematics]\ntcp = true\norientation = \"vector\"\n"
+                                    "tip_tolerance_mm = 0.002\norientation_tolerance_deg = 0.05\n",
                                 "k.toml");
   ASSERT_TRUE(m) << m.error().to_string();
   EXPECT_TRUE(m->tcp.enabled);

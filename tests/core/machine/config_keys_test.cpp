@@ -41,8 +41,7 @@ std::string slurp(const std::string& path) {
 TEST(ConfigKeys, ReferenceDocIsTheTableAsPrinted) {
   const std::string doc = slurp(kSource + "/docs/machine_config.md");
   ASSERT_FALSE(doc.empty());
-  EXPECT_EQ(doc, config_reference_markdown())
-      << "run: lasercnc config --reference > docs/machine_config.md";
+  EXPECT_EQ(doc, config_reference_markdown()) << "run: lasercnc config --reference > docs/machine_config.md";
 }
 
 TEST(ConfigKeys, EveryRowSaysWhatItDoesAndWhatIsAllowed) {
@@ -64,8 +63,7 @@ TEST(ConfigKeys, ReferenceNamesEachKeyOfTheShippedMachine) {
                           "`magnitude_bits`", "`capacity`", "`s_max`", "`max_velocity`",
                           "`home_latch_velocity`", "`values`", "`variant`", "`diameter`"})
     EXPECT_NE(ref.find(key), std::string::npos) << key;
-  EXPECT_NE(ref.find("| `period_us` | number | µs | 10 … 10000 µs | 75 |"), std::string::npos)
-      << ref;
+  EXPECT_NE(ref.find("| `period_us` | number | µs | 10 … 10000 µs | 75 |"), std::string::npos) << ref;
 }
 
 // The range of a key is validate()'s alone: the same words whether the value

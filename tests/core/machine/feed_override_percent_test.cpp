@@ -12,23 +12,30 @@ namespace {
 // One rule for every entry point: a live controller takes 0 (a hold), a run
 // from start to end at least 1 %; both at most 100 × max_feed_override.
 TEST(OverrideFromPercent, OneRuleWithEachUsesLowestValue) {
-  EXPECT_DOUBLE_EQ(*override_from_percent(0.0, kMinLiveOverridePct, 1.5, ErrorCode::RtRefused, "override"), 0.0);
-  EXPECT_DOUBLE_EQ(*override_from_percent(150.0, kMinLiveOverridePct, 1.5, ErrorCode::RtRefused, "override"), 1.5);
-  EXPECT_DOUBLE_EQ(*override_from_percent(1.0, kMinRunOverridePct, 1.5, ErrorCode::Usage, "--feed-override"), 0.01);
-  const Result<double> zero_run = override_from_percent(0.0, kMinRunOverridePct, 1.5, ErrorCode::Usage, "--feed-override");
+  EXPECT_DOUBLE_EQ(*override_from_percent(0.0, kMinLiveOverridePct, 1.5, ErrorCode::RtRefused, "override"),
+                   0.0);
+  EXPECT_DOUBLE_EQ(*override_from_percent(150.0, kMinLiveOverridePct, 1.5, ErrorCode::RtRefused, "override"),
+                   1.5);
+  EXPECT_DOUBLE_EQ(*override_from_percent(1.0, kMinRunOverridePct, 1.5, ErrorCode::Usage, "--feed-override"),
+                   0.01);
+  const Result<double> zero_run =
+      override_from_percent(0.0, kMinRunOverridePct, 1.5, ErrorCode::Usage, "--feed-override");
   ASSERT_FALSE(zero_run);
   EXPECT_EQ(zero_run.error().code, ErrorCode::Usage);
-  EXPECT_NE(zero_run.error().message.find("--feed-override 0 refused: allowed 1 <= PCT <= 150"), std::string::npos)
+  EXPECT_NE(zero_run.error().message.find("--feed-override 0 refused: allowed 1 <= PCT <= 150"),
+            std::string::npos)
       << zero_run.error().message;
   for (const double bad : {150.001, -1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
-    const Result<double> k = override_from_percent(bad, kMinLiveOverridePct, 1.5, ErrorCode::RtRefused, "override");
+    const Result<double> k =
+        override_from_percent(bad, kMinLiveOverridePct, 1.5, ErrorCode::RtRefused, "override");
     ASSERT_FALSE(k) << bad;
     EXPECT_EQ(k.error().code, ErrorCode::RtRefused);
     EXPECT_NE(k.error().message.find("allowed 0 <= PCT <= 150"), std::string::npos) << k.error().message;
   }
   // every K a live controller may hold passes back through its percent
   for (const double k : {0.0, 0.01, 0.1, 0.7, 1.0, 1.1, 1.2}) {
-    const Result<double> again = override_from_percent(k * 100.0, kMinLiveOverridePct, 1.2, ErrorCode::RtRefused, "o");
+    const Result<double> again =
+        override_from_percent(k * 100.0, kMinLiveOverridePct, 1.2, ErrorCode::RtRefused, "o");
     ASSERT_TRUE(again) << k;
   }
 }

@@ -123,8 +123,7 @@ TEST(MachineConfig, RangeChecks) {
     auto m = parse_machine_config(text, "m.toml");
     ASSERT_FALSE(m) << c.to;
     EXPECT_EQ(m.error().code, ErrorCode::ConfigBadValue) << c.to;
-    EXPECT_NE(m.error().message.find(c.expect), std::string::npos)
-        << c.to << " -> " << m.error().message;
+    EXPECT_NE(m.error().message.find(c.expect), std::string::npos) << c.to << " -> " << m.error().message;
   }
 }
 
@@ -145,8 +144,7 @@ TEST(MachineConfig, WrapOnlyOnRotaryAxesSpanning360) {
 
 TEST(MachineConfig, AxisTypeMustMatchLetter) {
   auto m = parse_machine_config(
-      "[axes.A]\ntype = \"linear\"\nmin = 0\nmax = 10\nmax_velocity = 1\nmax_acceleration = 1\n",
-      "m.toml");
+      "[axes.A]\ntype = \"linear\"\nmin = 0\nmax = 10\nmax_velocity = 1\nmax_acceleration = 1\n", "m.toml");
   ASSERT_FALSE(m);
   EXPECT_NE(m.error().message.find("must be \"rotary\""), std::string::npos);
 }
@@ -214,9 +212,9 @@ TEST(MachineConfigHoming, DefaultsFollowTheAxis) {
   ASSERT_TRUE(m) << m.error().to_string();
   const AxisConfig& x = m->axis(Axis::X);
   EXPECT_FALSE(x.home_position.has_value());
-  EXPECT_DOUBLE_EQ(x.home_position_or_default(), 0.0);            // min
-  EXPECT_DOUBLE_EQ(x.home_search_velocity_or_default(), -15.0);   // −0.1 · 150
-  EXPECT_DOUBLE_EQ(x.home_latch_velocity_or_default(), 1.5);      // |search| / 10
+  EXPECT_DOUBLE_EQ(x.home_position_or_default(), 0.0);           // min
+  EXPECT_DOUBLE_EQ(x.home_search_velocity_or_default(), -15.0);  // −0.1 · 150
+  EXPECT_DOUBLE_EQ(x.home_latch_velocity_or_default(), 1.5);     // |search| / 10
   EXPECT_TRUE(x.pitch_compensation.empty());
 }
 
@@ -229,8 +227,7 @@ TEST(MachineConfigHoming, DefaultLatchFollowsAGivenSearchVelocity) {
 
 TEST(MachineConfigHoming, GivenKeysAreRead) {
   auto m = parse_machine_config(
-      with_x("home_position = 100\nhome_search_velocity = 20.5\nhome_latch_velocity = 0.5\n"),
-      "m.toml");
+      with_x("home_position = 100\nhome_search_velocity = 20.5\nhome_latch_velocity = 0.5\n"), "m.toml");
   ASSERT_TRUE(m) << m.error().to_string();
   const AxisConfig& x = m->axis(Axis::X);
   EXPECT_DOUBLE_EQ(x.home_position_or_default(), 100.0);  // max is allowed
@@ -272,8 +269,7 @@ TEST(MachineConfigHoming, RangeChecksNameKeyValueAndRange) {
       {"home_latch_velocity = 0\n", "axes.X.home_latch_velocity = 0", "> 0 … 15"},
       {"home_latch_velocity = -1\n", "axes.X.home_latch_velocity = -1", "> 0 … 15"},
       {"home_latch_velocity = 16\n", "axes.X.home_latch_velocity = 16", "> 0 … 15"},
-      {"home_search_velocity = 4\nhome_latch_velocity = 5\n", "axes.X.home_latch_velocity = 5",
-       "> 0 … 4"},
+      {"home_search_velocity = 4\nhome_latch_velocity = 5\n", "axes.X.home_latch_velocity = 5", "> 0 … 4"},
   };
   for (const Case& c : cases) {
     auto m = parse_machine_config(with_x(c.extra), "m.toml");
@@ -281,8 +277,7 @@ TEST(MachineConfigHoming, RangeChecksNameKeyValueAndRange) {
     EXPECT_EQ(m.error().code, ErrorCode::ConfigBadValue) << c.extra;
     EXPECT_NE(m.error().message.find(c.key_and_value), std::string::npos)
         << c.extra << " -> " << m.error().message;
-    EXPECT_NE(m.error().message.find(c.range), std::string::npos)
-        << c.extra << " -> " << m.error().message;
+    EXPECT_NE(m.error().message.find(c.range), std::string::npos) << c.extra << " -> " << m.error().message;
   }
 }
 
@@ -331,8 +326,7 @@ TEST(MachineConfig, BlockDeleteIsOnByDefaultAndReadAsABoolean) {
 
 TEST(MachineConfig, SubroutinePathIsTakenFromTheConfigFilesFolder) {
   std::string text = kMinimal;
-  text.replace(text.find("period_us = 75"), 14,
-               "period_us = 75\nsubroutine_path = [\"subs\", \"/opt/ngc\"]");
+  text.replace(text.find("period_us = 75"), 14, "period_us = 75\nsubroutine_path = [\"subs\", \"/opt/ngc\"]");
   auto m = parse_machine_config(text, "/etc/lasercnc/m.toml");
   ASSERT_TRUE(m) << m.error().to_string();
   EXPECT_EQ(m->subroutine_path, (std::vector<std::string>{"/etc/lasercnc/subs", "/opt/ngc"}));
@@ -383,8 +377,7 @@ TEST(MachineConfigHoming, DefaultsFollowAChangedMaxVelocity) {
 const char* kPitch = "[axes.X.pitch_compensation]\nstart = 10\ninterval = 20\n";
 
 TEST(MachineConfigPitch, TableIsRead) {
-  auto m = parse_machine_config(with_x(std::string(kPitch) + "values = [0, 0.01, -0.02, 1]\n"),
-                                "m.toml");
+  auto m = parse_machine_config(with_x(std::string(kPitch) + "values = [0, 0.01, -0.02, 1]\n"), "m.toml");
   ASSERT_TRUE(m) << m.error().to_string();
   const PitchTable& t = m->axis(Axis::X).pitch_compensation;
   EXPECT_DOUBLE_EQ(t.start, 10.0);
@@ -406,40 +399,36 @@ TEST(MachineConfigPitch, BadTablesNameKeyValueAndRange) {
   const Case cases[] = {
       {p + "values = [0]\n", ErrorCode::ConfigBadValue, "axes.X.pitch_compensation.values has 1",
        "2 or more"},
-      {p + "values = []\n", ErrorCode::ConfigBadValue, "axes.X.pitch_compensation.values has 0",
-       "2 or more"},
-      {p + "values = [0, 0.5, 1.5]\n", ErrorCode::ConfigBadValue,
-       "axes.X.pitch_compensation.values[2] = 1.5", "-1 … 1 mm"},
-      {p + "values = [0, -1.01]\n", ErrorCode::ConfigBadValue,
-       "axes.X.pitch_compensation.values[1] = -1.01", "-1 … 1 mm"},
-      {"[axes.X.pitch_compensation]\nstart = 0\ninterval = 0\nvalues = [0, 0]\n",
-       ErrorCode::ConfigBadValue, "axes.X.pitch_compensation.interval = 0", "> 0"},
-      {"[axes.X.pitch_compensation]\nstart = 0\ninterval = -5\nvalues = [0, 0]\n",
-       ErrorCode::ConfigBadValue, "axes.X.pitch_compensation.interval = -5", "> 0"},
+      {p + "values = []\n", ErrorCode::ConfigBadValue, "axes.X.pitch_compensation.values has 0", "2 or more"},
+      {p + "values = [0, 0.5, 1.5]\n", ErrorCode::ConfigBadValue, "axes.X.pitch_compensation.values[2] = 1.5",
+       "-1 … 1 mm"},
+      {p + "values = [0, -1.01]\n", ErrorCode::ConfigBadValue, "axes.X.pitch_compensation.values[1] = -1.01",
+       "-1 … 1 mm"},
+      {"[axes.X.pitch_compensation]\nstart = 0\ninterval = 0\nvalues = [0, 0]\n", ErrorCode::ConfigBadValue,
+       "axes.X.pitch_compensation.interval = 0", "> 0"},
+      {"[axes.X.pitch_compensation]\nstart = 0\ninterval = -5\nvalues = [0, 0]\n", ErrorCode::ConfigBadValue,
+       "axes.X.pitch_compensation.interval = -5", "> 0"},
       // 10 + 5·20 = 110 > max 100
-      {p + "values = [0, 0, 0, 0, 0, 0]\n", ErrorCode::ConfigBadValue, "10 … 110",
-       "min … max = 0 … 100"},
-      {"[axes.X.pitch_compensation]\nstart = -1\ninterval = 1\nvalues = [0, 0]\n",
-       ErrorCode::ConfigBadValue, "-1 … 0", "min … max = 0 … 100"},
+      {p + "values = [0, 0, 0, 0, 0, 0]\n", ErrorCode::ConfigBadValue, "10 … 110", "min … max = 0 … 100"},
+      {"[axes.X.pitch_compensation]\nstart = -1\ninterval = 1\nvalues = [0, 0]\n", ErrorCode::ConfigBadValue,
+       "-1 … 0", "min … max = 0 … 100"},
       {p + "values = 0.1\n", ErrorCode::ConfigBadValue,
        "'axes.X.pitch_compensation.values' must be an array of numbers", ""},
       {p + "values = [0, \"a\"]\n", ErrorCode::ConfigBadValue,
        "'axes.X.pitch_compensation.values[1]' must be a number", ""},
-      {p + "values = [0, 0]\nstep = 1\n", ErrorCode::ConfigUnknownKey,
-       "axes.X.pitch_compensation.step", "start, interval, values"},
+      {p + "values = [0, 0]\nstep = 1\n", ErrorCode::ConfigUnknownKey, "axes.X.pitch_compensation.step",
+       "start, interval, values"},
       {"[axes.X.pitch_compensation]\nstart = 0\nvalues = [0, 0]\n", ErrorCode::ConfigMissingKey,
        "axes.X.pitch_compensation.interval", ""},
-      {"pitch_compensation = 3\n", ErrorCode::ConfigBadValue,
-       "'axes.X.pitch_compensation' must be a table", ""},
+      {"pitch_compensation = 3\n", ErrorCode::ConfigBadValue, "'axes.X.pitch_compensation' must be a table",
+       ""},
   };
   for (const Case& c : cases) {
     auto m = parse_machine_config(with_x(c.toml), "m.toml");
     ASSERT_FALSE(m) << c.toml;
     EXPECT_EQ(m.error().code, c.code) << c.toml << " -> " << m.error().message;
-    EXPECT_NE(m.error().message.find(c.expect), std::string::npos)
-        << c.toml << " -> " << m.error().message;
-    EXPECT_NE(m.error().message.find(c.range), std::string::npos)
-        << c.toml << " -> " << m.error().message;
+    EXPECT_NE(m.error().message.find(c.expect), std::string::npos) << c.toml << " -> " << m.error().message;
+    EXPECT_NE(m.error().message.find(c.range), std::string::npos) << c.toml << " -> " << m.error().message;
   }
 }
 
@@ -460,8 +449,9 @@ TEST(MachineConfigPitch, ValidateChecksATableBuiltInCode) {
 TEST(MachineConfigPitch, EndOnMaxSurvivesRounding) {
   std::string text = kMinimal;
   text.replace(text.find("max = 100"), 9, "max = 1.2");
-  text += "[axes.X.pitch_compensation]\nstart = 0\ninterval = 0.1\n"
-          "values = [0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0]\n";
+  text +=
+      "[axes.X.pitch_compensation]\nstart = 0\ninterval = 0.1\n"
+      "values = [0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0]\n";
   auto m = parse_machine_config(text, "m.toml");
   ASSERT_TRUE(m) << m.error().to_string();
   EXPECT_GT(m->axis(Axis::X).pitch_compensation.end(), 1.2);  // the case is real
@@ -475,16 +465,13 @@ TEST(MachineConfigPitch, SlopeMustFitTheDdaPreset) {
   ASSERT_FALSE(too_big);  // |4| > 1: the value check comes first
   EXPECT_NE(too_big.error().message.find("values[1] = 4"), std::string::npos);
   auto fits = parse_machine_config(
-      with_x("[axes.X.pitch_compensation]\nstart = 0\ninterval = 1\nvalues = [0, 0.2, 0]\n"),
-      "m.toml");
+      with_x("[axes.X.pitch_compensation]\nstart = 0\ninterval = 1\nvalues = [0, 0.2, 0]\n"), "m.toml");
   ASSERT_TRUE(fits) << fits.error().to_string();
   EXPECT_NEAR(fits->axis(Axis::X).pitch_compensation.max_slope(), 0.2, 1e-12);
   auto steep = parse_machine_config(
-      with_x("[axes.X.pitch_compensation]\nstart = 0\ninterval = 1\nvalues = [0, 0.3, 0]\n"),
-      "m.toml");
+      with_x("[axes.X.pitch_compensation]\nstart = 0\ninterval = 1\nvalues = [0, 0.3, 0]\n"), "m.toml");
   ASSERT_FALSE(steep);
-  EXPECT_NE(steep.error().message.find("axes.X.pitch_compensation.values: slope 0.3"),
-            std::string::npos)
+  EXPECT_NE(steep.error().message.find("axes.X.pitch_compensation.values: slope 0.3"), std::string::npos)
       << steep.error().message;
   EXPECT_NE(steep.error().message.find("15.625"), std::string::npos) << steep.error().message;
 }

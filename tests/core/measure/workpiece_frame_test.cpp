@@ -100,7 +100,8 @@ TEST(WorkpieceFrame, BestFitOfManyPointsRecoversThePlacementWithinTheNoise) {
   for (int round = 0; round < 20; ++round) {
     for (std::size_t i = 0; i < nominal.size(); ++i) {
       nominal[i].z() = 0.0;
-      measured[i] = t * nominal[i] + (round % 2 == 0 ? Vec3(noise(rng), noise(rng), noise(rng)) : Vec3::Zero());
+      measured[i] =
+          t * nominal[i] + (round % 2 == 0 ? Vec3(noise(rng), noise(rng), noise(rng)) : Vec3::Zero());
     }
     f = fit_best(nominal, measured);
     ASSERT_TRUE(static_cast<bool>(f));

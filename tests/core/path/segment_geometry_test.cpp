@@ -88,9 +88,9 @@ TEST(SegmentGeometry, TurnedCirclesAndHelicesAreFreePlaneArcsOfTheSameTurns) {
     for (double c_deg = 0.0; c_deg < 360.0; c_deg += 15.0) {
       Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
       t.translation() = Vec3(220.0, 100.0, 20.0);
-      t.linear() = (Eigen::AngleAxisd(c_deg * kDeg, Vec3::UnitZ()) *
-                    Eigen::AngleAxisd(a_deg * kDeg, Vec3::UnitX()))
-                       .toRotationMatrix();
+      t.linear() =
+          (Eigen::AngleAxisd(c_deg * kDeg, Vec3::UnitZ()) * Eigen::AngleAxisd(a_deg * kDeg, Vec3::UnitX()))
+              .toRotationMatrix();
       for (const double dz : {0.0, -1.0}) {
         for (const std::uint32_t turns : {0u, 3u}) {
           Segment g17 = arc(0.6, false, turns, dz);
@@ -102,16 +102,17 @@ TEST(SegmentGeometry, TurnedCirclesAndHelicesAreFreePlaneArcsOfTheSameTurns) {
           free.start.head<3>() = t * Vec3(g17.start.head<3>());
           free.end.head<3>() = t * Vec3(g17.end.head<3>());
           const SegmentGeometry got(free);
-          const std::string at = "A " + std::to_string(a_deg) + " C " + std::to_string(c_deg) +
-                                 " dz " + std::to_string(dz) + " turns " + std::to_string(turns);
+          const std::string at = "A " + std::to_string(a_deg) + " C " + std::to_string(c_deg) + " dz " +
+                                 std::to_string(dz) + " turns " + std::to_string(turns);
           ASSERT_NEAR(got.sweep_rad(), want.sweep_rad(), 1e-9) << at;
           ASSERT_NEAR(got.length(), want.length(), 1e-9) << at;
           for (int k = 0; k <= 40; ++k) {
             const double sk = want.length() * k / 40.0;
             ASSERT_LT((Vec3(got.at(sk).head<3>()) - t * Vec3(want.at(sk).head<3>())).norm(), 1e-9)
                 << at << " at " << k << "/40";
-            ASSERT_LT((Vec3(got.tangent(sk).head<3>()) - t.linear() * Vec3(want.tangent(sk).head<3>())).norm(),
-                      1e-9)
+            ASSERT_LT(
+                (Vec3(got.tangent(sk).head<3>()) - t.linear() * Vec3(want.tangent(sk).head<3>())).norm(),
+                1e-9)
                 << at << " tangent at " << k << "/40";
           }
           ++turned;
@@ -134,7 +135,7 @@ TEST(SegmentGeometry, SpiralArcRunsFromItsStartRadiusToItsEndRadius) {
       s.plane = Plane::XY;
       s.clockwise = cw;
       s.center = Vec3(50, 50, 10);
-      s.start << 55, 50, 10, 0, 0, 0;  // radius 5 at angle 0
+      s.start << 55, 50, 10, 0, 0, 0;                       // radius 5 at angle 0
       s.end << 50, cw ? 44.972 : 55.028, 10 + dz, 0, 0, 0;  // 5.028 a quarter turn on
       const SegmentGeometry g(s);
       ASSERT_TRUE(g.is_spiral());
@@ -313,7 +314,6 @@ TEST(DeviationMeter, MeasuresAgainstTheWindowOfSegments) {
   EXPECT_NEAR(dm.max_mm(), 0.002, 1e-12);
 }
 
-
 // A point known by its program line only (the tool tip under TCP) is
 // compared with that line's segment and those before it, and held to the
 // tolerance plus the extra allowance.
@@ -336,7 +336,7 @@ TEST(DeviationMeter, AtLineFindsTheLinesSegmentAndHoldsTheExtraAllowance) {
       },
       0.0, 0.0, 0.001);
   EXPECT_NEAR(dm.add_at_line(Vec3(0.0005, 5, 0), 3), 0.0005, 1e-12);
-  EXPECT_EQ(dm.excess_mm(), 0.0);  // within the extra 1 µm
+  EXPECT_EQ(dm.excess_mm(), 0.0);                                // within the extra 1 µm
   EXPECT_NEAR(dm.add_at_line(Vec3(0.5, 15, 0), 5), 0.5, 1e-12);  // line 5's segment, not line 9's
   EXPECT_NEAR(dm.excess_mm(), 0.5 - 0.001 - DeviationMeter::kDeviationSlackMm, 1e-12);
   EXPECT_EQ(dm.excess_line(), 5u);

@@ -61,8 +61,7 @@ TEST(ArcTransition, RightAngleCornerFollowsTheFormula) {
   const ArcTransition t = arc_transition(a, b, 0.01, 5.0, 5.0);
   ASSERT_TRUE(t.blended);
   // θ = 90°: l = E·sin45/(1−cos45) = 0.024142 mm, r = l
-  EXPECT_NEAR(t.trim, 0.01 * std::sin(std::numbers::pi / 4) / (1 - std::cos(std::numbers::pi / 4)),
-              1e-12);
+  EXPECT_NEAR(t.trim, 0.01 * std::sin(std::numbers::pi / 4) / (1 - std::cos(std::numbers::pi / 4)), 1e-12);
   EXPECT_NEAR(SegmentGeometry(t.arc).radius(), t.trim, 1e-12);
   expect_good_blend(a, b, 0.01, 5.0, 5.0);
 }
@@ -97,7 +96,7 @@ TEST(ArcTransition, RotaryAxesMoveLinearlyAcrossTheBlend) {
   b.end[5] = 30.0;
   const ArcTransition t = arc_transition(a, b, 0.01, 5.0, 5.0);
   ASSERT_TRUE(t.blended);
-  EXPECT_NEAR(t.q0[5], 10.0 - t.trim, 1e-12);       // 1°/mm on a
+  EXPECT_NEAR(t.q0[5], 10.0 - t.trim, 1e-12);        // 1°/mm on a
   EXPECT_NEAR(t.q2[5], 10.0 + 2.0 * t.trim, 1e-12);  // 2°/mm on b
   EXPECT_EQ(t.arc.start[5], t.q0[5]);
   EXPECT_EQ(t.arc.end[5], t.q2[5]);
@@ -161,18 +160,18 @@ TEST(FilletTransition, LineIntoArcAtAnAngle) {
 }
 
 TEST(FilletTransition, ArcIntoLineBothTurnDirections) {
-  const Segment a = arc_xy({0, 0, 0}, {5, 5, 0}, {5, 0, 0}, true);  // CW, ends heading +X
-  expect_good_fillet(a, line({5, 5, 0}, {5, 15, 0}), 0.01, 3.0, 5.0);    // turn left
-  expect_good_fillet(a, line({5, 5, 0}, {5, -5, 0}), 0.01, 3.0, 5.0);    // turn right
+  const Segment a = arc_xy({0, 0, 0}, {5, 5, 0}, {5, 0, 0}, true);     // CW, ends heading +X
+  expect_good_fillet(a, line({5, 5, 0}, {5, 15, 0}), 0.01, 3.0, 5.0);  // turn left
+  expect_good_fillet(a, line({5, 5, 0}, {5, -5, 0}), 0.01, 3.0, 5.0);  // turn right
 }
 
 TEST(FilletTransition, ArcIntoArc) {
   // two CCW arcs meeting at a 90° corner
-  const Segment a = arc_xy({10, 0, 0}, {0, 10, 0}, {0, 0, 0}, false);    // ends heading −X
-  const Segment b = arc_xy({0, 10, 0}, {-5, 15, 0}, {-5, 10, 0}, false); // starts heading +Y
+  const Segment a = arc_xy({10, 0, 0}, {0, 10, 0}, {0, 0, 0}, false);     // ends heading −X
+  const Segment b = arc_xy({0, 10, 0}, {-5, 15, 0}, {-5, 10, 0}, false);  // starts heading +Y
   expect_good_fillet(a, b, 0.02, 5.0, 5.0);
   // and a CW one turning the other way
-  const Segment c = arc_xy({0, 10, 0}, {-5, 5, 0}, {-5, 10, 0}, true);   // starts heading −Y
+  const Segment c = arc_xy({0, 10, 0}, {-5, 5, 0}, {-5, 10, 0}, true);  // starts heading −Y
   expect_good_fillet(a, c, 0.02, 5.0, 5.0);
 }
 

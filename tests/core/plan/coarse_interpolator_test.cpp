@@ -6,10 +6,10 @@
 #include <random>
 #include <vector>
 
-#include "plan/lookahead.h"
-#include "plan/path_blender.h"
-#include "plan/motion_stats.h"
 #include "core/plan/test_machine.h"
+#include "plan/lookahead.h"
+#include "plan/motion_stats.h"
+#include "plan/path_blender.h"
 
 namespace lcnc {
 namespace {

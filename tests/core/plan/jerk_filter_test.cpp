@@ -58,8 +58,7 @@ TEST(MaxJerkKey, NegativeOrOutOfRangeIsAnErrorWithItsPlace) {
     ASSERT_FALSE(m) << v;
     EXPECT_EQ(m.error().code, ErrorCode::ConfigBadValue);
     EXPECT_NE(m.error().message.find("machine.max_jerk = "), std::string::npos) << v;
-    EXPECT_NE(m.error().message.find("allowed 1 … 1e+10 mm/s³"), std::string::npos)
-        << m.error().message;
+    EXPECT_NE(m.error().message.find("allowed 1 … 1e+10 mm/s³"), std::string::npos) << m.error().message;
     EXPECT_EQ(m.error().line, 3u);
     EXPECT_GT(m.error().col, 0u);
   }

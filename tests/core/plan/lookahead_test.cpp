@@ -241,7 +241,7 @@ TEST(Lookahead, NaiveCamMergingStaysWithinP) {
 TEST(Lookahead, TinyChordCircleRunsAtItsCentripetalLimit) {
   const auto m = testing::test_machine(100.0, 2000.0);
   std::vector<Segment> segs;
-  const double r = 2.0;  // v_max = sqrt(a·r) = 63 mm/s < F
+  const double r = 2.0;    // v_max = sqrt(a·r) = 63 mm/s < F
   const int n = 1257 * 4;  // 0.01 mm chords, 4 laps
   auto pt = [&](int k) {
     const double a = 2 * 3.14159265358979 * (k % 1257) / 1257.0;
@@ -316,8 +316,8 @@ TEST(Lookahead, BlendAfterALineUsedUpKeepsTheRotaryRateOfTheOneBefore) {
   corner[3] = 10.0;
   Pose end = xyz(12, 10.001, 5);
   end[3] = 10.0;
-  const std::vector<Segment> segs = {g1(xyz(10, 10, 5), swung, 50.0, 0.01),
-                                     g1(swung, corner, 50.0, 0.01), g1(corner, end, 50.0, 0.01)};
+  const std::vector<Segment> segs = {g1(xyz(10, 10, 5), swung, 50.0, 0.01), g1(swung, corner, 50.0, 0.01),
+                                     g1(corner, end, 50.0, 0.01)};
   expect_within_limits(m, run(m, segs));
 }
 
@@ -329,8 +329,8 @@ TEST(Lookahead, BlendsOfALineUsedUpThatSwingsARotaryAxisAreNoTangentJoins) {
   const MachineConfig m = with_a_axis();
   Pose corner = xyz(11, 10, 5), swung = xyz(11, 10.001, 5), end = xyz(12, 10.001, 5);
   swung[3] = end[3] = 1.0;
-  const std::vector<Segment> segs = {g1(xyz(10, 10, 5), corner, 50.0, 0.01),
-                                     g1(corner, swung, 50.0, 0.01), g1(swung, end, 50.0, 0.01)};
+  const std::vector<Segment> segs = {g1(xyz(10, 10, 5), corner, 50.0, 0.01), g1(corner, swung, 50.0, 0.01),
+                                     g1(swung, end, 50.0, 0.01)};
   expect_within_limits(m, run(m, segs));
 }
 

@@ -132,7 +132,6 @@ TEST(PathBlender, JoinsWithRotaryAxesMovingAreNotMarkedTangent) {
   for (const auto& s : out) EXPECT_FALSE(s.tangent_in);
 }
 
-
 // Under tool-centre-point control the rotary axes turn the tip: a blend that
 // runs them linearly across a corner where their rate per mm jumps moves the
 // tip by the lever × trim × jump / 2. The trim is held so that this and the

@@ -55,7 +55,8 @@ TEST(PathCheck, UnderTcpTheToolTipIsHeldToTheProgramAsWritten) {
   Result<std::unique_ptr<PathCheck>> c = PathCheck::for_program(path, m, o);
   ASSERT_TRUE(static_cast<bool>(c)) << c.error().to_string();
   // along line 3 (segment 0: line 2 is no motion from there)
-  for (int k = 0; k <= 10; ++k) (*c)->add(kin.joints_for_tip(Vec3(300 + k, 200, 100), RotaryJoints{20, 30}), 0, 3);
+  for (int k = 0; k <= 10; ++k)
+    (*c)->add(kin.joints_for_tip(Vec3(300 + k, 200, 100), RotaryJoints{20, 30}), 0, 3);
   EXPECT_TRUE((*c)->breaches().empty()) << (*c)->breaches().front();
   EXPECT_LT((*c)->max_mm(), 1e-6);
   // the same head position with A half a degree off: the tip moves ~1 mm

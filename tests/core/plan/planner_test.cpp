@@ -84,8 +84,7 @@ Pose xyzc(double x, double y, double z, double c = 0.0) {
   return p;
 }
 
-Segment cut(const Pose& a, const Pose& b, double feed, double tol,
-            PathMode mode = PathMode::Blend) {
+Segment cut(const Pose& a, const Pose& b, double feed, double tol, PathMode mode = PathMode::Blend) {
   Segment s;
   s.kind = MotionKind::Linear;
   s.start = a;
@@ -159,8 +158,7 @@ JerkRun run_jerk(const MachineConfig& m, const std::vector<Segment>& segs, bool 
       const auto& s1 = steps[ns - 1 - kStride];
       const auto& s2 = steps[ns - 1 - 2 * kStride];
       const auto& s3 = steps[ns - 1 - 3 * kStride];
-      const double d3 =
-          static_cast<double>(s0[ax] - 3 * s1[ax] + 3 * s2[ax] - s3[ax]) / 1000.0;  // mm
+      const double d3 = static_cast<double>(s0[ax] - 3 * s1[ax] + 3 * s2[ax] - s3[ax]) / 1000.0;  // mm
       r.j_steps[ax] = std::max(r.j_steps[ax], std::abs(d3) / (h * h * h));
     }
     if (poses.size() > 8) poses.erase(poses.begin(), poses.begin() + 4);
@@ -281,8 +279,8 @@ TEST(Planner, JerkLimitStaysWithinPOnArcsAndFillets) {
 TEST(Planner, JerkLimitReachesExactStopsExactly) {
   auto m = testing::test_machine(150.0, 3000.0);
   m.max_jerk = 1e5;
-  const Pose c[5] = {xyzc(10, 10, 5), xyzc(40.0001, 10, 5), xyzc(40.0001, 33.3333, 5),
-                     xyzc(10, 33.3333, 5), xyzc(10, 10, 5)};
+  const Pose c[5] = {xyzc(10, 10, 5), xyzc(40.0001, 10, 5), xyzc(40.0001, 33.3333, 5), xyzc(10, 33.3333, 5),
+                     xyzc(10, 10, 5)};
   std::vector<Segment> segs;
   for (int k = 0; k < 4; ++k) segs.push_back(cut(c[k], c[k + 1], 100.0, 0.0, PathMode::ExactPath));
   Segment dwell = segs.back();
@@ -517,7 +515,7 @@ TEST(Planner, MovesWithTheOverrideOffArePlannedAtTheProgramsFeed) {
       top_on = std::max(top_on, v);
     }
   }
-  EXPECT_GT(off, 1000u);  // 10 mm at 100 mm/s: 1333 periods
+  EXPECT_GT(off, 1000u);              // 10 mm at 100 mm/s: 1333 periods
   EXPECT_NEAR(top_off, 100.0, 0.01);  // (differenced poses)
   EXPECT_NEAR(top_on, 150.0, 0.01);
 }

@@ -26,13 +26,13 @@
 #include <sstream>
 #include <string>
 
+#include "core/plan/test_machine.h"
 #include "gcode/program_reader.h"
 #include "machine/machine_config.h"
 #include "path/deviation_meter.h"
 #include "plan/entry_stream.h"
 #include "plan/motion_check.h"
 #include "plan/planner.h"
-#include "core/plan/test_machine.h"
 #include "plan/program_source.h"
 
 namespace lcnc {
@@ -109,8 +109,8 @@ class Generator {
         if (ex < 1 || ex > 999 || ey < 1 || ey > 449) continue;  // off the table
         const double dz = kind == 6 ? uniform(-1, 1) * std::min(2.0, reach) : 0.0;
         if (z_ + dz < 1 || z_ + dz > 499) continue;
-        g << (cw ? "G2" : "G3") << " X" << ex << " Y" << ey << " Z" << z_ + dz << " I" << cx - x_
-          << " J" << cy - y_;
+        g << (cw ? "G2" : "G3") << " X" << ex << " Y" << ey << " Z" << z_ + dz << " I" << cx - x_ << " J"
+          << cy - y_;
         if (kind == 6 && pick(0, 3) == 0 && 2 * M_PI * r * 4 < reach) g << " P" << pick(2, 4);
         g << " F" << f << "\n";
         x_ = ex;
@@ -166,8 +166,8 @@ struct Tally {
 
 // Plans `path` on `m`; a failure of any property is an assertion with the
 // program shown.
-void check_one(const std::string& path, const std::string& text, const MachineConfig& m,
-               bool tcp, Tally& tally) {
+void check_one(const std::string& path, const std::string& text, const MachineConfig& m, bool tcp,
+               Tally& tally) {
   Result<ProgramSummary> summary = check_job_program(path, m);
   if (!summary) {  // a clear refusal: located and said
     const Diagnostic& e = summary.error();
@@ -191,7 +191,8 @@ void check_one(const std::string& path, const std::string& text, const MachineCo
   // under TCP the tool tip, held to the program as written
   Result<std::unique_ptr<ProgramReader>> tips = open_tip_program(path, m);
   ASSERT_TRUE(static_cast<bool>(tips));
-  DeviationMeter tip((reader_source(**tips)), m.path_tolerance_mm, tip_rounding_mm(m), m.tcp.tip_tolerance_mm);
+  DeviationMeter tip((reader_source(**tips)), m.path_tolerance_mm, tip_rounding_mm(m),
+                     m.tcp.tip_tolerance_mm);
   const FiveAxisKinematics kin = kinematics_from(m);
   std::uint64_t k = 0;
   auto take = [&](const PeriodIncrement& inc) {
@@ -216,11 +217,13 @@ void check_one(const std::string& path, const std::string& text, const MachineCo
   ASSERT_EQ(got, EntryStream::Next::End) << text;
   motion.finish();
   ASSERT_TRUE(motion.ok()) << motion.breaches().front() << "\n" << text;
-  ASSERT_EQ(deviation.excess_mm(), 0.0) << "deviation beyond " << deviation.excess_tolerance_mm()
-                                        << " by " << deviation.excess_mm() << " at line "
-                                        << deviation.excess_line() << "\n" << text;
+  ASSERT_EQ(deviation.excess_mm(), 0.0)
+      << "deviation beyond " << deviation.excess_tolerance_mm() << " by " << deviation.excess_mm()
+      << " at line " << deviation.excess_line() << "\n"
+      << text;
   ASSERT_EQ(tip.excess_mm(), 0.0) << "tool tip deviation beyond " << tip.excess_tolerance_mm() << " by "
-                                 << tip.excess_mm() << " at line " << tip.excess_line() << "\n" << text;
+                                  << tip.excess_mm() << " at line " << tip.excess_line() << "\n"
+                                  << text;
   tally.periods += k;
 }
 
@@ -241,8 +244,8 @@ void run_property(bool tcp, bool rotary, std::uint32_t seed, int programs) {
     }
   }
   fs::remove_all(dir);
-  std::printf("%d programs: %d planned (%llu periods), %d refused by the check\n", programs,
-              tally.planned, static_cast<unsigned long long>(tally.periods), tally.refused);
+  std::printf("%d programs: %d planned (%llu periods), %d refused by the check\n", programs, tally.planned,
+              static_cast<unsigned long long>(tally.periods), tally.refused);
   EXPECT_GT(tally.planned, programs / 4);  // the property is about motion: most must run
 }
 
@@ -250,9 +253,7 @@ TEST(RandomProgramProperty, EveryAcceptedProgramKeepsEveryLimitAndItsTolerance) 
   run_property(false, false, 19, program_count());
 }
 
-TEST(RandomProgramProperty, WithRotaryAxesMovingAlong) {
-  run_property(false, true, 21, program_count());
-}
+TEST(RandomProgramProperty, WithRotaryAxesMovingAlong) { run_property(false, true, 21, program_count()); }
 
 // Under TCP the tool tip (forward kinematics of the executed joints) is
 // held to the program as written, too. This run once planned its first

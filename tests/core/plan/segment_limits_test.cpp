@@ -43,8 +43,8 @@ struct ReferenceLimits {
     for (double p = phi >= kPi ? phi - kPi : phi + kPi; p <= sweep; p += 2 * kPi) lo = -amp;
   }
 
-  static double box_bound(double amax, double rho, double sign, double t_lo, double t_hi,
-                          double c_lo, double c_hi) {
+  static double box_bound(double amax, double rho, double sign, double t_lo, double t_hi, double c_lo,
+                          double c_hi) {
     const double x_lo = sign > 0 ? t_lo : -t_hi, x_hi = sign > 0 ? t_hi : -t_lo;
     double a = std::numeric_limits<double>::infinity();
     if (c_hi > amax || c_lo < -amax) return 0.0;

@@ -39,7 +39,8 @@ inline MachineConfig test_machine(double vmax = 500.0, double amax = 5000.0) {
 // The shipped default machine (share/machines/default.toml), with
 // tool-centre-point control on or off.
 inline MachineConfig shipped_machine(bool tcp) {
-  Result<MachineConfig> m = load_machine_config(std::string(LCNC_SOURCE_DIR) + "/share/machines/default.toml");
+  Result<MachineConfig> m =
+      load_machine_config(std::string(LCNC_SOURCE_DIR) + "/share/machines/default.toml");
   EXPECT_TRUE(static_cast<bool>(m)) << m.error().to_string();
   MachineConfig out = *m;
   out.tcp.enabled = tcp;

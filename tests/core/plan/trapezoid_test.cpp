@@ -65,8 +65,8 @@ TEST(Trapezoid, SetOverAUsedProfileIsAFreshOne) {
                         {3.0, 100.0, 100.0, 0.0, 0.0, 0.0}};
   for (const Args& before : cases) {
     for (const Args& a : cases) {
-      Trapezoid p = Trapezoid::plan(before.length, before.accel, before.decel, before.v0,
-                                    before.v_target, before.v1);
+      Trapezoid p =
+          Trapezoid::plan(before.length, before.accel, before.decel, before.v0, before.v_target, before.v1);
       p.set(a.length, a.accel, a.decel, a.v0, a.v_target, a.v1);
       const Trapezoid q = Trapezoid::plan(a.length, a.accel, a.decel, a.v0, a.v_target, a.v1);
       for (const auto f : {&Trapezoid::length, &Trapezoid::accel, &Trapezoid::decel, &Trapezoid::v0,
