@@ -5,7 +5,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/deps.sh
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+scripts/configure.sh default
 cmake --build build -j2 --target lasercnc lasercncd lasercnc-devices lasercnc-hmi
 # --devices: the laser source and power meter as simulated Modbus devices on
 # loopback (app/laser_link.h); the report ends with what they saw.

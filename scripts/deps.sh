@@ -6,6 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   ccache                   # scripts/test.sh: a rebuild compiles only what changed, in any tree
+  clang-format clang-tidy python3  # scripts/lint.sh: the house style and checks (.clang-format, .clang-tidy)
   libeigen3-dev            # geometry (docs/design.md §3)
   libtomlplusplus-dev      # machine config (TOML)
   libspdlog-dev            # logging outside the RT path

@@ -3,15 +3,16 @@
 #   --quick  the unit tests alone (core, rt, drivers, hmi): no end-to-end,
 #            HAL, HDL or package test, no sanitizer pass; for the edit-test
 #            loop from a built tree
-#   --ci     warnings are errors, a second pass under ASan+UBSan and a third,
-#            the lock-free parts' stress tests (tests/tsan), under TSan
+#   --ci     warnings are errors, the house style and checks (scripts/lint.sh:
+#            clang-format, clang-tidy), a second pass under ASan+UBSan and a
+#            third, the lock-free parts' stress tests (tests/tsan), under TSan
 # The tests of the real-time path itself (label `realtime`: wall-clock
 # latency, the loop's allocation, lock and syscall proofs, and the jobs on
 # LinuxCNC's HAL, whose servo thread keeps the wall clock) run after the
 # others, one at a time. Every other test runs the simulated machine on the
 # simulated clock or waits on events, so load on the computer cannot change
 # its verdict. The presets are in CMakePresets.json (cmake --preset, ctest
-# --preset); ccache is used when installed.
+# --preset); ccache is used when installed (scripts/configure.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mode=all
@@ -22,33 +23,27 @@ case "${1:-}" in
   *) echo "usage: scripts/test.sh [--quick | --ci]" >&2; exit 2 ;;
 esac
 scripts/deps.sh
-launcher=()
-if command -v ccache >/dev/null; then
-  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-  # paths relative to the checkout and the build folder left out of the
-  # hash: a second clone of the same sources compiles only what differs
-  export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=true
-fi
 werror=OFF
 [ $mode = ci ] && werror=ON
-cmake --preset default -DLCNC_WERROR=$werror "${launcher[@]}" >/dev/null
+scripts/configure.sh default -DLCNC_WERROR=$werror
 if [ $mode = quick ]; then
   cmake --build build -j2 --target core_tests rt_tests drivers_tests hmi_tests
   ctest --preset quick
   exit 0
 fi
 cmake --build build -j2
+[ $mode = ci ] && scripts/lint.sh
 ctest --preset default
 ctest --preset realtime
 if [ $mode = ci ]; then
-  cmake --preset asan "${launcher[@]}" >/dev/null
+  scripts/configure.sh asan
   cmake --build build-asan -j2
   # the random-program property at a fiftieth of its size (ASan: ~0.3 s a
   # program; the plain pass runs it whole); GHDL itself is not sanitized,
   # and the real-time path's own tests are the plain pass's
   ctest --preset asan
   # TSan: only the tsan_tests target (header-only, seconds to build).
-  cmake --preset tsan "${launcher[@]}" >/dev/null
+  scripts/configure.sh tsan
   cmake --build --preset tsan
   # gcc 12's TSan runtime cannot place its shadow memory when the kernel
   # randomizes mmap with more than 28 bits (vm.mmap_rnd_bits, raised on newer
