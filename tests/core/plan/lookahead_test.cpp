@@ -6,6 +6,7 @@
 #include <random>
 #include <vector>
 
+#include "core/plan/random_moves.h"
 #include "core/plan/test_machine.h"
 #include "path/deviation_meter.h"
 #include "plan/coarse_interpolator.h"
@@ -33,14 +34,6 @@ Pose xyz(double x, double y, double z) {
   return p;
 }
 
-SegmentSource from(const std::vector<Segment>& segs, std::size_t& i) {
-  return [&segs, &i](Segment& out) {
-    if (i == segs.size()) return SourceStatus::End;
-    out = segs[i++];
-    return SourceStatus::Item;
-  };
-}
-
 struct Outcome {
   double time_s = 0.0;
   double max_dev = 0.0;
@@ -55,7 +48,7 @@ struct Outcome {
 // program segments.
 Outcome run(const MachineConfig& m, const std::vector<Segment>& segs) {
   std::size_t i = 0, j = 0;
-  PathBlender blender(m, from(segs, i));
+  PathBlender blender(m, testing::from(segs, i));
   Lookahead la(m, [&](const IndexedSegment*& s) { return blender.next(s); });
   double prev_exit = 0.0;
   Outcome o;
@@ -67,7 +60,7 @@ Outcome run(const MachineConfig& m, const std::vector<Segment>& segs) {
     }
     return st;
   });
-  DeviationMeter dm(from(segs, j));
+  DeviationMeter dm(testing::from(segs, j));
   const Pose start = segs.front().start;
   StepQuantizer q(m, start);
   MotionStats st(m.period_s(), start);
@@ -187,27 +180,10 @@ TEST(Lookahead, RandomLinesAndArcsStayWithinLimitsAndTolerance) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   const int programs = testing::scaled(8);
   for (int p = 0; p < programs; ++p) {
-    std::vector<Segment> segs;
-    Pose at = xyz(200, 200, 50);
     const double tol = 0.005 + 0.03 * u(rng);
-    for (int k = 0; k < 120; ++k) {
-      const double len = 0.2 + 5.0 * u(rng);
-      const double ang = 2 * 3.14159265 * u(rng);
-      const Pose to = at + xyz(len * std::cos(ang), len * std::sin(ang), 0);
-      Segment s = g1(at, to, 30 + 150 * u(rng), tol);
-      if (k % 2 == 1) {  // an arc through the same end points
-        const Vec3 a = at.head<3>(), b = to.head<3>(), mid = 0.5 * (a + b);
-        const double r = 0.5 * len * (1.05 + 3 * u(rng));
-        const Vec3 n = Vec3(-(b - a).y(), (b - a).x(), 0).normalized();
-        const double h = std::sqrt(r * r - 0.25 * len * len) * (u(rng) < 0.5 ? 1 : -1);
-        s.kind = MotionKind::Arc;
-        s.plane = Plane::XY;
-        s.center = mid + h * n;
-        s.clockwise = u(rng) < 0.5;
-      }
-      segs.push_back(s);
-      at = to;
-    }
+    const std::vector<Segment> segs = testing::random_lines_and_arcs(
+        rng, xyz(200, 200, 50), 120,
+        [&](const Pose& a, const Pose& b, double feed) { return g1(a, b, feed, tol); });
     const Outcome o = run(m, segs);
     EXPECT_LE(o.max_dev, tol) << "program " << p;
     EXPECT_GT(o.max_dev, 0.5 * tol) << "program " << p;  // the corners really are filleted

@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "core/plan/random_moves.h"
 #include "core/plan/test_machine.h"
 #include "path/deviation_meter.h"
 #include "support/test_scale.h"
@@ -97,14 +98,6 @@ Segment cut(const Pose& a, const Pose& b, double feed, double tol, PathMode mode
   return s;
 }
 
-SegmentSource from(const std::vector<Segment>& segs, std::size_t& i) {
-  return [&segs, &i](Segment& out) {
-    if (i == segs.size()) return SourceStatus::End;
-    out = segs[i++];
-    return SourceStatus::Item;
-  };
-}
-
 // Peaks of one run, measured two ways:
 //   * on the commanded poses, one period apart (v, a, j by first, second and
 //     third differences over T);
@@ -127,8 +120,8 @@ constexpr int kStride = 80;  // h, periods
 
 JerkRun run_jerk(const MachineConfig& m, const std::vector<Segment>& segs, bool keep = false) {
   std::size_t i = 0, k = 0;
-  Planner planner(m, from(segs, i));
-  DeviationMeter dm(from(segs, k));
+  Planner planner(m, testing::from(segs, i));
+  DeviationMeter dm(testing::from(segs, k));
   const Pose start = segs.front().start;
   StepQuantizer q(m, start);
   JerkRun r;
@@ -241,27 +234,10 @@ TEST(Planner, JerkLimitStaysWithinPOnArcsAndFillets) {
   auto m = testing::test_machine(150.0, 3000.0);
   m.max_jerk = 2e5;
   for (int p = 0; p < programs; ++p) {
-    std::vector<Segment> segs;
-    Pose at = xyzc(200, 200, 50);
     const double tol = 0.01 + 0.03 * u(rng);
-    for (int k = 0; k < 60; ++k) {
-      const double len = 0.2 + 5.0 * u(rng);
-      const double ang = 2 * 3.14159265 * u(rng);
-      const Pose to = at + xyzc(len * std::cos(ang), len * std::sin(ang), 0);
-      Segment s = cut(at, to, 30 + 150 * u(rng), tol);
-      if (k % 2 == 1) {
-        const Vec3 a = at.head<3>(), b = to.head<3>(), mid = 0.5 * (a + b);
-        const double r = 0.5 * len * (1.05 + 3 * u(rng));
-        const Vec3 n = Vec3(-(b - a).y(), (b - a).x(), 0).normalized();
-        const double h = std::sqrt(r * r - 0.25 * len * len) * (u(rng) < 0.5 ? 1 : -1);
-        s.kind = MotionKind::Arc;
-        s.plane = Plane::XY;
-        s.center = mid + h * n;
-        s.clockwise = u(rng) < 0.5;
-      }
-      segs.push_back(s);
-      at = to;
-    }
+    const std::vector<Segment> segs = testing::random_lines_and_arcs(
+        rng, xyzc(200, 200, 50), 60,
+        [&](const Pose& a, const Pose& b, double feed) { return cut(a, b, feed, tol); });
     const JerkRun r = run_jerk(m, segs);
     EXPECT_LE(r.max_dev, tol) << "program " << p;
     EXPECT_GT(r.max_dev, 0.5 * tol) << "program " << p;  // the corners are still blended
@@ -373,8 +349,8 @@ TEST(Planner, WithoutJerkLimitThePlanIsBitIdentical) {
     at = to;
   }
   std::size_t i = 0, j = 0;
-  Planner planner(m, from(segs, i));
-  PathBlender blender(m, from(segs, j));
+  Planner planner(m, testing::from(segs, i));
+  PathBlender blender(m, testing::from(segs, j));
   Lookahead la(m, [&](const IndexedSegment*& s) { return blender.next(s); });
   CoarseInterpolator ci(m, [&](const PlannedSegment*& p) { return la.next(p); });
   PeriodSample x, y;
