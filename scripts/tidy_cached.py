@@ -2,7 +2,8 @@
 """clang-tidy over sources of a build's compile_commands.json, two at a time,
 with each clean verdict kept in ~/.cache/lasercnc/clang-tidy under a key made
 of the source as preprocessed (so any header it includes counts), its flags,
-clang-tidy's version and .clang-tidy: a second run checks only what changed.
+clang-tidy's version and .clang-tidy, the checkout's path left out: a second
+run, in this clone or another, checks only what changed.
 
 usage: tidy_cached.py BUILD_DIR SOURCE...   (exit 1 if any source has findings)
 """
@@ -54,8 +55,11 @@ def main():
         if pre.returncode == 0:
             h = hashlib.sha1()
             h.update(rules.encode())
-            h.update(entry.get("command", " ".join(entry.get("arguments", []))).encode())
-            h.update(pre.stdout)
+            # the checkout's own path left out, as ccache's base_dir: another
+            # clone of the same sources hits
+            flags = entry.get("command", " ".join(entry.get("arguments", [])))
+            h.update(flags.replace(root, "<checkout>").encode())
+            h.update(pre.stdout.replace(root.encode(), b"<checkout>"))
             key = os.path.join(cache, h.hexdigest())
             if os.path.exists(key):
                 return src, True, ""
