@@ -303,9 +303,12 @@ void RtKernel::take_entry_holds(const PeriodIncrement& inc) noexcept {
   // M0/M1/M60: the job is at rest here (a dwell's entry): held until a resume
   if (inc.pause && transition(KernelEvent::ProgramPause)) log(RtLogCode::ProgramPause, 0, -1, line_);
   // M66: the same hold, until the input does as asked or the time is up
-  if (inc.wait_input >= 0 && transition(KernelEvent::InputWait)) {
+  // (armed before the transition: the status that shows the hold names
+  // the input)
+  if (inc.wait_input >= 0 && takes(KernelEvent::InputWait)) {
     wait_.arm(inc.wait_input, inc.wait_mode, static_cast<double>(inc.wait_timeout_s), period_ns_,
               inputs_.digital_in);
+    transition(KernelEvent::InputWait);
     log(RtLogCode::InputWait, wait_.input(), wait_.mode(), line_);
   }
 }

@@ -250,7 +250,8 @@ class RtKernel : private OwnKernelPort, public KernelControl {
   [[nodiscard]] bool takes(KernelEvent e) const noexcept;
   // Makes the transition if the mode takes the event; false if not.
   bool transition(KernelEvent e) noexcept;
-  void enter(MachineState s) noexcept;
+  // Into mode s (a FeedHold for `cause`), published at once.
+  void enter(MachineState s, HoldCause cause = HoldCause::None) noexcept;
   // The job left the path: ended (completed) or aborted (flushed).
   void job_ended(bool completed) noexcept;
   void set_fault(ErrorCode code, int axis, std::uint32_t line) noexcept;

@@ -40,24 +40,20 @@ bool RtKernel::transition(KernelEvent e) noexcept {
       break;
     case KernelEvent::Jog: enter(MachineState::Jog); break;
     case KernelEvent::Home: enter(MachineState::Homing); break;
-    case KernelEvent::Hold:
-      enter(MachineState::FeedHold);
-      hold_cause_ = HoldCause::Operator;
-      break;
+    case KernelEvent::Hold: enter(MachineState::FeedHold, HoldCause::Operator); break;
     case KernelEvent::ProgramPause:
       // the job is at rest here (a dwell's entry): K to 0 at once, not
-      // ramped, so the next entry's motion never starts
+      // ramped, so the next entry's motion never starts; the flags before
+      // the state, so the status that shows the hold says why
       k_ = 0.0;
-      enter(MachineState::FeedHold);
-      hold_cause_ = HoldCause::ProgramPause;
       pause_left_ = options_.program_pause_periods;
       port_.program_pause.store(true, std::memory_order_relaxed);
       port_.program_pauses.fetch_add(1, std::memory_order_relaxed);
+      enter(MachineState::FeedHold, HoldCause::ProgramPause);
       break;
-    case KernelEvent::InputWait:
+    case KernelEvent::InputWait:  // armed by the caller (take_entry_holds) before
       k_ = 0.0;
-      enter(MachineState::FeedHold);
-      hold_cause_ = HoldCause::InputWait;
+      enter(MachineState::FeedHold, HoldCause::InputWait);
       break;
     case KernelEvent::Resume:
     case KernelEvent::InputCame:
@@ -95,7 +91,8 @@ bool RtKernel::transition(KernelEvent e) noexcept {
   return true;
 }
 
-void RtKernel::enter(MachineState s) noexcept {
+void RtKernel::enter(MachineState s, HoldCause cause) noexcept {
+  if (s == MachineState::FeedHold) hold_cause_ = cause;  // before the status below
   if (s == state_now_) return;
   if (state_now_ == MachineState::FeedHold) {  // resumed, stopped or e-stopped
     hold_cause_ = HoldCause::None;

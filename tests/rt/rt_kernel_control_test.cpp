@@ -15,6 +15,8 @@
 
 #include "drivers/sim_machine.h"
 #include "rt/rt_kernel.h"
+#include "rt/seqlock.h"
+#include "rt/shm_interface.h"
 #include "support/rt_rig.h"
 
 namespace lcnc::rt {
@@ -645,6 +647,39 @@ TEST(RtKernelControl, NoCommandActsOnAModeChangedEarlierInItsPeriod) {
   r.step();
   EXPECT_EQ(r.kernel->state(), MachineState::Running);
   r.kernel->end_periods();
+}
+
+// The status that first shows a program's hold (M0, M66) says why it holds
+// in the same publication: the reason was once set after the state, so
+// that status said "feed hold" with no pause and no input for a while.
+TEST(RtKernelControl, TheStatusThatShowsAProgramHoldSaysWhy) {
+  for (const bool wait : {false, true}) {
+    Rig r;
+    auto status = std::make_unique<Seqlock<shm::Status>>();
+    r.kernel->set_status(status.get());
+    r.begin_stepped();
+    for (int i = 0; i < 3; ++i) ASSERT_TRUE(r.buffer->try_push(step_x(5)));
+    PeriodIncrement hold = step_x(0, 2, 0.0f);
+    hold.kind = MotionKind::Dwell;
+    if (wait) {
+      hold.wait_input = 3;
+      hold.wait_mode = 3;  // high
+      hold.wait_timeout_s = 10.0f;
+    } else {
+      hold.pause = true;
+    }
+    ASSERT_TRUE(r.buffer->try_push(hold));
+    for (int i = 0; i < 10; ++i) ASSERT_TRUE(r.buffer->try_push(step_x(5)));
+    r.send(RtCommandType::StartJob);
+    shm::Status st;
+    for (int i = 0; i < 20 && r.kernel->state() != MachineState::FeedHold; ++i) r.step();
+    ASSERT_EQ(r.kernel->state(), MachineState::FeedHold) << "wait " << wait;
+    ASSERT_TRUE(status->load(st));
+    EXPECT_EQ(st.state, MachineState::FeedHold) << "wait " << wait;
+    EXPECT_EQ(st.program_pause, !wait);
+    EXPECT_EQ(st.input_wait, wait ? 3 : -1);
+    r.kernel->end_periods();
+  }
 }
 
 // A job whose last entry runs while it is being stopped ends there, once:
