@@ -26,7 +26,6 @@
 #include "app/run_job.h"
 #include "drivers/sim_machine.h"
 #include "gcode/program_reader.h"
-#include "holes/drill_job.h"
 #include "plan/motion_check.h"
 #include "plan/path_check.h"
 #include "plan/program_source.h"
@@ -701,12 +700,12 @@ struct Daemon::Impl {
     if (ended == jobs_ended_seen && !estopped) return;
     jobs_ended_seen = ended;
     drain_trace();
-    std::vector<std::string> breaches;
+    JobEnd end;
     if (job_check) {
       job_check->finish();
-      breaches = job_check->breaches();
-      if (job_check->motion().gaps() >
-          0)  // the control thread starved of the CPU: the guard still held every entry
+      end.breaches = job_check->breaches();
+      // the control thread starved of the CPU: the guard still held every entry
+      if (job_check->motion().gaps() > 0)
         logger()->warn(
             "job check: the RT trace lost records; those periods were held to the increment guard only");
       job_check.reset();
@@ -726,13 +725,11 @@ struct Daemon::Impl {
     job.last_line = f.active && f.line != 0              ? f.line
                     : shm.block().status.load(rt_status) ? rt_status.line
                                                          : 0;
-    JobEnd end;
     end.planned = &planned;
     end.running = running.get();
     end.fault = f;
     end.estopped = estopped;
     end.completed = kernel->last_job_completed();
-    end.breaches = std::move(breaches);
     end.line = job.last_line;
     end.progress = job.progress;
     end.cycle_time_s = job.last_cycle_time_s;
@@ -741,15 +738,14 @@ struct Daemon::Impl {
     job.last_outcome = out.outcome;
     job.last_fault = out.fault;
     job.progress = out.progress;
-    if (out.outcome == shm::JobOutcome::Failed && !end.breaches.empty() && !planned.failed)
+    if (out.failed_check)
       for (const std::string& b : end.breaches) logger()->error("job check: {}", b);
-    const char* msg = out.message.c_str();
-    copy_text(job.message, msg);
-    logger()->info("{}", msg);
+    copy_text(job.message, out.message);
+    logger()->info("{}", out.message);
     event(job.last_outcome == shm::JobOutcome::Done ? shm::Severity::Info
           : job.last_fault != 0                     ? shm::Severity::Error
                                                     : shm::Severity::Warning,
-          job.last_fault, f.line, 0, msg);
+          job.last_fault, f.line, 0, out.message);
     // the offsets as the job left them: an MDI command's modes go on to
     // the next; a program's end starts the MDI afresh
     mdi_modes = job.mdi ? mdi_end_modes : std::string();

@@ -34,6 +34,7 @@ JobOutcomeText job_outcome(const JobEnd& end, const MachineConfig& machine) {
     std::snprintf(msg, sizeof msg, "job stopped %s: the operator's stop", where);
   } else if (!end.breaches.empty()) {
     out.outcome = shm::JobOutcome::Failed;
+    out.failed_check = true;
     out.fault = static_cast<std::uint16_t>(ErrorCode::PlanBeyondLimit);
     std::snprintf(msg, sizeof msg, "job failed its check: %s%s", end.breaches.front().c_str(),
                   end.breaches.size() > 1 ? " (and more, in the log)" : "");

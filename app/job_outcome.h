@@ -35,8 +35,9 @@ struct JobEnd {
 
 struct JobOutcomeText {
   shm::JobOutcome outcome = shm::JobOutcome::None;
-  std::uint16_t fault = 0;  // ErrorCode, 0: none
-  double progress = 0.0;    // 1 once done
+  std::uint16_t fault = 0;    // ErrorCode, 0: none
+  double progress = 0.0;      // 1 once done
+  bool failed_check = false;  // decided by the job's own check: its breaches say why
   std::string message;
 };
 

@@ -12,7 +12,7 @@ namespace lcnc::rt {
 namespace {
 
 // X (Y, Z) of 0–100 mm at 1 µm a step; homing toward a switch at the minimum.
-MachineConfig machine() { return test::rt_machine(); }
+using test::rt_machine;
 
 constexpr double kT = 75e-6;
 
@@ -42,7 +42,7 @@ MoverRun drive(AxisMover& mover, std::int64_t pos, std::int64_t switch_at, int p
 }
 
 TEST(AxisMover, HomingFindsTheSwitchBacksOffAndRebases) {
-  AxisMover mover(machine(), 50.0);
+  AxisMover mover(rt_machine(), 50.0);
   ASSERT_TRUE(mover.can_home(0));
   mover.start_home(0, false, kT);
   // the switch at -2.5 mm of where the machine believes it is
@@ -57,7 +57,7 @@ TEST(AxisMover, HomingFindsTheSwitchBacksOffAndRebases) {
 }
 
 TEST(AxisMover, HomingWithoutASwitchGivesUpAfterTwiceTheTravelAndBrakes) {
-  AxisMover mover(machine(), 50.0);
+  AxisMover mover(rt_machine(), 50.0);
   mover.start_home(0, false, kT);
   const MoverRun r = drive(mover, 0, INT64_MIN, 20'000'000);
   ASSERT_EQ(r.events.size(), 2u);
@@ -71,7 +71,7 @@ TEST(AxisMover, HomingWithoutASwitchGivesUpAfterTwiceTheTravelAndBrakes) {
 }
 
 TEST(AxisMover, AJogOfAHomedAxisStopsAtTheSoftLimitAndSaysHowShort) {
-  AxisMover mover(machine(), 50.0);
+  AxisMover mover(rt_machine(), 50.0);
   EXPECT_EQ(mover.start_jog(0, 90'000, 150'000, true, kT), 50'000);
   const MoverRun r = drive(mover, 90'000, INT64_MIN, 1'000'000);
   ASSERT_EQ(r.events.size(), 1u);
@@ -83,7 +83,7 @@ TEST(AxisMover, AJogOfAHomedAxisStopsAtTheSoftLimitAndSaysHowShort) {
 }
 
 TEST(AxisMover, AnEStopCancelsAtOnce) {
-  AxisMover mover(machine(), 50.0);
+  AxisMover mover(rt_machine(), 50.0);
   mover.start_home(0, false, kT);
   (void)drive(mover, 50'000, INT64_MIN, 100);
   mover.cancel();
