@@ -17,7 +17,7 @@
 namespace lcnc::app {
 namespace {
 
-constexpr const char* kUsage =
+constexpr const char* kCutUsage =
     "usage: lasercnc cut PART.dxf -o PROGRAM.ngc|- [--svg FILE] [--process TABLE.csv]\n"
     "                    [--feed MM_MIN] [--power PCT] [--pierce S] [--kerf MM]\n"
     "                    [--lead-in MM] [--lead-out MM] [--direction cw|ccw]\n"
@@ -49,7 +49,7 @@ constexpr const char* kUsage =
     "               1 mm or over 10 m across, until they are given)\n"
     "  --origin     where the drawing's 0,0 is in the program, mm (default 0,0)\n";
 
-int usage_error(const std::string& msg) { return lcnc::app::usage_error("lasercnc cut", msg, kUsage); }
+int cut_usage_error(const std::string& msg) { return lcnc::app::usage_error("lasercnc cut", msg, kCutUsage); }
 
 void print_summary(std::FILE* out, const std::string& part, const cut::CutPlan& plan,
                    const std::vector<std::string>& notes) {
@@ -82,10 +82,10 @@ int cut_main(int argc, char** argv) {
   dxf::ReadOptions read_opt;
   for (int i = 1; i < argc; ++i) {
     std::string_view a, v;
-    if (const auto exit = file_or_option("lasercnc cut", kUsage, argc, argv, i, part, a, v)) return *exit;
+    if (const auto exit = file_or_option("lasercnc cut", kCutUsage, argc, argv, i, part, a, v)) return *exit;
     if (a.empty()) continue;  // the drawing
     auto bad = [&](const char* expected) {
-      return usage_error(std::string(a) + " " + std::string(v) + ": expected " + expected);
+      return cut_usage_error(std::string(a) + " " + std::string(v) + ": expected " + expected);
     };
     // NaN when not a number: every range check below then fails
     const double x = parse_number(v).value_or(std::nan(""));
@@ -127,11 +127,11 @@ int cut_main(int argc, char** argv) {
       if (!xy) return bad("X,Y in mm (e.g. 10,10)");
       opt.origin = cut::Vec2(xy->first, xy->second);
     } else {
-      return usage_error("unknown option " + std::string(a));
+      return cut_usage_error("unknown option " + std::string(a));
     }
   }
-  if (part.empty()) return usage_error("missing PART.dxf");
-  if (out_path.empty()) return usage_error("missing -o PROGRAM.ngc (- for standard output)");
+  if (part.empty()) return cut_usage_error("missing PART.dxf");
+  if (out_path.empty()) return cut_usage_error("missing -o PROGRAM.ngc (- for standard output)");
 
   std::vector<std::string> inputs{part};
   if (!process_path.empty()) inputs.push_back(process_path);

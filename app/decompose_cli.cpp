@@ -23,7 +23,7 @@ namespace {
 
 using decompose::kG_mm_s2;
 
-constexpr const char* kUsage =
+constexpr const char* kDecomposeUsage =
     "usage: lasercnc decompose PART.dxf [--speed V] [--step MM] [--mode sync|seed]\n"
     "                          [--main-accel A] [--main-speed V] [--aux-speed V] [--field MM]\n"
     "                          [--goal smooth|short] [--critical-angle DEG]\n"
@@ -62,7 +62,9 @@ constexpr const char* kUsage =
     "  Speeds take mm/s (default unit), mm/min, m/min, m/s; accelerations mm/s2\n"
     "  (default), m/s2, g.\n";
 
-int usage_error(const std::string& msg) { return lcnc::app::usage_error("lasercnc decompose", msg, kUsage); }
+int decompose_usage_error(const std::string& msg) {
+  return lcnc::app::usage_error("lasercnc decompose", msg, kDecomposeUsage);
+}
 
 // "6m/min" → 100 (mm/s). Units: mm/s (bare), mm/min, m/min, m/s.
 std::optional<double> parse_speed(std::string_view s) {
@@ -166,7 +168,7 @@ std::optional<bool> run_part(const decompose::PartResult& res, const MachineConf
 }  // namespace
 
 int decompose_main(int argc, char** argv) {
-  if (argc < 2) return usage_error("missing PART.dxf");
+  if (argc < 2) return decompose_usage_error("missing PART.dxf");
   std::string part;
   double step_mm = 0.01;
   decompose::Options opt;
@@ -192,11 +194,11 @@ int decompose_main(int argc, char** argv) {
       continue;
     }
     std::string_view a, v;
-    if (const auto exit = file_or_option("lasercnc decompose", kUsage, argc, argv, i, part, a, v))
+    if (const auto exit = file_or_option("lasercnc decompose", kDecomposeUsage, argc, argv, i, part, a, v))
       return *exit;
     if (a.empty()) continue;  // the drawing
     auto bad = [&](const char* expected) {
-      return usage_error(std::string(a) + " " + std::string(v) + ": expected " + expected);
+      return decompose_usage_error(std::string(a) + " " + std::string(v) + ": expected " + expected);
     };
     if (a == "--speed" || a == "--main-speed" || a == "--aux-speed") {
       const std::optional<double> s = parse_speed(v);
@@ -258,12 +260,12 @@ int decompose_main(int argc, char** argv) {
       run_opt.origin_x_mm = xy->first;
       run_opt.origin_y_mm = xy->second;
     } else {
-      return usage_error("unknown option " + std::string(a));
+      return decompose_usage_error("unknown option " + std::string(a));
     }
   }
-  if (part.empty()) return usage_error("missing PART.dxf");
+  if (part.empty()) return decompose_usage_error("missing PART.dxf");
   if (!run && (!run_svg_path.empty() || !main_file.empty() || !aux_file.empty()))
-    return usage_error("--machine, --aux-machine and --run-svg go with --run");
+    return decompose_usage_error("--machine, --aux-machine and --run-svg go with --run");
 
   // The outputs are checked before any work: none may be an input or
   // another output (nothing is written until the command has done its work).

@@ -26,7 +26,7 @@
 namespace lcnc::app {
 namespace {
 
-constexpr const char* kUsage =
+constexpr const char* kDrillUsage =
     "usage: lasercnc drill HOLES.csv [--machine FILE] [--devices] [--clearance MM] [--settle S]\n"
     "                      [--feed-override PCT] [--trace FILE.csv] [--json] [--[no-]progress]\n"
     "                      [--fast | --no-realtime]\n"
@@ -36,7 +36,9 @@ constexpr const char* kUsage =
     "  --clearance    approach and retract height above each hole, mm along the tool axis (5)\n"
     "  --settle       dwell at the clearance point while the head takes its block, s (0.2)\n";
 
-int usage_error(const std::string& msg) { return lcnc::app::usage_error("lasercnc drill", msg, kUsage); }
+int drill_usage_error(const std::string& msg) {
+  return lcnc::app::usage_error("lasercnc drill", msg, kDrillUsage);
+}
 
 // What one hole did, for the report.
 struct HoleRecord {
@@ -123,16 +125,16 @@ int drill_main(int argc, char** argv) {
       return std::string_view(argv[++i]);
     };
     if (a == "--help" || a == "-h") {
-      std::fputs(kUsage, stdout);
+      std::fputs(kDrillUsage, stdout);
       return 0;
     } else if (a == "--machine" || a == "--trace") {
       auto v = value();
-      if (!v) return usage_error(std::string(a) + " needs a file");
+      if (!v) return drill_usage_error(std::string(a) + " needs a file");
       (a == "--machine" ? opt.machine_file : opt.trace_file) = std::string(*v);
     } else if (a == "--clearance" || a == "--settle" || a == "--feed-override") {
       auto v = value();
       const std::optional<double> x = v ? parse_number(*v) : std::nullopt;
-      if (!x || *x < 0.0) return usage_error(std::string(a) + " needs a number ≥ 0");
+      if (!x || *x < 0.0) return drill_usage_error(std::string(a) + " needs a number ≥ 0");
       if (a == "--clearance")
         dopt.clearance_mm = *x;
       else if (a == "--settle")
@@ -150,14 +152,14 @@ int drill_main(int argc, char** argv) {
     } else if (a == "--fast") {
       opt.clock = rt::RtClock::Simulated;
     } else if (!a.empty() && a[0] == '-') {
-      return usage_error("unknown option '" + std::string(a) + "'");
+      return drill_usage_error("unknown option '" + std::string(a) + "'");
     } else if (table.empty()) {
       table = std::string(a);
     } else {
-      return usage_error("more than one hole table");
+      return drill_usage_error("more than one hole table");
     }
   }
-  if (table.empty()) return usage_error("missing HOLES.csv");
+  if (table.empty()) return drill_usage_error("missing HOLES.csv");
 
   // Everything is checked before anything moves: machine, table, the job's
   // travel.

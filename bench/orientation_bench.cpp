@@ -30,7 +30,7 @@ namespace {
 
 using namespace lcnc;
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 constexpr double kSampleDt = 1e-4;
 constexpr TimeLaw kLaw{1.0, 0.25};
 // Its peak du/dt and d²u/dt²: the caps of the re-timed law.
@@ -38,7 +38,7 @@ constexpr double kPeakURate = 1.0 / (1.0 * (1.0 - 0.25));
 constexpr double kPeakUAccel = kPeakURate / 0.25;
 
 double end_c(double delta_deg) {
-  return 180.0 - 2.0 * std::asin(std::tan(delta_deg * kDeg) / std::tan(30.0 * kDeg)) / kDeg;
+  return 180.0 - 2.0 * std::asin(std::tan(delta_deg * kRadPerDeg) / std::tan(30.0 * kRadPerDeg)) / kRadPerDeg;
 }
 
 void write_csv(const std::string& path, const OrientationReport& r) {

@@ -54,7 +54,7 @@ bool ticks_rise_inside(const std::uint32_t* t, std::uint32_t count, std::uint32_
 
 }  // namespace
 
-void SimMachine::emit(const PulseFrame& frame) noexcept {
+void SimMachine::send(const PulseFrame& frame) noexcept {
   bool bad = false;
   for (int i = 0; i < kAxisCount; ++i) {
     const AxisPulses& ax = frame.axes[i];

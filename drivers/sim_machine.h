@@ -12,7 +12,7 @@
 // An optional leadscrew pitch error per axis gives the actual carriage
 // position: actual = counted + error(counted), error a PitchTable in steps.
 //
-// emit() and read_inputs() are called from the RT thread: noexcept, no
+// send() and read_inputs() are called from the RT thread: noexcept, no
 // allocation, no locks. Getters and set_estop_input() are safe from any thread.
 #pragma once
 
@@ -66,7 +66,7 @@ class SimMachine final : public PulseSink {
              const std::array<SimSwitches, kAxisCount>& switches,
              const std::array<PitchTable, kAxisCount>& pitch_error_steps = {});
 
-  void emit(const PulseFrame& frame) noexcept override;
+  void send(const PulseFrame& frame) noexcept override;
   // Switch states at the current counted positions, and the e-stop input.
   [[nodiscard]] MachineInputs read_inputs() noexcept override;
 

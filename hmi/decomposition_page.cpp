@@ -24,17 +24,17 @@ namespace {
 
 using decompose::kG_mm_s2;
 
-const char* const kColumns[] = {"#",
-                                QT_TRANSLATE_NOOP("DecompositionPage", "first entity"),
-                                QT_TRANSLATE_NOOP("DecompositionPage", "length mm"),
-                                QT_TRANSLATE_NOOP("DecompositionPage", "points"),
-                                QT_TRANSLATE_NOOP("DecompositionPage", "time s"),
-                                QT_TRANSLATE_NOOP("DecompositionPage", "τ s"),
-                                QT_TRANSLATE_NOOP("DecompositionPage", "main a mm/s²"),
-                                QT_TRANSLATE_NOOP("DecompositionPage", "main v mm/s"),
-                                QT_TRANSLATE_NOOP("DecompositionPage", "aux v mm/s"),
-                                QT_TRANSLATE_NOOP("DecompositionPage", "aux max mm"),
-                                QT_TRANSLATE_NOOP("DecompositionPage", "a_eff mm/s²")};
+const char* const kColumnTitles[] = {"#",
+                                     QT_TRANSLATE_NOOP("DecompositionPage", "first entity"),
+                                     QT_TRANSLATE_NOOP("DecompositionPage", "length mm"),
+                                     QT_TRANSLATE_NOOP("DecompositionPage", "points"),
+                                     QT_TRANSLATE_NOOP("DecompositionPage", "time s"),
+                                     QT_TRANSLATE_NOOP("DecompositionPage", "τ s"),
+                                     QT_TRANSLATE_NOOP("DecompositionPage", "main a mm/s²"),
+                                     QT_TRANSLATE_NOOP("DecompositionPage", "main v mm/s"),
+                                     QT_TRANSLATE_NOOP("DecompositionPage", "aux v mm/s"),
+                                     QT_TRANSLATE_NOOP("DecompositionPage", "aux max mm"),
+                                     QT_TRANSLATE_NOOP("DecompositionPage", "a_eff mm/s²")};
 
 }  // namespace
 
@@ -55,9 +55,9 @@ DecompositionPage::DecompositionPage(QWidget* parent)
   holder->setContentsMargins(0, 0, 0, 0);
   holder->addWidget(view_);
   QTableWidget* t = ui_->contourTable;
-  t->setColumnCount(static_cast<int>(std::size(kColumns)));
+  t->setColumnCount(static_cast<int>(std::size(kColumnTitles)));
   QStringList headers;
-  for (const char* c : kColumns) headers << QCoreApplication::translate("DecompositionPage", c);
+  for (const char* c : kColumnTitles) headers << QCoreApplication::translate("DecompositionPage", c);
   t->setHorizontalHeaderLabels(headers);
   t->verticalHeader()->hide();
   t->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);

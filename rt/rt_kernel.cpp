@@ -1,5 +1,5 @@
 // The RT kernel's period step: commands, inputs, the period's motion, limits,
-// DDA and emit, accounting and status (steps 2–9 of rt/rt_kernel.h).
+// DDA and send, accounting and status (steps 2–9 of rt/rt_kernel.h).
 #include "rt/rt_kernel.h"
 
 #include <algorithm>
@@ -394,7 +394,7 @@ void RtKernel::cycle(const Motion& m, double length_ns, std::int64_t end_ns) noe
   frame_.outputs = m.on_path ? m.inc.outputs : std::uint16_t{0};
   frame_.analog = m.on_path ? m.inc.analog : std::array<float, kAnalogOutputs>{};
   power_now_ = power;
-  sink_.emit(frame_);
+  sink_.send(frame_);
   // 8. position, machine time, trace
   for (int i = 0; i < kAxisCount; ++i) {
     const std::int64_t n = frame_.axes[i].count;

@@ -9,8 +9,6 @@
 namespace lcnc::gcode {
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-
 // x mod 2π in [0, 2π).
 [[nodiscard]] double wrap_2pi(double x) {
   double r = std::fmod(x, kTwoPi);

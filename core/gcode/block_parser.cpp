@@ -30,8 +30,6 @@ constexpr double kPow10[] = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
 // wraps past 19 digits; such numbers take the slow path.)
 constexpr std::uint32_t kFastDigits = 15;
 
-[[nodiscard]] constexpr bool is_digit(char c) noexcept { return c >= '0' && c <= '9'; }
-
 // What compact() does with each byte: keep it (upper-cased), drop it
 // (blanks), or look closer (comments).
 enum class CharClass : std::uint8_t { Keep, Blank, Special };

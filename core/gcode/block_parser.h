@@ -25,6 +25,9 @@
 
 namespace lcnc::gcode {
 
+// '0' … '9' (std::isdigit depends on the locale and takes an int).
+[[nodiscard]] constexpr bool is_digit(char c) noexcept { return c >= '0' && c <= '9'; }
+
 // G modal groups of the subset (LinuxCNC numbers in kGGroupNumber). G80
 // (cancel canned cycle) is in the motion group, as in LinuxCNC: after it,
 // axis words need a new G0..G3.

@@ -5,12 +5,12 @@
 #include <numbers>
 
 #include "geom/plane.h"
+#include "geom/pose.h"
 
 namespace lcnc::gcode {
 namespace {
 
 using V = Eigen::Vector2d;
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 // The most chords an arc is measured by (arc to arc only).
 constexpr int kMaxChords = 4096;
 

@@ -49,7 +49,7 @@ constexpr double kHalfPi = kPi / 2.0;
 constexpr double kCornerTolRad = 0.05;
 // |cos| below this: the entry arc's new centre is undefined (LinuxCNC
 // TOLERANCE_EQUAL).
-constexpr double kEqualTol = 0.0001;
+constexpr double kPerpendicularCos = 0.0001;
 // How much a compensated arc's two radii may differ, program units
 // (LinuxCNC: the centre-arc tolerance, 0.028 mm or 0.0028 in).
 constexpr double kCompRadiusTolMm = 2.0 * 0.01 * std::numbers::sqrt2;
@@ -588,7 +588,7 @@ bool Interpreter::comp_arc(const Pose& end_in, SegmentBuffer& out) {
     const double b_len = std::hypot(cy - e[b], cx - e[a]) / 2.0;
     const double ab_ang = std::atan2(c[b] - e[b], c[a] - e[a]);
     const double a_ang = std::atan2(cy - e[b], cx - e[a]) - ab_ang;
-    if (std::fabs(std::cos(a_ang)) < kEqualTol) {
+    if (std::fabs(std::cos(a_ang)) < kPerpendicularCos) {
       return comp_fail(
           "the tool radius is not less than the entry arc's; expected arcs the "
           "tool fits inside");

@@ -53,13 +53,11 @@ int precedence(int op) {
 }
 
 // LinuxCNC's TOLERANCE_EQUAL: EQ NE LE GE compare within it.
-constexpr double kEqualTol = 1e-6;
+constexpr double kEqualityTolerance = 1e-6;
 // Degrees and radians through long double, as LinuxCNC (M_PIl).
 constexpr long double kPiL = 3.141592653589793238462643383279502884L;
 double rad(double deg) { return static_cast<double>((static_cast<long double>(deg) * kPiL) / 180.0L); }
 double deg(double rad) { return static_cast<double>((static_cast<long double>(rad) * 180.0L) / kPiL); }
-
-bool is_digit(char c) { return c >= '0' && c <= '9'; }
 
 struct Function {
   const char* name;
@@ -341,10 +339,10 @@ bool ExpressionReader::binary(int op, double& left, double right, std::uint32_t 
     case kAnd: left = (left != 0.0 && right != 0.0) ? 1.0 : 0.0; return true;
     case kOr: left = (left != 0.0 || right != 0.0) ? 1.0 : 0.0; return true;
     case kXor: left = ((left != 0.0) != (right != 0.0)) ? 1.0 : 0.0; return true;
-    case kEq: left = std::fabs(left - right) < kEqualTol ? 1.0 : 0.0; return true;
-    case kNe: left = std::fabs(left - right) >= kEqualTol ? 1.0 : 0.0; return true;
-    case kLe: left = (std::fabs(left - right) < kEqualTol || left <= right) ? 1.0 : 0.0; return true;
-    case kGe: left = (std::fabs(left - right) < kEqualTol || left >= right) ? 1.0 : 0.0; return true;
+    case kEq: left = std::fabs(left - right) < kEqualityTolerance ? 1.0 : 0.0; return true;
+    case kNe: left = std::fabs(left - right) >= kEqualityTolerance ? 1.0 : 0.0; return true;
+    case kLe: left = (std::fabs(left - right) < kEqualityTolerance || left <= right) ? 1.0 : 0.0; return true;
+    case kGe: left = (std::fabs(left - right) < kEqualityTolerance || left >= right) ? 1.0 : 0.0; return true;
     case kGt: left = left > right ? 1.0 : 0.0; return true;
     case kLt: left = left < right ? 1.0 : 0.0; return true;
     default: return bad("unknown operator");

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <numbers>
 #include <string_view>
 
 #include <Eigen/Core>
@@ -22,6 +23,10 @@ inline constexpr std::array<char, kAxisCount> kAxisLetters = {'X', 'Y', 'Z', 'A'
 [[nodiscard]] constexpr int index(Axis a) noexcept { return static_cast<int>(a); }
 [[nodiscard]] constexpr char letter(Axis a) noexcept { return kAxisLetters[index(a)]; }
 [[nodiscard]] constexpr bool is_rotary(Axis a) noexcept { return index(a) >= 3; }
+
+// Radians per degree: the rotary axes are in degrees, the trigonometry in radians.
+inline constexpr double kRadPerDeg = std::numbers::pi / 180.0;
+inline constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 using Pose = Eigen::Matrix<double, kAxisCount, 1>;  // mm, mm, mm, deg, deg, deg
 using Vec3 = Eigen::Vector3d;

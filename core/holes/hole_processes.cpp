@@ -1,6 +1,7 @@
 // Hole-process generators; the geometry is described in hole_processes.h.
 #include "holes/hole_processes.h"
 
+#include "common/number_text.h"
 #include "holes/hole_fields.h"
 
 #include <cmath>
@@ -11,14 +12,6 @@
 namespace lcnc {
 
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
-
-std::string fmt(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
 
 // Builds segments in the hole frame, carrying the row's A and C.
 class Builder {
@@ -69,7 +62,7 @@ class Builder {
 };
 
 Vec3 polar(double r, double angle_deg, double z) {
-  return {r * std::cos(angle_deg * kDeg), r * std::sin(angle_deg * kDeg), z};
+  return {r * std::cos(angle_deg * kRadPerDeg), r * std::sin(angle_deg * kRadPerDeg), z};
 }
 
 }  // namespace
@@ -98,13 +91,15 @@ Status validate(const HoleProcessParams& p) {
   // Then what the fields must satisfy together.
   const double depth = p.layer_count * p.layer_feed_mm;
   if (!(std::abs(p.total_depth_mm - depth) <= kDepthTolerance))
-    return bad("field 10 total depth = " + fmt(p.total_depth_mm) +
+    return bad("field 10 total depth = " + six_digits(p.total_depth_mm) +
                " mm; must equal layer count × single-layer feed = " + std::to_string(p.layer_count) + " × " +
-               fmt(p.layer_feed_mm) + " = " + fmt(depth) + " mm (within " + fmt(kDepthTolerance) + " mm)");
+               six_digits(p.layer_feed_mm) + " = " + six_digits(depth) + " mm (within " +
+               six_digits(kDepthTolerance) + " mm)");
   const ScanHeadParams& h = p.head;
   if (p.process == HoleProcessId::Circle && h.radius_turns == 1 && h.end_radius_mm != h.start_radius_mm)
-    return bad("field 14 radius turns = 1 with start radius " + fmt(h.start_radius_mm) + " mm ≠ end radius " +
-               fmt(h.end_radius_mm) + " mm; a circle scan from one radius to another needs 2 or more turns");
+    return bad("field 14 radius turns = 1 with start radius " + six_digits(h.start_radius_mm) +
+               " mm ≠ end radius " + six_digits(h.end_radius_mm) +
+               " mm; a circle scan from one radius to another needs 2 or more turns");
   if (p.process == HoleProcessId::FreeShape) {
     const std::size_t n = p.shape.size();
     if (n < 3 || n > kMaxShapeVertices)
@@ -114,16 +109,16 @@ Status validate(const HoleProcessParams& p) {
       const PolarVertex& v = p.shape[i];
       const std::string at = "free shape vertex " + std::to_string(i + 1) + ": ";
       if (!(std::isfinite(v.radius_mm) && v.radius_mm > 0.0 && v.radius_mm <= kMaxShapeRadiusMm))
-        return bad(at + "radius = " + fmt(v.radius_mm) + " mm; allowed > 0 … " + fmt(kMaxShapeRadiusMm) +
-                   " mm");
+        return bad(at + "radius = " + six_digits(v.radius_mm) + " mm; allowed > 0 … " +
+                   six_digits(kMaxShapeRadiusMm) + " mm");
       if (!(std::isfinite(v.angle_deg) && v.angle_deg >= 0.0 && v.angle_deg < 360.0))
-        return bad(at + "angle = " + fmt(v.angle_deg) + "°; allowed 0 … <360°");
+        return bad(at + "angle = " + six_digits(v.angle_deg) + "°; allowed 0 … <360°");
       const double next = i + 1 < n ? p.shape[i + 1].angle_deg : p.shape[0].angle_deg + 360.0;
       if (i + 1 < n && !(next > v.angle_deg))
-        return bad(at + "angle " + fmt(v.angle_deg) + "° then " + fmt(next) +
+        return bad(at + "angle " + six_digits(v.angle_deg) + "° then " + six_digits(next) +
                    "°; angles must increase (counter-clockwise order)");
       if (next - v.angle_deg >= 180.0)
-        return bad(at + "gap of " + fmt(next - v.angle_deg) +
+        return bad(at + "gap of " + six_digits(next - v.angle_deg) +
                    "° to the next vertex; allowed < 180° (the centre must lie inside)");
     }
   }
@@ -133,8 +128,8 @@ Status validate(const HoleProcessParams& p) {
 Eigen::Isometry3d hole_frame(const HoleProcessParams& p) {
   Eigen::Isometry3d f = Eigen::Isometry3d::Identity();
   f.translation() = p.position.head<3>();
-  f.linear() = (Eigen::AngleAxisd(p.position[index(Axis::C)] * kDeg, Vec3::UnitZ()) *
-                Eigen::AngleAxisd(p.position[index(Axis::A)] * kDeg, Vec3::UnitX()))
+  f.linear() = (Eigen::AngleAxisd(p.position[index(Axis::C)] * kRadPerDeg, Vec3::UnitZ()) *
+                Eigen::AngleAxisd(p.position[index(Axis::A)] * kRadPerDeg, Vec3::UnitX()))
                    .toRotationMatrix();
   return f;
 }

@@ -8,21 +8,18 @@
 #include <string>
 #include <utility>
 
+#include "common/number_text.h"
 #include "kinematics/kinematics_tolerances.h"
 
 namespace lcnc {
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-
-Eigen::Matrix3d rot_x(double deg) { return Eigen::AngleAxisd(deg * kDeg, Vec3::UnitX()).toRotationMatrix(); }
-Eigen::Matrix3d rot_z(double deg) { return Eigen::AngleAxisd(deg * kDeg, Vec3::UnitZ()).toRotationMatrix(); }
-
-std::string fmt(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
+Eigen::Matrix3d rot_x(double deg) {
+  return Eigen::AngleAxisd(deg * kRadPerDeg, Vec3::UnitX()).toRotationMatrix();
+}
+Eigen::Matrix3d rot_z(double deg) {
+  return Eigen::AngleAxisd(deg * kRadPerDeg, Vec3::UnitZ()).toRotationMatrix();
 }
 
 }  // namespace
@@ -47,8 +44,8 @@ FiveAxisKinematics kinematics_from(const MachineConfig& config) {
 }
 
 Vec3 tool_axis(double a_deg, double c_deg) noexcept {
-  const double sa = std::sin(a_deg * kDeg), ca = std::cos(a_deg * kDeg);
-  const double sc = std::sin(c_deg * kDeg), cc = std::cos(c_deg * kDeg);
+  const double sa = std::sin(a_deg * kRadPerDeg), ca = std::cos(a_deg * kRadPerDeg);
+  const double sc = std::sin(c_deg * kRadPerDeg), cc = std::cos(c_deg * kRadPerDeg);
   return {sa * sc, -sa * cc, ca};
 }
 
@@ -60,9 +57,9 @@ std::array<RotaryJoints, 2> rotary_solutions(const Vec3& k) noexcept {
   const Vec3 n = k.normalized();
   // atan2 of the horizontal and vertical parts: accurate near the pole,
   // where acos(k_z) loses half the digits.
-  const double a = std::atan2(std::hypot(n.x(), n.y()), n.z()) / kDeg;
+  const double a = std::atan2(std::hypot(n.x(), n.y()), n.z()) / kRadPerDeg;
   if (on_pole(n)) return {RotaryJoints{0.0, 0.0}, RotaryJoints{0.0, 0.0}};
-  const double c = wrap_360(std::atan2(n.x(), -n.y()) / kDeg);
+  const double c = wrap_360(std::atan2(n.x(), -n.y()) / kRadPerDeg);
   return {RotaryJoints{a, c}, RotaryJoints{-a, wrap_360(c + 180.0)}};
 }
 
@@ -82,7 +79,7 @@ double wrap_360(double c_deg) noexcept {
 }
 
 double angle_between_deg(const Vec3& a, const Vec3& b) noexcept {
-  return std::atan2(a.cross(b).norm(), a.dot(b)) / kDeg;
+  return std::atan2(a.cross(b).norm(), a.dot(b)) / kRadPerDeg;
 }
 
 Result<RotaryJoints> choose_rotary(const Vec3& axis, const RotaryJoints& previous,
@@ -109,9 +106,9 @@ Result<RotaryJoints> choose_rotary(const Vec3& axis, const RotaryJoints& previou
     }
   }
   if (best == nullptr)
-    return make_error(ErrorCode::GcodeBeyondTravel, "tool axis needs A = ±" + fmt(sols[0].a_deg) +
-                                                        "°; allowed A " + fmt(limits.a_min_deg) + " … " +
-                                                        fmt(limits.a_max_deg) + "°");
+    return make_error(ErrorCode::GcodeBeyondTravel, "tool axis needs A = ±" + six_digits(sols[0].a_deg) +
+                                                        "°; allowed A " + six_digits(limits.a_min_deg) +
+                                                        " … " + six_digits(limits.a_max_deg) + "°");
   return *best;
 }
 

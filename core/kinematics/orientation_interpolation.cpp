@@ -9,11 +9,12 @@
 #include <numbers>
 #include <string>
 
+#include "common/number_text.h"
+
 namespace lcnc {
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 // Noise allowance of the monotone C unwrap (deg): a raw azimuth this far on
 // the wrong side of C0 is rounding, not a turn of 360°.
 constexpr double kUnwrapSlackDeg = 1e-6;
@@ -24,17 +25,11 @@ constexpr double kRateStepU = 1e-7;
 // Step back from a sample exactly on the pole to read the C it arrives with.
 constexpr double kPoleNudgeU = 1e-6;
 
-std::string fmt(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-
 // |A| of an axis (deg), accurate near the pole.
-double tilt_deg(const Vec3& k) { return std::atan2(std::hypot(k.x(), k.y()), k.z()) / kDeg; }
+double tilt_deg(const Vec3& k) { return std::atan2(std::hypot(k.x(), k.y()), k.z()) / kRadPerDeg; }
 
 // C of an axis on the branch b (sign of A), in (−180, 180].
-double raw_c_deg(const Vec3& k, double b) { return std::atan2(b * k.x(), -b * k.y()) / kDeg; }
+double raw_c_deg(const Vec3& k, double b) { return std::atan2(b * k.x(), -b * k.y()) / kRadPerDeg; }
 
 // Quintic smoothstep: 0 → 1 with zero first and second derivatives at both ends.
 double smoothstep5(double s) { return s * s * s * (10.0 - 15.0 * s + 6.0 * s * s); }
@@ -79,10 +74,10 @@ Result<OrientationMove> OrientationMove::to_axis(OrientationMethod method, const
 }
 
 Result<OrientationMove> OrientationMove::finish(const RotaryLimits& limits) {
-  const double tolerance_rad = tolerance_deg_ * kDeg;
+  const double tolerance_rad = tolerance_deg_ * kRadPerDeg;
   if (!(tolerance_rad >= 0.0 && std::isfinite(tolerance_rad)))
     return make_error(ErrorCode::GcodeBadValue,
-                      "orientation tolerance = " + fmt(tolerance_deg_) + "°; allowed ≥ 0");
+                      "orientation tolerance = " + six_digits(tolerance_deg_) + "°; allowed ≥ 0");
   k0_ = tool_axis(start_);
   const Vec3 z = Vec3::UnitZ();
   theta_rad_ = std::atan2(k0_.cross(k1_).norm(), k0_.dot(k1_));
@@ -113,7 +108,7 @@ Result<OrientationMove> OrientationMove::finish(const RotaryLimits& limits) {
     }
   }
   if (!pole_interior_) {
-    const double d0 = tilt_deg(k0_) * kDeg, d1 = tilt_deg(k1_) * kDeg;
+    const double d0 = tilt_deg(k0_) * kRadPerDeg, d1 = tilt_deg(k1_) * kRadPerDeg;
     pole_dist_rad_ = std::min(d0, d1);
     alpha_m_rad_ = d0 <= d1 ? 0.0 : theta_rad_;
   }
@@ -177,9 +172,9 @@ Result<OrientationMove> OrientationMove::finish(const RotaryLimits& limits) {
   if (const double u = first_a_outside(limits); u >= 0.0) {
     const double a = joints_at(u).a_deg;
     return make_error(ErrorCode::GcodeBeyondTravel,
-                      std::string(method_name(method_)) + " orientation path reaches A = " + fmt(a) +
-                          "° at u = " + fmt(u) + "; allowed A " + fmt(limits.a_min_deg) + " … " +
-                          fmt(limits.a_max_deg) + "°");
+                      std::string(method_name(method_)) + " orientation path reaches A = " + six_digits(a) +
+                          "° at u = " + six_digits(u) + "; allowed A " + six_digits(limits.a_min_deg) +
+                          " … " + six_digits(limits.a_max_deg) + "°");
   }
   return *this;
 }
@@ -193,8 +188,8 @@ double OrientationMove::first_a_outside(const RotaryLimits& limits) const {
   return -1.0;
 }
 
-double OrientationMove::arc_deg() const noexcept { return theta_rad_ / kDeg; }
-double OrientationMove::pole_distance_deg() const noexcept { return pole_dist_rad_ / kDeg; }
+double OrientationMove::arc_deg() const noexcept { return theta_rad_ / kRadPerDeg; }
+double OrientationMove::pole_distance_deg() const noexcept { return pole_dist_rad_ / kRadPerDeg; }
 
 Vec3 OrientationMove::ideal_axis_at(double u) const {
   if (theta_rad_ == 0.0) return k0_;

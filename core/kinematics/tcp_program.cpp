@@ -30,7 +30,7 @@ Pose TcpExpander::tip_start(const FiveAxisKinematics& kin, const Pose& joints) {
   return p;
 }
 
-void TcpExpander::emit(Segment q) {
+void TcpExpander::queue_joint_move(Segment q) {
   q.start = at_;
   at_ = q.end;
   queue_.push_back(q);
@@ -44,7 +44,7 @@ Status TcpExpander::expand(const Segment& s) {
   if (s.kind == MotionKind::Dwell) {
     Segment q = s;
     q.end = at_;
-    emit(q);
+    queue_joint_move(q);
     return {};
   }
   // The tool orientation is the program's, the joints that give it are the
@@ -65,7 +65,7 @@ Status TcpExpander::expand(const Segment& s) {
       Segment q = s;
       q.end = joints(s.end);
       if (s.kind == MotionKind::Arc) q.center = t * s.center;
-      emit(q);
+      queue_joint_move(q);
       return {};
     }
     // a rotated arc: chords within the tip tolerance
@@ -74,7 +74,7 @@ Status TcpExpander::expand(const Segment& s) {
       q.kind = MotionKind::Linear;
       q.extra_turns = 0;
       q.end = joints(p);
-      emit(q);
+      queue_joint_move(q);
     }
     return {};
   }
@@ -105,9 +105,9 @@ Status TcpExpander::expand(const Segment& s) {
     turn.kind = MotionKind::Rapid;
     turn.laser = LaserMode::Off;
     turn.end = pieces->front().start;
-    emit(turn);
+    queue_joint_move(turn);
   }
-  for (const Segment& q : *pieces) emit(q);
+  for (const Segment& q : *pieces) queue_joint_move(q);
   return {};
 }
 

@@ -48,7 +48,7 @@ class TcpExpander {
 
  private:
   [[nodiscard]] Status expand(const Segment& s);
-  void emit(Segment q);
+  void queue_joint_move(Segment q);
 
   FiveAxisKinematics kin_;
   TcpConfig config_;

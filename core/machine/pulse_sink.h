@@ -49,7 +49,7 @@ struct MachineInputs {
 class PulseSink {
  public:
   virtual ~PulseSink() = default;
-  virtual void emit(const PulseFrame& frame) noexcept = 0;
+  virtual void send(const PulseFrame& frame) noexcept = 0;
   // The inputs now. Called from the RT thread once per period (noexcept, no
   // allocation, no lock). Default: a sink without inputs (nothing active).
   [[nodiscard]] virtual MachineInputs read_inputs() noexcept { return {}; }

@@ -153,7 +153,7 @@ PeriodIncrement StepQuantizer::pay_owed(const PeriodSample& last) {
   PeriodSample s = last;
   s.pause = false;    // a pause holds once, on its own entry
   s.wait_input = -1;  // and so does an M66 wait
-  return emit(s);
+  return increment_for(s);
 }
 
 }  // namespace lcnc

@@ -118,7 +118,7 @@ class StepQuantizer {
   [[nodiscard]] std::int64_t to_steps(int axis, double pos) const noexcept;
 
  private:
-  PeriodIncrement emit(const PeriodSample& s);
+  PeriodIncrement increment_for(const PeriodSample& s);
 
   std::array<double, kAxisCount> steps_per_unit_{};
   // The axes the machine has: an absent axis stays at 0 steps (its
@@ -151,7 +151,7 @@ inline std::int64_t StepQuantizer::to_steps(int axis, double pos) const noexcept
   return detail::round_half_away(pos * steps_per_unit_[axis]);
 }
 
-inline PeriodIncrement StepQuantizer::emit(const PeriodSample& s) {
+inline PeriodIncrement StepQuantizer::increment_for(const PeriodSample& s) {
   PeriodIncrement inc;  // absent axes: 0
   static_cast<EntrySignals&>(inc) = s;
   for (int k = 0; k < present_count_; ++k) {
@@ -170,7 +170,7 @@ inline PeriodIncrement StepQuantizer::quantize(const PeriodSample& s) {
     const int i = present_[k];
     target_[i] = to_steps(i, s.pose[i]);
   }
-  return emit(s);
+  return increment_for(s);
 }
 
 }  // namespace lcnc

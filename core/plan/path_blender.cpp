@@ -44,7 +44,7 @@ PathBlender::PathBlender(const MachineConfig& machine, SegmentSource source, con
   if (machine.tcp.enabled) tip_mm_per_deg_ = tip_lever_mm(machine.kinematics) * std::numbers::pi / 180.0;
 }
 
-void PathBlender::emit(IndexedSegment& s, bool with_geometry) {
+void PathBlender::hand_out(IndexedSegment& s, bool with_geometry) {
   if (!with_geometry) s.geo.set(s.seg);
   // Lines used up entirely by their two blends carry no motion: drop them.
   // (Their path length is at most their travel in all axes: only a short
@@ -66,7 +66,7 @@ SourceStatus PathBlender::next(const IndexedSegment*& out) {
     const SourceStatus st = merger_.next(cur);
     cur.tangent_in = false;
     if (st != SourceStatus::Item) {
-      if (have_pending_) emit(pending);
+      if (have_pending_) hand_out(pending);
       have_pending_ = false;
       end_status_ = st;
       continue;
@@ -110,7 +110,7 @@ SourceStatus PathBlender::next(const IndexedSegment*& out) {
       }
       if (t.blended) {
         pending.seg.end = t.q0;
-        emit(pending);
+        hand_out(pending);
         arc_.index = cur.index;
         // A line–line blend is tangent to both lines by construction — in
         // X Y Z: with rotary axes moving, their rates per mm jump at its ends.
@@ -121,7 +121,7 @@ SourceStatus PathBlender::next(const IndexedSegment*& out) {
         // still carries that line's rotary rate.
         const bool arc_rotary = moves_rotary(arc_.seg);
         arc_.tangent_in = line_line && !arc_rotary && !rotary_out_;
-        emit(arc_, line_line);
+        hand_out(arc_, line_line);
         cur.tangent_in = line_line && !arc_rotary && !moves_rotary(cur.seg);
         pending_full_length_ = len_b;
         cur.seg.start = t.q2;
@@ -130,13 +130,13 @@ SourceStatus PathBlender::next(const IndexedSegment*& out) {
         continue;
       }
     }
-    if (have_pending_) emit(pending);
+    if (have_pending_) hand_out(pending);
     have_pending_ = cur_blendable;
     if (have_pending_) {
       pending_slot_ = 1 - pending_slot_;
       pending_full_length_ = pending_length_ = path_length(cur.seg);
     } else {
-      emit(cur);
+      hand_out(cur);
     }
   }
   out = ready_[ready_front_];

@@ -40,7 +40,7 @@ class PathBlender {
 
  private:
   // Queues s to hand out, its geometry computed unless it has it already.
-  void emit(IndexedSegment& s, bool with_geometry = false);
+  void hand_out(IndexedSegment& s, bool with_geometry = false);
 
   LineMerger merger_;
   ToleranceBudget budget_;

@@ -120,7 +120,7 @@ class HalSink final : public PulseSink {
     }
   }
 
-  void emit(const PulseFrame& frame) noexcept override {
+  void send(const PulseFrame& frame) noexcept override {
     for (int i = 0; i < kAxisCount; ++i) {
       if (!present_[i]) continue;
       const AxisPulses& p = frame.axes[i];

@@ -34,7 +34,7 @@ void move(SimMachine& sim, int axis, std::int64_t steps) {
     PulseFrame f;
     f.ticks_per_period = kMax;
     f.axes[axis] = AxisPulses{n, steps < 0, kTicks.data()};
-    sim.emit(f);
+    sim.send(f);
     steps += steps < 0 ? std::int64_t{n} : -std::int64_t{n};
   }
 }
@@ -74,22 +74,22 @@ TEST(SimMachine, CountsAFrameWithTwoPulsesOnATickOrOneOutsideThePeriodAsBad) {
     f.ticks_per_period = kN;
     f.axes[2] = AxisPulses{n, false, t.data()};
     SimMachine sim(Steps{});
-    sim.emit(f);
+    sim.send(f);
     EXPECT_EQ(sim.bad_frames(), 0u) << "n " << n;
     std::uint64_t expected_bad = 0;
     for (std::uint32_t j = 1; j < n; ++j) {  // pulse j on the tick of pulse j − 1
       const std::uint32_t keep = t[j];
       t[j] = t[j - 1];
-      sim.emit(f);
+      sim.send(f);
       EXPECT_EQ(sim.bad_frames(), ++expected_bad) << "n " << n << " repeated tick at " << j;
       t[j] = keep;
     }
     const std::uint32_t last = t[n - 1];
     t[n - 1] = kN;  // one tick past the period
-    sim.emit(f);
+    sim.send(f);
     EXPECT_EQ(sim.bad_frames(), ++expected_bad) << "n " << n << " last tick outside";
     t[n - 1] = last;
-    sim.emit(f);
+    sim.send(f);
     EXPECT_EQ(sim.bad_frames(), expected_bad) << "n " << n;
     EXPECT_EQ(sim.pulses(2), std::uint64_t{n} * (expected_bad + 2));  // every frame still moves
   }
@@ -175,7 +175,7 @@ TEST(SimMachine, PitchErrorGivesTheActualPosition) {
   EXPECT_EQ(sim.actual_position_steps(1), 0);     // no table on Y
 }
 
-// emit() and read_inputs() run on the RT thread every period.
+// send() and read_inputs() run on the RT thread every period.
 TEST(SimMachine, RtCallsAllocateNothing) {
   auto machine = load_machine_config(kShare + "/machines/default.toml");
   ASSERT_TRUE(machine) << machine.error().to_string();
@@ -191,7 +191,7 @@ TEST(SimMachine, RtCallsAllocateNothing) {
   std::int64_t sum = 0;
   for (int n = 0; n < 10'000; ++n) {
     f.axes[0].negative = (n / 1000) % 2 == 1;
-    sim.emit(f);
+    sim.send(f);
     const MachineInputs in = sim.read_inputs();
     sum += in.home[0] + sim.actual_position_steps(0);
   }

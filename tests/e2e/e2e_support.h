@@ -49,6 +49,23 @@ inline fs::path temp_dir() {
   return d;
 }
 
+// The repository's share/ folder and the sample part the DXF tests cut.
+inline const std::string kShare = std::string(LCNC_SOURCE_DIR) + "/share";
+inline const std::string kSample = kShare + "/examples/plate_decompose.dxf";
+
+// A shared-memory name of this process and test: `prefix` + pid + test name.
+inline std::string shm_name(const std::string& prefix) {
+  return prefix + std::to_string(::getpid()) + "_" +
+         ::testing::UnitTest::GetInstance()->current_test_info()->name();
+}
+
+// `text` written to `name` in the test's temporary folder.
+inline fs::path write_program(const std::string& name, const std::string& text) {
+  const fs::path p = temp_dir() / name;
+  std::ofstream(p) << text;
+  return p;
+}
+
 // Runs `exe` with `args` (through the shell) as a user does.
 inline CmdResult run_program(const std::string& exe, const std::string& args) {
   const fs::path dir = temp_dir();

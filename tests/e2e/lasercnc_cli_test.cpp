@@ -22,8 +22,6 @@ namespace {
 
 using namespace e2e;
 
-const std::string kShare = std::string(LCNC_SOURCE_DIR) + "/share";
-
 // Checks the default machine's X Y Z velocity limits on a trace: velocity
 // over 10-row windows against the trace's own time column, allowing the ±1
 // step quantization at each end. Returns the largest X velocity seen.

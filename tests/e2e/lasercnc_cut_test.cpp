@@ -20,11 +20,10 @@
 
 namespace {
 
+using e2e::kSample;
 using e2e::lasercnc;
 namespace fs = std::filesystem;
 using Vec2 = Eigen::Vector2d;
-
-const std::string kSample = std::string(LCNC_SOURCE_DIR) + "/share/examples/plate_decompose.dxf";
 
 // One contour of the program: its comment, pierce point, lead-in end and
 // the points cut after it (contour, closing move and lead-out).

@@ -10,7 +10,8 @@
 
 namespace {
 
-const std::string kSample = std::string(LCNC_SOURCE_DIR) + "/share/examples/plate_decompose.dxf";
+using e2e::kSample;
+
 const std::string kMetres = std::string(LCNC_SOURCE_DIR) + "/tests/data/dxf/plate_in_metres.dxf";
 
 // 512 MiB of address space and 30 s: the refusals need a few MB and well

@@ -9,10 +9,10 @@
 
 namespace {
 
+using e2e::kSample;
 using e2e::lasercnc;
 namespace fs = std::filesystem;
 
-const std::string kSample = std::string(LCNC_SOURCE_DIR) + "/share/examples/plate_decompose.dxf";
 const std::string kData = std::string(LCNC_SOURCE_DIR) + "/tests/data/dxf/";
 
 TEST(LasercncDecompose, SamplePartWritesReportTableAndPictures) {

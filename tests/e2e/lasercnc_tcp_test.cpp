@@ -15,8 +15,6 @@ namespace {
 
 using namespace e2e;
 
-const std::string kShare = std::string(LCNC_SOURCE_DIR) + "/share";
-
 fs::path tcp_machine(const std::string& orientation) {
   const fs::path p = temp_dir() / ("tcp_" + orientation + ".toml");
   std::string text = slurp(kShare + "/machines/default.toml");

@@ -23,11 +23,6 @@ using namespace e2e;
 using namespace std::chrono_literals;
 using lcnc::drivers::ModbusMaster;
 
-std::string shm_name() {
-  return "/lcnc_e2e_mb_" + std::to_string(getpid()) + "_" +
-         ::testing::UnitTest::GetInstance()->current_test_info()->name();
-}
-
 // The port the daemon says it bound (it logs "… on tcp 127.0.0.1:PORT").
 int bound_port(const Daemon& d) {
   const std::regex re("Modbus slave \\(device cnc, unit 1\\) on tcp 127\\.0\\.0\\.1:([0-9]+)");
@@ -68,7 +63,7 @@ bool wait_for(ModbusMaster& m, const std::string& name, double value, std::chron
 }
 
 TEST(LasercncdModbus, APlcRunsHoldsResumesAndOverridesAJob) {
-  const std::string shm = shm_name();
+  const std::string shm = shm_name("/lcnc_e2e_mb_");
   Daemon d(shm, {"--modbus", "tcp:127.0.0.1:0"});
   ASSERT_TRUE(d.ready()) << d.log();
   const int port = bound_port(d);
@@ -115,7 +110,7 @@ TEST(LasercncdModbus, APlcRunsHoldsResumesAndOverridesAJob) {
 }
 
 TEST(LasercncdModbus, HoleParameterBlockIsCheckedWholeAndRefusalsStoreNothing) {
-  const std::string shm = shm_name();
+  const std::string shm = shm_name("/lcnc_e2e_mb_");
   Daemon d(shm, {"--modbus", "tcp:127.0.0.1:0"});
   ASSERT_TRUE(d.ready()) << d.log();
   const int port = bound_port(d);
@@ -147,7 +142,7 @@ TEST(LasercncdModbus, HoleParameterBlockIsCheckedWholeAndRefusalsStoreNothing) {
 }
 
 TEST(LasercncdModbus, BadEndpointIsAUsageError) {
-  const std::string shm = shm_name();
+  const std::string shm = shm_name("/lcnc_e2e_mb_");
   Daemon d(shm, {"--modbus", "udp:1502"});
   EXPECT_EQ(d.wait_exit(), 2);
   EXPECT_NE(d.log().find("expected tcp:HOST:PORT"), std::string::npos) << d.log();

@@ -27,19 +27,8 @@ using namespace e2e;
 using namespace std::chrono_literals;
 namespace lshm = lcnc::shm;
 
-std::string shm_name() {
-  return "/lcnc_op_" + std::to_string(getpid()) + "_" +
-         ::testing::UnitTest::GetInstance()->current_test_info()->name();
-}
-
 CmdResult send(const std::string& shm, const std::string& what) {
   return lasercnc("send " + what + " --shm " + shm);
-}
-
-fs::path write_program(const std::string& name, const std::string& text) {
-  const fs::path p = temp_dir() / name;
-  std::ofstream(p) << text;
-  return p;
 }
 
 // The kernel's status straight from the segment, as the HMI reads it.
@@ -116,13 +105,13 @@ class LasercncdJob : public ::testing::Test {
       std::this_thread::sleep_for(10ms);
     return status(shm);
   }
-  const std::string shm = shm_name();
+  const std::string shm = shm_name("/lcnc_op_");
   Daemon d{shm};
   std::optional<Watch> w;
 };
 
 TEST(LasercncdOperator, TouchOffSetsTheWorkZeroAndTheNextG0GoesThere) {
-  const std::string shm = shm_name();
+  const std::string shm = shm_name("/lcnc_op_");
   const fs::path params = temp_dir() / "offsets.var";
   {
     Daemon d(shm, {"--parameter-file", params.string()});
@@ -170,7 +159,7 @@ TEST(LasercncdOperator, TouchOffSetsTheWorkZeroAndTheNextG0GoesThere) {
 }
 
 TEST(LasercncdOperator, MdiMovesInTheModesTheLastCommandLeft) {
-  const std::string shm = shm_name();
+  const std::string shm = shm_name("/lcnc_op_");
   Daemon d(shm);
   ASSERT_TRUE(d.ready()) << d.log();
   CmdResult r = send(shm, "mdi G1 X10 Y5 F3000 --wait");
@@ -216,7 +205,7 @@ TEST(LasercncdOperator, MdiMovesInTheModesTheLastCommandLeft) {
 // status it reads after its answer: the daemon publishes the job its command
 // began before the answer, so no move is taken for a command that is done.
 TEST(LasercncdOperator, AnMdiMoveWithWaitReturnsAfterItsMoveNeverBefore) {
-  const std::string shm = shm_name();
+  const std::string shm = shm_name("/lcnc_op_");
   Daemon d(shm);
   ASSERT_TRUE(d.ready()) << d.log();
   for (int i = 0; i < 12; ++i) {
@@ -388,7 +377,7 @@ TEST(LasercncdOperator, ABadParameterFileIsRefusedAtStart) {
   const fs::path params = temp_dir() / "bad.var";
   std::ofstream(params) << "5221 100\n5222 forty\n";
   const CmdResult r = run_program(
-      LASERCNCD_EXE, "--shm " + shm_name() + " --no-realtime --parameter-file " + params.string());
+      LASERCNCD_EXE, "--shm " + shm_name("/lcnc_op_") + " --no-realtime --parameter-file " + params.string());
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("bad.var:2:"), std::string::npos) << r.err;
 }
@@ -401,13 +390,14 @@ TEST(LasercncdOperator, ABadParameterFileIsRefusedAtStart) {
 // set the offsets: ParameterFile.OffsetsThatCannotBeKeptFailTheReadingThatSetThem;
 // the tests run as root here, whom no mode bit stops writing.)
 TEST(LasercncdOperator, AnOffsetThatCannotBeKeptIsRefusedNotAcknowledged) {
-  const CmdResult r = run_program(LASERCNCD_EXE, "--shm " + shm_name() + " --no-realtime --parameter-file " +
-                                                     (temp_dir() / "no_such_folder" / "p.var").string());
+  const CmdResult r =
+      run_program(LASERCNCD_EXE, "--shm " + shm_name("/lcnc_op_") + " --no-realtime --parameter-file " +
+                                     (temp_dir() / "no_such_folder" / "p.var").string());
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("does not exist"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("E114"), std::string::npos) << r.err;
 
-  const std::string shm = shm_name();
+  const std::string shm = shm_name("/lcnc_op_");
   const fs::path folder = temp_dir() / "params";
   fs::create_directories(folder);
   Daemon d(shm, {"--parameter-file", (folder / "p.var").string()});

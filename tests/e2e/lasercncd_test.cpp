@@ -40,11 +40,6 @@ namespace {
 using namespace e2e;
 using namespace std::chrono_literals;
 
-std::string shm_name() {
-  return "/lcnc_e2e_" + std::to_string(getpid()) + "_" +
-         ::testing::UnitTest::GetInstance()->current_test_info()->name();
-}
-
 bool wait_state(const std::string& shm, const std::string& state, std::chrono::milliseconds t = 5000ms) {
   const auto until = std::chrono::steady_clock::now() + t;
   while (std::chrono::steady_clock::now() < until) {
@@ -53,12 +48,6 @@ bool wait_state(const std::string& shm, const std::string& state, std::chrono::m
     std::this_thread::sleep_for(5ms);
   }
   return false;
-}
-
-fs::path write_program(const std::string& name, const std::string& text) {
-  const fs::path p = temp_dir() / name;
-  std::ofstream(p) << text;
-  return p;
 }
 
 const char* kShortJob =
@@ -74,7 +63,7 @@ const char* kShortJob =
     "M2\n";
 
 TEST(Lasercncd, RunsAJobSentByTheCliAndReportsIt) {
-  const std::string shm = shm_name();
+  const std::string shm = shm_name("/lcnc_e2e_");
   Daemon d(shm);
   ASSERT_TRUE(d.ready()) << d.log();
   EXPECT_EQ(status(shm)["state"], "idle");
@@ -115,7 +104,7 @@ TEST(Lasercncd, RunsAJobSentByTheCliAndReportsIt) {
 // The daemon reads a private copy of the program, but its subroutine files
 // are looked for beside the original, as for the CLI.
 TEST(Lasercncd, ASubroutineFileBesideTheProgramIsFound) {
-  const std::string shm = shm_name();
+  const std::string shm = shm_name("/lcnc_e2e_");
   Daemon d(shm);
   ASSERT_TRUE(d.ready()) << d.log();
   fs::create_directories(temp_dir() / "subs_beside");
@@ -139,7 +128,7 @@ TEST(Lasercncd, ASubroutineFileBesideTheProgramIsFound) {
 // holes so): built into the drilling job, checked, run; a bad row is
 // refused with its line.
 TEST(Lasercncd, RunsAHoleTableAsADrillingJob) {
-  const std::string shm = shm_name();
+  const std::string shm = shm_name("/lcnc_e2e_");
   Daemon d(shm);
   ASSERT_TRUE(d.ready()) << d.log();
   const std::string header =
@@ -180,7 +169,7 @@ TEST(Lasercncd, RunsAHoleTableAsADrillingJob) {
 }
 
 TEST(Lasercncd, HoldResumeEStopResetAndJog) {
-  const std::string shm = shm_name();
+  const std::string shm = shm_name("/lcnc_e2e_");
   Daemon d(shm);
   ASSERT_TRUE(d.ready()) << d.log();
   const fs::path prog =
@@ -233,7 +222,7 @@ TEST(Lasercncd, HoldResumeEStopResetAndJog) {
 // M0 in a program: the daemon's job stops there, at rest, says so, and goes
 // on with `send resume`.
 TEST(Lasercncd, AProgramPauseWaitsForResume) {
-  const std::string shm = shm_name();
+  const std::string shm = shm_name("/lcnc_e2e_");
   Daemon d(shm);
   ASSERT_TRUE(d.ready()) << d.log();
   const fs::path prog = write_program("pause.ngc", "G21 G90\nG1 X20 F1200\nM0\nG1 X40\nM2\n");
@@ -258,7 +247,7 @@ TEST(Lasercncd, AProgramPauseWaitsForResume) {
 }
 
 TEST(Lasercncd, SecondDaemonRefusedStaleSegmentRecovered) {
-  const std::string shm = shm_name();
+  const std::string shm = shm_name("/lcnc_e2e_");
   {
     Daemon first(shm);
     ASSERT_TRUE(first.ready()) << first.log();
@@ -282,7 +271,7 @@ TEST(Lasercncd, SecondDaemonRefusedStaleSegmentRecovered) {
 // comes up at rest — idle, no job, nothing moving, no program until one is
 // loaded anew.
 TEST(Lasercncd, KilledMidJobTheRestartedDaemonComesUpAtRest) {
-  const std::string shm = shm_name();
+  const std::string shm = shm_name("/lcnc_e2e_");
   const fs::path prog = write_program("long.ngc", "G21 G90\nM3 S50\nG1 X300 F600\nM5\nM2\n");
   {
     Daemon first(shm);
@@ -323,7 +312,7 @@ TEST(Lasercncd, KilledMidJobTheRestartedDaemonComesUpAtRest) {
 // (before the check: 2^40 garbage commands) — the daemon drops the ring,
 // says so, and answers the next command.
 TEST(Lasercncd, ACorruptCommandRingIsDroppedAndTheDaemonAnswersOn) {
-  const std::string shm = shm_name();
+  const std::string shm = shm_name("/lcnc_e2e_");
   Daemon d(shm);
   ASSERT_TRUE(d.ready()) << d.log();
   {
@@ -418,7 +407,7 @@ std::chrono::steady_clock::duration expect_estop_stops_a_jog(const std::string& 
 // start-up. Label realtime: run alone, after the other tests.
 constexpr auto kEStopWithin = 250ms;
 TEST(LasercncdEStop, ReachesTheKernelWithinItsBound) {
-  const e2e::ShmGuard shm(shm_name());
+  const e2e::ShmGuard shm(shm_name("/lcnc_e2e_"));
   Daemon d(shm);
   ASSERT_TRUE(d.ready()) << d.log();
   const auto took = expect_estop_stops_a_jog(shm);
@@ -430,7 +419,7 @@ TEST(LasercncdEStop, ReachesTheKernelWithinItsBound) {
 // `lasercnc send`'s check): the FIFO is refused without blocking, and the
 // e-stop stops a running jog meanwhile.
 TEST(LasercncdEStop, ActsWhileALoadOfAFifoIsAsked) {
-  const e2e::ShmGuard shm(shm_name());
+  const e2e::ShmGuard shm(shm_name("/lcnc_e2e_"));
   Daemon d(shm);
   ASSERT_TRUE(d.ready()) << d.log();
   const fs::path fifo = temp_dir() / "pipe.ngc";
@@ -458,7 +447,7 @@ TEST(LasercncdEStop, ActsWhileALoadOfAFifoIsAsked) {
 // live one): the e-stop needs no lock; other commands give up after their
 // --timeout with a clear message instead of hanging.
 TEST(LasercncdEStop, ActsWhileAnotherProcessHoldsTheSendersLock) {
-  const e2e::ShmGuard shm(shm_name());
+  const e2e::ShmGuard shm(shm_name("/lcnc_e2e_"));
   Daemon d(shm);
   ASSERT_TRUE(d.ready()) << d.log();
   auto c = client(shm);
@@ -480,7 +469,7 @@ TEST(LasercncdEStop, ActsWhileAnotherProcessHoldsTheSendersLock) {
 
 // (c) A flood of commands from another sender while the e-stop is sent.
 TEST(LasercncdEStop, ActsDuringAFloodOfCommands) {
-  const e2e::ShmGuard shm(shm_name());
+  const e2e::ShmGuard shm(shm_name("/lcnc_e2e_"));
   Daemon d(shm);
   ASSERT_TRUE(d.ready()) << d.log();
   auto c = client(shm);
@@ -500,7 +489,7 @@ TEST(LasercncdEStop, ActsDuringAFloodOfCommands) {
 // (d) A big program being loaded: the e-stop acts, and the command thread
 // answers other commands meanwhile.
 TEST(LasercncdEStop, ActsWhileABigProgramLoads) {
-  const e2e::ShmGuard shm(shm_name());
+  const e2e::ShmGuard shm(shm_name("/lcnc_e2e_"));
   Daemon d(shm);
   ASSERT_TRUE(d.ready()) << d.log();
   const fs::path big = temp_dir() / "big.ngc";
@@ -536,7 +525,7 @@ TEST(Lasercncd, TimeoutOutOfRangeIsAUsageError) {
 // The job runs the program as it was checked at its load: the file
 // rewritten afterwards (here: beyond the travel) changes nothing.
 TEST(Lasercncd, RunsTheProgramAsLoadedWhateverTheFileBecomes) {
-  const e2e::ShmGuard shm(shm_name());
+  const e2e::ShmGuard shm(shm_name("/lcnc_e2e_"));
   Daemon d(shm);
   ASSERT_TRUE(d.ready()) << d.log();
   const fs::path prog = write_program("edited.ngc", kShortJob);
@@ -564,7 +553,7 @@ TEST(Lasercncd, RunsTheProgramAsLoadedWhateverTheFileBecomes) {
 // (the daemon may read what its sender may not); the sender's uid, the
 // program folders limit what may be loaded.
 TEST(Lasercncd, LoadsOnlyProgramsTheSenderMayReadAndNeverEchoesOtherFiles) {
-  const e2e::ShmGuard shm(shm_name());
+  const e2e::ShmGuard shm(shm_name("/lcnc_e2e_"));
   const fs::path dir = temp_dir() / "programs";
   fs::create_directories(dir);
   Daemon d(shm, {"--programs", dir.string()});
@@ -611,7 +600,7 @@ TEST(Lasercncd, LoadsOnlyProgramsTheSenderMayReadAndNeverEchoesOtherFiles) {
 // subroutine names by MDI and by a loaded caller from uid 65534 (each name
 // by both routes, then 16 random), each refused, the machine still.
 TEST(Lasercncd, ASubroutineFileIsReadOnlyUnderTheLoadsPolicy) {
-  const e2e::ShmGuard shm(shm_name());
+  const e2e::ShmGuard shm(shm_name("/lcnc_e2e_"));
   const fs::path dir = temp_dir() / "programs";
   const fs::path out = temp_dir() / "outside";
   fs::create_directories(dir);
@@ -675,7 +664,7 @@ TEST(Lasercncd, ASubroutineFileIsReadOnlyUnderTheLoadsPolicy) {
 // answered as cancelled, and the next load goes through — and SIGTERM ends
 // the daemon at once, whatever its loader is doing (systemd's stop).
 TEST(Lasercncd, ALongLoadIsCancelledByStopAndSigtermEndsTheDaemonDuringOne) {
-  const e2e::ShmGuard shm(shm_name());
+  const e2e::ShmGuard shm(shm_name("/lcnc_e2e_"));
   std::string cfg = slurp(std::string(LCNC_SOURCE_DIR) + "/share/machines/default.toml");
   cfg.replace(cfg.find("[machine]\n"), 10, "[machine]\nprogram_time_limit_h = 100000\n");
   const fs::path machine = write_program("patient.toml", cfg);
@@ -716,7 +705,7 @@ TEST(Lasercncd, ALongLoadIsCancelledByStopAndSigtermEndsTheDaemonDuringOne) {
 
 // Twenty senders at once: each gets its own answer.
 TEST(Lasercncd, ConcurrentSendersEachGetTheirOwnAnswer) {
-  const e2e::ShmGuard shm(shm_name());
+  const e2e::ShmGuard shm(shm_name("/lcnc_e2e_"));
   Daemon d(shm);
   ASSERT_TRUE(d.ready()) << d.log();
   std::vector<std::future<CmdResult>> clients;
@@ -743,7 +732,7 @@ TEST(Lasercncd, ConcurrentSendersEachGetTheirOwnAnswer) {
 // A request sent again with its id (a retry after no answer) is answered,
 // not executed again: one jog, not two.
 TEST(Lasercncd, ARetriedRequestIsExecutedOnce) {
-  const e2e::ShmGuard shm(shm_name());
+  const e2e::ShmGuard shm(shm_name("/lcnc_e2e_"));
   Daemon d(shm);
   ASSERT_TRUE(d.ready()) << d.log();
   auto c = client(shm);
@@ -763,7 +752,7 @@ TEST(Lasercncd, ARetriedRequestIsExecutedOnce) {
 // A stopped job is no job done: `send start --wait` exits 3 and says where
 // it stopped; the status says "stopped", not 100 %.
 TEST(Lasercncd, AStoppedJobIsReportedStopped) {
-  const e2e::ShmGuard shm(shm_name());
+  const e2e::ShmGuard shm(shm_name("/lcnc_e2e_"));
   Daemon d(shm);
   ASSERT_TRUE(d.ready()) << d.log();
   const fs::path prog = write_program("long.ngc", "G21 G90\nM3 S50\nG1 X300 F1200\nM5\nM2\n");
@@ -784,7 +773,7 @@ TEST(Lasercncd, AStoppedJobIsReportedStopped) {
 
 // Every test removes the segments it made, also when a daemon is killed.
 TEST(Lasercncd, AKilledDaemonsSegmentIsRemovedByTheTest) {
-  const std::string shm = shm_name();
+  const std::string shm = shm_name("/lcnc_e2e_");
   {
     Daemon d(shm);
     ASSERT_TRUE(d.ready()) << d.log();
@@ -799,7 +788,7 @@ TEST(Lasercncd, AKilledDaemonsSegmentIsRemovedByTheTest) {
 // death by the signal's default action.
 TEST(Lasercncd, SigtermTheMomentTheSegmentAppearsIsACleanShutdown) {
   for (int round = 0; round < 5; ++round) {
-    const std::string shm = shm_name() + "_" + std::to_string(round);
+    const std::string shm = shm_name("/lcnc_e2e_") + "_" + std::to_string(round);
     Daemon d(shm);
     const auto until = std::chrono::steady_clock::now() + 10s;
     while (!fs::exists("/dev/shm" + shm) && std::chrono::steady_clock::now() < until) {
@@ -819,7 +808,7 @@ const auto* const kNoLeaks = ::testing::AddGlobalTestEnvironment(new e2e::NoLeak
 // e-stop never waits in the ring: the CLI's, the HMI's and, when the ring is
 // full, the Modbus slave's go through the e-stop word.)
 TEST(Lasercncd, ACommandTheKernelCannotTakeIsRefusedNotAnsweredAsDone) {
-  const std::string shm = shm_name();
+  const std::string shm = shm_name("/lcnc_e2e_");
   struct Unlink {
     std::string name;
     ~Unlink() { shm_unlink(name.c_str()); }

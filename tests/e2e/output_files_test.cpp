@@ -19,7 +19,6 @@ namespace {
 
 using namespace e2e;
 
-const std::string kShare = std::string(LCNC_SOURCE_DIR) + "/share";
 const std::string kPlate = kShare + "/examples/plate_decompose.dxf";
 // A short job: a few millimetres, well inside the default machine's travel.
 const std::string kProgram = "G21 G90\nG1 X2 Y1 F1200\nG1 X0 Y0\nM30\n";

@@ -25,8 +25,6 @@ namespace {
 
 using namespace e2e;
 
-const std::string kShare = std::string(LCNC_SOURCE_DIR) + "/share";
-
 nlohmann::json run(const std::string& args) {
   const CmdResult r = lasercnc("run " + args + " --json --no-progress");
   EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err << r.out;

@@ -20,7 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 using test::wait_until;
 
-const QString kPlate = QString(LCNC_SOURCE_DIR) + "/share/examples/plate_decompose.dxf";
+const QString kCutPlate = QString::fromStdString(e2e::kSample);
 
 TEST(CutScreen, PlansHolesBeforeTheOutlineSavesAndRunsTheProgram) {
   const fs::path dir = e2e::temp_dir();
@@ -30,7 +30,7 @@ TEST(CutScreen, PlansHolesBeforeTheOutlineSavesAndRunsTheProgram) {
   ASSERT_TRUE(daemon.ready()) << daemon.log();
   CutPage page(shm);
   EXPECT_FALSE(page.findChild<QPushButton*>("saveButton")->isEnabled());
-  ASSERT_TRUE(page.open_file(kPlate)) << page.message().toStdString();
+  ASSERT_TRUE(page.open_file(kCutPlate)) << page.message().toStdString();
   ASSERT_TRUE(page.cut_plan().has_value());
   const cut::CutPlan& plan = *page.cut_plan();
   ASSERT_GE(plan.contours.size(), 2u);

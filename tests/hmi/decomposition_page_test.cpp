@@ -28,7 +28,7 @@ namespace {
 namespace fs = std::filesystem;
 
 const QString kStar = QString(LCNC_SOURCE_DIR) + "/share/examples/star_decompose.dxf";
-const QString kPlate = QString(LCNC_SOURCE_DIR) + "/share/examples/plate_decompose.dxf";
+const QString kPlate = QString::fromStdString(e2e::kSample);
 const QString kBad = QString(LCNC_SOURCE_DIR) + "/tests/data/dxf/bad_number.dxf";
 
 using e2e::temp_dir;

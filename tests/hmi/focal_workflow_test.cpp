@@ -22,11 +22,6 @@
 namespace lcnc::hmi {
 namespace {
 
-std::string shm_name() {
-  return "/lcnc_hmi_focal_" + std::to_string(getpid()) + "_" +
-         ::testing::UnitTest::GetInstance()->current_test_info()->name();
-}
-
 HoleRecord hole(std::uint32_t n, double x, double y, double z) {
   HoleRecord r;
   r.params.hole_number = n;
@@ -35,7 +30,7 @@ HoleRecord hole(std::uint32_t n, double x, double y, double z) {
 }
 
 TEST(FocalWorkflow, MeasuresEachHolesFocusOffsetOnTheSimulatedMachine) {
-  const std::string shm = shm_name();
+  const std::string shm = e2e::shm_name("/lcnc_hmi_focal_");
   e2e::Daemon daemon(shm);
   ASSERT_TRUE(daemon.ready()) << daemon.log();
   auto sims = SimPeripherals::start(shm);
@@ -98,7 +93,7 @@ TEST(FocalWorkflow, MeasuresEachHolesFocusOffsetOnTheSimulatedMachine) {
 }
 
 TEST(FocalWorkflow, ALostLinkEndsTheRunAndSaysSo) {
-  const std::string shm = shm_name();
+  const std::string shm = e2e::shm_name("/lcnc_hmi_focal_");
   auto sims = SimPeripherals::start(shm);
   ASSERT_TRUE(static_cast<bool>(sims));
   auto sensor = ModbusDistanceSensor::connect((*sims)->sensor_endpoint(), 1);
@@ -116,7 +111,7 @@ TEST(FocalWorkflow, ALostLinkEndsTheRunAndSaysSo) {
 
 // The screen: tick, measure (progress, a worker thread), see, save.
 TEST(FocalScreen, MeasuresTheTickedHolesShowsEachAndSavesTheOffsets) {
-  const std::string shm = shm_name();
+  const std::string shm = e2e::shm_name("/lcnc_hmi_focal_");
   e2e::Daemon daemon(shm);
   ASSERT_TRUE(daemon.ready()) << daemon.log();
   auto sims = SimPeripherals::start(shm);

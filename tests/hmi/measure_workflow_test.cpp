@@ -27,11 +27,6 @@ namespace {
 // schedule the simulated probe's thread: a bound on a failure, never a wait.
 constexpr std::chrono::milliseconds kPatience{30000};
 
-std::string shm_name() {
-  return "/lcnc_hmi_meas_" + std::to_string(getpid()) + "_" +
-         ::testing::UnitTest::GetInstance()->current_test_info()->name();
-}
-
 double angle_deg(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
   return Eigen::AngleAxisd(a.transpose() * b).angle() * 180.0 / M_PI;
 }
@@ -52,7 +47,7 @@ TEST(MeasureWorkflow, PlansSixPointsWithTheToolAxisAlongEachFacesNormal) {
 }
 
 TEST(MeasureWorkflow, FindsTheBlocksPlacementOnTheSimulatedMachine) {
-  const std::string shm = shm_name();
+  const std::string shm = e2e::shm_name("/lcnc_hmi_meas_");
   e2e::Daemon daemon(shm);
   ASSERT_TRUE(daemon.ready()) << daemon.log();
   const drivers::WorkpieceBlock truth = default_sim_block();
@@ -116,7 +111,7 @@ TEST(MeasureWorkflow, FindsTheBlocksPlacementOnTheSimulatedMachine) {
 // Ten points and the best fit on faces: the same placement, each point's
 // residual its distance from its face.
 TEST(MeasureWorkflow, BestFitOnTenPointsFindsThePlacementToo) {
-  const std::string shm = shm_name();
+  const std::string shm = e2e::shm_name("/lcnc_hmi_meas_");
   e2e::Daemon daemon(shm);
   ASSERT_TRUE(daemon.ready()) << daemon.log();
   const drivers::WorkpieceBlock truth = default_sim_block();
@@ -140,7 +135,7 @@ TEST(MeasureWorkflow, BestFitOnTenPointsFindsThePlacementToo) {
 }
 
 TEST(MeasureWorkflow, APointThatFindsNoFaceEndsTheRunAndSaysWhich) {
-  const std::string shm = shm_name();
+  const std::string shm = e2e::shm_name("/lcnc_hmi_meas_");
   e2e::Daemon daemon(shm);
   ASSERT_TRUE(daemon.ready()) << daemon.log();
   auto sims = SimPeripherals::start(shm);
@@ -159,7 +154,7 @@ TEST(MeasureWorkflow, APointThatFindsNoFaceEndsTheRunAndSaysWhich) {
 // The screen: measure (a worker thread, progress), see the points and the
 // placement, apply it to the database's holes once.
 TEST(MeasureScreen, MeasuresShowsThePlacementAndMovesTheHoles) {
-  const std::string shm = shm_name();
+  const std::string shm = e2e::shm_name("/lcnc_hmi_meas_");
   e2e::Daemon daemon(shm);
   ASSERT_TRUE(daemon.ready()) << daemon.log();
   auto sims = SimPeripherals::start(shm);

@@ -172,7 +172,7 @@ TEST(PitchCompensation, NegatedErrorTableCancelsTheLeadscrewError) {
     steps[0] = static_cast<std::int32_t>(next - output);
     ASSERT_LE(std::abs(steps[0]), 255);
     dda.run_period(steps, frame);
-    sim.emit(frame);
+    sim.send(frame);
     output = next;
     ASSERT_LE(std::abs(sim.actual_position_steps(0) - commanded), 1)
         << "period " << n << " at " << commanded << " steps";
@@ -188,7 +188,7 @@ TEST(PitchCompensation, NegatedErrorTableCancelsTheLeadscrewError) {
   quarter_mm[0] = 250;
   for (std::int64_t p = 250; p <= 1'000'000; p += 250) {
     dda.run_period(quarter_mm, frame);
-    raw.emit(frame);
+    raw.send(frame);
     worst_raw = std::max(worst_raw, std::abs(raw.actual_position_steps(0) - p));
   }
   EXPECT_GT(worst_raw, 10);

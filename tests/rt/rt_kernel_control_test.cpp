@@ -29,17 +29,17 @@ using test::step_x;
 using test::wait_for;
 
 // The rig with its rings read in the background, as a daemon reads them.
-struct Rig : test::KernelRig {
-  explicit Rig(std::array<std::int64_t, kAxisCount> at = {}, MachineConfig config = rt_machine(),
-               std::array<std::int64_t, kAxisCount> raw = {},
-               std::array<PitchTable, kAxisCount> pitch_error = {})
+struct ControlRig : test::KernelRig {
+  explicit ControlRig(std::array<std::int64_t, kAxisCount> at = {}, MachineConfig config = rt_machine(),
+                      std::array<std::int64_t, kAxisCount> raw = {},
+                      std::array<PitchTable, kAxisCount> pitch_error = {})
       : KernelRig(at, std::move(config), raw, pitch_error) {
     read_in_background();
   }
 };
 
 TEST(RtKernelControl, EStopStopsMotionAndLaserFromTheNextPeriod) {
-  Rig r;
+  ControlRig r;
   for (int i = 0; i < 12000; ++i) ASSERT_TRUE(r.buffer->try_push(step_x(20)));
   r.start_idle();
   r.send(RtCommandType::StartJob);
@@ -89,7 +89,7 @@ TEST(RtKernelControl, EStopStopsMotionAndLaserFromTheNextPeriod) {
 // the job's (idle and underrun periods hold a position of no segment, and a
 // path check must skip them).
 TEST(RtKernelControl, TraceMarksThePeriodsThatTookAJobsEntry) {
-  Rig r;
+  ControlRig r;
   r.start_idle();
   ASSERT_TRUE(wait_for([&] { return r.kernel->commands_taken() && r.kernel->periods() > 50; }));
   for (int i = 0; i < 200; ++i) {
@@ -125,7 +125,7 @@ TEST(RtKernelControl, TraceMarksThePeriodsThatTookAJobsEntry) {
 // the kernel takes it in the period after the request, counted by the
 // kernel itself — the StateChange log record carries its period index.
 TEST(RtKernelControl, EStopWordActsInTheNextPeriod) {
-  Rig r;
+  ControlRig r;
   for (int i = 0; i < 12000; ++i) ASSERT_TRUE(r.buffer->try_push(step_x(20)));
   std::atomic<std::uint32_t> word{7};  // requests before the start are not this run's
   r.kernel->set_estop_word(&word);
@@ -160,7 +160,7 @@ TEST(RtKernelControl, EStopWordActsInTheNextPeriod) {
 // is the one before it; once taken, the one the command brought (the daemon
 // answers its senders only then).
 TEST(RtKernelControl, ACommandIsCountedTakenWithTheStateItBrought) {
-  Rig r;
+  ControlRig r;
   EXPECT_TRUE(r.kernel->commands_taken());  // none pushed
   r.send(RtCommandType::Jog, 0, 90.0);
   EXPECT_FALSE(r.kernel->commands_taken());  // no period has run
@@ -177,7 +177,7 @@ TEST(RtKernelControl, ACommandIsCountedTakenWithTheStateItBrought) {
 
 // A job that ran to its end is told apart from a stopped one.
 TEST(RtKernelControl, LastJobCompletedSaysWhetherTheJobRanToItsEnd) {
-  Rig r;
+  ControlRig r;
   for (int i = 0; i < 100; ++i) {
     PeriodIncrement inc = step_x(5);
     inc.end_of_program = i == 99;
@@ -197,7 +197,7 @@ TEST(RtKernelControl, LastJobCompletedSaysWhetherTheJobRanToItsEnd) {
 }
 
 TEST(RtKernelControl, StopRampsDownAlongThePathThenDiscardsTheJob) {
-  Rig r;
+  ControlRig r;
   for (int i = 0; i < 12000; ++i) ASSERT_TRUE(r.buffer->try_push(step_x(20)));
   r.start_idle();
   r.send(RtCommandType::StartJob);
@@ -232,7 +232,7 @@ TEST(RtKernelControl, StopRampsDownAlongThePathThenDiscardsTheJob) {
 }
 
 TEST(RtKernelControl, FeedHoldAndResumeAreStates) {
-  Rig r;
+  ControlRig r;
   std::int64_t sum = 0;
   // 1.2 s of motion: a loaded computer that lets this thread look late still
   // finds the job running when it holds it
@@ -267,7 +267,7 @@ TEST(RtKernelControl, FeedHoldAndResumeAreStates) {
 // M0/M1/M60: the job holds after the pause's entry at once — no entry after
 // it runs, not even during a ramp — until Resume, then ends where it should.
 TEST(RtKernelControl, AProgramPauseHoldsAtItsEntryUntilResumed) {
-  Rig r;
+  ControlRig r;
   std::int64_t sum = 0;
   for (int i = 0; i < 600; ++i) {
     PeriodIncrement inc = step_x(i < 300 ? 10 : 0, i < 300 ? 1 : 2);
@@ -305,7 +305,7 @@ TEST(RtKernelControl, AProgramPauseHoldsAtItsEntryUntilResumed) {
 // so the pause lasts the same machine time on the simulated clock as on the
 // wall clock; the job then runs to its end with every step.
 TEST(RtKernelControl, AnUnattendedProgramPauseEndsAfterItsPeriodsOnTheSimulatedClock) {
-  Rig r;
+  ControlRig r;
   std::int64_t sum = 0;
   for (int i = 0; i < 600; ++i) {
     PeriodIncrement inc = step_x(i < 300 ? 10 : 0, i < 300 ? 1 : 2);
@@ -342,7 +342,7 @@ TEST(RtKernelControl, AnUnattendedProgramPauseEndsAfterItsPeriodsOnTheSimulatedC
 TEST(RtKernelControl, AnInputWaitHoldsUntilTheInputComesOrStopsAtItsTimeout) {
   for (const bool comes : {true, false}) {
     SCOPED_TRACE(comes ? "the input comes" : "the time is up");
-    Rig r;
+    ControlRig r;
     std::int64_t sum = 0;
     for (int i = 0; i < 600; ++i) {
       PeriodIncrement inc = step_x(i < 300 ? 10 : 0, i < 300 ? 1 : 2);
@@ -393,7 +393,7 @@ TEST(RtKernelControl, AnInputWaitHoldsUntilTheInputComesOrStopsAtItsTimeout) {
 // K = 1 whatever the operator's override, reached by the override ramp
 // (no jump in speed); the override acts again on the entries after them.
 TEST(RtKernelControl, EntriesWithTheOverrideOffRunAtFullSpeedWhateverTheOverride) {
-  Rig r;
+  ControlRig r;
   for (int i = 0; i < 9000; ++i) {
     const std::uint32_t line = i < 2000 ? 1 : i < 7000 ? 2 : 3;
     PeriodIncrement inc = step_x(10, line);
@@ -432,7 +432,7 @@ TEST(RtKernelControl, EntriesWithTheOverrideOffRunAtFullSpeedWhateverTheOverride
 // program put under it; M53: the feed-hold input holds the motion (at
 // rest, resumed when it drops), except on entries after M53 P0.
 TEST(RtKernelControl, TheFeedInputsActOnTheEntriesTheProgramPutsUnderThem) {
-  Rig r;
+  ControlRig r;
   for (int i = 0; i < 12000; ++i) {
     const std::uint32_t line = i < 6000 ? 1 : 2;
     PeriodIncrement inc = step_x(5, line);  // 60 mm in all: the travel is 100
@@ -475,7 +475,7 @@ TEST(RtKernelControl, TheFeedInputsActOnTheEntriesTheProgramPutsUnderThem) {
 // A producer streaming slower than the machine runs: the kernel keeps the
 // braking reserve and decelerates along the path instead of running dry.
 TEST(RtKernelControl, SlowStreamDeceleratesAlongThePathAndNeverUnderruns) {
-  Rig r;
+  ControlRig r;
   for (int i = 0; i < 1000; ++i) ASSERT_TRUE(r.buffer->try_push(step_x(20)));
   r.kernel->stream_begin();
   RtOptions o;
@@ -519,7 +519,7 @@ TEST(RtKernelControl, SlowStreamDeceleratesAlongThePathAndNeverUnderruns) {
 // executed (the planner thread's own check stops jobs short along the path
 // before that: tests/e2e).
 TEST(RtKernelControl, AnEntryCrossingTheSoftLimitIsNotExecuted) {
-  Rig r({99'000, 0, 0, 0, 0, 0});  // X at 99 mm, travel 0–100 mm
+  ControlRig r({99'000, 0, 0, 0, 0, 0});  // X at 99 mm, travel 0–100 mm
   for (int i = 0; i < 200; ++i) ASSERT_TRUE(r.buffer->try_push(step_x(7, 7)));
   RtOptions o;
   o.try_realtime = false;
@@ -540,7 +540,7 @@ TEST(RtKernelControl, AnEntryCrossingTheSoftLimitIsNotExecuted) {
 }
 
 TEST(RtKernelControl, JogMovesExactlyAndStopsShortAtTheSoftLimit) {
-  Rig r({50'000, 0, 0, 0, 0, 0});
+  ControlRig r({50'000, 0, 0, 0, 0, 0});
   r.start_idle();
   r.send(RtCommandType::Jog, 0, 12.345);
   ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::Jog; }));
@@ -574,7 +574,7 @@ TEST(RtKernelControl, JogMovesExactlyAndStopsShortAtTheSoftLimit) {
 }
 
 TEST(RtKernelControl, CommandsOutsideTheirStatesAreRefused) {
-  Rig r;
+  ControlRig r;
   for (int i = 0; i < 5000; ++i) ASSERT_TRUE(r.buffer->try_push(step_x(5)));
   r.start_idle();
   r.send(RtCommandType::StartJob);
@@ -595,7 +595,7 @@ TEST(RtKernelControl, CommandsOutsideTheirStatesAreRefused) {
 // moves the machine after an e-stop among them: a jog after an e-stop once
 // read "Idle" and moved the machine out of its e-stop.
 TEST(RtKernelControl, NoCommandOfThePeriodMovesTheMachineAfterAnEStop) {
-  Rig r;
+  ControlRig r;
   r.begin_stepped();
   r.send(RtCommandType::EStop);
   r.send(RtCommandType::Jog, 0, 1.0);
@@ -626,7 +626,7 @@ TEST(RtKernelControl, NoCommandOfThePeriodMovesTheMachineAfterAnEStop) {
 // Jog with the job's entries queued, and a hold and a resume in one period
 // undid each other.
 TEST(RtKernelControl, NoCommandActsOnAModeChangedEarlierInItsPeriod) {
-  Rig r;
+  ControlRig r;
   r.begin_stepped();
   for (int i = 0; i < 4000; ++i) ASSERT_TRUE(r.buffer->try_push(step_x(5)));
   r.send(RtCommandType::StartJob);
@@ -654,7 +654,7 @@ TEST(RtKernelControl, NoCommandActsOnAModeChangedEarlierInItsPeriod) {
 // that status said "feed hold" with no pause and no input for a while.
 TEST(RtKernelControl, TheStatusThatShowsAProgramHoldSaysWhy) {
   for (const bool wait : {false, true}) {
-    Rig r;
+    ControlRig r;
     auto status = std::make_unique<Seqlock<shm::Status>>();
     r.kernel->set_status(status.get());
     r.begin_stepped();
@@ -686,7 +686,7 @@ TEST(RtKernelControl, TheStatusThatShowsAProgramHoldSaysWhy) {
 // the stop it was in once outlived it, and an e-stop in the Idle that
 // followed counted the job as ended (and aborted) a second time.
 TEST(RtKernelControl, AJobThatEndsWhileStoppingEndsOnce) {
-  Rig r;
+  ControlRig r;
   r.begin_stepped();
   for (int i = 0; i < 100; ++i) {
     PeriodIncrement inc = step_x(5);
@@ -715,7 +715,7 @@ TEST(RtKernelControl, AJobThatEndsWhileStoppingEndsOnce) {
 TEST(RtKernelControl, HomingFindsTheSwitchAndRebasesTheAxis) {
   // The kernel believes X is at 50 mm; the switches sit 3 mm lower than it
   // thinks: the home switch trips where it would count −3 mm.
-  Rig r({50'000, 20'000, 0, 0, 0, 0}, rt_machine(), {-3'000, 0, 0, 0, 0, 0});
+  ControlRig r({50'000, 20'000, 0, 0, 0, 0}, rt_machine(), {-3'000, 0, 0, 0, 0, 0});
   r.start_idle();
   r.send(RtCommandType::Home, 0);
   ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::Homing; }));
@@ -742,7 +742,7 @@ TEST(RtKernelControl, HomingFindsTheSwitchAndRebasesTheAxis) {
 TEST(RtKernelControl, HardLimitSwitchIsAnEStopNamingTheAxis) {
   // The switches sit 5 mm lower than the kernel thinks: X's max hard limit
   // (2 mm beyond the 100 mm soft limit) trips where it counts 97 mm.
-  Rig r({90'000, 0, 0, 0, 0, 0}, rt_machine(), {-5'000, 0, 0, 0, 0, 0});
+  ControlRig r({90'000, 0, 0, 0, 0, 0}, rt_machine(), {-5'000, 0, 0, 0, 0, 0});
   r.start_idle();
   r.send(RtCommandType::Jog, 0, 9.0);
   ASSERT_TRUE(wait_for([&] { return r.kernel->state() == MachineState::EStop; }));
@@ -765,7 +765,7 @@ TEST(RtKernelControl, HardLimitSwitchIsAnEStopNamingTheAxis) {
 }
 
 TEST(RtKernelControl, EStopInputStopsTheJobInThePeriodItIsSeen) {
-  Rig r;
+  ControlRig r;
   for (int i = 0; i < 12000; ++i) ASSERT_TRUE(r.buffer->try_push(step_x(20)));
   r.start_idle();
   r.send(RtCommandType::StartJob);
@@ -797,7 +797,7 @@ TEST(RtKernelControl, PitchCompensationPutsTheCarriageWhereCommanded) {
   error[0].start = 0.0;
   error[0].interval = 25'000.0;
   error[0].values = {0.0, 10.0, 30.0, 20.0, 0.0};  // steps (µm), at counted positions
-  Rig r({0, 0, 0, 0, 0, 0}, m, {}, error);
+  ControlRig r({0, 0, 0, 0, 0, 0}, m, {}, error);
   r.start_idle();
   for (const double target : {37.5, 62.0, 99.0, 12.0}) {
     r.send(RtCommandType::Jog, 0, target - r.kernel->position_steps(0) / 1000.0);

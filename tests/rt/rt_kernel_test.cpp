@@ -456,7 +456,7 @@ class OutputsSink final : public PulseSink {
     words.reserve(n);
     analog.reserve(n);
   }
-  void emit(const PulseFrame& f) noexcept override {
+  void send(const PulseFrame& f) noexcept override {
     if (words.size() == words.capacity()) return;
     words.push_back(f.outputs);
     analog.push_back(f.analog[1]);

@@ -9,6 +9,7 @@
 #include "common/error.h"
 #include "core/dxf/dxf_test_util.h"
 #include "decompose/part_decomposition.h"
+#include "decompose_test_util.h"
 
 namespace lcnc::decompose {
 namespace {
@@ -27,12 +28,8 @@ Options seed_options(double speed = 100.0) {
   return o;
 }
 
-Result<PartResult> run(const std::string& file, const Options& o, double step = 0.01) {
-  return decompose_part(test::read_ok(file), step, o);
-}
-
 TEST(SeedDecomposition, SmoothingLeavesNoTurnAboveTheCriticalAngle) {
-  Result<PartResult> r = run(test::dxf_data("line_square.dxf"), seed_options(), 0.05);
+  Result<PartResult> r = decompose_file(test::dxf_data("line_square.dxf"), seed_options(), 0.05);
   ASSERT_TRUE(r.ok()) << r.error().to_string();
   const KinematicsTable& t = r->contours[0].table;
   const std::size_t n = t.size() - 1;  // row n is row 0 again
@@ -45,7 +42,7 @@ TEST(SeedDecomposition, SmoothingLeavesNoTurnAboveTheCriticalAngle) {
 }
 
 TEST(SeedDecomposition, EquationsSixToThirteen) {
-  Result<PartResult> r = run(test::dxf_data("line_square.dxf"), seed_options(100.0), 0.05);
+  Result<PartResult> r = decompose_file(test::dxf_data("line_square.dxf"), seed_options(100.0), 0.05);
   ASSERT_TRUE(r.ok());
   const KinematicsTable& t = r->contours[0].table;
   EXPECT_EQ(t.v_main[0], 50.0);  // eq. 6: v0 = vk / 2
@@ -70,7 +67,7 @@ TEST(SeedDecomposition, EquationsSixToThirteen) {
 TEST(SeedDecomposition, UnchangedStepsRunTheMainAxesAtContourSpeed) {
   // A large circle turns 0.06° per 0.01 mm step: below the critical angle,
   // so S1 = S and the main axes carry the whole speed.
-  Result<PartResult> r = run(test::dxf_data("units_inch.dxf"), seed_options(100.0));
+  Result<PartResult> r = decompose_file(test::dxf_data("units_inch.dxf"), seed_options(100.0));
   ASSERT_TRUE(r.ok());
   const Peaks& p = r->contours[0].peaks;
   EXPECT_EQ(p.aux_excursion, 0.0);
@@ -81,7 +78,7 @@ TEST(SeedDecomposition, UnchangedStepsRunTheMainAxesAtContourSpeed) {
 // acceleration does not exceed 9 m/s², i.e. 1 g" (Fig. 8) — on the sample
 // part (fillets ≥ 2.5 mm, the spline's tightest bend ~2.5 mm).
 TEST(SeedDecomposition, SeedCaseSixMetresPerMinuteStaysUnderOneG) {
-  Result<PartResult> r = run(test::sample_part(), seed_options(100.0));
+  Result<PartResult> r = decompose_file(test::sample_part(), seed_options(100.0));
   ASSERT_TRUE(r.ok()) << r.error().to_string();
   double a_eff = 0;
   for (const ContourResult& c : r->contours) a_eff = std::max(a_eff, c.peaks.a_eff);
@@ -92,7 +89,7 @@ TEST(SeedDecomposition, SeedCaseSixMetresPerMinuteStaysUnderOneG) {
 TEST(SeedDecomposition, ReportsTheLimitsItBreaks) {
   // Sharp corners at 6 m/min: the paper's S1 turns them on a ~0.57 mm radius
   // (1° per 0.01 mm), far above 0.5 g — reported, not hidden.
-  Result<PartResult> r = run(test::dxf_data("line_square.dxf"), seed_options(100.0));
+  Result<PartResult> r = decompose_file(test::dxf_data("line_square.dxf"), seed_options(100.0));
   ASSERT_TRUE(r.ok());
   ASSERT_FALSE(r->contours[0].exceeded.empty());
   EXPECT_NE(r->contours[0].exceeded[0].find("main acceleration"), std::string::npos);
@@ -100,7 +97,7 @@ TEST(SeedDecomposition, ReportsTheLimitsItBreaks) {
 
 TEST(SeedDecomposition, AContourTooSmallForTheCriticalAngleIsAnError) {
   // 8 points cannot turn 360° at ≤ 1° each: the walk would shrink the circle.
-  Result<PartResult> r = run(test::dxf_data("circle.dxf"), seed_options(), 5.0);
+  Result<PartResult> r = decompose_file(test::dxf_data("circle.dxf"), seed_options(), 5.0);
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.error().code, ErrorCode::DecomposeBadOption);
   EXPECT_MENTIONS(r.error(), "contour 1 (CIRCLE");

@@ -11,13 +11,10 @@
 #include "common/error.h"
 #include "core/dxf/dxf_test_util.h"
 #include "decompose/part_decomposition.h"
+#include "decompose_test_util.h"
 
 namespace lcnc::decompose {
 namespace {
-
-Result<PartResult> run(const std::string& file, const Options& o, double step = 0.01) {
-  return decompose_part(test::read_ok(file), step, o);
-}
 
 Options sync_options(double speed_mm_s) {
   Options o;
@@ -35,7 +32,7 @@ Vec2 lerp(const std::vector<Vec2>& x, const std::vector<double>& t, double at) {
 }
 
 TEST(SyncDecomposition, MainPlusAuxEqualsTheContourAtEveryInstant) {
-  Result<PartResult> r = run(test::sample_part(), sync_options(100.0));
+  Result<PartResult> r = decompose_file(test::sample_part(), sync_options(100.0));
   ASSERT_TRUE(r.ok()) << r.error().to_string();
   std::mt19937 rng(7);
   for (const ContourResult& c : r->contours) {
@@ -56,7 +53,7 @@ TEST(SyncDecomposition, MainPlusAuxEqualsTheContourAtEveryInstant) {
 }
 
 TEST(SyncDecomposition, MainAxesStartAndEndAtRestWithTheAuxCentred) {
-  Result<PartResult> r = run(test::dxf_data("arc_slot.dxf"), sync_options(100.0));
+  Result<PartResult> r = decompose_file(test::dxf_data("arc_slot.dxf"), sync_options(100.0));
   ASSERT_TRUE(r.ok());
   const KinematicsTable& t = r->contours[0].table;
   EXPECT_EQ(t.aux(0), Vec2::Zero());
@@ -83,7 +80,7 @@ TEST(SyncDecomposition, LimitsAndFieldAreNeverExceeded) {
     o.aux_half_field_mm = std::uniform_real_distribution<double>(0.2, 10)(rng);
     o.aux_speed_mm_s = std::uniform_real_distribution<double>(800, 6000)(rng);
     const std::string& f = files[rng() % std::size(files)];
-    Result<PartResult> r = run(test::dxf_data(f), o, 0.02);
+    Result<PartResult> r = decompose_file(test::dxf_data(f), o, 0.02);
     if (!r.ok()) {
       EXPECT_EQ(r.error().code, ErrorCode::DecomposeInfeasible) << r.error().to_string();
       continue;
@@ -106,7 +103,7 @@ TEST(SyncDecomposition, LimitsAndFieldAreNeverExceeded) {
 
 TEST(SyncDecomposition, InfeasibleSpeedIsReportedWithTheHighestFeasible) {
   Options o = sync_options(1000.0);  // 60 m/min in a ±5 mm field
-  Result<PartResult> r = run(test::sample_part(), o);
+  Result<PartResult> r = decompose_file(test::sample_part(), o);
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.error().code, ErrorCode::DecomposeInfeasible);
   EXPECT_MENTIONS(
@@ -135,7 +132,7 @@ TEST(SyncDecomposition, ContourFasterThanTheMainAxesIsInfeasible) {
   o.main_speed_mm_s = 300.0;
   o.main_accel_mm_s2 = 100 * kG_mm_s2;  // only the speed can fail
   o.aux_half_field_mm = 1.0;
-  Result<PartResult> r = run(test::dxf_data("lwpolyline_bulge.dxf"), o);
+  Result<PartResult> r = decompose_file(test::dxf_data("lwpolyline_bulge.dxf"), o);
   ASSERT_FALSE(r.ok());
   EXPECT_MENTIONS(r.error(), "exceeds the main-axis speed limit");
 }
@@ -144,7 +141,7 @@ TEST(SyncDecomposition, ContourFasterThanTheMainAxesIsInfeasible) {
 // ≤ 1 g on the sample part, main axes within 0.5 g and far below a
 // main-axes-only machine on the same part at the same speed.
 TEST(SyncDecomposition, SeedCaseSixMetresPerMinute) {
-  Result<PartResult> r = run(test::sample_part(), sync_options(100.0));
+  Result<PartResult> r = decompose_file(test::sample_part(), sync_options(100.0));
   ASSERT_TRUE(r.ok());
   double a_eff = 0, a_main = 0;
   for (const ContourResult& c : r->contours) {
@@ -161,8 +158,8 @@ TEST(SyncDecomposition, ShortestLeadInUsesTheMainAxesUpToTheirLimit) {
   Options smooth = sync_options(150.0);
   Options shortest = smooth;
   shortest.goal = SyncGoal::ShortestLeadIn;
-  Result<PartResult> a = run(test::dxf_data("lwpolyline_bulge.dxf"), smooth);
-  Result<PartResult> b = run(test::dxf_data("lwpolyline_bulge.dxf"), shortest);
+  Result<PartResult> a = decompose_file(test::dxf_data("lwpolyline_bulge.dxf"), smooth);
+  Result<PartResult> b = decompose_file(test::dxf_data("lwpolyline_bulge.dxf"), shortest);
   ASSERT_TRUE(a.ok() && b.ok());
   const ContourResult& ca = a->contours[0];
   const ContourResult& cb = b->contours[0];
@@ -174,7 +171,7 @@ TEST(SyncDecomposition, ShortestLeadInUsesTheMainAxesUpToTheirLimit) {
 }
 
 TEST(SyncDecomposition, OneMicronStepWorks) {
-  Result<PartResult> r = run(test::dxf_data("circle.dxf"), sync_options(100.0), 0.001);
+  Result<PartResult> r = decompose_file(test::dxf_data("circle.dxf"), sync_options(100.0), 0.001);
   ASSERT_TRUE(r.ok());
   EXPECT_EQ(r->points, 25133u);
   EXPECT_LE(r->contours[0].peaks.a_main, kDefaultMainAccel_mm_s2);
@@ -182,7 +179,7 @@ TEST(SyncDecomposition, OneMicronStepWorks) {
 
 TEST(SyncDecomposition, BadOptionsAreRefused) {
   Options o = sync_options(0.0);
-  Result<PartResult> r = run(test::dxf_data("circle.dxf"), o);
+  Result<PartResult> r = decompose_file(test::dxf_data("circle.dxf"), o);
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.error().code, ErrorCode::DecomposeBadOption);
   EXPECT_MENTIONS(r.error(), "contour speed");

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "dxf/dxf_reader.h"
+#include "support/expect_mentions.h"
 
 namespace lcnc::test {
 
@@ -44,9 +45,5 @@ inline std::string dxf_lwpoly(std::initializer_list<std::pair<double, double>> p
   for (const auto& [x, y] : pts) s += "10\n" + std::to_string(x) + "\n20\n" + std::to_string(y) + "\n";
   return s;
 }
-
-// The message mentions `what`.
-#define EXPECT_MENTIONS(diag, what) \
-  EXPECT_NE((diag).message.find(what), std::string::npos) << (diag).to_string()
 
 }  // namespace lcnc::test

@@ -9,9 +9,7 @@
 
 #include "gcode/program_reader.h"
 #include "machine/machine_config.h"
-
-// The diagnostic's message says `what` (shown whole when it does not).
-#define EXPECT_MENTIONS(diag, what) EXPECT_NE((diag).message.find(what), std::string::npos) << (diag).message
+#include "support/expect_mentions.h"
 
 namespace lcnc::test {
 

@@ -12,7 +12,7 @@
 namespace lcnc {
 namespace {
 
-constexpr double kUm = 0.001;  // 1 µm: the drilling geometry's tolerance
+constexpr double kGeometryTol = 0.001;  // 1 µm: the drilling geometry's tolerance
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 HoleProcessParams row(HoleProcessId id) {
@@ -64,16 +64,16 @@ TEST(HoleProcesses, HelixIsOneHelixOfLayerCountTurns) {
   const Segment& h = prog.segments[1];
   ASSERT_EQ(h.kind, MotionKind::Arc);
   const SegmentGeometry g(h);
-  EXPECT_NEAR(g.radius(), 0.5, kUm);
+  EXPECT_NEAR(g.radius(), 0.5, kGeometryTol);
   EXPECT_NEAR(g.sweep_rad(), 10 * kTwoPi, 1e-9);  // 10 turns
-  EXPECT_NEAR(h.end[2], -1.0, kUm);               // total depth
+  EXPECT_NEAR(h.end[2], -1.0, kGeometryTol);      // total depth
   const Sampled s = sample(prog);
-  EXPECT_NEAR(s.min_r, 0.5, kUm);
-  EXPECT_NEAR(s.max_r, 0.5, kUm);
-  EXPECT_NEAR(s.max_z, 0.0, kUm);
-  EXPECT_NEAR(s.min_z, -1.0, kUm);
+  EXPECT_NEAR(s.min_r, 0.5, kGeometryTol);
+  EXPECT_NEAR(s.max_r, 0.5, kGeometryTol);
+  EXPECT_NEAR(s.max_z, 0.0, kGeometryTol);
+  EXPECT_NEAR(s.min_z, -1.0, kGeometryTol);
   // Depth per turn = single-layer feed: after 3.5 turns the helix is at −0.35.
-  EXPECT_NEAR(g.at(g.length() * 0.35)[2], -0.35, kUm);
+  EXPECT_NEAR(g.at(g.length() * 0.35)[2], -0.35, kGeometryTol);
   // The row's A and C ride along.
   EXPECT_EQ(h.start[index(Axis::A)], 30.0);
   EXPECT_EQ(h.end[index(Axis::C)], 45.0);
@@ -91,14 +91,14 @@ TEST(HoleProcesses, TaperedHelixStepsTheRadiusPerLayer) {
   for (const Segment& seg : prog.segments) {
     if (seg.kind != MotionKind::Arc) continue;
     const SegmentGeometry g(seg);
-    EXPECT_NEAR(g.radius(), 0.6 - 0.05 * turns, kUm);
+    EXPECT_NEAR(g.radius(), 0.6 - 0.05 * turns, kGeometryTol);
     EXPECT_NEAR(g.sweep_rad(), kTwoPi, 1e-9);
-    EXPECT_NEAR(seg.start[2] - seg.end[2], 0.2, kUm);
+    EXPECT_NEAR(seg.start[2] - seg.end[2], 0.2, kGeometryTol);
     ++turns;
   }
   EXPECT_EQ(turns, 5);
-  EXPECT_NEAR(prog.segments.back().end[2], -1.0, kUm);
-  EXPECT_NEAR(std::hypot(prog.segments.back().end[0], prog.segments.back().end[1]), 0.4, kUm);
+  EXPECT_NEAR(prog.segments.back().end[2], -1.0, kGeometryTol);
+  EXPECT_NEAR(std::hypot(prog.segments.back().end[0], prog.segments.back().end[1]), 0.4, kGeometryTol);
 }
 
 TEST(HoleProcesses, CircleScanCutsRingsPerLayer) {
@@ -114,17 +114,17 @@ TEST(HoleProcesses, CircleScanCutsRingsPerLayer) {
     if (seg.kind != MotionKind::Arc) continue;
     const SegmentGeometry g(seg);
     const int layer = arcs / 3 + 1, ring = arcs % 3;
-    EXPECT_NEAR(g.radius(), 0.3 + 0.1 * ring, kUm);
+    EXPECT_NEAR(g.radius(), 0.3 + 0.1 * ring, kGeometryTol);
     EXPECT_NEAR(g.sweep_rad(), kTwoPi, 1e-9);  // one full circle, flat
     EXPECT_EQ(seg.start[2], seg.end[2]);
-    EXPECT_NEAR(seg.start[2], -0.25 * layer, kUm);
+    EXPECT_NEAR(seg.start[2], -0.25 * layer, kGeometryTol);
     ++arcs;
   }
   EXPECT_EQ(arcs, 12);
   const Sampled s = sample(prog);
-  EXPECT_NEAR(s.min_r, 0.3, kUm);
-  EXPECT_NEAR(s.max_r, 0.5, kUm);
-  EXPECT_NEAR(s.min_z, -1.0, kUm);
+  EXPECT_NEAR(s.min_r, 0.3, kGeometryTol);
+  EXPECT_NEAR(s.max_r, 0.5, kGeometryTol);
+  EXPECT_NEAR(s.min_z, -1.0, kGeometryTol);
 }
 
 TEST(HoleProcesses, FreeShapeFollowsThePolarPolygon) {
@@ -142,12 +142,12 @@ TEST(HoleProcesses, FreeShapeFollowsThePolarPolygon) {
       const Segment& s = prog.segments[1 + layer * 5 + 1 + e];
       const PolarVertex& v = p.shape[(e + 1) % 4];
       const double ang = v.angle_deg * std::numbers::pi / 180.0;
-      EXPECT_NEAR(s.end[0], v.radius_mm * std::cos(ang), kUm);
-      EXPECT_NEAR(s.end[1], v.radius_mm * std::sin(ang), kUm);
-      EXPECT_NEAR(s.end[2], z, kUm);
+      EXPECT_NEAR(s.end[0], v.radius_mm * std::cos(ang), kGeometryTol);
+      EXPECT_NEAR(s.end[1], v.radius_mm * std::sin(ang), kGeometryTol);
+      EXPECT_NEAR(s.end[2], z, kGeometryTol);
     }
   }
-  EXPECT_NEAR(prog.segments.back().end[2], -0.3, kUm);
+  EXPECT_NEAR(prog.segments.back().end[2], -0.3, kGeometryTol);
 }
 
 TEST(HoleProcesses, EventsAtTheRightMoments) {

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "kinematics/tcp_path.h"
+#include "kinematics_test_util.h"
 #include "path/segment_geometry.h"
 #include "support/test_scale.h"
 
@@ -17,11 +18,7 @@ namespace {
 // Property-test size: LCNC_TEST_SCALE multiplies it for long runs.
 using testing::scaled;
 
-Pose joints(double x, double y, double z, double a, double c) {
-  Pose p = Pose::Zero();
-  p << x, y, z, a, 0.0, c;
-  return p;
-}
+using testing::joints;
 
 FiveAxisKinematics make(MachineVariant v) {
   FiveAxisGeometry g;

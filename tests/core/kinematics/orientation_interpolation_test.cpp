@@ -7,18 +7,13 @@
 #include <numbers>
 #include <random>
 
+#include "kinematics_test_util.h"
 #include "support/test_scale.h"
 
 namespace lcnc {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-
-// C of the end that makes the great circle from (30°, 0°) pass the pole at
-// δ: tan δ = tan 30° · sin(Δ/2) with Δ = 180° − ΔC.
-double end_c_for_pole_distance(double delta_deg) {
-  return 180.0 - 2.0 * std::asin(std::tan(delta_deg * kDeg) / std::tan(30.0 * kDeg)) / kDeg;
-}
+using testing::end_c_for_pole_distance;
 
 OrientationMove make(OrientationMethod m, RotaryJoints a, RotaryJoints b) {
   Result<OrientationMove> r = OrientationMove::between_joints(m, a, b, RotaryLimits{});
@@ -137,10 +132,10 @@ TEST(OrientationInterpolation, PoleSmoothedPropertiesNearThePole) {
       after(2.0, 80.0), c_prev(-400.0, 400.0);
   const int n = testing::scaled(60);
   for (int i = 0; i < n; ++i) {
-    const double d = delta(rng) * kDeg, p = psi(rng) * kDeg;
+    const double d = delta(rng) * kRadPerDeg, p = psi(rng) * kRadPerDeg;
     const Vec3 m(std::sin(d) * std::cos(p), std::sin(d) * std::sin(p), std::cos(d));
     const Vec3 t(-std::sin(p), std::cos(p), 0.0);
-    const double a0 = -before(rng) * kDeg, a1 = after(rng) * kDeg;
+    const double a0 = -before(rng) * kRadPerDeg, a1 = after(rng) * kRadPerDeg;
     const Vec3 k0 = std::cos(a0) * m + std::sin(a0) * t, k1 = std::cos(a1) * m + std::sin(a1) * t;
     const Result<RotaryJoints> start = choose_rotary(k0, {0.0, c_prev(rng)}, lim);
     ASSERT_TRUE(start.ok());
@@ -151,7 +146,7 @@ TEST(OrientationInterpolation, PoleSmoothedPropertiesNearThePole) {
     EXPECT_GE(smooth->max_u_rate(lim), vec->max_u_rate(lim)) << i;
     const OrientationReport r = evaluate(*smooth, TimeLaw{2.0, 0.25}, 2e-4);
     EXPECT_LE(r.max_error_deg, kin::kOrientationToleranceDeg) << i;
-    if (std::min(-a0, a1) >= 20.0 * kDeg) {
+    if (std::min(-a0, a1) >= 20.0 * kRadPerDeg) {
       EXPECT_TRUE(smooth->pole_snapped()) << i;
       EXPECT_TRUE(r.within(lim)) << i << ": C " << r.peak_c_vel_deg_s << " °/s " << r.peak_c_acc_deg_s2
                                  << " °/s²";

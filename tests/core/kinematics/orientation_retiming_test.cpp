@@ -1,4 +1,5 @@
 #include "kinematics/orientation_retiming.h"
+#include "kinematics_test_util.h"
 
 #include <gtest/gtest.h>
 
@@ -9,11 +10,7 @@
 namespace lcnc {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-
-double end_c_for_pole_distance(double delta_deg) {
-  return 180.0 - 2.0 * std::asin(std::tan(delta_deg * kDeg) / std::tan(30.0 * kDeg)) / kDeg;
-}
+using testing::end_c_for_pole_distance;
 
 // The pole 0.5° away (beyond the 0.01° tolerance): the improved interpolator
 // stays on the great circle, and the re-timed law keeps C within its limits.

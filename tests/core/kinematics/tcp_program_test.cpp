@@ -12,6 +12,7 @@
 
 #include "gcode/program_reader.h"
 #include "kinematics/orientation_interpolation.h"
+#include "kinematics_test_util.h"
 #include "machine/machine_config.h"
 #include "path/segment_geometry.h"
 #include "plan/program_source.h"
@@ -52,11 +53,7 @@ Result<std::vector<Segment>> expand(const std::string& text, const MachineConfig
   return out;
 }
 
-Pose joints(double x, double y, double z, double a, double c) {
-  Pose p = Pose::Zero();
-  p << x, y, z, a, 0.0, c;
-  return p;
-}
+using testing::joints;
 
 // Distance of p from the segment a–b.
 double to_line(const Vec3& p, const Vec3& a, const Vec3& b) {

@@ -8,7 +8,7 @@ namespace {
 // A sink that only takes pulses, as the GHDL co-simulation does.
 class PulsesOnly final : public PulseSink {
  public:
-  void emit(const PulseFrame&) noexcept override {}
+  void send(const PulseFrame&) noexcept override {}
 };
 
 TEST(PulseSink, DefaultHasNoActiveInputs) {

@@ -19,11 +19,7 @@ PeriodIncrement x_steps(std::int32_t d, std::uint32_t line = 7) {
   return inc;
 }
 
-std::array<std::int64_t, kAxisCount> at_x(std::int64_t x) {
-  std::array<std::int64_t, kAxisCount> s{};
-  s[0] = x;
-  return s;
-}
+using testing::at_x;
 
 TEST(IncrementGuard, AdmitsAMoveWithinEveryLimitExactly) {
   const MachineConfig m = testing::test_machine();

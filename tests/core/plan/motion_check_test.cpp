@@ -28,11 +28,7 @@ struct Move {
   }
 };
 
-std::array<std::int64_t, kAxisCount> at_x(std::int64_t x) {
-  std::array<std::int64_t, kAxisCount> s{};
-  s[0] = x;
-  return s;
-}
+using testing::at_x;
 
 // Runs `move` on X from 100 mm through a check, periods of T/K with K drawn
 // in [0.3, 1.5] (a feed override that changes), positions rounded to steps.

@@ -13,7 +13,7 @@
 namespace lcnc {
 namespace {
 
-Segment g1(const Vec3& a, const Vec3& b, double p, double q) {
+Segment g1_xyz(const Vec3& a, const Vec3& b, double p, double q) {
   Segment s;
   s.kind = MotionKind::Linear;
   s.start.head<3>() = a;
@@ -47,7 +47,7 @@ std::vector<Segment> noisy_run(int n, double noise, double p, double q) {
   Vec3 at(10, 10, 5);
   for (int k = 1; k <= n; ++k) {
     const Vec3 to(10 + 0.5 * k, 10 + (k == n ? 0.0 : u(rng)), 5);
-    segs.push_back(g1(at, to, p, q));
+    segs.push_back(g1_xyz(at, to, p, q));
     at = to;
   }
   return segs;
@@ -93,9 +93,9 @@ TEST(PathBlender, RotaryMotionIsNeverMerged) {
 // it was built with, which is SegmentGeometry(arc) up to rounding — and
 // marks the joins that are tangent by construction.
 TEST(PathBlender, BlendArcsCarryTheirGeometryAndTangentJoins) {
-  const std::vector<Segment> segs = {g1({10, 10, 5}, {20, 10, 6}, 0.05, 0.0),
-                                     g1({20, 10, 6}, {22, 19, 4}, 0.05, 0.0),
-                                     g1({22, 19, 4}, {22.5, 19.2, 4}, 0.05, 0.0)};
+  const std::vector<Segment> segs = {g1_xyz({10, 10, 5}, {20, 10, 6}, 0.05, 0.0),
+                                     g1_xyz({20, 10, 6}, {22, 19, 4}, 0.05, 0.0),
+                                     g1_xyz({22, 19, 4}, {22.5, 19.2, 4}, 0.05, 0.0)};
   const auto out = blend(segs);
   ASSERT_EQ(out.size(), 5u);  // line, arc, line, arc, line
   for (std::size_t k = 0; k < out.size(); ++k) {
@@ -121,8 +121,8 @@ TEST(PathBlender, BlendArcsCarryTheirGeometryAndTangentJoins) {
 TEST(PathBlender, JoinsWithRotaryAxesMovingAreNotMarkedTangent) {
   // X Y Z stay tangent, but the rotary axis's rate per mm jumps at the
   // blend's ends: the look-ahead must look at those joins
-  std::vector<Segment> segs = {g1({10, 10, 5}, {20, 10, 5}, 0.05, 0.0),
-                               g1({20, 10, 5}, {20, 20, 5}, 0.05, 0.0)};
+  std::vector<Segment> segs = {g1_xyz({10, 10, 5}, {20, 10, 5}, 0.05, 0.0),
+                               g1_xyz({20, 10, 5}, {20, 20, 5}, 0.05, 0.0)};
   segs[0].end[5] = 30.0;
   segs[1].start[5] = 30.0;
   segs[1].end[5] = 40.0;
@@ -138,8 +138,8 @@ TEST(PathBlender, JoinsWithRotaryAxesMovingAreNotMarkedTangent) {
 // X Y Z arc together keep P (a blend with the full trim took the tip 21 µm
 // past a 10 µm P).
 TEST(PathBlender, UnderToolCentrePointControlTheRotaryRateJumpBoundsTheTrim) {
-  std::vector<Segment> segs = {g1({10, 10, 5}, {20, 10, 5}, 0.05, 0.0),
-                               g1({20, 10, 5}, {20, 20, 5}, 0.05, 0.0)};
+  std::vector<Segment> segs = {g1_xyz({10, 10, 5}, {20, 10, 5}, 0.05, 0.0),
+                               g1_xyz({20, 10, 5}, {20, 20, 5}, 0.05, 0.0)};
   segs[0].end[5] = 30.0;  // C: 3 deg/mm, then 1 deg/mm
   segs[1].start[5] = 30.0;
   segs[1].end[5] = 40.0;

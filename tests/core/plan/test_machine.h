@@ -3,11 +3,20 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cstdint>
 #include <string>
 
 #include "machine/machine_config.h"
 
 namespace lcnc::testing {
+
+// Step positions with X at x and every other axis at 0.
+inline std::array<std::int64_t, kAxisCount> at_x(std::int64_t x) {
+  std::array<std::int64_t, kAxisCount> s{};
+  s[0] = x;
+  return s;
+}
 
 inline MachineConfig test_machine(double vmax = 500.0, double amax = 5000.0) {
   MachineConfig m;
