@@ -5,6 +5,9 @@ of the source as preprocessed (so any header it includes counts), its flags,
 clang-tidy's version and .clang-tidy, the checkout's path left out: a second
 run, in this clone or another, checks only what changed.
 
+A unity build's database (CMAKE_UNITY_BUILD) names the unity files only:
+each source they include is checked alone, with its unity file's flags.
+
 usage: tidy_cached.py BUILD_DIR SOURCE...   (exit 1 if any source has findings)
 """
 import concurrent.futures
@@ -16,11 +19,13 @@ import subprocess
 import sys
 
 
-def preprocess_command(entry):
-    """The entry's compile command turned into one that preprocesses to stdout."""
+def compiler_flags(entry):
+    """The compiler and its flags of an entry, without its launcher (env
+    VAR=VALUE ccache), input, output and dependency files."""
     args = shlex.split(entry["command"]) if "command" in entry else list(entry["arguments"])
-    if os.path.basename(args[0]) == "ccache":
+    while args and (os.path.basename(args[0]) in ("env", "ccache") or "=" in args[0]):
         args = args[1:]
+    src = os.path.realpath(os.path.join(entry["directory"], entry["file"]))
     out, skip = [], False
     for a in args:
         if skip:
@@ -29,17 +34,40 @@ def preprocess_command(entry):
         if a in ("-o", "-MF", "-MT", "-MQ"):
             skip = True
             continue
-        if a in ("-c", "-MD", "-MMD"):
+        if a in ("-c", "-MD", "-MMD") or os.path.realpath(os.path.join(entry["directory"], a)) == src:
             continue
         out.append(a)
-    return out + ["-E", "-P", "-o", "-"]
+    return out
+
+
+def preprocess_command(entry):
+    """The entry's compile command turned into one that preprocesses to stdout."""
+    return compiler_flags(entry) + [entry["file"], "-E", "-P", "-o", "-"]
+
+
+def unity_sources(entry):
+    """The sources a unity-build file includes (CMAKE_UNITY_BUILD), each with
+    its own command: the unity file's, compiling that source instead."""
+    unity = os.path.realpath(os.path.join(entry["directory"], entry["file"]))
+    args = shlex.split(entry["command"]) if "command" in entry else list(entry["arguments"])
+    out = {}
+    with open(unity) as f:
+        for line in f:
+            if line.startswith("#include \""):
+                src = os.path.realpath(line.split("\"")[1])
+                own = [src if os.path.realpath(os.path.join(entry["directory"], a)) == unity else a for a in args]
+                out[src] = {"directory": entry["directory"], "file": src, "arguments": own}
+    return out
 
 
 def main():
     build, sources = sys.argv[1], sys.argv[2:]
     root = os.getcwd()
     with open(os.path.join(build, "compile_commands.json")) as f:
-        entries = {os.path.realpath(os.path.join(e["directory"], e["file"])): e for e in json.load(f)}
+        entries = {}
+        for e in json.load(f):
+            path = os.path.realpath(os.path.join(e["directory"], e["file"]))
+            entries.update(unity_sources(e) if "/Unity/unity_" in path else {path: e})
     cache = os.path.join(os.environ.get("XDG_CACHE_HOME", os.path.expanduser("~/.cache")), "lasercnc", "clang-tidy")
     os.makedirs(cache, exist_ok=True)
     version = subprocess.run(["clang-tidy", "--version"], capture_output=True, text=True).stdout
@@ -57,14 +85,15 @@ def main():
             h.update(rules.encode())
             # the checkout's own path left out, as ccache's base_dir: another
             # clone of the same sources hits
-            flags = entry.get("command", " ".join(entry.get("arguments", [])))
-            h.update(flags.replace(root, "<checkout>").encode())
+            h.update(" ".join(compiler_flags(entry)).replace(root, "<checkout>").encode())
             h.update(pre.stdout.replace(root.encode(), b"<checkout>"))
             key = os.path.join(cache, h.hexdigest())
             if os.path.exists(key):
                 return src, True, ""
-        r = subprocess.run(["clang-tidy", "-p", build, "--quiet", "--extra-arg=-Wno-unknown-warning-option", src],
-                           capture_output=True, text=True)
+        # the entry's own flags (a unity build's sources are not in the database)
+        flags = compiler_flags(entry)[1:]
+        r = subprocess.run(["clang-tidy", "--quiet", entry["file"], "--", "-Wno-unknown-warning-option", *flags],
+                           capture_output=True, text=True, cwd=entry["directory"])
         ok = r.returncode == 0
         if ok and key:
             open(key, "w").close()
