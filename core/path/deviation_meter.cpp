@@ -40,12 +40,20 @@ double DeviationMeter::add(const Vec3& point, std::uint32_t index) {
   }
   const std::uint32_t low = index > kWindowBack ? index - kWindowBack : 0;
   while (!window_.empty() && window_.front().index < low) window_.pop_front();
+  // the point's own segment first: the others need only be searched
+  // where they could be nearer (SegmentGeometry::distance_xyz's bound)
   double best = std::numeric_limits<double>::infinity();
+  for (const Entry& e : window_) {
+    if (e.index == index) {
+      best = e.geo.distance_xyz(point);
+      break;
+    }
+  }
   double tol = 0.0;
   std::uint32_t line = 0;
   for (const Entry& e : window_) {
     if (e.index > index + kWindowAhead) break;
-    best = std::min(best, e.geo.distance_xyz(point));
+    best = std::min(best, e.geo.distance_xyz(point, best));
     tol = std::max(tol, e.tolerance_mm);
     if (e.index <= index) line = e.line;
   }

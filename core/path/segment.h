@@ -69,6 +69,20 @@ struct Segment {
   bool clockwise = false;
   std::uint32_t extra_turns = 0;
 
+  // Lines and rapids only: a piece of a smooth curve instead of a straight
+  // line (tool-centre-point control: the joints' path of a move). It runs
+  // from start to end as the cubic Hermite curve of σ ∈ [0, 1] whose
+  // derivatives dp/dσ at the ends are curve_d_start and curve_d_end, σ =
+  // s / curve_length: the path length is the curve's parameter scaled, not
+  // its arc length (see SegmentGeometry). smooth_in: the segment before it
+  // ends with the same dp/ds (a piece of the same curve): the join is no
+  // corner.
+  bool curve = false;
+  bool smooth_in = false;
+  double curve_length = 0.0;
+  Pose curve_d_start = Pose::Zero();
+  Pose curve_d_end = Pose::Zero();
+
   double feed_mm_s = 0.0;   // programmed path speed (mm/s, or deg/s for a pure rotary move); 0 on rapids
   double duration_s = 0.0;  // G93 inverse-time: the move takes this long; 0 otherwise
   double dwell_s = 0.0;     // Dwell only

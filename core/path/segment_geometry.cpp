@@ -1,7 +1,9 @@
 #include "path/segment_geometry.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "path/path_tolerances.h"
@@ -50,7 +52,7 @@ double atan2_small(double y, double x) noexcept {
 }  // namespace
 
 double path_length(const Segment& seg) {
-  if (seg.kind != MotionKind::Arc) return line_length(seg.end - seg.start);
+  if (seg.kind != MotionKind::Arc) return seg.curve ? seg.curve_length : line_length(seg.end - seg.start);
   return SegmentGeometry(seg).length();
 }
 
@@ -68,10 +70,18 @@ void SegmentGeometry::set(const Segment& seg) {
     helix_h_ = radius_ = sweep_ = plane_ratio_ = dr_ = spiral_excess_ = 0.0;
     sin_sweep_ = 0.0;
     cos_sweep_ = 1.0;
-    length_ = line_length(d);
+    curve_ = seg.curve;
+    if (curve_) {
+      d0_ = seg.curve_d_start;
+      d1_ = seg.curve_d_end;
+      length_ = seg.curve_length;
+    } else {
+      length_ = line_length(d);
+    }
     inv_length_ = length_ > 0.0 ? 1.0 / length_ : 0.0;
     return;
   }
+  curve_ = false;
   arc_ = true;
   center_ = seg.center;
   const Vec3 a = start_.head<3>(), b = end_.head<3>();
@@ -148,6 +158,7 @@ void SegmentGeometry::set_circular_arc(const Pose& start, const Pose& end, const
   start_ = start;
   end_ = end;
   arc_ = true;
+  curve_ = false;
   center_ = center;
   u_ = u;
   w_ = w;
@@ -194,18 +205,35 @@ Pose SegmentGeometry::tangent_at_angle(double f, double sin_phi, double cos_phi)
 }
 
 Pose SegmentGeometry::tangent(double s) const {
+  if (curve_) return curve_d1(std::clamp(s * inv_length_, 0.0, 1.0)) * inv_length_;
   if (!arc_) return tangent_at_angle(0.0, 0.0, 1.0);
   const double phi = angle_at(s);
   return tangent_at_angle(sweep_ > 0.0 ? phi / sweep_ : 0.0, std::sin(phi), std::cos(phi));
 }
 
 // angle_at(0) is 0 and angle_at(length_) is sweep_ exactly (s / L is 0 and 1).
-Pose SegmentGeometry::start_tangent() const { return tangent_at_angle(0.0, 0.0, 1.0); }
+Pose SegmentGeometry::start_tangent() const {
+  return curve_ ? Pose(d0_ * inv_length_) : tangent_at_angle(0.0, 0.0, 1.0);
+}
 
-Pose SegmentGeometry::end_tangent() const { return tangent_at_angle(1.0, sin_sweep_, cos_sweep_); }
+Pose SegmentGeometry::end_tangent() const {
+  return curve_ ? Pose(d1_ * inv_length_) : tangent_at_angle(1.0, sin_sweep_, cos_sweep_);
+}
+
+// H'(σ) = 6σ(1−σ)·(p1 − p0) + (1 − 4σ + 3σ²)·d0 + (3σ² − 2σ)·d1
+Pose SegmentGeometry::curve_d1(double f) const {
+  return (6.0 * f * (1.0 - f)) * (end_ - start_) + (1.0 - 4.0 * f + 3.0 * f * f) * d0_ +
+         (3.0 * f * f - 2.0 * f) * d1_;
+}
+
+// H''(σ) = (6 − 12σ)·(p1 − p0) + (6σ − 4)·d0 + (6σ − 2)·d1
+Pose SegmentGeometry::curve_d2(double f) const {
+  return (6.0 - 12.0 * f) * (end_ - start_) + (6.0 * f - 4.0) * d0_ + (6.0 * f - 2.0) * d1_;
+}
 
 // P''(φ)·(dφ/ds)² with P''(φ) = −r(φ)·e_r + 2·(Δr/sweep)·e_θ
 Pose SegmentGeometry::curvature(double s) const {
+  if (curve_) return curve_d2(std::clamp(s * inv_length_, 0.0, 1.0)) * (inv_length_ * inv_length_);
   Pose k = Pose::Zero();
   if (!arc_ || length_ <= 0.0) return k;
   const double phi = angle_at(s);
@@ -217,9 +245,55 @@ Pose SegmentGeometry::curvature(double s) const {
   return k;
 }
 
-double SegmentGeometry::distance_xyz(const Vec3& p) const {
+double SegmentGeometry::distance_xyz(const Vec3& p, double below) const {
   const Vec3 a = start_.head<3>();
   const Vec3 b = end_.head<3>();
+  if (curve_) {
+    // The curve lies in the box of its Bézier points p0, p0 + d0/3,
+    // p1 − d1/3, p1: no nearer than the box.
+    const Vec3 b1 = a + d0_.head<3>() / 3.0, b2 = b - d1_.head<3>() / 3.0;
+    const Vec3 lo_box = a.cwiseMin(b).cwiseMin(b1).cwiseMin(b2),
+               hi_box = a.cwiseMax(b).cwiseMax(b1).cwiseMax(b2);
+    const double to_box = (p - p.cwiseMax(lo_box).cwiseMin(hi_box)).norm();
+    if (to_box >= below) return to_box;
+    // kCurveChords + 1 points, then a golden-section search of the distance
+    // over the parameter either side of each that is nearer than both its
+    // neighbours (a curve may pass near a point twice)
+    Pose q;
+    const auto dist = [&](double f) {
+      at(f * length_, q);
+      return (q.head<3>() - p).norm();
+    };
+    std::array<double, kCurveChords + 1> d{};
+    for (int k = 0; k <= kCurveChords; ++k) d[k] = dist(static_cast<double>(k) / kCurveChords);
+    double best = std::numeric_limits<double>::infinity();
+    for (int k = 0; k <= kCurveChords; ++k) {
+      best = std::min(best, d[k]);
+      if ((k > 0 && d[k - 1] < d[k]) || (k < kCurveChords && d[k + 1] < d[k])) continue;
+      constexpr double kGolden = 0.6180339887498949;
+      double lo = std::max(0, k - 1) / static_cast<double>(kCurveChords);
+      double hi = std::min(kCurveChords, k + 1) / static_cast<double>(kCurveChords);
+      double x1 = hi - kGolden * (hi - lo), x2 = lo + kGolden * (hi - lo);
+      double f1 = dist(x1), f2 = dist(x2);
+      for (int it = 0; it < kCurveSearchSteps; ++it) {
+        if (f1 < f2) {
+          hi = x2;
+          x2 = x1;
+          f2 = f1;
+          x1 = hi - kGolden * (hi - lo);
+          f1 = dist(x1);
+        } else {
+          lo = x1;
+          x1 = x2;
+          f1 = f2;
+          x2 = lo + kGolden * (hi - lo);
+          f2 = dist(x2);
+        }
+      }
+      best = std::min({best, f1, f2});
+    }
+    return best;
+  }
   if (!arc_) return distance_to_segment(p, a, b);
   // Candidate parameters: the point's polar angle in every turn of the sweep,
   // plus both ends. On a circle the polar angle is the closest point; on a

@@ -12,6 +12,15 @@
 // taken into it); the rotary axes move linearly with s. An arc whose end
 // comes back onto its start (to kFullTurnAngle) is a full turn.
 //
+// Curve (Segment::curve, a piece of a smooth joint path): the cubic Hermite
+// curve of σ = s/L ∈ [0, 1] with dp/dσ = d0 at the start and d1 at the end,
+//   p(σ) = (2σ³ − 3σ² + 1)·p0 + (σ³ − 2σ² + σ)·d0 + (3σ² − 2σ³)·p1 + (σ³ − σ²)·d1
+// in every axis, L = Segment::curve_length: the curve's own parameter
+// scaled (the move's parameter under tool-centre-point control), so dp/ds
+// = d/L at the ends whatever the arc length, and two pieces whose d/L match
+// join with no jump in any axis' velocity at any path speed. |dp/ds| need
+// not be 1 inside: the planner's limits take the axes' rates as they are.
+//
 // Spiral: when the end lies at another distance from the centre than the
 // start (G-code accepts IJK arcs whose two radii differ within a tolerance),
 // the radius changes linearly with the angle, r(φ) = r0 + Δr·φ/sweep, so the
@@ -28,6 +37,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "geom/pose.h"
@@ -86,6 +96,15 @@ class SegmentGeometry {
 
   [[nodiscard]] double length() const noexcept { return length_; }
   [[nodiscard]] bool is_arc() const noexcept { return arc_; }
+  // A piece of a smooth curve (Segment::curve): dp/ds and d²p/ds² vary.
+  [[nodiscard]] bool is_curve() const noexcept { return curve_; }
+  // A curve's dp/dσ and d²p/dσ² at σ = s/L ∈ [0, 1].
+  [[nodiscard]] Pose curve_d1(double f) const;
+  [[nodiscard]] Pose curve_d2(double f) const;
+  // distance_xyz() on a curve: this many + 1 points, then this many
+  // golden-section steps about each local nearest (the bracket shrinks to 10⁻⁹ of the piece).
+  static constexpr int kCurveChords = 16;
+  static constexpr int kCurveSearchSteps = 40;
   // Radius at the start; on a spiral also the largest radius and the change.
   [[nodiscard]] double radius() const noexcept { return radius_; }
   [[nodiscard]] double radius_max() const noexcept { return radius_ + std::max(0.0, dr_); }
@@ -133,8 +152,12 @@ class SegmentGeometry {
   [[nodiscard]] Pose curvature(double s) const;
   // Fraction of the path speed seen in the arc plane (r·sweep / L); 0 for lines.
   [[nodiscard]] double plane_speed_ratio() const noexcept { return plane_ratio_; }
-  // Closest distance from a linear-axes point to this segment's XYZ path (mm).
-  [[nodiscard]] double distance_xyz(const Vec3& p) const;
+  // Closest distance from a linear-axes point to this segment's XYZ path
+  // (mm). On a curve, when a bound shows it is at least `below`, that bound
+  // instead (a value ≥ below: a caller taking the least of several loses
+  // nothing, and skips the search on the curves that are far).
+  [[nodiscard]] double distance_xyz(const Vec3& p,
+                                    double below = std::numeric_limits<double>::infinity()) const;
   // Newton steps that refine a helix's closest point (distance_xyz):
   // quadratic convergence from the polar angle, a few are exact to rounding.
   static constexpr int kHelixNewtonSteps = 8;
@@ -150,6 +173,8 @@ class SegmentGeometry {
 
   Pose start_, end_;
   bool arc_ = false;
+  bool curve_ = false;
+  Pose d0_ = Pose::Zero(), d1_ = Pose::Zero();  // a curve's dp/dσ at its ends
   Vec3 center_ = Vec3::Zero();
   Vec3 u_ = Vec3::UnitX(), w_ = Vec3::UnitY();
   Vec3 axis_n_ = Vec3::Zero();  // helix direction (unit) or zero
@@ -165,6 +190,12 @@ inline void SegmentGeometry::at(double s, Pose& p) const {
   const double f = std::max(0.0, s * inv_length_);
   if (length_ <= 0.0 || s >= length_ || f >= 1.0) {
     p = end_;
+    return;
+  }
+  if (curve_) {
+    const double f2 = f * f, f3 = f2 * f;
+    p = (2.0 * f3 - 3.0 * f2 + 1.0) * start_ + (f3 - 2.0 * f2 + f) * d0_ + (3.0 * f2 - 2.0 * f3) * end_ +
+        (f3 - f2) * d1_;
     return;
   }
   if (!arc_) {

@@ -9,8 +9,8 @@ namespace lcnc {
 namespace {
 
 bool mergeable(const Segment& s) {
-  return s.kind == MotionKind::Linear && s.path_mode == PathMode::Blend && merge_tolerance(s) > 0.0 &&
-         (s.end - s.start).tail<3>().norm() == 0.0 &&
+  return s.kind == MotionKind::Linear && !s.curve && s.path_mode == PathMode::Blend &&
+         merge_tolerance(s) > 0.0 && (s.end - s.start).tail<3>().norm() == 0.0 &&
          (s.end.head<3>() - s.start.head<3>()).norm() > plan::kMinSegmentLength;
 }
 

@@ -63,7 +63,7 @@ double Lookahead::junction_limit(const PlannedSegment& a, const PlannedSegment& 
   if ((sa.kind == MotionKind::Rapid) != (sb.kind == MotionKind::Rapid)) return 0.0;
   if (!ta) ta = a.geo.end_tangent();
   const Pose tb = b.geo.start_tangent();
-  if (!b.geo.is_arc()) back_end_tangent_ = tb;  // a line ends as it starts
+  if (!b.geo.is_arc() && !b.geo.is_curve()) back_end_tangent_ = tb;  // a line ends as it starts
   double v = std::numeric_limits<double>::infinity();
   for (int i = 0; i < kAxisCount; ++i) {
     const double jump = std::abs(tb[i] - (*ta)[i]);
@@ -107,7 +107,7 @@ void Lookahead::set_feed_scale(double k) {
     n.planned_back = false;
     if (j > 0) tail_length_ += n.length;
     if (!n.dwell && segment(j).k_plan < k) set_speed(j, k);  // never slower than planned
-    braking_length_ = std::max(braking_length_, braking_length(n.x_max));
+    braking_length_ = std::max(braking_length_, braking_length(j));
   }
   for (std::size_t j = 0; j + 1 < size_; ++j) {
     Node& n = node(j);
@@ -162,7 +162,7 @@ bool Lookahead::fill() {
       p.v_limit = 0.0;
     } else {
       set_speed(k, feed_scale_);
-      braking_length_ = std::max(braking_length_, braking_length(n.x_max));
+      braking_length_ = std::max(braking_length_, braking_length(k));
     }
     if (k > 0) {
       Node& before = node(k - 1);
@@ -235,8 +235,7 @@ void Lookahead::plan_and_release() {
   handed_ = 0;
   // The braking length of what stays (the released may have been faster).
   braking_length_ = 0.0;
-  for (std::size_t k = count; k < n; ++k)
-    braking_length_ = std::max(braking_length_, braking_length(node(k).x_max));
+  for (std::size_t k = count; k < n; ++k) braking_length_ = std::max(braking_length_, braking_length(k));
 }
 
 SourceStatus Lookahead::next(const PlannedSegment*& out) {

@@ -104,9 +104,16 @@ class Lookahead {
 
   bool fill();  // pull until the window is deep enough; false when nothing is left
   void plan_and_release();
-  // How far a stop from speed sqrt(x) reaches back (0 on a machine with no axes).
-  [[nodiscard]] double braking_length(double x) const noexcept {
-    return a_brake_ > 0.0 ? x / (2.0 * a_brake_) : 0.0;
+  // How far a stop from segment k's top speed reaches back (0 on a machine
+  // with no axes): at the weakest axis' acceleration — or, on a curve piece,
+  // at its own deceleration at half its top speed when that is less (a
+  // joint curve near the pole slows far below any axis' limit; a window
+  // too short for its stops would have each release plan one it need not).
+  [[nodiscard]] double braking_length(std::size_t k) noexcept {
+    const Node& n = node(k);
+    double a = a_brake_;
+    if (segment(k).geo.is_curve()) a = std::min(a, n.lim.at(0.5 * std::sqrt(n.x_max)).decel);
+    return a > 0.0 ? n.x_max / (2.0 * a) : 0.0;
   }
   // The junction's limit from the geometry and the axes (∞ when none), to be
   // taken with the two segments' top speeds.

@@ -13,8 +13,9 @@
 namespace lcnc {
 namespace {
 
+// (A curve's corners are its own: the tool-centre-point expander rounds them.)
 bool blendable_line(const Segment& s) {
-  return s.kind == MotionKind::Linear && s.path_mode == PathMode::Blend &&
+  return s.kind == MotionKind::Linear && !s.curve && s.path_mode == PathMode::Blend &&
          (s.end.head<3>() - s.start.head<3>()).norm() > plan::kMinSegmentLength;
 }
 
@@ -64,7 +65,7 @@ SourceStatus PathBlender::next(const IndexedSegment*& out) {
     IndexedSegment& pending = slots_[pending_slot_];
     IndexedSegment& cur = slots_[1 - pending_slot_];
     const SourceStatus st = merger_.next(cur);
-    cur.tangent_in = false;
+    cur.tangent_in = cur.seg.smooth_in;  // a piece of the curve before it
     if (st != SourceStatus::Item) {
       if (have_pending_) hand_out(pending);
       have_pending_ = false;

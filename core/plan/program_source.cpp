@@ -1,6 +1,7 @@
 #include "plan/program_source.h"
 
 #include "path/travel_check.h"
+#include "plan/tolerance_budget.h"
 
 #include <cmath>
 #include <numbers>
@@ -33,7 +34,12 @@ Result<std::unique_ptr<ProgramSource>> ProgramSource::open(const std::string& pa
   if (!reader) return reader.error();
   ps->reader_ = std::move(reader).value();
   if (kin) {
-    ps->tcp_.emplace(*kin, machine.tcp, reader_source(*ps->reader_), joints);
+    // a rounded corner keeps within P what rounding to steps and the jerk
+    // filter add (plan/tolerance_budget.h)
+    const ToleranceBudget budget =
+        tolerance_budget(machine, machine.max_jerk > 0.0 ? jerk_filter_budget_mm(machine) : 0.0);
+    ps->tcp_.emplace(*kin, machine.tcp, reader_source(*ps->reader_), joints, machine.path_tolerance_mm,
+                     budget.quantization_mm + budget.jerk_filter_mm);
   }
   return ps;
 }

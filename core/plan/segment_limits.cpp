@@ -167,6 +167,87 @@ SpiralDerate spiral_derate(const SegmentGeometry& geo, const MachineConfig& mach
 
 }  // namespace
 
+namespace {
+
+// The range of f = a·σ² + b·σ + c over σ ∈ [0, 1]: its ends and its vertex.
+void quadratic_range(double a, double b, double c, double& lo, double& hi) {
+  lo = std::min(c, a + b + c);
+  hi = std::max(c, a + b + c);
+  if (a != 0.0) {
+    const double s = -b / (2.0 * a);
+    if (s > 0.0 && s < 1.0) {
+      const double v = (a * s + b) * s + c;
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+  }
+}
+
+// A curve piece (SegmentGeometry::is_curve): axis i moves at k_i(σ) =
+// p_i'(σ)/L per unit of path and bends by κ_i(σ) = p_i''(σ)/L², so at path
+// speed v and tangential acceleration a_t it sees k_i·a_t + κ_i·v². Let
+// K_i = max|k_i| (p_i' is quadratic in σ: its ends and its vertex). Where
+// k_i keeps one sign σ_i over the piece, the bend helps one way and
+// hinders the other: with h⁺ = max(σ_i·κ_i) and h⁻ = max(−σ_i·κ_i) over
+// the piece (κ_i is linear in σ: its ends), the axis keeps amax_i when
+//   speeding up    a_t ≤ (amax_i − h⁺·x) / K_i        (x = v²)
+//   slowing down   a_t ≤ (amax_i − h⁻·x) / K_i
+// (k_i·a_t ≤ K_i·a_t, and the bend's part is at most h·x); where k_i
+// changes sign both take h = max|κ_i|. These are box lines a ≤ p − q·x of
+// the arcs' (q < 0 where the bend helps). Two axes share each of
+// SegmentLimits' slots (a slot has two lines per side; the norm bound is
+// off: b = cap = 0). The top speed keeps every axis within its velocity,
+// and the bend within kArcNormalShare of its acceleration, so the other
+// side of each bound (k_i·a_t + κ_i·x ≥ −amax_i) holds as well.
+void curve_limits(const SegmentGeometry& geo, const MachineConfig& machine, SegmentLimits& lim) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const double L = geo.length();
+  const Pose d0 = geo.curve_d1(0.0), d1 = geo.curve_d1(1.0);
+  const Pose c0 = geo.curve_d2(0.0), c1 = geo.curve_d2(1.0);
+  const Pose chord = geo.at(L) - geo.at(0.0);
+  double v_max = kInf;
+  int line = 0;
+  for (int i = 0; i < kAxisCount; ++i) {
+    // p_i'(σ) = a·σ² + b·σ + c
+    const double a = -6.0 * chord[i] + 3.0 * d0[i] + 3.0 * d1[i];
+    const double b = 6.0 * chord[i] - 4.0 * d0[i] - 2.0 * d1[i];
+    double lo, hi;
+    quadratic_range(a, b, d0[i], lo, hi);
+    const double k = std::max(-lo, hi) / L;
+    const double kappa = std::max(std::abs(c0[i]), std::abs(c1[i])) / (L * L);
+    const double sign = lo > 0.0 ? 1.0 : hi < 0.0 ? -1.0 : 0.0;
+    const double h_up = sign == 0.0 ? kappa : std::max(sign * c0[i], sign * c1[i]) / (L * L);
+    const double h_down = sign == 0.0 ? kappa : std::max(-sign * c0[i], -sign * c1[i]) / (L * L);
+    if (k <= plan::kNegligibleAxisShare && kappa <= plan::kNegligibleAxisShare) continue;
+    const AxisConfig& ax = machine.axes[i];
+    if (!ax.present) {
+      lim.v_max = 0.0;  // the reader rejects such moves first
+      return;
+    }
+    if (k > plan::kNegligibleAxisShare) v_max = std::min(v_max, ax.max_velocity / k);
+    if (kappa > plan::kNegligibleAxisShare)
+      v_max = std::min(v_max, std::sqrt(plan::kArcNormalShare * ax.max_acceleration / kappa));
+    if (k <= plan::kNegligibleAxisShare) continue;  // bending only: the top speed holds it
+    if (line % 2 == 0) {
+      ArcAxisBound& slot = lim.axes[lim.axis_count++];
+      slot.p_up = slot.p_down = {kInf, kInf};
+      slot.q_up = slot.q_down = {0.0, 0.0};
+      slot.b = slot.cap = 0.0;
+    }
+    ArcAxisBound& slot = lim.axes[lim.axis_count - 1];
+    const int j = line % 2;
+    slot.p_up[j] = slot.p_down[j] = ax.max_acceleration / k;
+    slot.q_up[j] = h_up / k;
+    slot.q_down[j] = h_down / k;
+    ++line;
+  }
+  if (!std::isfinite(v_max)) return;
+  lim.v_max = v_max;
+  lim.a_linear = kInf;
+}
+
+}  // namespace
+
 void segment_limits(const SegmentGeometry& geo, const MachineConfig& machine, SegmentLimits& lim) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   lim.v_max = 0.0;  // until known: no motion (as for the segments rejected below)
@@ -175,6 +256,10 @@ void segment_limits(const SegmentGeometry& geo, const MachineConfig& machine, Se
   lim.axis_count = 0;
   const double L = geo.length();
   if (L <= plan::kMinSegmentLength) return;
+  if (geo.is_curve()) {
+    curve_limits(geo, machine, lim);
+    return;
+  }
   double v_max = kInf, a_linear = kInf;
   // Linearly moving part of every axis (whole line; helix normal and rotary axes of an arc).
   Pose lin = geo.start_tangent();

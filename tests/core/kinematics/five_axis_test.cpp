@@ -130,7 +130,9 @@ TEST(FiveAxis, TableTableTurnsTheHoleAxisOntoMachineZ) {
   EXPECT_LT((t.linear() * tool_axis(r) - Vec3::UnitZ()).norm(), 1e-12);
 }
 
-// TCP: the tip stays on the programmed line within 1 µm while A and C move.
+// TCP: the tip stays on the programmed line within 1 µm while A and C move,
+// along the curve pieces as the planner runs them, and the pieces join with
+// the same dq/ds (no corner, no velocity jump at any speed).
 TEST(TcpControl, TipStaysOnTheLineWhileAAndCMove) {
   for (MachineVariant v : {MachineVariant::HeadHead, MachineVariant::TableTable}) {
     const FiveAxisKinematics kin = make(v);
@@ -142,23 +144,31 @@ TEST(TcpControl, TipStaysOnTheLineWhileAAndCMove) {
       ASSERT_TRUE(move.ok()) << move.error().to_string();
       Segment proto;
       proto.feed_mm_s = 20.0;
-      const Result<std::vector<Segment>> segs = tcp_line_segments(kin, a, b, *move, proto, 0.0005, 0.001);
+      const TcpMove tm = TcpMove::make(kin, a, b, *move);
+      const Result<std::vector<Segment>> segs = tcp_curve_segments(tm, proto, 0.0005, 0.001);
       ASSERT_TRUE(segs.ok()) << segs.error().to_string();
-      ASSERT_GT(segs->size(), 4u);
+      ASSERT_GT(segs->size(), 1u);
       EXPECT_LT((kin.forward(segs->front().start).tip_mm - a).norm(), 1e-9);
       EXPECT_LT((kin.forward(segs->back().end).tip_mm - b).norm(), 1e-9);
-      double worst = 0.0;
+      double worst = 0.0, time = 0.0;
       for (std::size_t i = 0; i < segs->size(); ++i) {
         const Segment& s = (*segs)[i];
+        ASSERT_TRUE(s.curve);
+        EXPECT_EQ(s.smooth_in, i > 0);
+        const SegmentGeometry geo(s);
+        time += geo.length() / s.feed_mm_s;
         if (i > 0) {
-          ASSERT_EQ(s.start, (*segs)[i - 1].end);
+          const Segment& before = (*segs)[i - 1];
+          ASSERT_EQ(s.start, before.end);
+          const Pose jump = geo.start_tangent() - SegmentGeometry(before).end_tangent();
+          EXPECT_LT(jump.norm(), 1e-6 * geo.start_tangent().norm()) << "piece " << i;
         }
-        for (int k = 0; k <= 40; ++k) {
-          const Pose q = s.start + (k / 40.0) * (s.end - s.start);  // joints linear, as planned
-          worst = std::max(worst, distance_to_segment(kin.forward(q).tip_mm, a, b));
-        }
+        for (int k = 0; k <= 40; ++k)
+          worst =
+              std::max(worst, distance_to_segment(kin.forward(geo.at(geo.length() * k / 40.0)).tip_mm, a, b));
       }
-      EXPECT_LE(worst, 0.001) << "variant " << int(v) << " " << method_name(m);
+      EXPECT_LE(worst, 0.0005) << "variant " << int(v) << " " << method_name(m);
+      EXPECT_NEAR(time, (b - a).norm() / proto.feed_mm_s, 1e-9);  // the tip at F
       // The rotary axes really moved.
       const Pose d = segs->back().end - segs->front().start;
       EXPECT_GT(std::max(std::abs(d[index(Axis::A)]), std::abs(d[index(Axis::C)])), 10.0);
@@ -166,7 +176,10 @@ TEST(TcpControl, TipStaysOnTheLineWhileAAndCMove) {
   }
 }
 
-TEST(TcpControl, FeedScalesToTheTipSpeed) {
+// At its feed a piece takes the time the tip needs at F for its travel
+// along it; where the tip stands still, the time A and C need at F deg/s
+// (RS274NGC's feed of a rotary move).
+TEST(TcpControl, FeedIsTheTipsSpeedOrTheRotaryAxesWhereTheTipStands) {
   const FiveAxisKinematics kin = make(MachineVariant::HeadHead);
   const Result<OrientationMove> move =
       OrientationMove::between_joints(OrientationMethod::Vector, {20.0, 0.0}, {40.0, 30.0}, kin.limits());
@@ -174,13 +187,24 @@ TEST(TcpControl, FeedScalesToTheTipSpeed) {
   Segment proto;
   proto.feed_mm_s = 10.0;
   const Vec3 a(0, 0, 0), b(5, 0, 0);
-  const auto segs = tcp_line_segments(kin, a, b, *move, proto, 0.001, 0.001);
+  const auto segs = tcp_curve_segments(TcpMove::make(kin, a, b, *move), proto, 0.001, 0.001);
   ASSERT_TRUE(segs.ok());
   for (const Segment& s : *segs) {
     const double tip = (kin.forward(s.end).tip_mm - kin.forward(s.start).tip_mm).norm();
-    const double joint = (s.end - s.start).head<3>().norm();
-    EXPECT_NEAR(joint / s.feed_mm_s, tip / proto.feed_mm_s, 1e-9);  // same time for both
+    EXPECT_NEAR(s.curve_length / s.feed_mm_s, tip / proto.feed_mm_s, 1e-6 * tip / proto.feed_mm_s);
   }
+  const Result<OrientationMove> turn = OrientationMove::between_joints(
+      OrientationMethod::JointLinear, {30.0, 0.0}, {30.0, 90.0}, kin.limits());
+  ASSERT_TRUE(turn.ok());
+  EXPECT_NEAR(tcp_move_length(a, a, *turn), 90.0, 1e-9);
+  const auto spin = tcp_curve_segments(TcpMove::make(kin, a, a, *turn), proto, 0.001, 0.001);
+  ASSERT_TRUE(spin.ok());
+  double time = 0.0;
+  for (const Segment& s : *spin) {
+    time += s.curve_length / s.feed_mm_s;
+    EXPECT_LT((kin.forward(s.end).tip_mm - a).norm(), 1e-9);  // the tip stands
+  }
+  EXPECT_NEAR(time, 90.0 / proto.feed_mm_s, 1e-9);
 }
 
 TEST(TcpControl, RejectsZeroTolerance) {
@@ -188,7 +212,8 @@ TEST(TcpControl, RejectsZeroTolerance) {
   const auto move =
       OrientationMove::between_joints(OrientationMethod::Vector, {20.0, 0.0}, {40.0, 30.0}, kin.limits());
   ASSERT_TRUE(move.ok());
-  const auto segs = tcp_line_segments(kin, Vec3::Zero(), Vec3::UnitX(), *move, Segment{}, 0.0, 0.1);
+  const auto segs =
+      tcp_curve_segments(TcpMove::make(kin, Vec3::Zero(), Vec3::UnitX(), *move), Segment{}, 0.0, 0.1);
   ASSERT_FALSE(segs.ok());
   EXPECT_EQ(segs.error().code, ErrorCode::GcodeBadValue);
 }

@@ -85,11 +85,11 @@ TEST(TcpProgram, TipFollowsTheLineWhileAAndCMove) {
   double worst = 0.0;
   for (const Segment& s : *segs) {
     EXPECT_EQ(s.kind, MotionKind::Linear);
+    EXPECT_TRUE(s.curve);
     EXPECT_EQ(s.line, 2u);
-    for (int k = 0; k <= 8; ++k) {
-      const Pose q = s.start + (s.end - s.start) * (k / 8.0);  // the planner moves joints linearly
-      worst = std::max(worst, to_line(kin.forward(q).tip_mm, a, b));
-    }
+    const SegmentGeometry geo(s);  // the curve the planner runs
+    for (int k = 0; k <= 8; ++k)
+      worst = std::max(worst, to_line(kin.forward(geo.at(geo.length() * k / 8.0)).tip_mm, a, b));
   }
   EXPECT_LE(worst, m.tcp.tip_tolerance_mm + 1e-9);
   const Pose end = segs->back().end;
@@ -143,17 +143,24 @@ TEST(TcpProgram, TheMachineStaysOnItsBranchWhateverBranchTheProgramNames) {
                   b.z(), c.x(), c.y(), c.z());
     Result<std::vector<Segment>> segs = expand(prog, m, start);
     ASSERT_TRUE(static_cast<bool>(segs)) << segs.error().to_string();
-    double worst = 0.0;
-    for (const Segment& s : *segs) {
+    double worst = 0.0, worst_corner = 0.0;
+    for (std::size_t i = 0; i < segs->size(); ++i) {
+      const Segment& s = (*segs)[i];
       EXPECT_NEAR(s.end[3], -15.0, 1e-9) << "line " << s.line;
       EXPECT_NEAR(s.end[5], 20.0, 1e-9) << "line " << s.line;
-      const Vec3 p0 = s.line == 2 ? a : b, p1 = s.line == 2 ? b : c;
+      // the corner of the two lines (G64: the startup code's), rounded by
+      // the piece that starts on line 2 and ends on line 3
+      const bool corner = i > 0 && s.line == 3 && (*segs)[i - 1].line == 2;
+      const SegmentGeometry geo(s);
       for (int k = 0; k <= 8; ++k) {
-        const Pose q = s.start + (s.end - s.start) * (k / 8.0);
-        worst = std::max(worst, to_line(kin.forward(q).tip_mm, p0, p1));
+        const Vec3 tip = kin.forward(geo.at(geo.length() * k / 8.0)).tip_mm;
+        const double d = corner ? std::min(to_line(tip, a, b), to_line(tip, b, c))
+                                : to_line(tip, s.line == 2 ? a : b, s.line == 2 ? b : c);
+        (corner ? worst_corner : worst) = std::max(corner ? worst_corner : worst, d);
       }
     }
     EXPECT_LE(worst, m.tcp.tip_tolerance_mm + 1e-9) << method_name(method);
+    EXPECT_LE(worst_corner, 0.5 * m.path_tolerance_mm + 1e-9) << method_name(method);
     EXPECT_LT((kin.forward(segs->back().end).tip_mm - c).norm(), 1e-6);
   }
 }
