@@ -16,7 +16,7 @@ namespace {
 
 // Step of u for dq/du: far above the rounding of q (1e-16 of hundreds of
 // mm), far below a piece (2^-24 of a move at the deepest).
-constexpr double kRateStepU = 1e-7;
+constexpr double kJointRateStepU = 1e-7;
 // Samples of a move's joint path and of the rotary travel of one whose tip
 // stands still (their chords: lengths within ~10⁻⁴ of the curve's).
 constexpr int kLengthSamples = 64;
@@ -31,7 +31,7 @@ constexpr double kMaxRateChange = 0.05;
 Pose TcpMove::joints_at(double u) const { return kin->joints_for_tip(tip_at(u), move.joints_at(u)); }
 
 Pose TcpMove::rate_at(double u) const {
-  const double h = kRateStepU;
+  const double h = kJointRateStepU;
   if (u - h < 0.0) return (-3.0 * joints_at(u) + 4.0 * joints_at(u + h) - joints_at(u + 2.0 * h)) / (2.0 * h);
   if (u + h > 1.0) return (3.0 * joints_at(u) - 4.0 * joints_at(u - h) + joints_at(u - 2.0 * h)) / (2.0 * h);
   return (joints_at(u + h) - joints_at(u - h)) / (2.0 * h);

@@ -39,7 +39,7 @@ MachineConfig machine() {
   return *m;
 }
 
-fs::path write(const std::string& name, const std::string& text) {
+fs::path write_job_pipeline(const std::string& name, const std::string& text) {
   const fs::path dir = fs::temp_directory_path() / ("lcnc_pipeline_" + std::to_string(getpid()));
   fs::create_directories(dir);
   const fs::path p = dir / name;
@@ -129,7 +129,7 @@ double worst_accel_excess(const std::vector<rt::TraceRecord>& recs, const Machin
 
 TEST(JobPipeline, RandomProgramsUnderRandomOverrideChangesLoseNoStep) {
   for (std::uint32_t seed = 1; seed <= 3; ++seed) {
-    const fs::path prog = write("random_" + std::to_string(seed) + ".ngc", random_program(seed));
+    const fs::path prog = write_job_pipeline("random_" + std::to_string(seed) + ".ngc", random_program(seed));
     ASSERT_TRUE(static_cast<bool>(check_program(prog.string(), machine()))) << seed;
     Job job;
     job.run(prog);
@@ -161,7 +161,7 @@ TEST(JobPipeline, RandomProgramsUnderRandomOverrideChangesLoseNoStep) {
 // and never past it, and the error names the line and the axis.
 TEST(JobPipeline, AProgramFailingMidWayStopsAtRestAtItsLastGoodLine) {
   const fs::path prog =
-      write("past_limit.ngc", "G21 G90\nG0 X900 Y100\nM3 S50\nG1 X990 F30000\nG1 X1200\nM2\n");
+      write_job_pipeline("past_limit.ngc", "G21 G90\nG0 X900 Y100\nM3 S50\nG1 X990 F30000\nG1 X1200\nM2\n");
   const Result<ProgramSummary> checked = check_program(prog.string(), machine());
   ASSERT_FALSE(static_cast<bool>(checked));  // what lasercnc run says before running
   EXPECT_EQ(checked.error().code, ErrorCode::GcodeBeyondTravel);
@@ -206,7 +206,7 @@ TEST(JobPipeline, AProgramFailingMidWayStopsAtRestAtItsLastGoodLine) {
 // see the abort itself, not only when it waits for room — else it plans on to
 // the program's end (here 90 s of motion) before the job counts as over.
 TEST(JobPipeline, AnAbortedFeedPlansNoFurtherWhileItsEntriesAreDiscarded) {
-  const fs::path prog = write("long_line.ngc", "G21 G90\nM3 S50\nG1 X900 F600\nM5\nM2\n");
+  const fs::path prog = write_job_pipeline("long_line.ngc", "G21 G90\nM3 S50\nG1 X900 F600\nM5\nM2\n");
   Job job;  // the kernel not started
   job.feed->start(prog.string(), ReaderOptions{});
   // This thread discards as the kernel's flush does, and asks for the abort
@@ -231,7 +231,7 @@ TEST(JobPipeline, AnAbortedFeedPlansNoFurtherWhileItsEntriesAreDiscarded) {
 // low, waits at rest, and runs on when the planner comes back: the job ends
 // with every step.
 TEST(JobPipeline, APlannerStalledAtFullSpeedBrakesAlongThePathAndRunsOn) {
-  const fs::path prog = write("stall.ngc", "G21 G90\nM3 S50\nG1 X250 F6000\nM5\nM2\n");
+  const fs::path prog = write_job_pipeline("stall.ngc", "G21 G90\nM3 S50\nG1 X250 F6000\nM5\nM2\n");
   std::unique_ptr<rt::TraceRing> trace = std::make_unique<rt::TraceRing>();
   std::unique_ptr<rt::RtLogRing> log = std::make_unique<rt::RtLogRing>();
   Job job(trace.get());
@@ -320,7 +320,7 @@ TEST(JobPipeline, OverrideRaisedTo150AndLoweredTo40MidJobKeepsEveryLimitAndStep)
       text += buf;
     }
   text += "M5\nM2\n";
-  const fs::path prog = write("override_circle.ngc", text);
+  const fs::path prog = write_job_pipeline("override_circle.ngc", text);
   ASSERT_TRUE(static_cast<bool>(check_program(prog.string(), machine())));
   std::unique_ptr<rt::TraceRing> trace = std::make_unique<rt::TraceRing>();
   Job job(trace.get());
@@ -414,7 +414,7 @@ TEST(JobPipeline, SoakOfRandomJobsUnderOverrideHoldsAndResumesLosesNoStep) {
   const auto t0 = std::chrono::steady_clock::now();
   std::mt19937 rng(4242);
   for (std::uint32_t seed = 100; static_cast<double>(periods) < target; ++seed) {
-    const fs::path prog = write("soak.ngc", random_program(seed, 400));
+    const fs::path prog = write_job_pipeline("soak.ngc", random_program(seed, 400));
     if (!check_program(prog.string(), machine())) continue;  // an arc beyond the travel
     Job job;
     job.run(prog, rt::RtClock::Simulated);

@@ -164,7 +164,7 @@ TEST(LasercncCut, SamplePlateHolesFirstKerfOffsetLeadInsAndItRuns) {
   EXPECT_EQ(run.exit_code, 0) << run.out << run.err;
 }
 
-void write_file(const fs::path& p, const char* text) {
+void write_file_lasercnc_cut(const fs::path& p, const char* text) {
   std::FILE* f = std::fopen(p.c_str(), "w");
   ASSERT_NE(f, nullptr) << p;
   std::fputs(text, f);
@@ -174,9 +174,10 @@ void write_file(const fs::path& p, const char* text) {
 fs::path tiny_square_without_units(const fs::path& dir) {
   // 0.5 × 0.5 drawing units, no $INSUNITS: half an inch is a plausible part
   const fs::path p = dir / "tiny.dxf";
-  write_file(p,
-             "0\nSECTION\n2\nENTITIES\n0\nLWPOLYLINE\n8\nCUT\n90\n4\n70\n1\n"
-             "10\n0\n20\n0\n10\n0.5\n20\n0\n10\n0.5\n20\n0.5\n10\n0\n20\n0.5\n0\nENDSEC\n0\nEOF\n");
+  write_file_lasercnc_cut(
+      p,
+      "0\nSECTION\n2\nENTITIES\n0\nLWPOLYLINE\n8\nCUT\n90\n4\n70\n1\n"
+      "10\n0\n20\n0\n10\n0.5\n20\n0\n10\n0.5\n20\n0.5\n10\n0\n20\n0.5\n0\nENDSEC\n0\nEOF\n");
   return p;
 }
 
@@ -199,7 +200,7 @@ TEST(LasercncCut, MissingUnitsOnATinyPartAskForUnitsAndInchWorks) {
 TEST(LasercncCut, ProcessTableSetsTheLayersFeedPowerAndKerf) {
   const fs::path dir = e2e::temp_dir();
   const fs::path csv = dir / "steel.csv", ngc = dir / "p.ngc";
-  write_file(csv, "layer,feed_mm_min,power_pct,pierce_s,kerf_mm\nCUT,1800,95,1.2,0.3\n");
+  write_file_lasercnc_cut(csv, "layer,feed_mm_min,power_pct,pierce_s,kerf_mm\nCUT,1800,95,1.2,0.3\n");
   const e2e::CmdResult r = lasercnc("cut " + kSample + " -o " + ngc.string() + " --process " + csv.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string g = e2e::slurp(ngc);
@@ -231,7 +232,7 @@ TEST(LasercncCut, CrossingTouchingAndAbsurdDrawingsAreRefusedZeroSizeOnesNamed) 
   const fs::path dir = e2e::temp_dir();
   const fs::path ngc = dir / "out.ngc";
   auto cut = [&](const std::string& name, const std::string& text) {
-    write_file(dir / name, text.c_str());
+    write_file_lasercnc_cut(dir / name, text.c_str());
     return lasercnc("cut " + (dir / name).string() + " -o " + ngc.string());
   };
   // the bow tie: one lobe only was cut before
@@ -273,7 +274,7 @@ TEST(LasercncCut, CrossingTouchingAndAbsurdDrawingsAreRefusedZeroSizeOnesNamed) 
 TEST(LasercncCut, BadInputNamesWhereAndBadCommandLinesExit2) {
   const fs::path dir = e2e::temp_dir();
   const fs::path csv = dir / "bad.csv", ngc = dir / "x.ngc";
-  write_file(csv, "# table\nCUT,1800,150,1.2,0.3\n");
+  write_file_lasercnc_cut(csv, "# table\nCUT,1800,150,1.2,0.3\n");
   e2e::CmdResult r = lasercnc("cut " + kSample + " -o " + ngc.string() + " --process " + csv.string());
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find(csv.string() + ":2: error E622"), std::string::npos) << r.err;

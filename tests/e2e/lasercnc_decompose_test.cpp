@@ -78,11 +78,12 @@ TEST(LasercncDecompose, BadOptionsAreUsageErrors) {
   EXPECT_EQ(lasercnc("decompose " + kSample + " --run --origin 10").exit_code, 2);
 }
 
-const std::string kStar = std::string(LCNC_SOURCE_DIR) + "/share/examples/star_decompose.dxf";
+const std::string kStarLasercncDecompose =
+    std::string(LCNC_SOURCE_DIR) + "/share/examples/star_decompose.dxf";
 
 TEST(LasercncDecompose, RunCutsThePartWithTwoAxisGroupsAndDrawsTheAxisCurves) {
   const fs::path svg = e2e::temp_dir() / "axes.svg";
-  const e2e::CmdResult r = lasercnc("decompose " + kStar + " --step 0.05 --run --fast " +
+  const e2e::CmdResult r = lasercnc("decompose " + kStarLasercncDecompose + " --step 0.05 --run --fast " +
                                     "--origin 200,100 --run-svg " + svg.string());
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("main X, Y ('default'), auxiliary P, Q ('aux_stage')"), std::string::npos) << r.out;
@@ -103,7 +104,8 @@ TEST(LasercncDecompose, RunCutsThePartWithTwoAxisGroupsAndDrawsTheAxisCurves) {
 }
 
 TEST(LasercncDecompose, RunBeyondTheTravelIsRefusedNamingTheContour) {
-  const e2e::CmdResult r = lasercnc("decompose " + kStar + " --step 0.05 --run --fast --origin 995,0");
+  const e2e::CmdResult r =
+      lasercnc("decompose " + kStarLasercncDecompose + " --step 0.05 --run --fast --origin 995,0");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("E612"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("contour"), std::string::npos) << r.err;

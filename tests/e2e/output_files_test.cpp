@@ -24,7 +24,7 @@ const std::string kPlate = kShare + "/examples/plate_decompose.dxf";
 const std::string kProgram = "G21 G90\nG1 X2 Y1 F1200\nG1 X0 Y0\nM30\n";
 const std::string kRun = " --no-progress --fast";
 
-fs::path write(const fs::path& p, const std::string& text) {
+fs::path write_output_files(const fs::path& p, const std::string& text) {
   std::ofstream(p, std::ios::binary) << text;
   return p;
 }
@@ -41,7 +41,7 @@ std::set<std::string> listing(const fs::path& dir) {
 
 TEST(OutputFiles, RunRefusesATraceThatIsTheProgramItselfOrALinkToIt) {
   const fs::path dir = temp_dir();
-  const fs::path prog = write(dir / "p.ngc", kProgram);
+  const fs::path prog = write_output_files(dir / "p.ngc", kProgram);
   fs::create_symlink(prog, dir / "sym.ngc");
   fs::create_hard_link(prog, dir / "hard.ngc");
   for (const fs::path& trace : {prog, dir / "sym.ngc", dir / "hard.ngc", dir / "." / "p.ngc"}) {
@@ -71,11 +71,12 @@ struct CallingJob {
   fs::path prog, sub, machine, params;
   std::map<fs::path, std::string> before;  // every input's bytes
   CallingJob() {
-    prog = write(dir / "p.ngc", "G21 G90\no<mysub> call [2]\nG10 L2 P1 X1\nM30\n");
-    sub = write(dir / "mysub.ngc", "o<mysub> sub\nG1 X#1 Y1 F1200\nG1 X0 Y0\no<mysub> endsub\nM2\n");
+    prog = write_output_files(dir / "p.ngc", "G21 G90\no<mysub> call [2]\nG10 L2 P1 X1\nM30\n");
+    sub = write_output_files(dir / "mysub.ngc",
+                             "o<mysub> sub\nG1 X#1 Y1 F1200\nG1 X0 Y0\no<mysub> endsub\nM2\n");
     std::string cfg = slurp(kShare + "/machines/default.toml");
     cfg.replace(cfg.find("[machine]\n"), 10, "[machine]\nparameter_file = \"jobs.var\"\n");
-    machine = write(dir / "m.toml", cfg);
+    machine = write_output_files(dir / "m.toml", cfg);
     params = dir / "jobs.var";
     const CmdResult r = lasercnc("run " + prog.string() + kRun + " --machine " + machine.string());
     EXPECT_EQ(r.exit_code, 0) << r.err;  // the parameter file now exists
@@ -150,9 +151,9 @@ TEST(OutputFiles, EveryPathToAnyInputIsRefusedAsAnOutput) {
 
 TEST(OutputFiles, ARefusedRunLeavesTheOldTraceByteIdenticalAndCreatesNothing) {
   const fs::path dir = temp_dir();
-  const fs::path prog = write(dir / "p.ngc", kProgram);
+  const fs::path prog = write_output_files(dir / "p.ngc", kProgram);
   const std::string old = "t,x,y,z,a,b,c,power\nthe previous run's trace\n";
-  const fs::path trace = write(dir / "x.csv", old);
+  const fs::path trace = write_output_files(dir / "x.csv", old);
   // no laser source on that port: refused before anything moves
   CmdResult r = lasercnc("run " + prog.string() + " --no-progress --trace " + trace.string() +
                          " --laser tcp:127.0.0.1:1");
@@ -167,8 +168,8 @@ TEST(OutputFiles, ARefusedRunLeavesTheOldTraceByteIdenticalAndCreatesNothing) {
 
 TEST(OutputFiles, ARunThatEndsReplacesTheTraceWholeAndLeavesNoTemporaryFile) {
   const fs::path dir = temp_dir();
-  const fs::path prog = write(dir / "p.ngc", kProgram);
-  const fs::path trace = write(dir / "x.csv", "old\n");
+  const fs::path prog = write_output_files(dir / "p.ngc", kProgram);
+  const fs::path trace = write_output_files(dir / "x.csv", "old\n");
   fs::permissions(trace, fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
   const fs::path link = dir / "link.csv";
   fs::create_symlink(trace, link);
@@ -185,7 +186,7 @@ TEST(OutputFiles, ARunThatEndsReplacesTheTraceWholeAndLeavesNoTemporaryFile) {
 
 TEST(OutputFiles, ATraceThatCannotBeWrittenIsAnErrorNamingTheFileAndTheCause) {
   const fs::path dir = temp_dir();
-  const fs::path prog = write(dir / "p.ngc", kProgram);
+  const fs::path prog = write_output_files(dir / "p.ngc", kProgram);
   const CmdResult r = lasercnc("run " + prog.string() + kRun + " --trace /dev/full");
   EXPECT_NE(r.exit_code, 0) << r.out;
   EXPECT_NE(r.err.find("/dev/full"), std::string::npos) << r.err;
@@ -227,7 +228,7 @@ TEST(OutputFiles, DecomposeRefusesAnOutputThatIsTheDrawingOrAnotherOutput) {
 TEST(OutputFiles, ARefusedDecomposeRunWritesNoneOfItsOutputs) {
   const fs::path dir = temp_dir();
   const std::string old = "an older table\n";
-  const fs::path csv = write(dir / "a.csv", old);
+  const fs::path csv = write_output_files(dir / "a.csv", old);
   // the part at the machine's origin corner leaves the main axes' travel:
   // refused before anything moves
   const CmdResult r = lasercnc("decompose " + kPlate + " --step 0.05 --csv " + csv.string() + " --svg " +
@@ -243,7 +244,7 @@ TEST(OutputFiles, ARefusedDecomposeRunWritesNoneOfItsOutputs) {
 // stays, and the file is not replaced (nor /dev/stdout itself).
 TEST(OutputFiles, ADashIsTheStandardOutputEvenWhenItIsARedirectedFile) {
   const fs::path dir = temp_dir();
-  const fs::path prog = write(dir / "p.ngc", kProgram);
+  const fs::path prog = write_output_files(dir / "p.ngc", kProgram);
   const fs::path out = dir / "out.txt";
   const std::string cmd = "{ echo before; " + std::string(LASERCNC_EXE) + " check " + prog.string() +
                           " --moves -; echo after; } >" + out.string() + " 2>/dev/null </dev/null";

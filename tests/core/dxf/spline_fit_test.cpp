@@ -12,7 +12,7 @@ namespace {
 const std::vector<Vec2> kFit = {{0, 0}, {10, 5}, {20, 0}, {35, 8}, {40, 20}};
 
 // The nearest the curve comes to q, sampled every 1 µm of its length.
-double distance(const SplineCurve& c, const Vec2& q) {
+double distance_spline_fit(const SplineCurve& c, const Vec2& q) {
   double d = 1e300;
   for (double s = 0; s <= c.length(); s += 1e-3) d = std::min(d, (c.at_length(s) - q).norm());
   return std::min(d, (c.at_length(c.length()) - q).norm());
@@ -82,7 +82,7 @@ TEST(SplineFit, AFitPointSplineInADxfIsReadThroughItsPointsWithItsTangents) {
   ASSERT_EQ(r->drawing.entities.size(), 1u);
   const Edge& e = r->drawing.entities[0].edges.at(0);
   ASSERT_EQ(e.kind, EdgeKind::Spline);
-  for (const Vec2& q : kFit) EXPECT_LT(distance(*e.spline, q), 1e-3) << q.transpose();
+  for (const Vec2& q : kFit) EXPECT_LT(distance_spline_fit(*e.spline, q), 1e-3) << q.transpose();
   // leaves straight up, arrives heading right
   const Vec2 a = e.spline->at_length(0.01) - e.spline->start();
   EXPECT_NEAR(a.normalized().y(), 1.0, 1e-4);

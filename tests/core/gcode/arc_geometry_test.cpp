@@ -10,7 +10,7 @@
 namespace lcnc::gcode {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+constexpr double kPiArcGeometry = std::numbers::pi;
 
 Segment arc_xy(Vec3 c, double r, double a0, double a1, bool cw, std::uint32_t turns = 0) {
   Segment s;
@@ -27,10 +27,12 @@ Segment arc_xy(Vec3 c, double r, double a0, double a1, bool cw, std::uint32_t tu
 }
 
 TEST(GcodeArcGeometry, SweepFollowsTheDirection) {
-  EXPECT_NEAR(arc_sweep_rad(arc_xy(Vec3::Zero(), 1, 0, kPi / 2, false)), kPi / 2, 1e-12);
-  EXPECT_NEAR(arc_sweep_rad(arc_xy(Vec3::Zero(), 1, 0, kPi / 2, true)), 1.5 * kPi, 1e-12);
-  EXPECT_NEAR(arc_sweep_rad(arc_xy(Vec3::Zero(), 1, 0, 0, true)), 2 * kPi, 1e-12);
-  EXPECT_NEAR(arc_sweep_rad(arc_xy(Vec3::Zero(), 1, 0, 0, false, 2)), 6 * kPi, 1e-12);
+  EXPECT_NEAR(arc_sweep_rad(arc_xy(Vec3::Zero(), 1, 0, kPiArcGeometry / 2, false)), kPiArcGeometry / 2,
+              1e-12);
+  EXPECT_NEAR(arc_sweep_rad(arc_xy(Vec3::Zero(), 1, 0, kPiArcGeometry / 2, true)), 1.5 * kPiArcGeometry,
+              1e-12);
+  EXPECT_NEAR(arc_sweep_rad(arc_xy(Vec3::Zero(), 1, 0, 0, true)), 2 * kPiArcGeometry, 1e-12);
+  EXPECT_NEAR(arc_sweep_rad(arc_xy(Vec3::Zero(), 1, 0, 0, false, 2)), 6 * kPiArcGeometry, 1e-12);
 }
 
 TEST(GcodeArcGeometry, ArcPlaneAxesAreRightHanded) {
@@ -42,26 +44,26 @@ TEST(GcodeArcGeometry, ArcPlaneAxesAreRightHanded) {
 TEST(GcodeArcGeometry, LengthOfAHelix) {
   Segment s = arc_xy(Vec3::Zero(), 2, 0, 0, false, 1);
   s.end[2] = 3.0;
-  EXPECT_NEAR(arc_length_mm(s), std::hypot(2 * 4 * kPi, 3.0), 1e-12);
+  EXPECT_NEAR(arc_length_mm(s), std::hypot(2 * 4 * kPiArcGeometry, 3.0), 1e-12);
 }
 
 TEST(GcodeArcGeometry, BoundsIncludeOnlyTheExtremesPassed) {
   Vec3 lo, hi;
-  arc_bounds(arc_xy(Vec3(10, 10, 0), 5, kPi / 4, 3 * kPi / 4, false), lo, hi);
-  EXPECT_NEAR(hi[1], 15, 1e-12);                          // passes +Y
-  EXPECT_NEAR(hi[0], 10 + 5 * std::cos(kPi / 4), 1e-12);  // but not +X
-  arc_bounds(arc_xy(Vec3(10, 10, 0), 5, kPi / 4, 3 * kPi / 4, true), lo, hi);
+  arc_bounds(arc_xy(Vec3(10, 10, 0), 5, kPiArcGeometry / 4, 3 * kPiArcGeometry / 4, false), lo, hi);
+  EXPECT_NEAR(hi[1], 15, 1e-12);                                     // passes +Y
+  EXPECT_NEAR(hi[0], 10 + 5 * std::cos(kPiArcGeometry / 4), 1e-12);  // but not +X
+  arc_bounds(arc_xy(Vec3(10, 10, 0), 5, kPiArcGeometry / 4, 3 * kPiArcGeometry / 4, true), lo, hi);
   EXPECT_NEAR(lo[1], 5, 1e-12);  // clockwise: the long way, through −Y
   EXPECT_NEAR(lo[0], 5, 1e-12);
   EXPECT_NEAR(hi[0], 15, 1e-12);
-  EXPECT_NEAR(hi[1], 10 + 5 * std::sin(kPi / 4), 1e-12);
+  EXPECT_NEAR(hi[1], 10 + 5 * std::sin(kPiArcGeometry / 4), 1e-12);
 }
 
 // Fixed-seed property test: points sampled along random arcs in every plane
 // lie inside arc_bounds, and the bounds are reached (tight).
 TEST(GcodeArcGeometry, BoundsContainAndTouchSampledPoints) {
   std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> ang(-kPi, kPi);
+  std::uniform_real_distribution<double> ang(-kPiArcGeometry, kPiArcGeometry);
   std::uniform_real_distribution<double> rad(0.1, 50);
   std::bernoulli_distribution coin(0.5);
   for (int i = 0; i < 2000; ++i) {

@@ -17,7 +17,7 @@ using test::pose;
 using test::segments;
 using test::start_at;
 
-constexpr double kPi = std::numbers::pi;
+constexpr double kPiProgramReaderArc = std::numbers::pi;
 
 TEST(ProgramReader, G17ClockwiseQuarterCircleFromIJ) {
   const auto segs = segments("G2 X110 Y90 I0 J-10 F600\n", start_at(100, 100, 10));
@@ -30,7 +30,7 @@ TEST(ProgramReader, G17ClockwiseQuarterCircleFromIJ) {
   EXPECT_POSE_NEAR(s.start, pose(100, 100, 10), 1e-12);
   EXPECT_POSE_NEAR(s.end, pose(110, 90, 10), 1e-12);
   EXPECT_VEC3_NEAR(s.center, Vec3(100, 90, 10), 1e-12);
-  EXPECT_NEAR(gcode::arc_sweep_rad(s), kPi / 2, 1e-12);
+  EXPECT_NEAR(gcode::arc_sweep_rad(s), kPiProgramReaderArc / 2, 1e-12);
   EXPECT_DOUBLE_EQ(s.feed_mm_s, 10.0);
   EXPECT_EQ(s.line, 1u);
 }
@@ -39,7 +39,7 @@ TEST(ProgramReader, G17CounterClockwiseGoesTheLongWayBetweenTheSamePoints) {
   const auto segs = segments("G3 X110 Y90 J-10 F600\n", start_at(100, 100, 10));
   ASSERT_EQ(segs.size(), 1u);
   EXPECT_FALSE(segs[0].clockwise);
-  EXPECT_NEAR(gcode::arc_sweep_rad(segs[0]), 1.5 * kPi, 1e-12);
+  EXPECT_NEAR(gcode::arc_sweep_rad(segs[0]), 1.5 * kPiProgramReaderArc, 1e-12);
 }
 
 TEST(ProgramReader, G18ClockwiseQuarterCircleSeenFromPlusY) {
@@ -52,7 +52,7 @@ TEST(ProgramReader, G18ClockwiseQuarterCircleSeenFromPlusY) {
   EXPECT_TRUE(s.clockwise);
   EXPECT_POSE_NEAR(s.end, pose(10, 10, 20), 1e-12);
   EXPECT_VEC3_NEAR(s.center, Vec3(10, 10, 10), 1e-12);
-  EXPECT_NEAR(gcode::arc_sweep_rad(s), kPi / 2, 1e-12);
+  EXPECT_NEAR(gcode::arc_sweep_rad(s), kPiProgramReaderArc / 2, 1e-12);
   // The clockwise quarter passes no extreme point: X stays within [10, 20].
   Vec3 lo, hi;
   gcode::arc_bounds(s, lo, hi);
@@ -65,7 +65,7 @@ TEST(ProgramReader, G18CounterClockwiseSameEndGoesThreeQuarters) {
   const auto segs = segments("G18 G3 X10 Z20 I-10 F600\n", start_at(20, 10, 10));
   ASSERT_EQ(segs.size(), 1u);
   EXPECT_FALSE(segs[0].clockwise);
-  EXPECT_NEAR(gcode::arc_sweep_rad(segs[0]), 1.5 * kPi, 1e-12);
+  EXPECT_NEAR(gcode::arc_sweep_rad(segs[0]), 1.5 * kPiProgramReaderArc, 1e-12);
 }
 
 TEST(ProgramReader, G19CounterClockwiseQuarterCircleSeenFromPlusX) {
@@ -77,7 +77,7 @@ TEST(ProgramReader, G19CounterClockwiseQuarterCircleSeenFromPlusX) {
   EXPECT_EQ(s.plane, Plane::YZ);
   EXPECT_FALSE(s.clockwise);
   EXPECT_VEC3_NEAR(s.center, Vec3(10, 20, 20), 1e-12);
-  EXPECT_NEAR(gcode::arc_sweep_rad(s), kPi / 2, 1e-12);
+  EXPECT_NEAR(gcode::arc_sweep_rad(s), kPiProgramReaderArc / 2, 1e-12);
 }
 
 TEST(ProgramReader, FullCircleWhenIJKArcEndsAtItsStart) {
@@ -87,8 +87,8 @@ TEST(ProgramReader, FullCircleWhenIJKArcEndsAtItsStart) {
   EXPECT_EQ(s.start, s.end);
   EXPECT_VEC3_NEAR(s.center, Vec3(110, 100, 10), 1e-12);
   EXPECT_EQ(s.extra_turns, 0u);
-  EXPECT_NEAR(gcode::arc_sweep_rad(s), 2 * kPi, 1e-12);
-  EXPECT_NEAR(gcode::arc_length_mm(s), 2 * kPi * 10, 1e-9);
+  EXPECT_NEAR(gcode::arc_sweep_rad(s), 2 * kPiProgramReaderArc, 1e-12);
+  EXPECT_NEAR(gcode::arc_length_mm(s), 2 * kPiProgramReaderArc * 10, 1e-9);
 }
 
 TEST(ProgramReader, HelixWithPTurnsAddsExtraTurnsAndMovesTheNormalAxis) {
@@ -99,8 +99,8 @@ TEST(ProgramReader, HelixWithPTurnsAddsExtraTurnsAndMovesTheNormalAxis) {
   EXPECT_FALSE(s.clockwise);
   EXPECT_POSE_NEAR(s.end, pose(100, 100, 20, 30), 1e-12);
   EXPECT_NEAR(s.center[2], 10.0, 1e-12);  // centre's normal coordinate: the start's
-  EXPECT_NEAR(gcode::arc_sweep_rad(s), 6 * kPi, 1e-12);
-  EXPECT_NEAR(gcode::arc_length_mm(s), std::hypot(10 * 6 * kPi, 10.0), 1e-9);
+  EXPECT_NEAR(gcode::arc_sweep_rad(s), 6 * kPiProgramReaderArc, 1e-12);
+  EXPECT_NEAR(gcode::arc_length_mm(s), std::hypot(10 * 6 * kPiProgramReaderArc, 10.0), 1e-9);
   EXPECT_DOUBLE_EQ(s.feed_mm_s, 10.0);
 }
 
@@ -115,24 +115,24 @@ TEST(ProgramReader, RadiusFormPositiveIsTheShortArc) {
   auto segs = segments("G2 X110 Y90 R10 F600\n", start_at(100, 100, 10));
   ASSERT_EQ(segs.size(), 1u);
   EXPECT_VEC3_NEAR(segs[0].center, Vec3(100, 90, 10), 1e-9);
-  EXPECT_NEAR(gcode::arc_sweep_rad(segs[0]), kPi / 2, 1e-9);
+  EXPECT_NEAR(gcode::arc_sweep_rad(segs[0]), kPiProgramReaderArc / 2, 1e-9);
 
   segs = segments("G3 X110 Y90 R10 F600\n", start_at(100, 100, 10));
   ASSERT_EQ(segs.size(), 1u);
   EXPECT_VEC3_NEAR(segs[0].center, Vec3(110, 100, 10), 1e-9);
-  EXPECT_NEAR(gcode::arc_sweep_rad(segs[0]), kPi / 2, 1e-9);
+  EXPECT_NEAR(gcode::arc_sweep_rad(segs[0]), kPiProgramReaderArc / 2, 1e-9);
 }
 
 TEST(ProgramReader, RadiusFormNegativeIsTheLongArc) {
   auto segs = segments("G2 X110 Y90 R-10 F600\n", start_at(100, 100, 10));
   ASSERT_EQ(segs.size(), 1u);
   EXPECT_VEC3_NEAR(segs[0].center, Vec3(110, 100, 10), 1e-9);
-  EXPECT_NEAR(gcode::arc_sweep_rad(segs[0]), 1.5 * kPi, 1e-9);
+  EXPECT_NEAR(gcode::arc_sweep_rad(segs[0]), 1.5 * kPiProgramReaderArc, 1e-9);
 
   segs = segments("G3 X110 Y90 R-10 F600\n", start_at(100, 100, 10));
   ASSERT_EQ(segs.size(), 1u);
   EXPECT_VEC3_NEAR(segs[0].center, Vec3(100, 90, 10), 1e-9);
-  EXPECT_NEAR(gcode::arc_sweep_rad(segs[0]), 1.5 * kPi, 1e-9);
+  EXPECT_NEAR(gcode::arc_sweep_rad(segs[0]), 1.5 * kPiProgramReaderArc, 1e-9);
 }
 
 TEST(ProgramReader, RadiusFormSemicircleAndTinyShortfallAreReachable) {
@@ -222,7 +222,7 @@ TEST(ProgramReader, ArcRadiiMayDifferByLinuxCncsCentreTolerance) {
 TEST(ProgramReader, LargeArcWithinRelativeRadiusToleranceIsAccepted) {
   // Radius 400 to the start, 400.1 to the end: 0.1 mm > 0.028 mm but only
   // 0.025 % (< 0.1 %) and below the 2.83 mm hard limit: LinuxCNC accepts it.
-  const double a = 175.0 * kPi / 180.0;
+  const double a = 175.0 * kPiProgramReaderArc / 180.0;
   char prog[128];
   std::snprintf(prog, sizeof prog, "G2 X%.6f Y%.6f I400 J0 F600\n", 500 + 400.1 * std::cos(a),
                 200 + 400.1 * std::sin(a));

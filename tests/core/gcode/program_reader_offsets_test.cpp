@@ -20,7 +20,7 @@ using test::expect_error;
 using test::pose;
 using test::segments;
 
-MachineConfig tool_machine() {
+MachineConfig tool_machine_program_reader_offsets() {
   MachineConfig m = test::test_machine();
   ToolConfig t1;
   t1.number = 1;
@@ -116,7 +116,7 @@ TEST(ProgramOffsets, TwoCodesUsingTheAxisWordsAreAConflict) {
 }
 
 TEST(ProgramTools, G43AppliesTheToolsZOffsetAndG49RemovesIt) {
-  const MachineConfig m = tool_machine();
+  const MachineConfig m = tool_machine_program_reader_offsets();
   const auto segs =
       segments("T1 M6\nG43\nG0 Z0\nT4 M6 G43\nG0 Z5\nG49\nG0 Z5\nG43 H1\nG0 Z0\n", test::start_at(), m);
   ASSERT_EQ(segs.size(), 4u);
@@ -127,7 +127,7 @@ TEST(ProgramTools, G43AppliesTheToolsZOffsetAndG49RemovesIt) {
 }
 
 TEST(ProgramTools, AToolNotInTheTableIsAnErrorAtItsWord) {
-  const MachineConfig m = tool_machine();
+  const MachineConfig m = tool_machine_program_reader_offsets();
   Diagnostic d = expect_error("G0 X1\nT7 M6\n", ErrorCode::GcodeNoSuchTool, 2, 1, test::start_at(), m);
   EXPECT_MENTIONS(d, "tool 7 is not in the tool table");
   EXPECT_MENTIONS(d, "one of 1 4");
@@ -139,7 +139,7 @@ TEST(ProgramTools, AToolNotInTheTableIsAnErrorAtItsWord) {
 }
 
 TEST(ProgramTools, M61G431G432AndG10L1L10SetTheOffsets) {
-  const MachineConfig m = tool_machine();
+  const MachineConfig m = tool_machine_program_reader_offsets();
   const auto segs = segments(
       "M61 Q4\nG43\nG0 Z5\n"                       // −1
       "G43.1 Z3\nG0 Z0\n"                          // 3
@@ -156,7 +156,7 @@ TEST(ProgramTools, M61G431G432AndG10L1L10SetTheOffsets) {
 }
 
 TEST(ProgramParametersOffsets, ProgramsReadPositionOffsetsAndToolsAsLinuxCncNumbersThem) {
-  const MachineConfig m = tool_machine();
+  const MachineConfig m = tool_machine_program_reader_offsets();
   // #5420 … the position in program coordinates, #5221 G54's X, #5400 the
   // tool in the spindle, #<_x> the same as #5420, in the program's units
   const auto segs = segments(
@@ -172,7 +172,7 @@ TEST(ProgramParametersOffsets, ProgramsReadPositionOffsetsAndToolsAsLinuxCncNumb
 
 TEST(ParameterFile, AJobKeepsItsOffsetsAndToolsForTheNextAndACheckWritesNothing) {
   const fs::path dir = temp_dir();
-  MachineConfig m = tool_machine();
+  MachineConfig m = tool_machine_program_reader_offsets();
   m.parameter_file = (dir / "lasercnc.var").string();
   // at (10, 10, 10) in G55 = (100, 20): G92 X1 is an axis offset of −91
   const std::string setter = "G10 L2 P2 X100 Y20\nG55\nG92 X1\nG28.1\nG10 L1 P4 Z3 R0.25\nM2\n";
@@ -201,7 +201,7 @@ TEST(ParameterFile, AJobKeepsItsOffsetsAndToolsForTheNextAndACheckWritesNothing)
 
 TEST(ParameterFile, AMalformedFileIsAnErrorAtItsLineAndColumnBeforeAnythingRuns) {
   const fs::path dir = temp_dir();
-  MachineConfig m = tool_machine();
+  MachineConfig m = tool_machine_program_reader_offsets();
   m.parameter_file = (dir / "bad.var").string();
   std::ofstream(m.parameter_file) << "5221\t1.5\n5222 abc\n";
   test::Run r = test::run("G0 X1\n", test::start_at(), m);
@@ -232,7 +232,7 @@ TEST(ParameterFile, AMalformedFileIsAnErrorAtItsLineAndColumnBeforeAnythingRuns)
 // refuses the MDI G10, a job fails), and the file stays as it was.
 TEST(ParameterFile, OffsetsThatCannotBeKeptFailTheReadingThatSetThem) {
   const fs::path dir = temp_dir();
-  MachineConfig m = tool_machine();
+  MachineConfig m = tool_machine_program_reader_offsets();
   m.parameter_file = (dir / "gone" / "lasercnc.var").string();  // its folder does not exist
   ReaderOptions job = test::start_at();
   job.keep_parameters = true;
@@ -252,7 +252,7 @@ TEST(ParameterFile, OffsetsThatCannotBeKeptFailTheReadingThatSetThem) {
 // the message off.
 TEST(ParameterFile, AValueThatDoesNotParseIsNamedAndItsBytesEscaped) {
   const fs::path dir = temp_dir();
-  MachineConfig m = tool_machine();
+  MachineConfig m = tool_machine_program_reader_offsets();
   m.parameter_file = (dir / "bad.var").string();
   const auto error_of = [&](const std::string& text) {
     std::ofstream(m.parameter_file, std::ios::binary) << text;

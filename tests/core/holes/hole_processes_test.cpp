@@ -15,7 +15,7 @@ namespace {
 constexpr double kGeometryTol = 0.001;  // 1 µm: the drilling geometry's tolerance
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
-HoleProcessParams row(HoleProcessId id) {
+HoleProcessParams row_hole_processes(HoleProcessId id) {
   HoleProcessParams p;
   p.hole_number = 7;
   p.position << 500.0, 200.0, 100.0, 30.0, 0.0, 45.0;
@@ -58,7 +58,7 @@ Sampled sample(const HoleProgram& prog) {
 }
 
 TEST(HoleProcesses, HelixIsOneHelixOfLayerCountTurns) {
-  const HoleProgram prog = generate(row(HoleProcessId::Helix));
+  const HoleProgram prog = generate(row_hole_processes(HoleProcessId::Helix));
   ASSERT_EQ(prog.segments.size(), 2u);  // approach rapid + helix
   EXPECT_EQ(prog.segments[0].kind, MotionKind::Rapid);
   const Segment& h = prog.segments[1];
@@ -81,7 +81,7 @@ TEST(HoleProcesses, HelixIsOneHelixOfLayerCountTurns) {
 }
 
 TEST(HoleProcesses, TaperedHelixStepsTheRadiusPerLayer) {
-  HoleProcessParams p = row(HoleProcessId::Helix);
+  HoleProcessParams p = row_hole_processes(HoleProcessId::Helix);
   p.layer_count = 5;
   p.layer_feed_mm = 0.2;
   p.head.start_radius_mm = 0.6;
@@ -102,7 +102,7 @@ TEST(HoleProcesses, TaperedHelixStepsTheRadiusPerLayer) {
 }
 
 TEST(HoleProcesses, CircleScanCutsRingsPerLayer) {
-  HoleProcessParams p = row(HoleProcessId::Circle);
+  HoleProcessParams p = row_hole_processes(HoleProcessId::Circle);
   p.layer_count = 4;
   p.layer_feed_mm = 0.25;
   p.head.start_radius_mm = 0.3;
@@ -128,7 +128,7 @@ TEST(HoleProcesses, CircleScanCutsRingsPerLayer) {
 }
 
 TEST(HoleProcesses, FreeShapeFollowsThePolarPolygon) {
-  HoleProcessParams p = row(HoleProcessId::FreeShape);
+  HoleProcessParams p = row_hole_processes(HoleProcessId::FreeShape);
   p.layer_count = 3;
   p.layer_feed_mm = 0.1;
   p.total_depth_mm = 0.3;
@@ -151,7 +151,7 @@ TEST(HoleProcesses, FreeShapeFollowsThePolarPolygon) {
 }
 
 TEST(HoleProcesses, EventsAtTheRightMoments) {
-  const HoleProgram prog = generate(row(HoleProcessId::Circle));
+  const HoleProgram prog = generate(row_hole_processes(HoleProcessId::Circle));
   ASSERT_EQ(prog.events.size(), 3u);
   EXPECT_EQ(prog.events[0].kind, HoleEventKind::HeadParameters);
   EXPECT_EQ(prog.events[0].before_segment, 0u);
@@ -170,7 +170,7 @@ TEST(HoleProcesses, EventsAtTheRightMoments) {
 }
 
 TEST(HoleProcesses, FramePutsTheHoleOnTheToolAxis) {
-  const HoleProcessParams p = row(HoleProcessId::Helix);
+  const HoleProcessParams p = row_hole_processes(HoleProcessId::Helix);
   const HoleProgram prog = generate(p);
   EXPECT_LT((prog.frame * Vec3::Zero() - Vec3(500.0, 200.0, 100.0)).norm(), 1e-12);
   EXPECT_LT((prog.frame.linear() * Vec3::UnitZ() - tool_axis(30.0, 45.0)).norm(), 1e-12);
@@ -192,38 +192,38 @@ void expect_error(const HoleProcessParams& p, const std::string& needle) {
 }
 
 TEST(HoleProcesses, RejectsBadParameters) {
-  HoleProcessParams p = row(HoleProcessId::Helix);
+  HoleProcessParams p = row_hole_processes(HoleProcessId::Helix);
   p.layer_feed_mm = 1.5;
   expect_error(p, "field 8 single-layer feed = 1.5 mm");
-  p = row(HoleProcessId::Helix);
+  p = row_hole_processes(HoleProcessId::Helix);
   p.total_depth_mm = 1.2;
   expect_error(p, "field 10 total depth = 1.2 mm; must equal layer count");
-  p = row(HoleProcessId::Helix);
+  p = row_hole_processes(HoleProcessId::Helix);
   p.feed_mm_min = 0.0;
   expect_error(p, "field 7 feed rate = 0");
-  p = row(HoleProcessId::Helix);
+  p = row_hole_processes(HoleProcessId::Helix);
   p.position[index(Axis::A)] = 100.0;
   expect_error(p, "field 5 A = 100 deg");
-  p = row(HoleProcessId::Helix);
+  p = row_hole_processes(HoleProcessId::Helix);
   p.position[index(Axis::C)] = 360.0;
   expect_error(p, "field 6 C = 360");
-  p = row(HoleProcessId::Helix);
+  p = row_hole_processes(HoleProcessId::Helix);
   p.power_pct = 101.0;
   expect_error(p, "field 11 laser power");
-  p = row(HoleProcessId::Helix);
+  p = row_hole_processes(HoleProcessId::Helix);
   p.layer_count = 0;
   expect_error(p, "field 9 layer count = 0");
-  p = row(HoleProcessId::Helix);
+  p = row_hole_processes(HoleProcessId::Helix);
   p.head.start_radius_mm = 0.0;
   expect_error(p, "field 12 start radius = 0");
-  p = row(HoleProcessId::Circle);
+  p = row_hole_processes(HoleProcessId::Circle);
   p.head.end_radius_mm = 0.7;
   expect_error(p, "field 14 radius turns = 1");
-  p = row(HoleProcessId::Helix);
+  p = row_hole_processes(HoleProcessId::Helix);
   p.process = static_cast<HoleProcessId>(5);
   expect_error(p, "field 18 process id = 5");
 
-  p = row(HoleProcessId::FreeShape);
+  p = row_hole_processes(HoleProcessId::FreeShape);
   p.shape = {{1.0, 0.0}, {1.0, 120.0}};
   expect_error(p, "free shape has 2 vertices");
   p.shape = {{1.0, 0.0}, {1.0, 120.0}, {1.0, 90.0}};
@@ -235,7 +235,7 @@ TEST(HoleProcesses, RejectsBadParameters) {
 }
 
 TEST(HoleProcesses, HolesAreValidAtTheRangeEnds) {
-  HoleProcessParams p = row(HoleProcessId::Helix);
+  HoleProcessParams p = row_hole_processes(HoleProcessId::Helix);
   p.hole_number = 10000;
   p.position << 1000.0, 450.0, 500.0, -95.0, 0.0, 359.999;
   p.feed_mm_min = 2000.0;

@@ -15,7 +15,7 @@ namespace {
 
 using testing::end_c_for_pole_distance;
 
-OrientationMove make(OrientationMethod m, RotaryJoints a, RotaryJoints b) {
+OrientationMove make_orientation_interpolation(OrientationMethod m, RotaryJoints a, RotaryJoints b) {
   Result<OrientationMove> r = OrientationMove::between_joints(m, a, b, RotaryLimits{});
   EXPECT_TRUE(r.ok()) << r.error().to_string();
   return *r;
@@ -25,7 +25,8 @@ constexpr TimeLaw kLaw{1.0, 0.25};  // 1 s, 0.25 s ramps: 80°/s along a 60° ar
 constexpr double kDt = 1e-4;
 
 TEST(OrientationInterpolation, VectorIsTheGreatCircle) {
-  const OrientationMove m = make(OrientationMethod::Vector, {20.0, 10.0}, {60.0, 100.0});
+  const OrientationMove m =
+      make_orientation_interpolation(OrientationMethod::Vector, {20.0, 10.0}, {60.0, 100.0});
   const OrientationReport r = evaluate(m, kLaw, kDt);
   EXPECT_LT(r.max_error_deg, 1e-9);
   EXPECT_LT(angle_between_deg(m.axis_at(1.0), tool_axis(60.0, 100.0)), 1e-9);
@@ -73,17 +74,20 @@ TEST(OrientationInterpolation, RandomMovesFollowTheGreatCircle) {
 }
 
 TEST(OrientationInterpolation, RateIsTheDerivativeOfTheJoints) {
-  const OrientationMove m = make(OrientationMethod::JointLinear, {20.0, 10.0}, {60.0, 100.0});
+  const OrientationMove m =
+      make_orientation_interpolation(OrientationMethod::JointLinear, {20.0, 10.0}, {60.0, 100.0});
   EXPECT_NEAR(m.rate_at(0.3).a_deg, 40.0, 1e-6);
   EXPECT_NEAR(m.rate_at(1.0).c_deg, 90.0, 1e-6);  // one-sided at the end
-  const OrientationMove v = make(OrientationMethod::Vector, {20.0, 10.0}, {60.0, 100.0});
+  const OrientationMove v =
+      make_orientation_interpolation(OrientationMethod::Vector, {20.0, 10.0}, {60.0, 100.0});
   const double h = 1e-4;
   const double dc = (v.joints_at(0.5 + h).c_deg - v.joints_at(0.5 - h).c_deg) / (2 * h);
   EXPECT_NEAR(v.rate_at(0.5).c_deg, dc, 1e-3 * std::abs(dc));
 }
 
 TEST(OrientationInterpolation, JointLinearLeavesTheGreatCircle) {
-  const OrientationMove m = make(OrientationMethod::JointLinear, {30.0, 0.0}, {30.0, 180.0});
+  const OrientationMove m =
+      make_orientation_interpolation(OrientationMethod::JointLinear, {30.0, 0.0}, {30.0, 180.0});
   const OrientationReport r = evaluate(m, kLaw, kDt);
   EXPECT_GT(r.max_error_deg, 25.0);  // mid-move at (30°, 90°) instead of the pole
   EXPECT_NEAR(r.samples.back().c_deg, 180.0, 1e-12);
@@ -97,8 +101,8 @@ TEST(OrientationInterpolation, PoleSmoothedBoundsCThroughThePole) {
   const RotaryLimits lim;
   for (double delta_deg : {0.0, 0.001, 0.005, 0.0099}) {
     const RotaryJoints a{30.0, 0.0}, b{30.0, end_c_for_pole_distance(delta_deg)};
-    const OrientationMove vec = make(OrientationMethod::Vector, a, b);
-    const OrientationMove smooth = make(OrientationMethod::PoleSmoothed, a, b);
+    const OrientationMove vec = make_orientation_interpolation(OrientationMethod::Vector, a, b);
+    const OrientationMove smooth = make_orientation_interpolation(OrientationMethod::PoleSmoothed, a, b);
     EXPECT_NEAR(vec.pole_distance_deg(), delta_deg, 1e-9);
     EXPECT_TRUE(smooth.pole_snapped());
 
@@ -167,7 +171,7 @@ TEST(OrientationInterpolation, SnapNeedsBothSignsOfA) {
 TEST(OrientationInterpolation, PoleFartherThanToleranceStaysExactAndRetimes) {
   const RotaryLimits lim;
   const RotaryJoints a{30.0, 0.0}, b{30.0, end_c_for_pole_distance(0.5)};
-  const OrientationMove smooth = make(OrientationMethod::PoleSmoothed, a, b);
+  const OrientationMove smooth = make_orientation_interpolation(OrientationMethod::PoleSmoothed, a, b);
   EXPECT_FALSE(smooth.pole_snapped());
   const OrientationReport r = evaluate(smooth, kLaw, kDt);
   EXPECT_LT(r.max_error_deg, 1e-9);
@@ -179,13 +183,14 @@ TEST(OrientationInterpolation, PoleFartherThanToleranceStaysExactAndRetimes) {
   const OrientationReport rs = evaluate(smooth, slow, 1e-3);
   EXPECT_LE(rs.peak_c_vel_deg_s, lim.c_max_velocity_deg_s * 1.01);
   // A snapped move needs no re-timing at the same time law.
-  const OrientationMove snapped =
-      make(OrientationMethod::PoleSmoothed, a, {30.0, end_c_for_pole_distance(0.005)});
+  const OrientationMove snapped = make_orientation_interpolation(OrientationMethod::PoleSmoothed, a,
+                                                                 {30.0, end_c_for_pole_distance(0.005)});
   EXPECT_GT(snapped.max_u_rate(lim), 50.0 * rate);  // A-limited (3/s) vs C-limited
 }
 
 TEST(OrientationInterpolation, StartOnThePoleLeavesWithTheNearestC) {
-  const OrientationMove m = make(OrientationMethod::Vector, {0.0, 77.0}, {40.0, 10.0});
+  const OrientationMove m =
+      make_orientation_interpolation(OrientationMethod::Vector, {0.0, 77.0}, {40.0, 10.0});
   EXPECT_NEAR(m.start_joints().a_deg, 0.0, 1e-9);
   EXPECT_NEAR(m.start_joints().c_deg, 10.0, 1e-6);  // departure C (10°, not 190°)
   EXPECT_NEAR(m.end_joints().c_deg, 10.0, 1e-6);

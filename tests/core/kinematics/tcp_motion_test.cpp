@@ -21,7 +21,7 @@
 namespace lcnc {
 namespace {
 
-struct Outcome {
+struct TcpOutcome {
   double cycle_s = 0.0;
   // Periods at rest (speed 0) between the first and the last that move, on
   // moves (not dwells).
@@ -31,7 +31,7 @@ struct Outcome {
   double tip_excess_mm = 0.0;
 };
 
-Outcome run(const std::string& text, bool table) {
+TcpOutcome run_tcp(const std::string& text, bool table) {
   MachineConfig m = testing::shipped_machine(true);
   if (table) m.kinematics.variant = MachineVariant::TableTable;
   const std::string path = ::testing::TempDir() + "tcp_motion.ngc";
@@ -49,7 +49,7 @@ Outcome run(const std::string& text, bool table) {
   std::array<std::int64_t, kAxisCount> steps{};
   for (int i = 0; i < kAxisCount; ++i) steps[i] = q.commanded(i);
   MotionCheck check(m, steps);
-  Outcome out;
+  TcpOutcome out;
   PeriodSample s;
   int first_move = -1, last_move = -1, k = 0;
   std::vector<bool> rest;
@@ -75,7 +75,7 @@ Outcome run(const std::string& text, bool table) {
   return out;
 }
 
-std::string num(double v) {
+std::string coord(double v) {
   char b[32];
   std::snprintf(b, sizeof b, "%.4f", v);
   return b;
@@ -84,10 +84,10 @@ std::string num(double v) {
 // An R30 circle of 120 chords, the tool at A20 and C on the tangent: a
 // corner of 3° in tip and joints at every chord, each rounded.
 std::string tilted_circle(double cx, double cy) {
-  std::string p = "G21 G90 G64 P0.01\nG0 X" + num(cx) + " Y" + num(cy - 30) + " Z20 A20 C0\nM3 S80\n";
+  std::string p = "G21 G90 G64 P0.01\nG0 X" + coord(cx) + " Y" + coord(cy - 30) + " Z20 A20 C0\nM3 S80\n";
   for (int k = 1; k <= 120; ++k) {
     const double phi = (3.0 * k - 90.0) * std::numbers::pi / 180.0;
-    p += "G1 X" + num(cx + 30 * std::cos(phi)) + " Y" + num(cy + 30 * std::sin(phi)) + " C" +
+    p += "G1 X" + coord(cx + 30 * std::cos(phi)) + " Y" + coord(cy + 30 * std::sin(phi)) + " C" +
          std::to_string(3 * k) + (k == 1 ? " F3000" : "") + "\n";
   }
   return p + "M5\nM2\n";
@@ -95,7 +95,7 @@ std::string tilted_circle(double cx, double cy) {
 
 TEST(TcpMotion, ATiltedCircleOfChordsRunsWithoutAStopWithinTheLimits) {
   for (bool table : {false, true}) {
-    const Outcome o = run(tilted_circle(table ? 0.0 : 150.0, table ? 0.0 : 150.0), table);
+    const TcpOutcome o = run_tcp(tilted_circle(table ? 0.0 : 150.0, table ? 0.0 : 150.0), table);
     EXPECT_TRUE(o.limits_ok) << o.breach;
     EXPECT_EQ(o.tip_excess_mm, 0.0);
     // the initial rapid ends at rest, and so does its switch to the feed
@@ -111,9 +111,9 @@ TEST(TcpMotion, ATiltedCircleOfChordsRunsWithoutAStopWithinTheLimits) {
 TEST(TcpMotion, ARapidThatTurnsTheToolDoesNotStopInside) {
   for (bool table : {false, true}) {
     const double cx = table ? 0.0 : 150.0, cy = table ? 0.0 : 150.0;
-    const std::string prog = "G21 G90\nG0 X" + num(cx) + " Y" + num(cy) + " Z20 A30 C0\nG4 P0.05\nG0 X" +
-                             num(cx + 10) + " Y" + num(cy) + " Z20 A-30 C18\nM2\n";
-    const Outcome o = run(prog, table);
+    const std::string prog = "G21 G90\nG0 X" + coord(cx) + " Y" + coord(cy) + " Z20 A30 C0\nG4 P0.05\nG0 X" +
+                             coord(cx + 10) + " Y" + coord(cy) + " Z20 A-30 C18\nM2\n";
+    const TcpOutcome o = run_tcp(prog, table);
     EXPECT_TRUE(o.limits_ok) << o.breach;
     EXPECT_EQ(o.tip_excess_mm, 0.0);
     EXPECT_EQ(o.rests_inside, 0) << (table ? "table-table" : "head-head");
@@ -124,8 +124,8 @@ TEST(TcpMotion, ARapidThatTurnsTheToolDoesNotStopInside) {
 // of the rotary move (RS274NGC), 90° at F1800 (30°/s) in 3 s and a ramp.
 TEST(TcpMotion, ARotaryOnlyMoveRunsAtFDegreesPerMinute) {
   const std::string prog = "G21 G90\nG0 X150 Y150 Z20 A30 C0\nG4 P0\nG1 C90 F1800\nM2\n";
-  const Outcome all = run(prog, false);
-  const Outcome rapid = run("G21 G90\nG0 X150 Y150 Z20 A30 C0\nG4 P0\nM2\n", false);
+  const TcpOutcome all = run_tcp(prog, false);
+  const TcpOutcome rapid = run_tcp("G21 G90\nG0 X150 Y150 Z20 A30 C0\nG4 P0\nM2\n", false);
   EXPECT_TRUE(all.limits_ok) << all.breach;
   const double turn_s = all.cycle_s - rapid.cycle_s;
   EXPECT_GT(turn_s, 3.0);

@@ -12,7 +12,7 @@ namespace {
 
 const std::string kShare = std::string(LCNC_SOURCE_DIR) + "/share";
 
-const char* kMinimal = R"(
+const char* kMinimalMachineConfig = R"(
 [machine]
 period_us = 75
 [dda]
@@ -43,7 +43,7 @@ TEST(MachineConfig, DefaultMachineLoadsAsDesigned) {
 }
 
 TEST(MachineConfig, SeedPresetGivesFifteenPulsesAt400kHz) {
-  auto m = parse_machine_config(kMinimal, "seed.toml");
+  auto m = parse_machine_config(kMinimalMachineConfig, "seed.toml");
   ASSERT_TRUE(m) << m.error().to_string();
   EXPECT_EQ(m->dda.max_pulses(), 15u);
   EXPECT_NEAR(m->dda_clock_hz(), 400e3, 1e-6);
@@ -65,7 +65,7 @@ TEST(MachineConfig, SyntaxErrorNamesLineAndColumn) {
 }
 
 TEST(MachineConfig, UnknownKeyIsAnErrorWithItsPlace) {
-  std::string text = kMinimal;
+  std::string text = kMinimalMachineConfig;
   text += "max_velocty = 3\n";  // misspelt, inside [axes.X]
   auto m = parse_machine_config(text, "typo.toml");
   ASSERT_FALSE(m);
@@ -82,7 +82,7 @@ TEST(MachineConfig, MissingRequiredAxisKey) {
 }
 
 TEST(MachineConfig, WrongTypeNamesTheKey) {
-  std::string text = kMinimal;
+  std::string text = kMinimalMachineConfig;
   text.replace(text.find("max = 100"), 9, "max = \"100\"");
   auto m = parse_machine_config(text, "m.toml");
   ASSERT_FALSE(m);
@@ -91,7 +91,7 @@ TEST(MachineConfig, WrongTypeNamesTheKey) {
 }
 
 TEST(MachineConfig, VelocityBeyondDdaPresetIsRejectedWithTheNumbers) {
-  std::string text = kMinimal;
+  std::string text = kMinimalMachineConfig;
   text.replace(text.find("max_velocity = 150"), 18, "max_velocity = 250");
   auto m = parse_machine_config(text, "m.toml");
   ASSERT_FALSE(m);
@@ -116,7 +116,7 @@ TEST(MachineConfig, RangeChecks) {
       {"max_acceleration = 1000", "max_acceleration = -1", "max_acceleration"},
   };
   for (const Case& c : cases) {
-    std::string text = kMinimal;
+    std::string text = kMinimalMachineConfig;
     const auto at = text.find(c.from);
     ASSERT_NE(at, std::string::npos) << c.from;
     text.replace(at, std::string(c.from).size(), c.to);
@@ -128,7 +128,7 @@ TEST(MachineConfig, RangeChecks) {
 }
 
 TEST(MachineConfig, WrapOnlyOnRotaryAxesSpanning360) {
-  std::string text = kMinimal;
+  std::string text = kMinimalMachineConfig;
   text += "wrap = true\n";
   auto m = parse_machine_config(text, "m.toml");
   ASSERT_FALSE(m);
@@ -150,7 +150,7 @@ TEST(MachineConfig, AxisTypeMustMatchLetter) {
 }
 
 TEST(MachineConfig, WorkOffsetsNeedSixNumbers) {
-  std::string text = kMinimal;
+  std::string text = kMinimalMachineConfig;
   text += "[work_offsets]\nG54 = [1, 2]\n";
   auto m = parse_machine_config(text, "m.toml");
   ASSERT_FALSE(m);
@@ -167,7 +167,7 @@ TEST(MachineConfig, MaxFeedOverrideIsReadAndBounded) {
   auto m = load_machine_config(kShare + "/machines/default.toml");
   ASSERT_TRUE(m);
   EXPECT_DOUBLE_EQ(m->max_feed_override, 1.5);
-  std::string text = kMinimal;
+  std::string text = kMinimalMachineConfig;
   text.replace(text.find("period_us = 75"), 14, "period_us = 75\nmax_feed_override = 3");
   auto bad = parse_machine_config(text, "m.toml");
   ASSERT_FALSE(bad);
@@ -182,7 +182,7 @@ TEST(MachineConfig, StartupCodeAdmitsModalCodesOnly) {
   ASSERT_TRUE(m);
   EXPECT_NE(m->startup_code.find("G64"), std::string::npos) << m->startup_code;
   const auto with = [](const std::string& code) {
-    std::string text = kMinimal;
+    std::string text = kMinimalMachineConfig;
     text.replace(text.find("period_us = 75"), 14, "period_us = 75\nstartup_code = \"" + code + "\"");
     return parse_machine_config(text, "m.toml");
   };
@@ -204,11 +204,11 @@ TEST(MachineConfig, StartupCodeAdmitsModalCodesOnly) {
 namespace lcnc {
 namespace {
 
-// kMinimal with `extra` appended to its [axes.X] table (the last one).
-std::string with_x(const std::string& extra) { return std::string(kMinimal) + extra; }
+// kMinimalMachineConfig with `extra` appended to its [axes.X] table (the last one).
+std::string with_x(const std::string& extra) { return std::string(kMinimalMachineConfig) + extra; }
 
 TEST(MachineConfigHoming, DefaultsFollowTheAxis) {
-  auto m = parse_machine_config(kMinimal, "m.toml");
+  auto m = parse_machine_config(kMinimalMachineConfig, "m.toml");
   ASSERT_TRUE(m) << m.error().to_string();
   const AxisConfig& x = m->axis(Axis::X);
   EXPECT_FALSE(x.home_position.has_value());
@@ -285,7 +285,7 @@ TEST(MachineConfigHoming, RangeChecksNameKeyValueAndRange) {
 // default, is not checked; up to the axis's travel) and the switch that lets
 // a machine without home switches run unhomed.
 TEST(MachineConfigHoming, FollowingErrorAndAllowUnhomedAreReadAndChecked) {
-  auto plain = parse_machine_config(kMinimal, "m.toml");
+  auto plain = parse_machine_config(kMinimalMachineConfig, "m.toml");
   ASSERT_TRUE(plain);
   EXPECT_EQ(plain->axes[0].following_error, 0.0);
   EXPECT_FALSE(plain->allow_unhomed);
@@ -300,7 +300,7 @@ TEST(MachineConfigHoming, FollowingErrorAndAllowUnhomedAreReadAndChecked) {
     ASSERT_FALSE(r) << bad;
     EXPECT_NE(r.error().message.find("axes.X.following_error"), std::string::npos) << r.error().message;
   }
-  std::string typed = kMinimal;
+  std::string typed = kMinimalMachineConfig;
   typed.replace(typed.find("period_us = 75"), 14, "period_us = 75\nallow_unhomed = 1");
   auto t = parse_machine_config(typed, "m.toml");
   ASSERT_FALSE(t);
@@ -309,15 +309,15 @@ TEST(MachineConfigHoming, FollowingErrorAndAllowUnhomedAreReadAndChecked) {
 
 // Block delete: on unless the machine says block_delete = false.
 TEST(MachineConfig, BlockDeleteIsOnByDefaultAndReadAsABoolean) {
-  auto plain = parse_machine_config(kMinimal, "m.toml");
+  auto plain = parse_machine_config(kMinimalMachineConfig, "m.toml");
   ASSERT_TRUE(plain);
   EXPECT_TRUE(plain->block_delete);
-  std::string text = kMinimal;
+  std::string text = kMinimalMachineConfig;
   text.replace(text.find("period_us = 75"), 14, "period_us = 75\nblock_delete = false");
   auto m = parse_machine_config(text, "m.toml");
   ASSERT_TRUE(m) << m.error().to_string();
   EXPECT_FALSE(m->block_delete);
-  std::string typed = kMinimal;
+  std::string typed = kMinimalMachineConfig;
   typed.replace(typed.find("period_us = 75"), 14, "period_us = 75\nblock_delete = \"off\"");
   auto t = parse_machine_config(typed, "m.toml");
   ASSERT_FALSE(t);
@@ -325,12 +325,12 @@ TEST(MachineConfig, BlockDeleteIsOnByDefaultAndReadAsABoolean) {
 }
 
 TEST(MachineConfig, SubroutinePathIsTakenFromTheConfigFilesFolder) {
-  std::string text = kMinimal;
+  std::string text = kMinimalMachineConfig;
   text.replace(text.find("period_us = 75"), 14, "period_us = 75\nsubroutine_path = [\"subs\", \"/opt/ngc\"]");
   auto m = parse_machine_config(text, "/etc/lasercnc/m.toml");
   ASSERT_TRUE(m) << m.error().to_string();
   EXPECT_EQ(m->subroutine_path, (std::vector<std::string>{"/etc/lasercnc/subs", "/opt/ngc"}));
-  std::string bad = kMinimal;
+  std::string bad = kMinimalMachineConfig;
   bad.replace(bad.find("period_us = 75"), 14, "period_us = 75\nsubroutine_path = [\"subs\", 3]");
   auto b = parse_machine_config(bad, "m.toml");
   ASSERT_FALSE(b);
@@ -367,7 +367,7 @@ TEST(MachineConfigHoming, WrongTypeAndMisspeltKeyAreErrors) {
 // A --vmax below the default search speed keeps the defaults consistent: they
 // are derived from max_velocity when asked for, not frozen at load.
 TEST(MachineConfigHoming, DefaultsFollowAChangedMaxVelocity) {
-  auto m = parse_machine_config(kMinimal, "m.toml");
+  auto m = parse_machine_config(kMinimalMachineConfig, "m.toml");
   ASSERT_TRUE(m);
   m->axis(Axis::X).max_velocity = 10.0;
   EXPECT_TRUE(validate(*m));
@@ -434,7 +434,7 @@ TEST(MachineConfigPitch, BadTablesNameKeyValueAndRange) {
 
 // validate() checks a table built in code the same way as one loaded.
 TEST(MachineConfigPitch, ValidateChecksATableBuiltInCode) {
-  auto m = parse_machine_config(kMinimal, "m.toml");
+  auto m = parse_machine_config(kMinimalMachineConfig, "m.toml");
   ASSERT_TRUE(m);
   m->axis(Axis::X).pitch_compensation = PitchTable{0.0, 10.0, {0.01}};
   Status one = validate(*m);
@@ -447,7 +447,7 @@ TEST(MachineConfigPitch, ValidateChecksATableBuiltInCode) {
 // start + (n−1)·interval = 0 + 12·0.1 is 1.2000000000000002 in doubles: a
 // table written to end on max must not be refused for that.
 TEST(MachineConfigPitch, EndOnMaxSurvivesRounding) {
-  std::string text = kMinimal;
+  std::string text = kMinimalMachineConfig;
   text.replace(text.find("max = 100"), 9, "max = 1.2");
   text +=
       "[axes.X.pitch_compensation]\nstart = 0\ninterval = 0.1\n"

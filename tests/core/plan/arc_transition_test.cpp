@@ -115,7 +115,7 @@ TEST(ArcTransition, CollinearAndReversedCornersAreNotBlended) {
 namespace lcnc {
 namespace {
 
-Segment arc_xy(const Vec3& start, const Vec3& end, const Vec3& center, bool cw) {
+Segment arc_xy_arc_transition(const Vec3& start, const Vec3& end, const Vec3& center, bool cw) {
   Segment s;
   s.kind = MotionKind::Arc;
   s.plane = Plane::XY;
@@ -155,35 +155,35 @@ void expect_good_fillet(const Segment& a, const Segment& b, double tol, double m
 TEST(FilletTransition, LineIntoArcAtAnAngle) {
   // a line going +X meets a CCW arc that starts heading +Y (90° corner)
   const Segment a = line({0, 0, 0}, {10, 0, 0});
-  const Segment b = arc_xy({10, 0, 0}, {5, 5, 0}, {5, 0, 0}, false);
+  const Segment b = arc_xy_arc_transition({10, 0, 0}, {5, 5, 0}, {5, 0, 0}, false);
   expect_good_fillet(a, b, 0.01, 5.0, 3.0);
 }
 
 TEST(FilletTransition, ArcIntoLineBothTurnDirections) {
-  const Segment a = arc_xy({0, 0, 0}, {5, 5, 0}, {5, 0, 0}, true);     // CW, ends heading +X
-  expect_good_fillet(a, line({5, 5, 0}, {5, 15, 0}), 0.01, 3.0, 5.0);  // turn left
-  expect_good_fillet(a, line({5, 5, 0}, {5, -5, 0}), 0.01, 3.0, 5.0);  // turn right
+  const Segment a = arc_xy_arc_transition({0, 0, 0}, {5, 5, 0}, {5, 0, 0}, true);  // CW, ends heading +X
+  expect_good_fillet(a, line({5, 5, 0}, {5, 15, 0}), 0.01, 3.0, 5.0);              // turn left
+  expect_good_fillet(a, line({5, 5, 0}, {5, -5, 0}), 0.01, 3.0, 5.0);              // turn right
 }
 
 TEST(FilletTransition, ArcIntoArc) {
   // two CCW arcs meeting at a 90° corner
-  const Segment a = arc_xy({10, 0, 0}, {0, 10, 0}, {0, 0, 0}, false);     // ends heading −X
-  const Segment b = arc_xy({0, 10, 0}, {-5, 15, 0}, {-5, 10, 0}, false);  // starts heading +Y
+  const Segment a = arc_xy_arc_transition({10, 0, 0}, {0, 10, 0}, {0, 0, 0}, false);     // ends heading −X
+  const Segment b = arc_xy_arc_transition({0, 10, 0}, {-5, 15, 0}, {-5, 10, 0}, false);  // starts heading +Y
   expect_good_fillet(a, b, 0.02, 5.0, 5.0);
   // and a CW one turning the other way
-  const Segment c = arc_xy({0, 10, 0}, {-5, 5, 0}, {-5, 10, 0}, true);  // starts heading −Y
+  const Segment c = arc_xy_arc_transition({0, 10, 0}, {-5, 5, 0}, {-5, 10, 0}, true);  // starts heading −Y
   expect_good_fillet(a, c, 0.02, 5.0, 5.0);
 }
 
 TEST(FilletTransition, OtherPlanesAndTangentJoins) {
   // G18: a line along +Z into a counter-clockwise ZX arc that starts heading +X
   const Segment a = line({0, 0, 0}, {0, 0, 10});
-  Segment b = arc_xy({0, 0, 10}, {5, 0, 5}, {0, 0, 5}, false);
+  Segment b = arc_xy_arc_transition({0, 0, 10}, {5, 0, 5}, {0, 0, 5}, false);
   b.plane = Plane::ZX;
   expect_good_fillet(a, b, 0.01, 5, 3);
   // a tangent join needs no fillet
   const Segment t1 = line({0, 0, 0}, {10, 0, 0});
-  const Segment t2 = arc_xy({10, 0, 0}, {15, 5, 0}, {10, 5, 0}, false);  // starts heading +X
+  const Segment t2 = arc_xy_arc_transition({10, 0, 0}, {15, 5, 0}, {10, 5, 0}, false);  // starts heading +X
   EXPECT_FALSE(fillet_transition(t1, t2, 0.01, 5, 3).blended);
 }
 

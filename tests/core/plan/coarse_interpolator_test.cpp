@@ -14,7 +14,7 @@
 namespace lcnc {
 namespace {
 
-Segment line(const Pose& a, const Pose& b, double feed, std::uint32_t line_no = 1) {
+Segment line_coarse_interpolator(const Pose& a, const Pose& b, double feed, std::uint32_t line_no = 1) {
   Segment s;
   s.kind = MotionKind::Linear;
   s.start = a;
@@ -73,7 +73,8 @@ PipelineRun run(const MachineConfig& m, const std::vector<Segment>& segs, const 
 
 TEST(CoarseInterpolator, LastSampleIsExactlyTheEndPose) {
   const auto m = testing::test_machine();
-  const PipelineRun r = run(m, {line(xyz(1, 1, 1), xyz(101.2345, 51.0001, 1), 100.0)}, xyz(1, 1, 1));
+  const PipelineRun r =
+      run(m, {line_coarse_interpolator(xyz(1, 1, 1), xyz(101.2345, 51.0001, 1), 100.0)}, xyz(1, 1, 1));
   ASSERT_FALSE(r.samples.empty());
   EXPECT_TRUE(r.samples.back().end_of_program);
   EXPECT_EQ(r.samples.back().pose, xyz(101.2345, 51.0001, 1));
@@ -87,8 +88,8 @@ TEST(CoarseInterpolator, LastSampleIsExactlyTheEndPose) {
 // second line's end and with end_of_program, and only then comes the Error.
 TEST(CoarseInterpolator, SourceErrorEndsAtRestWhereTheLastGoodSegmentEnds) {
   const auto m = testing::test_machine();
-  const std::vector<Segment> segs = {line(xyz(0, 0, 0), xyz(50, 0, 0), 100.0, 1),
-                                     line(xyz(50, 0, 0), xyz(50, 30, 0), 100.0, 2)};
+  const std::vector<Segment> segs = {line_coarse_interpolator(xyz(0, 0, 0), xyz(50, 0, 0), 100.0, 1),
+                                     line_coarse_interpolator(xyz(50, 0, 0), xyz(50, 30, 0), 100.0, 2)};
   std::size_t i = 0;
   PathBlender blender(m, [&](Segment& out) {
     if (i == segs.size()) return SourceStatus::Error;
@@ -117,7 +118,7 @@ TEST(CoarseInterpolator, SourceErrorEndsAtRestWhereTheLastGoodSegmentEnds) {
 TEST(CoarseInterpolator, CycleTimeMatchesTheTrapezoid) {
   const auto m = testing::test_machine(500.0, 5000.0);
   // 100 mm at 100 mm/s, a = 5000: t = L/v + v/a = 1.0 + 0.02 s
-  const PipelineRun r = run(m, {line(xyz(0, 0, 0), xyz(100, 0, 0), 100.0)}, xyz(0, 0, 0));
+  const PipelineRun r = run(m, {line_coarse_interpolator(xyz(0, 0, 0), xyz(100, 0, 0), 100.0)}, xyz(0, 0, 0));
   const double t = r.samples.back().t_s;
   EXPECT_NEAR(t, 1.02, m.period_s());
 }
@@ -130,7 +131,7 @@ TEST(CoarseInterpolator, ShortSegmentsAreConsumedSeveralPerPeriod) {
   std::vector<Segment> segs;
   double t_sum = 0.0;
   for (int k = 0; k < 200; ++k) {
-    segs.push_back(line(xyz(k * 0.001, 0, 0), xyz((k + 1) * 0.001, 0, 0), 100.0, k + 1));
+    segs.push_back(line_coarse_interpolator(xyz(k * 0.001, 0, 0), xyz((k + 1) * 0.001, 0, 0), 100.0, k + 1));
     // G61 (the segments' default): each runs from rest to rest
     t_sum += Trapezoid::plan(0.001, m.axes[0].max_acceleration, 0.0, 100.0, 0.0).duration();
   }
@@ -151,7 +152,7 @@ TEST(CoarseInterpolator, SumOfIncrementsEqualsCommandedStepsOnRandomPrograms) {
     const int n = 1 + static_cast<int>(rng() % 30);
     for (int k = 0; k < n; ++k) {
       const Pose to = xyz(ux(rng) * (k % 3 == 0 ? 0.001 : 1.0), ux(rng), ux(rng) * 0.1);
-      Segment s = line(at, to, uf(rng));
+      Segment s = line_coarse_interpolator(at, to, uf(rng));
       s.end[5] = at[5] + ux(rng);  // C moves too
       segs.push_back(s);
       at = s.end;
@@ -167,9 +168,9 @@ TEST(CoarseInterpolator, SumOfIncrementsEqualsCommandedStepsOnRandomPrograms) {
 
 TEST(CoarseInterpolator, CommandedMotionStaysWithinAxisLimits) {
   const auto m = testing::test_machine(200.0, 2000.0);
-  std::vector<Segment> segs = {line(xyz(0, 0, 0), xyz(100, 50, 0), 1000.0),
-                               line(xyz(100, 50, 0), xyz(10, 60, 20), 1000.0)};
-  Segment rapid = line(xyz(10, 60, 20), xyz(300, 60, 20), 0.0);
+  std::vector<Segment> segs = {line_coarse_interpolator(xyz(0, 0, 0), xyz(100, 50, 0), 1000.0),
+                               line_coarse_interpolator(xyz(100, 50, 0), xyz(10, 60, 20), 1000.0)};
+  Segment rapid = line_coarse_interpolator(xyz(10, 60, 20), xyz(300, 60, 20), 0.0);
   rapid.kind = MotionKind::Rapid;
   segs.push_back(rapid);
   const PipelineRun r = run(m, segs, xyz(0, 0, 0));
@@ -206,10 +207,10 @@ TEST(CoarseInterpolator, DwellHoldsPositionForItsTime) {
 
 TEST(CoarseInterpolator, LaserPowerFollowsModes) {
   const auto m = testing::test_machine();
-  Segment cut = line(xyz(0, 0, 0), xyz(50, 0, 0), 100.0);
+  Segment cut = line_coarse_interpolator(xyz(0, 0, 0), xyz(50, 0, 0), 100.0);
   cut.laser = LaserMode::Dynamic;
   cut.power_pct = 80.0;
-  Segment rapid = line(xyz(50, 0, 0), xyz(60, 0, 0), 0.0);
+  Segment rapid = line_coarse_interpolator(xyz(50, 0, 0), xyz(60, 0, 0), 0.0);
   rapid.kind = MotionKind::Rapid;
   rapid.laser = LaserMode::Constant;  // still off on a rapid
   rapid.power_pct = 80.0;
@@ -236,7 +237,7 @@ TEST(CoarseInterpolator, LaserPowerFollowsModes) {
 // assist gas bits) and analog values: a dwell's gas and outputs as well.
 TEST(CoarseInterpolator, SamplesCarryTheirSegmentsOutputsAndGas) {
   const auto m = testing::test_machine();
-  Segment a = line(xyz(0, 0, 0), xyz(20, 0, 0), 100.0);
+  Segment a = line_coarse_interpolator(xyz(0, 0, 0), xyz(20, 0, 0), 100.0);
   a.flood = true;
   Segment d;
   d.kind = MotionKind::Dwell;

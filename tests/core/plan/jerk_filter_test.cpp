@@ -150,7 +150,7 @@ TEST(JerkLimit, OffWhenTheTrapezoidsAlreadyKeepTheJerk) {
 
 // --- the moving average ---------------------------------------------------
 
-PeriodSample sample(double x, std::uint32_t line, float power = 0.0f) {
+PeriodSample sample_jerk_filter(double x, std::uint32_t line, float power = 0.0f) {
   PeriodSample s;
   s.pose = Pose::Zero();
   s.pose[0] = x;
@@ -163,11 +163,11 @@ PeriodSample sample(double x, std::uint32_t line, float power = 0.0f) {
 TEST(JerkFilter, AveragesPosesAndDelaysTheRestByHalfTheWindow) {
   JerkFilter f(5);
   std::vector<double> in = {1.0};  // the first sample fills the window
-  EXPECT_EQ(f.filter(sample(1.0, 0)).pose[0], 1.0);
+  EXPECT_EQ(f.filter(sample_jerk_filter(1.0, 0)).pose[0], 1.0);
   for (std::uint32_t k = 1; k < 40; ++k) {
     const double x = 1.0 + 0.25 * k * k;  // constant acceleration
     in.push_back(x);
-    const PeriodSample out = f.filter(sample(x, k));
+    const PeriodSample out = f.filter(sample_jerk_filter(x, k));
     double mean = 0.0;
     for (int j = 0; j < 5; ++j) mean += in[std::max<int>(0, static_cast<int>(in.size()) - 1 - j)];
     mean /= 5.0;
@@ -184,18 +184,18 @@ TEST(JerkFilter, AveragesPosesAndDelaysTheRestByHalfTheWindow) {
 
 TEST(JerkFilter, ConstantWindowGivesThePoseItself) {
   JerkFilter f(7);
-  (void)f.filter(sample(0.0, 0));
-  for (int k = 1; k < 100; ++k) (void)f.filter(sample(0.1 * k + 1e-7 / 3.0, 0));
+  (void)f.filter(sample_jerk_filter(0.0, 0));
+  for (int k = 1; k < 100; ++k) (void)f.filter(sample_jerk_filter(0.1 * k + 1e-7 / 3.0, 0));
   const double stop = 12.345678901234567;
   PeriodSample out;
-  for (int k = 0; k < 7; ++k) out = f.filter(sample(stop, 0));
+  for (int k = 0; k < 7; ++k) out = f.filter(sample_jerk_filter(stop, 0));
   EXPECT_EQ(out.pose[0], stop);  // exact, whatever the running sum's rounding
 }
 
 TEST(JerkFilter, DynamicPowerIsTheWindowsMeanAndDarkAtRest) {
   JerkFilter f(4);
   auto m4 = [](double x, float p) {
-    PeriodSample s = sample(x, 0, p);
+    PeriodSample s = sample_jerk_filter(x, 0, p);
     s.power_cap_pct = 80.0f;
     s.speed = p;  // any speed: only its being 0 or not matters
     return s;

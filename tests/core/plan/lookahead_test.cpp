@@ -28,7 +28,7 @@ Segment g1(const Pose& a, const Pose& b, double feed, double tol) {
   return s;
 }
 
-Pose xyz(double x, double y, double z) {
+Pose xyz_lookahead(double x, double y, double z) {
   Pose p = Pose::Zero();
   p << x, y, z, 0, 0, 0;
   return p;
@@ -46,7 +46,7 @@ struct Outcome {
 // The whole planner pipeline: blender → look-ahead → coarse interpolation →
 // step quantizer; deviation measured on the quantized positions against the
 // program segments.
-Outcome run(const MachineConfig& m, const std::vector<Segment>& segs) {
+Outcome run_lookahead(const MachineConfig& m, const std::vector<Segment>& segs) {
   std::size_t i = 0, j = 0;
   PathBlender blender(m, testing::from(segs, i));
   Lookahead la(m, [&](const IndexedSegment*& s) { return blender.next(s); });
@@ -91,12 +91,13 @@ TEST(Lookahead, BlendedSquareIsFasterThanExactStopAndStaysInTolerance) {
   const double c[5][2] = {{10, 10}, {60, 10}, {60, 60}, {10, 60}, {10, 10}};
   for (int lap = 0; lap < 3; ++lap)
     for (int k = 0; k < 4; ++k) {
-      blend.push_back(g1(xyz(c[k][0], c[k][1], 5), xyz(c[k + 1][0], c[k + 1][1], 5), 100, 0.01));
+      blend.push_back(
+          g1(xyz_lookahead(c[k][0], c[k][1], 5), xyz_lookahead(c[k + 1][0], c[k + 1][1], 5), 100, 0.01));
       Segment e = blend.back();
       e.path_mode = PathMode::ExactPath;
       stop.push_back(e);
     }
-  const Outcome b = run(m, blend), e = run(m, stop);
+  const Outcome b = run_lookahead(m, blend), e = run_lookahead(m, stop);
   EXPECT_LT(b.time_s, e.time_s);  // 90° corners: blends at 6.5 mm/s, little to gain
   EXPECT_LE(b.max_dev, 0.01);
   EXPECT_GT(b.max_dev, 0.005);  // the corners really are cut
@@ -115,13 +116,13 @@ TEST(Lookahead, ShallowCornersAreTakenAtSpeed) {
   for (int k = 0; k < 24; ++k) {  // a 12-gon twice: 30° corners
     auto pt = [](int j) {
       const double a = 2 * 3.14159265358979 * j / 12.0;
-      return xyz(100 + 30 * std::cos(a), 100 + 30 * std::sin(a), 5);
+      return xyz_lookahead(100 + 30 * std::cos(a), 100 + 30 * std::sin(a), 5);
     };
     blend.push_back(g1(pt(k), pt(k + 1), 100, 0.05));
     stop.push_back(blend.back());
     stop.back().path_mode = PathMode::ExactPath;
   }
-  const Outcome b = run(m, blend), e = run(m, stop);
+  const Outcome b = run_lookahead(m, blend), e = run_lookahead(m, stop);
   EXPECT_LT(b.time_s, 0.9 * e.time_s);  // corners at ~52 mm/s instead of a stop
   EXPECT_LE(b.max_dev, 0.05);
 }
@@ -131,7 +132,7 @@ TEST(Lookahead, ShallowCornersAreTakenAtSpeed) {
 TEST(Lookahead, PlansAtTheMachinesFullLimits) {
   auto m = testing::test_machine(100.0, 2000.0);
   m.max_feed_override = 1.5;
-  const Outcome o = run(m, {g1(xyz(0, 0, 0), xyz(100, 0, 0), 1000.0, 0.01)});
+  const Outcome o = run_lookahead(m, {g1(xyz_lookahead(0, 0, 0), xyz_lookahead(100, 0, 0), 1000.0, 0.01)});
   EXPECT_NEAR(o.peak_v[0], 100.0, 1e-6);
   EXPECT_LE(o.peak_a[0], 2000.0 * (1 + 1e-6));
   EXPECT_GT(o.peak_a[0], 2000.0 * 0.99);
@@ -147,16 +148,17 @@ TEST(Lookahead, RandomPolylinesStayWithinLimitsAndTolerance) {
   const int programs = testing::scaled(12);
   for (int p = 0; p < programs; ++p) {
     std::vector<Segment> segs;
-    Pose at = xyz(100 + 50 * u(rng), 100 + 50 * u(rng), 50);
+    Pose at = xyz_lookahead(100 + 50 * u(rng), 100 + 50 * u(rng), 50);
     const double tol = 0.002 + 0.05 * u(rng);
     const double scale = p % 3 == 0 ? 0.05 : (p % 3 == 1 ? 1.0 : 10.0);
     for (int k = 0; k < 200; ++k) {
-      Pose to = at + xyz(scale * (u(rng) - 0.5), scale * (u(rng) - 0.5), 0.1 * scale * (u(rng) - 0.5));
+      Pose to =
+          at + xyz_lookahead(scale * (u(rng) - 0.5), scale * (u(rng) - 0.5), 0.1 * scale * (u(rng) - 0.5));
       to[5] = at[5] + 2.0 * u(rng);  // C turns along: blending stays on
       segs.push_back(g1(at, to, 20 + 200 * u(rng), tol));
       at = to;
     }
-    const Outcome o = run(m, segs);
+    const Outcome o = run_lookahead(m, segs);
     EXPECT_LE(o.max_dev, tol) << "program " << p;
     EXPECT_LE(o.max_entry_exit_gap, 1e-9);
     for (int a = 0; a < kAxisCount; ++a) {
@@ -182,9 +184,9 @@ TEST(Lookahead, RandomLinesAndArcsStayWithinLimitsAndTolerance) {
   for (int p = 0; p < programs; ++p) {
     const double tol = 0.005 + 0.03 * u(rng);
     const std::vector<Segment> segs = testing::random_lines_and_arcs(
-        rng, xyz(200, 200, 50), 120,
+        rng, xyz_lookahead(200, 200, 50), 120,
         [&](const Pose& a, const Pose& b, double feed) { return g1(a, b, feed, tol); });
-    const Outcome o = run(m, segs);
+    const Outcome o = run_lookahead(m, segs);
     EXPECT_LE(o.max_dev, tol) << "program " << p;
     EXPECT_GT(o.max_dev, 0.5 * tol) << "program " << p;  // the corners really are filleted
     EXPECT_LE(o.max_entry_exit_gap, 1e-9);
@@ -201,15 +203,15 @@ TEST(Lookahead, NaiveCamMergingStaysWithinP) {
   std::mt19937_64 rng(17);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::vector<Segment> segs;
-  Pose at = xyz(50, 50, 5);
+  Pose at = xyz_lookahead(50, 50, 5);
   for (int k = 0; k < 400; ++k) {  // wavy CAM chords: some runs merge, corners blend
-    const Pose to = at + xyz(0.3, 0.004 * u(rng) + (k % 40 < 20 ? 0.05 : -0.05), 0);
+    const Pose to = at + xyz_lookahead(0.3, 0.004 * u(rng) + (k % 40 < 20 ? 0.05 : -0.05), 0);
     Segment s = g1(at, to, 100.0, 0.02);
     s.naive_cam_tolerance_mm = 0.02;
     segs.push_back(s);
     at = to;
   }
-  const Outcome o = run(m, segs);
+  const Outcome o = run_lookahead(m, segs);
   EXPECT_LE(o.max_dev, 0.02);
   for (int a = 0; a < 3; ++a) EXPECT_EQ(o.sum[a], o.commanded[a]);
 }
@@ -221,10 +223,10 @@ TEST(Lookahead, TinyChordCircleRunsAtItsCentripetalLimit) {
   const int n = 1257 * 4;  // 0.01 mm chords, 4 laps
   auto pt = [&](int k) {
     const double a = 2 * 3.14159265358979 * (k % 1257) / 1257.0;
-    return xyz(100 + r * std::cos(a), 100 + r * std::sin(a), 5);
+    return xyz_lookahead(100 + r * std::cos(a), 100 + r * std::sin(a), 5);
   };
   for (int k = 0; k < n; ++k) segs.push_back(g1(pt(k), pt(k + 1), 100.0, 0.01));
-  const Outcome o = run(m, segs);
+  const Outcome o = run_lookahead(m, segs);
   const double chord = (pt(0) - pt(1)).norm();
   const double length = n * chord;
   const double v_limit = std::sqrt(2000.0 * r);
@@ -243,10 +245,10 @@ TEST(Lookahead, DenseChordCircleRunsAtFeedWithBoundedWindow) {
   const double r = 40.0;
   auto pt = [&](int k) {
     const double a = 2 * 3.14159265358979 * (k % 4000) / 4000.0;
-    return xyz(200 + r * std::cos(a), 200 + r * std::sin(a), 10);
+    return xyz_lookahead(200 + r * std::cos(a), 200 + r * std::sin(a), 10);
   };
   for (int k = 0; k < n; ++k) segs.push_back(g1(pt(k), pt(k + 1), 100.0, 0.01));
-  const Outcome o = run(m, segs);
+  const Outcome o = run_lookahead(m, segs);
   const double length = n * (pt(0) - pt(1)).norm();
   // at F6000 = 100 mm/s the path is feed-limited: time ≈ L/v + accel/decel
   EXPECT_LT(o.time_s, length / 100.0 + 2 * 100.0 / 2000.0 + 0.01);
@@ -286,15 +288,15 @@ void expect_within_limits(const MachineConfig& m, const Outcome& o) {
 // directly. That join is no tangent one: A must not jump in speed there.
 TEST(Lookahead, BlendAfterALineUsedUpKeepsTheRotaryRateOfTheOneBefore) {
   const MachineConfig m = with_a_axis();
-  Pose swung = xyz(11, 10, 5);
+  Pose swung = xyz_lookahead(11, 10, 5);
   swung[3] = 10.0;  // 10° of A over 1 mm of X
-  Pose corner = xyz(11, 10.001, 5);
+  Pose corner = xyz_lookahead(11, 10.001, 5);
   corner[3] = 10.0;
-  Pose end = xyz(12, 10.001, 5);
+  Pose end = xyz_lookahead(12, 10.001, 5);
   end[3] = 10.0;
-  const std::vector<Segment> segs = {g1(xyz(10, 10, 5), swung, 50.0, 0.01), g1(swung, corner, 50.0, 0.01),
-                                     g1(corner, end, 50.0, 0.01)};
-  expect_within_limits(m, run(m, segs));
+  const std::vector<Segment> segs = {g1(xyz_lookahead(10, 10, 5), swung, 50.0, 0.01),
+                                     g1(swung, corner, 50.0, 0.01), g1(corner, end, 50.0, 0.01)};
+  expect_within_limits(m, run_lookahead(m, segs));
 }
 
 // The other way round: the short line used up by its blends is the one that
@@ -303,11 +305,12 @@ TEST(Lookahead, BlendAfterALineUsedUpKeepsTheRotaryRateOfTheOneBefore) {
 // neither join is tangent.
 TEST(Lookahead, BlendsOfALineUsedUpThatSwingsARotaryAxisAreNoTangentJoins) {
   const MachineConfig m = with_a_axis();
-  Pose corner = xyz(11, 10, 5), swung = xyz(11, 10.001, 5), end = xyz(12, 10.001, 5);
+  Pose corner = xyz_lookahead(11, 10, 5), swung = xyz_lookahead(11, 10.001, 5),
+       end = xyz_lookahead(12, 10.001, 5);
   swung[3] = end[3] = 1.0;
-  const std::vector<Segment> segs = {g1(xyz(10, 10, 5), corner, 50.0, 0.01), g1(corner, swung, 50.0, 0.01),
-                                     g1(swung, end, 50.0, 0.01)};
-  expect_within_limits(m, run(m, segs));
+  const std::vector<Segment> segs = {g1(xyz_lookahead(10, 10, 5), corner, 50.0, 0.01),
+                                     g1(corner, swung, 50.0, 0.01), g1(swung, end, 50.0, 0.01)};
+  expect_within_limits(m, run_lookahead(m, segs));
 }
 
 }  // namespace

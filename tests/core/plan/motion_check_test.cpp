@@ -32,7 +32,8 @@ using testing::at_x;
 
 // Runs `move` on X from 100 mm through a check, periods of T/K with K drawn
 // in [0.3, 1.5] (a feed override that changes), positions rounded to steps.
-MotionCheck run(const MachineConfig& m, const Move& move, std::mt19937& rng, bool vary_k = true) {
+MotionCheck run_motion_check(const MachineConfig& m, const Move& move, std::mt19937& rng,
+                             bool vary_k = true) {
   const std::int64_t x0 = 100'000;
   MotionCheck check(m, at_x(x0));
   std::uniform_real_distribution<double> k(0.3, 1.5);
@@ -70,12 +71,12 @@ TEST(MotionCheck, MotionWithinItsLimitsPassesWhateverTheQuantizationAndOverride)
   for (int n = 0; n < 200; ++n) {
     // the override scales speed by K and acceleration by K²: plan for 1.5
     const Move move{dist(rng), 500.0 / 1.5 * share(rng), 5000.0 / 2.25 * share(rng)};
-    const MotionCheck c = run(m, move, rng);
+    const MotionCheck c = run_motion_check(m, move, rng);
     ASSERT_TRUE(c.ok()) << n << ": " << c.breaches().front();
     EXPECT_LE(c.axes()[0].velocity.peak, 500.0 + c.axes()[0].velocity.quantization);
   }
   // and at full limits without override: the peaks come close to them
-  const MotionCheck c = run(m, Move{100.0, 500.0, 5000.0}, rng, false);
+  const MotionCheck c = run_motion_check(m, Move{100.0, 500.0, 5000.0}, rng, false);
   EXPECT_TRUE(c.ok());
   EXPECT_GT(c.axes()[0].velocity.peak, 490.0);
   EXPECT_GT(c.axes()[0].acceleration.peak, 4500.0);
@@ -84,7 +85,7 @@ TEST(MotionCheck, MotionWithinItsLimitsPassesWhateverTheQuantizationAndOverride)
 TEST(MotionCheck, ThreePercentTooFastIsAVelocityBreach) {
   const MachineConfig m = testing::test_machine();
   std::mt19937 rng(1);
-  const MotionCheck c = run(m, Move{200.0, 515.0, 4000.0}, rng, false);
+  const MotionCheck c = run_motion_check(m, Move{200.0, 515.0, 4000.0}, rng, false);
   ASSERT_FALSE(c.ok());
   EXPECT_GT(c.axes()[0].velocity.excess, 0.0);
   EXPECT_EQ(c.axes()[0].acceleration.excess, 0.0);
@@ -96,7 +97,7 @@ TEST(MotionCheck, ThreePercentTooFastIsAVelocityBreach) {
 TEST(MotionCheck, TenPercentTooMuchAccelerationIsAnAccelerationBreach) {
   const MachineConfig m = testing::test_machine();
   std::mt19937 rng(1);
-  const MotionCheck c = run(m, Move{200.0, 400.0, 5500.0}, rng, false);
+  const MotionCheck c = run_motion_check(m, Move{200.0, 400.0, 5500.0}, rng, false);
   ASSERT_FALSE(c.ok());
   EXPECT_EQ(c.axes()[0].velocity.excess, 0.0);
   EXPECT_GT(c.axes()[0].acceleration.excess, 0.0);
