@@ -30,7 +30,6 @@ namespace {
 
 using namespace lcnc;
 
-constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 constexpr double kSampleDt = 1e-4;
 constexpr TimeLaw kLaw{1.0, 0.25};
 // Its peak du/dt and d²u/dt²: the caps of the re-timed law.
